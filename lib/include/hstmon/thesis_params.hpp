@@ -1,0 +1,44 @@
+#pragma once
+/// @file thesis_params.hpp
+/// Parameters and inputs of the thesis HST (seed 000): supply → DCV → motor → coupled
+/// loading pump → PRV. Defaults are Table 2.2 with the thesis's simplifications
+/// (one bulk stiffness K for all volumes, kfi = kfo = kf, Rlkg1 = Rlkg2 = Rlkg,
+/// Rbl = Rbl1 + Rbl2). Pressures are gauge (Ps = 0 is atmosphere).
+
+namespace hstmon {
+
+/// Physical parameters of the thesis model (Table 2.2). Plain aggregate; copy freely.
+template <typename T>
+struct ThesisParams {
+  T Dm = T(7.96e-6);          ///< motor displacement [m³/rad]
+  T Dp = T(1.00745e-6);       ///< loading-pump displacement [m³/rad]
+  T Rlkg = T(6.4779e16);      ///< leakage resistance of each motor port to drain [Pa·s/m³]
+  T Ripl = T(16.97088e18);    ///< cross-port leakage resistance of the motor [Pa·s/m³]
+  T Rf = T(1.59154e-3);       ///< shaft friction [N·m·s/rad]
+  T Rbl = T(4.758732e-2);     ///< fluid friction Rbl1 + Rbl2 of the flow-control valves [N·m·s/rad]
+  T kf = T(0.3226e-5);        ///< DCV orifice coefficient, Q = kf·√ΔP [m³/(s·√Pa)]
+  T J = T(1e-3);              ///< moment of inertia of motor + pump [kg·m²]
+  T K = T(1e14);              ///< bulk stiffness of each fluid volume [Pa/m³]
+  T dp_t_dcv = T(1e3);        ///< laminar transition ΔP of the DCV orifices [Pa] (see signed_root.hpp)
+  T dp_t_prv = T(1e5);        ///< laminar transition ΔP of the PRV orifice [Pa]
+};
+
+/// Inputs of the thesis model; held constant over one observer tick.
+template <typename T>
+struct ThesisInputs {
+  T Psupl = T(3.5e6);         ///< supply pressure upstream of the DCV [Pa]
+  T Ps = T(0);                ///< DCV return (tank) pressure [Pa]
+  T Pbp = T(1.0e6);           ///< booster-pump pressure downstream of the PRV [Pa]
+  T kp = T(4.41e-8);          ///< PRV orifice coefficient, Q = kp·√ΔP [m³/(s·√Pa)]
+};
+
+/// Full state of equations 2.5–2.8.
+template <typename T>
+struct ThesisState {
+  T Pmi = T(0);               ///< motor inlet pressure [Pa]
+  T Pmo = T(0);               ///< motor outlet pressure [Pa]
+  T Ppp = T(0);               ///< loading-pump outlet pressure [Pa]
+  T w_m = T(0);               ///< motor shaft speed ωm [rad/s]
+};
+
+}  // namespace hstmon

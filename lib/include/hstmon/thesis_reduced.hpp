@@ -1,0 +1,214 @@
+#pragma once
+/// @file thesis_reduced.hpp
+/// The thesis model in the form the observer integrates: the two DCV-side pressures
+/// (Pmi, Pmo), whose modes sit near −3.7e5 1/s, are taken quasi-steady and solved
+/// algebraically each evaluation; Ppp and ωm are integrated. The algebraic solve inverts
+/// the orifice law (ΔP = (Q/kf)·|Q/kf|), so the unbounded slope of the square root at
+/// zero flow never enters the integrator. docs/numerics.md gives the analysis.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <limits>
+
+#include "hstmon/signed_root.hpp"
+#include "hstmon/thesis_params.hpp"
+
+namespace hstmon {
+
+/// Measured channels of the thesis rig, in the order of the model's output vector.
+enum ThesisChannel : int {
+  kChPmi = 0,  ///< motor inlet pressure Pmi [Pa]
+  kChPmo = 1,  ///< motor outlet pressure Pmo [Pa]
+  kChPpp = 2,  ///< loading-pump outlet pressure Ppp [Pa]
+  kChWm = 3,   ///< motor speed ωm [rad/s]
+};
+
+/// Reduced thesis model: state (Ppp [Pa], ωm [rad/s]); outputs (Pmi, Pmo, Ppp, ωm).
+/// Holds parameters and coefficients precomputed from them (≈ 30 scalars); no heap.
+template <typename T>
+class ThesisReducedModel {
+ public:
+  using Scalar = T;
+  static constexpr int kStates = 2;   ///< Ppp, ωm
+  static constexpr int kOutputs = 4;  ///< Pmi, Pmo, Ppp, ωm
+  using State = Eigen::Matrix<T, kStates, 1>;
+  using Output = Eigen::Matrix<T, kOutputs, 1>;
+  using Inputs = ThesisInputs<T>;
+  using Params = ThesisParams<T>;
+
+  /// Fixed-point refinements of the DCV-side pressures after the leakage-free closed
+  /// form. With Table 2.2 one is exact to rounding; two cover leakage 1e5× stronger.
+  static constexpr int kDcvIterations = 2;
+
+  ThesisReducedModel() noexcept { set_params(Params{}); set_inputs(Inputs{}); }
+  explicit ThesisReducedModel(const Params& p) noexcept { set_params(p); set_inputs(Inputs{}); }
+
+  /// True when every parameter is finite and strictly positive (all are physical
+  /// magnitudes). A model built from invalid parameters must not be stepped.
+  static bool params_valid(const Params& p) noexcept {
+    const T v[] = {p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf + p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
+    for (T e : v) {
+      if (!(std::isfinite(e) && e > T(0))) return false;
+    }
+    return std::isfinite(p.Rf) && std::isfinite(p.Rbl) && p.Rf >= T(0) && p.Rbl >= T(0);
+  }
+
+  /// True when the inputs are finite and kp is non-negative.
+  static bool inputs_valid(const Inputs& u) noexcept {
+    return std::isfinite(u.Psupl) && std::isfinite(u.Ps) && std::isfinite(u.Pbp) &&
+           std::isfinite(u.kp) && u.kp >= T(0);
+  }
+
+  /// Replaces the parameters and recomputes the derived coefficients. O(1).
+  void set_params(const Params& p) noexcept {
+    p_ = p;
+    inv_kf_ = T(1) / p.kf;
+    g_lkg_ = T(1) / p.Rlkg;
+    g_ipl_ = T(1) / p.Ripl;
+    inv_J_ = T(1) / p.J;
+    K_Dp_ = p.K * p.Dp;
+    Dm_J_ = p.Dm / p.J;
+    Dp_J_ = p.Dp / p.J;
+    R_J_ = (p.Rf + p.Rbl) / p.J;
+  }
+
+  /// Sets the inputs held over the next evaluations (zero-order hold). O(1).
+  void set_inputs(const Inputs& u) noexcept {
+    u_ = u;
+    K_kp_ = p_.K * u.kp;
+  }
+
+  const Params& params() const noexcept { return p_; }
+  const Inputs& inputs() const noexcept { return u_; }
+
+  /// Quasi-steady DCV-side pressures for shaft speed w_m under the current inputs.
+  /// @param w_m  motor speed [rad/s]
+  /// @param Pmi  out: motor inlet pressure [Pa]
+  /// @param Pmo  out: motor outlet pressure [Pa]
+  void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept {
+    const T q_m = p_.Dm * w_m;
+    Pmi = u_.Psupl - signed_square(q_m * inv_kf_, p_.dp_t_dcv);
+    Pmo = u_.Ps + signed_square(q_m * inv_kf_, p_.dp_t_dcv);
+    for (int i = 0; i < kDcvIterations; ++i) {
+      const T q_ipl = (Pmi - Pmo) * g_ipl_;
+      const T q_in = q_m + Pmi * g_lkg_ + q_ipl;
+      const T q_out = q_m + q_ipl - Pmo * g_lkg_;
+      Pmi = u_.Psupl - signed_square(q_in * inv_kf_, p_.dp_t_dcv);
+      Pmo = u_.Ps + signed_square(q_out * inv_kf_, p_.dp_t_dcv);
+    }
+  }
+
+  /// Time derivative of (Ppp, ωm) and, if y is given, the outputs at x (shared work).
+  /// @param x  state (Ppp [Pa], ωm [rad/s])
+  /// @param y  optional out: (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
+  /// @return   (dPpp/dt [Pa/s], dωm/dt [rad/s²])
+  State derivative(const State& x, Output* y = nullptr) const noexcept {
+    T Pmi, Pmo;
+    dcv_pressures(x[1], Pmi, Pmo);
+    const T dPpp = x[0] - u_.Pbp;
+    State d;
+    d[0] = K_Dp_ * x[1] - K_kp_ * signed_root(dPpp, p_.dp_t_prv);
+    d[1] = Dm_J_ * (Pmi - Pmo) - R_J_ * x[1] - Dp_J_ * dPpp;
+    if (y != nullptr) {
+      *y << Pmi, Pmo, x[0], x[1];
+    }
+    return d;
+  }
+
+  /// Outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at state x.
+  Output outputs(const State& x) const noexcept {
+    Output y;
+    T Pmi, Pmo;
+    dcv_pressures(x[1], Pmi, Pmo);
+    y << Pmi, Pmo, x[0], x[1];
+    return y;
+  }
+
+  /// Spectral radius of ∂f/∂x at x [1/s]: exact for the 2×2 Jacobian, with the DCV
+  /// pressures' sensitivity to ωm included. Sets the RK4 substep count.
+  T spectral_radius(const State& x) const noexcept {
+    const T q_m = p_.Dm * x[1];
+    // dΔP/dQ of both DCV orifices, leakage neglected (its effect is < 1e-8 relative).
+    const T s_dcv = T(2) * signed_square_slope(q_m * inv_kf_, p_.dp_t_dcv) * inv_kf_;
+    const T a = -K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv);
+    const T b = K_Dp_;
+    const T c = -Dp_J_;
+    const T d = -R_J_ - Dm_J_ * p_.Dm * s_dcv;
+    const T tr = a + d;
+    const T det = a * d - b * c;
+    const T disc = T(0.25) * tr * tr - det;
+    return disc >= T(0) ? T(0.5) * std::fabs(tr) + std::sqrt(disc) : std::sqrt(det);
+  }
+
+  /// Contraction factor of the DCV fixed-point iteration at speed w_m [-]. Below about
+  /// 0.01 the kDcvIterations refinements are exact to rounding; at 1 or more the
+  /// quasi-steady solve does not converge and the reduced model is not valid.
+  T dcv_contraction(T w_m) const noexcept {
+    const T q_m = p_.Dm * w_m;
+    return signed_square_slope(q_m * inv_kf_, p_.dp_t_dcv) * inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
+  }
+
+  /// True when the quasi-steady DCV solve contracts at x (see dcv_contraction).
+  bool algebraic_ok(const State& x) const noexcept { return dcv_contraction(x[1]) < T(0.5); }
+
+  /// True when ωm is within twice speed_bound() and Ppp above −1 bar gauge less Pbp's
+  /// magnitude: anything else is not a state this rig can reach.
+  bool state_plausible(const State& x) const noexcept {
+    return std::fabs(x[1]) <= T(2) * speed_bound() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5));
+  }
+
+  /// The state at rest: ωm = 0, Ppp = Pbp (no flow through the PRV).
+  State rest_state() const noexcept { return State(u_.Pbp, T(0)); }
+
+  /// Bound on |ωm| reachable under the current inputs [rad/s]: the speed at which the
+  /// DCV alone drops the whole supply pressure difference, with a margin.
+  T speed_bound() const noexcept {
+    const T dp = std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv;
+    return T(2) * p_.kf * std::sqrt(dp) / p_.Dm;
+  }
+
+  /// Net shaft torque per inertia at speed w_m with Ppp at its quasi-steady value [rad/s²].
+  /// Strictly decreasing in w_m; its root is the steady state.
+  T steady_torque(T w_m) const noexcept {
+    T Pmi, Pmo;
+    dcv_pressures(w_m, Pmi, Pmo);
+    const T dPpp = (u_.kp > T(0)) ? signed_square(p_.Dp * w_m / u_.kp, p_.dp_t_prv) : T(0);
+    return Dm_J_ * (Pmi - Pmo) - R_J_ * w_m - Dp_J_ * dPpp;
+  }
+
+  /// Steady state under the current inputs, by bisection safeguarded secant on the
+  /// monotone torque balance. kp = 0 (PRV shut) has no steady state with ωm ≠ 0 and is
+  /// refused.
+  /// @param x  out: (Ppp [Pa], ωm [rad/s])
+  /// @return   true on convergence; false (x untouched) if the inputs admit none
+  bool steady_state(State& x) const noexcept {
+    if (!(u_.kp > T(0)) || !inputs_valid(u_)) return false;
+    T lo = -speed_bound();
+    T hi = speed_bound();
+    T f_lo = steady_torque(lo);
+    T f_hi = steady_torque(hi);
+    for (int i = 0; i < 60 && f_lo < T(0); ++i) { lo *= T(2); f_lo = steady_torque(lo); }
+    for (int i = 0; i < 60 && f_hi > T(0); ++i) { hi *= T(2); f_hi = steady_torque(hi); }
+    if (!(f_lo >= T(0) && f_hi <= T(0))) return false;
+    T w = T(0);
+    for (int i = 0; i < 200; ++i) {
+      // Secant (regula falsi, Illinois-free) step, bisection when it stalls or leaves the bracket.
+      T w_new = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+      if (!(w_new > lo && w_new < hi) || (i % 3 == 2)) w_new = T(0.5) * (lo + hi);
+      const T f = steady_torque(w_new);
+      if (f > T(0)) { lo = w_new; f_lo = f; } else { hi = w_new; f_hi = f; }
+      w = w_new;
+      if (f == T(0) || (hi - lo) <= T(4) * std::numeric_limits<T>::epsilon() * (std::fabs(w) + T(1))) break;
+    }
+    const T dPpp = signed_square(p_.Dp * w / u_.kp, p_.dp_t_prv);
+    x = State(u_.Pbp + dPpp, w);
+    return true;
+  }
+
+ private:
+  Params p_{};
+  Inputs u_{};
+  T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{};
+};
+
+}  // namespace hstmon
