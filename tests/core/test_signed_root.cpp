@@ -21,7 +21,7 @@ TEST(SignedRoot, ExactBeyondTransition) {
 
 TEST(SignedRoot, ContinuousWithSlopeAtTransition) {
   const double xt = 1e5;
-  const double eps = 1e-6 * xt;
+  const double eps = 1e-9 * xt;
   EXPECT_NEAR(signed_root(xt - eps, xt), signed_root(xt + eps, xt), 1e-6);
   EXPECT_NEAR(signed_root_slope(xt - eps, xt), signed_root_slope(xt + eps, xt), 1e-8);
   EXPECT_NEAR(signed_root_slope(0.0, xt), 1.25 / std::sqrt(xt), 1e-15);
