@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages hstmon's host build needs. Idempotent: does nothing when
+# every package is already installed; otherwise runs `apt-get update` once, then
+# `apt-get install -y`. Needs root (or sudo).
+set -euo pipefail
+
+packages=(
+  cmake g++ make              # toolchain
+  libeigen3-dev               # fixed-size linear algebra in lib/; fitting on the host
+  libboost-dev                # Boost.Odeint: stiff reference solver (rosenbrock4), RK4 benchmark
+  libcli11-dev                # command-line parsing of hstmon / hstmon-sim
+  nlohmann-json3-dev          # parameter files and --json output
+  libfmt-dev                  # formatting of reports and CSV output
+  gnuplot-nox                 # residual plots (--plot)
+  libgtest-dev                # unit tests
+  libbenchmark-dev            # benchmarks
+  valgrind                    # instruction counts (callgrind)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
