@@ -65,6 +65,7 @@ class Observer {
     if (!ok) return Status::kInvalidConfig;
     model_ = model;
     cfg_ = cfg;
+    tick_per_lambda_h_ = cfg.tick / cfg.lambda_h_max;
     has_gain_ = !cfg.gain.isZero(T(0));
     reset(model_.rest_state());
     return Status::kOk;
@@ -117,17 +118,19 @@ class Observer {
     }
 
     State k1 = model_.derivative(s_.x, &yhat_);
-    r_valid_ = 0;
+    // Locals, not members, inside the loop: r_valid_ is a char type and may alias
+    // anything, so updating it per channel would force reloads of m and yhat_.
+    const unsigned wanted = m.valid & ((1u << kOutputs) - 1u);
+    unsigned used = 0;
+    Output r;
     for (int i = 0; i < kOutputs; ++i) {
-      const std::uint8_t bit = static_cast<std::uint8_t>(1u << i);
-      if ((m.valid & bit) != 0 && std::isfinite(m.y[i])) {
-        r_[i] = m.y[i] - yhat_[i];
-        r_valid_ = static_cast<std::uint8_t>(r_valid_ | bit);
-      } else {
-        if ((m.valid & bit) != 0) flags |= kHealthMeasNonFinite;
-        r_[i] = T(0);
-      }
+      const bool use = (((wanted >> i) & 1u) != 0) & std::isfinite(m.y[i]);
+      r[i] = use ? m.y[i] - yhat_[i] : T(0);
+      used |= static_cast<unsigned>(use) << i;
     }
+    r_ = r;
+    r_valid_ = static_cast<std::uint8_t>(used);
+    if (used != wanted) flags |= kHealthMeasNonFinite;
     if (has_gain_ && r_valid_ != 0) {
       s_.add(cfg_.gain * r_);  // masked channels carry r = 0
       k1 = model_.derivative(s_.x);
@@ -135,20 +138,28 @@ class Observer {
 
     // Substeps from the local stiffness: |λ|·h_sub ≤ lambda_h_max keeps RK4 both stable
     // and accurate (its stability limit on the negative real axis is ≈ 2.79).
-    const T rho = model_.spectral_radius(s_.x);
-    T want = std::ceil(rho * cfg_.tick / cfg_.lambda_h_max);
-    if (!(want >= T(1))) want = T(1);  // also catches NaN
-    int n = cfg_.max_substeps;
-    if (want <= static_cast<T>(cfg_.max_substeps)) {
-      n = static_cast<int>(want);
-    } else {
-      flags |= kHealthSubstepsClipped;
+    // Common case first: ρ·h/(λh)_max ≤ 1 needs one substep, no ceil and no division.
+    // NaN compares false and also gets one substep (the state check below flags it).
+    const T want = model_.spectral_radius(s_.x) * tick_per_lambda_h_;
+    int n = 1;
+    T h = cfg_.tick;
+    if (want > T(1)) {
+      if (want <= static_cast<T>(cfg_.max_substeps)) {
+        n = static_cast<int>(std::ceil(want));
+      } else {
+        flags |= kHealthSubstepsClipped;
+        n = cfg_.max_substeps;
+      }
+      h = cfg_.tick / static_cast<T>(n);
     }
     if (!model_.algebraic_ok(s_.x)) flags |= kHealthAlgebraicDiverged;
 
-    const T h = cfg_.tick / static_cast<T>(n);
-    rk4_step(model_, s_, h, k1);
-    for (int i = 1; i < n; ++i) rk4_step(model_, s_, h);
+    // One rk4_step call site, so it inlines; k1 is re-evaluated for each later substep.
+    for (int i = 0;;) {
+      rk4_step(model_, s_, h, k1);
+      if (++i >= n) break;
+      k1 = model_.derivative(s_.x);
+    }
     substeps_ = static_cast<std::uint16_t>(n);
 
     if (!s_.x.allFinite()) {
@@ -189,6 +200,7 @@ class Observer {
  private:
   Model model_{};
   Config cfg_{};
+  T tick_per_lambda_h_ = T(1e-3) / T(0.8);  ///< cfg_.tick / cfg_.lambda_h_max
   CompensatedState<State> s_{};
   State last_good_ = State::Zero();
   Output yhat_ = Output::Zero();

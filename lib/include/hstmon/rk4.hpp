@@ -40,7 +40,7 @@ struct CompensatedState {
 /// @param h      step [s]
 /// @param k1     f(s.x) [state units / s]
 template <typename Model>
-void rk4_step(const Model& model, CompensatedState<typename Model::State>& s,
+inline void rk4_step(const Model& model, CompensatedState<typename Model::State>& s,
               typename Model::Scalar h, const typename Model::State& k1) noexcept {
   using T = typename Model::Scalar;
   using State = typename Model::State;
@@ -53,7 +53,7 @@ void rk4_step(const Model& model, CompensatedState<typename Model::State>& s,
 
 /// One RK4 step of size h, evaluating k1 itself.
 template <typename Model>
-void rk4_step(const Model& model, CompensatedState<typename Model::State>& s,
+inline void rk4_step(const Model& model, CompensatedState<typename Model::State>& s,
               typename Model::Scalar h) noexcept {
   rk4_step(model, s, h, model.derivative(s.x));
 }

@@ -44,19 +44,19 @@ inline T signed_root_slope(T x, T x_t) noexcept {
   return (T(5) - T(3) * (x * x) / (x_t * x_t)) / (T(4) * std::sqrt(x_t));
 }
 
-/// Inverse of signed_root: the pressure difference x with signed_root(x, x_t) = y.
-/// Beyond the transition this is y·|y| (no square root needed); inside it, the cubic is
-/// solved by Newton's method from the linear guess, which converges monotonically
-/// because the cubic is increasing and concave on each side of zero.
-/// @param y    flow divided by the orifice coefficient, Q/k [√Pa]
-/// @param x_t  transition pressure ΔP_t > 0 [Pa]
-/// @return     pressure difference [Pa]
+namespace detail {
+
+#if defined(__GNUC__)
+#define HSTMON_COLD __attribute__((noinline, cold))
+#else
+#define HSTMON_COLD
+#endif
+
+/// The laminar branch of signed_square (|y·|y|| < x_t): Newton on the cubic. Kept out of
+/// line so the turbulent fast path, taken at every normal operating point, stays a few
+/// instructions and the loops around it (DCV refinements, RK4 stages) can unroll.
 template <typename T>
-inline T signed_square(T y, T x_t) noexcept {
-  const T q = y * std::fabs(y);
-  if (std::fabs(q) >= x_t) {
-    return q;
-  }
+HSTMON_COLD T signed_square_laminar(T y, T x_t) noexcept {
   const T s = std::sqrt(x_t);
   const T inv_xt2 = T(1) / (x_t * x_t);
   T x = T(4) * s * y / T(5);
@@ -70,6 +70,26 @@ inline T signed_square(T y, T x_t) noexcept {
     }
   }
   return x;
+}
+
+#undef HSTMON_COLD
+
+}  // namespace detail
+
+/// Inverse of signed_root: the pressure difference x with signed_root(x, x_t) = y.
+/// Beyond the transition this is y·|y| (no square root needed); inside it, the cubic is
+/// solved by Newton's method from the linear guess, which converges monotonically
+/// because the cubic is increasing and concave on each side of zero.
+/// @param y    flow divided by the orifice coefficient, Q/k [√Pa]
+/// @param x_t  transition pressure ΔP_t > 0 [Pa]
+/// @return     pressure difference [Pa]
+template <typename T>
+inline T signed_square(T y, T x_t) noexcept {
+  const T q = y * std::fabs(y);
+  if (std::fabs(q) >= x_t) {
+    return q;
+  }
+  return detail::signed_square_laminar(y, x_t);
 }
 
 /// Derivative d(signed_square)/dy = 1 / signed_root_slope(x) [√Pa].

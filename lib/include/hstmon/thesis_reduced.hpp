@@ -70,6 +70,12 @@ class ThesisReducedModel {
     Dm_J_ = p.Dm / p.J;
     Dp_J_ = p.Dp / p.J;
     R_J_ = (p.Rf + p.Rbl) / p.J;
+    Dm_4kf_ = p.Dm / (T(4) * p.kf);
+    // Largest |Q/kf| at which one DCV refinement is exact to rounding: contraction
+    // c = 2·max(|y|, √ΔP_t)·κ ≤ √ε/2 (κ = (g_lkg + 2·g_ipl)/kf). 0 if never.
+    const T kappa = inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
+    const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa);
+    one_refinement_y_ = (std::isfinite(y_max) && y_max >= std::sqrt(p.dp_t_dcv)) ? y_max : T(0);
   }
 
   /// Sets the inputs held over the next evaluations (zero-order hold). O(1).
@@ -87,9 +93,15 @@ class ThesisReducedModel {
   /// @param Pmo  out: motor outlet pressure [Pa]
   void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept {
     const T q_m = p_.Dm * w_m;
-    Pmi = u_.Psupl - signed_square(q_m * inv_kf_, p_.dp_t_dcv);
-    Pmo = u_.Ps + signed_square(q_m * inv_kf_, p_.dp_t_dcv);
-    for (int i = 0; i < kDcvIterations; ++i) {
+    const T y_m = q_m * inv_kf_;
+    const T dp_m = signed_square(y_m, p_.dp_t_dcv);
+    Pmi = u_.Psupl - dp_m;
+    Pmo = u_.Ps + dp_m;
+    // The refinement contracts by dcv_contraction(w_m) ≤ 2·max(|y_m|, √ΔP_t)·κ; its
+    // error after one step is about that squared (relative). Below
+    // one_refinement_y_ it is under half an ulp, and the second step is skipped.
+    const int n = std::fabs(y_m) <= one_refinement_y_ ? 1 : kDcvIterations;
+    for (int i = 0; i < n; ++i) {
       const T q_ipl = (Pmi - Pmo) * g_ipl_;
       const T q_in = q_m + Pmi * g_lkg_ + q_ipl;
       const T q_out = q_m + q_ipl - Pmo * g_lkg_;
@@ -110,7 +122,10 @@ class ThesisReducedModel {
     d[0] = K_Dp_ * x[1] - K_kp_ * signed_root(dPpp, p_.dp_t_prv);
     d[1] = Dm_J_ * (Pmi - Pmo) - R_J_ * x[1] - Dp_J_ * dPpp;
     if (y != nullptr) {
-      *y << Pmi, Pmo, x[0], x[1];
+      (*y)[kChPmi] = Pmi;
+      (*y)[kChPmo] = Pmo;
+      (*y)[kChPpp] = x[0];
+      (*y)[kChWm] = x[1];
     }
     return d;
   }
@@ -120,7 +135,10 @@ class ThesisReducedModel {
     Output y;
     T Pmi, Pmo;
     dcv_pressures(x[1], Pmi, Pmo);
-    y << Pmi, Pmo, x[0], x[1];
+    y[kChPmi] = Pmi;
+    y[kChPmo] = Pmo;
+    y[kChPpp] = x[0];
+    y[kChWm] = x[1];
     return y;
   }
 
@@ -154,7 +172,9 @@ class ThesisReducedModel {
   /// True when ωm is within twice speed_bound() and Ppp above −1 bar gauge less Pbp's
   /// magnitude: anything else is not a state this rig can reach.
   bool state_plausible(const State& x) const noexcept {
-    return std::fabs(x[1]) <= T(2) * speed_bound() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5));
+    // |ωm| ≤ 2·speed_bound() = 4·kf·√dp/Dm, squared: no square root or division per tick.
+    const T a = x[1] * Dm_4kf_;
+    return a * a <= speed_bound_dp() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5));
   }
 
   /// The state at rest: ωm = 0, Ppp = Pbp (no flow through the PRV).
@@ -162,10 +182,7 @@ class ThesisReducedModel {
 
   /// Bound on |ωm| reachable under the current inputs [rad/s]: the speed at which the
   /// DCV alone drops the whole supply pressure difference, with a margin.
-  T speed_bound() const noexcept {
-    const T dp = std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv;
-    return T(2) * p_.kf * std::sqrt(dp) / p_.Dm;
-  }
+  T speed_bound() const noexcept { return T(2) * p_.kf * std::sqrt(speed_bound_dp()) / p_.Dm; }
 
   /// Net shaft torque per inertia at speed w_m with Ppp at its quasi-steady value [rad/s²].
   /// Strictly decreasing in w_m; its root is the steady state.
@@ -206,9 +223,12 @@ class ThesisReducedModel {
   }
 
  private:
+  /// Pressure difference behind speed_bound() [Pa].
+  T speed_bound_dp() const noexcept { return std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv; }
+
   Params p_{};
   Inputs u_{};
-  T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{};
+  T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{}, Dm_4kf_{}, one_refinement_y_{};
 };
 
 }  // namespace hstmon

@@ -1,0 +1,141 @@
+// Driver for scripts/count_instructions.sh: runs N ticks of one variant between
+// CALLGRIND_START_INSTRUMENTATION and CALLGRIND_STOP_INSTRUMENTATION, so callgrind
+// (--instr-atstart=no) counts exactly the ticks. Outside valgrind the client requests are
+// no-ops and the program just runs.
+//
+//   hstmon_count_ticks <variant> [ticks]
+//   variants: ours_double ours_float odeint_double odeint_float odeint_full
+//   diagnostics (one model call per "tick"): derivative_{double,float},
+//   derivative_y_{double,float} (with outputs), outputs_{double,float}
+//
+// Setup, a warm-up of 64 ticks (lazy binding, first-touch) and the final plausibility
+// check run outside the instrumented region. Exit status 2 on bad usage, 3 if the run
+// left the operating point (the count would then be of the wrong work).
+
+#include <valgrind/callgrind.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "bench_common.hpp"
+
+namespace {
+
+using hstmon_bench::MeasurementTable;
+using hstmon_bench::Reduced;
+
+constexpr int kWarmup = 64;
+
+// noinline so callgrind_annotate shows each variant's tick loop as its own function.
+template <typename Sim, typename T>
+__attribute__((noinline)) void run(Sim& sim, const MeasurementTable<T>& table, std::uint64_t first, long n) {
+  hstmon::ThesisInputs<T> u{};
+  for (long k = 0; k < n; ++k) {
+    hstmon_bench::escape(&u);  // inputs come from outside each tick
+    sim.step(u, table[first + static_cast<std::uint64_t>(k)]);
+    hstmon_bench::escape(&sim.residual());
+  }
+}
+
+template <typename Sim, typename T>
+void measure(Sim& sim, const MeasurementTable<T>& table, long n) {
+  run(sim, table, 0, kWarmup);
+  CALLGRIND_START_INSTRUMENTATION;
+  run(sim, table, kWarmup, n);
+  CALLGRIND_STOP_INSTRUMENTATION;
+}
+
+bool plausible(double w) { return std::isfinite(w) && w > 100.0 && w < 250.0; }
+
+template <typename T>
+int ours(long n) {
+  auto sim = hstmon_bench::make_observer<T>(T(1e-3));
+  const MeasurementTable<T> table(sim.estimate());
+  measure(sim, table, n);
+  const bool ok = sim.health() == 0 && sim.substeps() == 1 && plausible(static_cast<double>(sim.state()[1]));
+  std::printf("ticks=%ld substeps=%d health=0x%x w_m=%.6g\n", n, sim.substeps(), sim.health(),
+              static_cast<double>(sim.state()[1]));
+  return ok ? 0 : 3;
+}
+
+template <typename T>
+int odeint(long n) {
+  hstmon_bench::OdeintReduced<T> sim(T(1e-3), 1);
+  const MeasurementTable<T> table(hstmon_bench::make_observer<T>(T(1e-3)).estimate());
+  measure(sim, table, n);
+  const double w = static_cast<double>(sim.state()[1]);
+  std::printf("ticks=%ld rk4_steps=1 w_m=%.6g\n", n, w);
+  return plausible(w) ? 0 : 3;
+}
+
+/// Diagnostics: one model evaluation per "tick", to split a tick's count into model
+/// evaluations and everything else. kind 0: derivative(x), 1: derivative(x, &y), 2: outputs(x).
+template <typename T>
+struct ModelCall {
+  Reduced<T> model;
+  typename Reduced<T>::State x;
+  typename Reduced<T>::Output y = Reduced<T>::Output::Zero();
+  int kind;
+  ModelCall(int k) : model(hstmon_bench::make_observer<T>(T(1e-3)).model()),
+                     x(hstmon_bench::make_observer<T>(T(1e-3)).state()), kind(k) {}
+  void step(const hstmon::ThesisInputs<T>&, const typename hstmon_bench::Obs<T>::Measurement&) noexcept {
+    hstmon_bench::escape(&x);
+    if (kind == 0) {
+      typename Reduced<T>::State d = model.derivative(x);
+      hstmon_bench::escape(&d);
+    } else if (kind == 1) {
+      typename Reduced<T>::State d = model.derivative(x, &y);
+      hstmon_bench::escape(&d);
+    } else {
+      y = model.outputs(x);
+    }
+  }
+  const typename Reduced<T>::Output& residual() const noexcept { return y; }
+};
+
+template <typename T>
+int model_call(int kind, long n) {
+  ModelCall<T> sim(kind);
+  const MeasurementTable<T> table(sim.y);
+  measure(sim, table, n);
+  return 0;
+}
+
+int odeint_full(long n) {
+  hstmon_bench::OdeintFull sim(1e-3);
+  const MeasurementTable<double> table(hstmon_bench::make_observer<double>(1e-3).estimate());
+  measure(sim, table, n);
+  const double w = sim.state()[3];
+  std::printf("ticks=%ld rk4_steps=%d w_m=%.6g\n", n, sim.steps_per_tick(), w);
+  return plausible(w) ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || argc > 3) {
+    std::fprintf(stderr, "usage: %s <variant> [ticks]   (variants: see count_ticks.cpp)\n", argv[0]);
+    return 2;
+  }
+  const long n = argc == 3 ? std::strtol(argv[2], nullptr, 10) : 10000;
+  if (n <= 0) {
+    std::fprintf(stderr, "ticks must be positive\n");
+    return 2;
+  }
+  const char* v = argv[1];
+  if (std::strcmp(v, "ours_double") == 0) return ours<double>(n);
+  if (std::strcmp(v, "ours_float") == 0) return ours<float>(n);
+  if (std::strcmp(v, "odeint_double") == 0) return odeint<double>(n);
+  if (std::strcmp(v, "odeint_float") == 0) return odeint<float>(n);
+  if (std::strcmp(v, "odeint_full") == 0) return odeint_full(n);
+  if (std::strcmp(v, "derivative_double") == 0) return model_call<double>(0, n);
+  if (std::strcmp(v, "derivative_y_double") == 0) return model_call<double>(1, n);
+  if (std::strcmp(v, "outputs_double") == 0) return model_call<double>(2, n);
+  if (std::strcmp(v, "derivative_float") == 0) return model_call<float>(0, n);
+  if (std::strcmp(v, "derivative_y_float") == 0) return model_call<float>(1, n);
+  if (std::strcmp(v, "outputs_float") == 0) return model_call<float>(2, n);
+  std::fprintf(stderr, "unknown variant '%s'\n", v);
+  return 2;
+}

@@ -1,0 +1,19 @@
+// hstmon: replay logged HST sensor streams through the monitor and report.
+#include <CLI/CLI.hpp>
+
+#include "cli_commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"hstmon — hydrostatic transmission monitor (host tools)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "hstmon 0.1.0");
+  int exit_code = hstmon::cli::kExitOk;
+  hstmon::cli::add_replay_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : hstmon::cli::kExitUsage;
+  }
+  return exit_code;
+}

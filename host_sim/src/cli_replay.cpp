@@ -1,0 +1,242 @@
+// `hstmon replay LOG [--params FILE] [--json] ...`: replays a log through the observer
+// and prints per-channel residual statistics (human table, or JSON lines).
+#include <fmt/format.h>
+#include <fmt/os.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_commands.hpp"
+#include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/params_file.hpp"
+#include "hstmon_host/replay.hpp"
+#include "residual_plot.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+struct ReplayArgs {
+  std::string log;
+  std::string params;
+  bool json = false;
+  std::string residuals_csv;
+  std::string plot;
+  double tick = 0.0;
+  std::string init = "auto";
+  std::vector<std::string> maps;
+  std::string separator;
+  bool lenient = false;
+  bool no_progress = false;
+};
+
+struct Display {
+  const char* label;  // human label
+  const char* name;   // canonical channel name
+  const char* unit;   // display unit
+  double scale;       // SI → display
+};
+const Display kDisplay[4] = {{"Pmi", "p_mi", "bar", 1e-5},
+                             {"Pmo", "p_mo", "bar", 1e-5},
+                             {"Ppp", "p_pp", "bar", 1e-5},
+                             {"ωm", "w_m", "rpm", 60.0 / (2.0 * M_PI)}};
+
+// A progress line on stderr, only when stderr is a terminal and the log is long.
+struct Progress {
+  bool on = false;
+  void operator()(double f) const {
+    if (on) std::fprintf(stderr, "\rreplaying… %3.0f %%", 100.0 * f);
+  }
+  void done() const {
+    if (on) std::fprintf(stderr, "\r%24s\r", "");
+  }
+};
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
+  nlohmann::json head = {{"type", "replay"},
+                         {"log", a.log},
+                         {"rows", r.rows},
+                         {"t_first", r.t_first},
+                         {"t_last", r.t_last},
+                         {"tick_s", r.tick},
+                         {"ticks", r.ticks},
+                         {"start", r.started_steady ? "steady" : "rest"},
+                         {"health", host::health_names(r.health)},
+                         {"unhealthy_rows", r.unhealthy_rows},
+                         {"max_substeps", r.max_substeps},
+                         {"notes", r.notes}};
+  fmt::print("{}\n", head.dump());
+  for (int c = 0; c < 4; ++c) {
+    const auto& s = r.channels[static_cast<std::size_t>(c)];
+    nlohmann::json j = {{"type", "residual"}, {"channel", kDisplay[c].name}, {"unit", c == 3 ? "rad/s" : "Pa"},
+                        {"measured", r.measured[static_cast<std::size_t>(c)]}, {"n", s.n}};
+    if (s.n > 0) {
+      j["mean"] = number_or_null(s.mean());
+      j["rms"] = number_or_null(s.rms());
+      j["max_abs"] = number_or_null(s.max_abs);
+      j["max"] = number_or_null(s.max_signed);
+      j["t_max"] = s.t_max;
+    }
+    fmt::print("{}\n", j.dump());
+  }
+}
+
+void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
+  fmt::print("hstmon replay {}\n", a.log);
+  fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
+             r.t_last, r.tick * 1e3, r.ticks, r.started_steady ? "at steady state" : "at rest");
+  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
+  fmt::print("\n  residual = measured − model\n");
+  fmt::print("  {:<12} {:>12} {:>12} {:>12} {:>12}\n", "channel", "mean", "RMS", "max |r|", "at t [s]");
+  for (int c = 0; c < 4; ++c) {
+    const auto& s = r.channels[static_cast<std::size_t>(c)];
+    const std::string label = fmt::format("{} [{}]", kDisplay[c].label, kDisplay[c].unit);
+    if (!r.measured[static_cast<std::size_t>(c)]) {
+      fmt::print("  {:<12} {:>12}\n", label, "not in log");
+      continue;
+    }
+    const double k = kDisplay[c].scale;
+    fmt::print("  {:<12} {:>12.4g} {:>12.4g} {:>12.4g} {:>12.6g}\n", label, s.mean() * k, s.rms() * k, s.max_signed * k,
+               s.t_max);
+  }
+  const auto names = host::health_names(r.health);
+  if (names.empty()) {
+    fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
+  } else {
+    std::string joined;
+    for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
+    fmt::print("\n  observer health: {} on {} rows — results there are not trustworthy\n", joined, r.unhealthy_rows);
+  }
+}
+
+// Residual CSV in display units, readable by hstmon's own log reader.
+std::string write_residual_csv(const std::string& path, const host::ReplayResult& r) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return "cannot write " + path;
+  std::string header = "t[s]";
+  for (int c = 0; c < 4; ++c) {
+    header += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}]", kDisplay[c].name, kDisplay[c].unit);
+  }
+  header += ",health\n";
+  std::fputs(header.c_str(), f);
+  fmt::memory_buffer line;
+  for (const auto& row : r.trace) {
+    line.clear();
+    fmt::format_to(std::back_inserter(line), "{:.10g}", row.t);
+    for (int c = 0; c < 4; ++c) {
+      const double k = kDisplay[c].scale;
+      fmt::format_to(std::back_inserter(line), ",{:.9g},{:.9g},{:.9g}", row.y[c] * k, row.y_hat[c] * k, row.r[c] * k);
+    }
+    fmt::format_to(std::back_inserter(line), ",{}\n", row.health);
+    std::fwrite(line.data(), 1, line.size(), f);
+  }
+  const bool ok = std::fclose(f) == 0;
+  return ok ? std::string() : "error writing " + path;
+}
+
+int run_replay(const ReplayArgs& a) {
+  host::ReadOptions ro;
+  ro.lenient = a.lenient;
+  if (a.separator == "tab" || a.separator == "\\t") {
+    ro.separator = '\t';
+  } else if (a.separator.size() == 1) {
+    ro.separator = a.separator[0];
+  } else if (!a.separator.empty()) {
+    fmt::print(stderr, "hstmon: --separator must be one character or 'tab'\n");
+    return kExitUsage;
+  }
+  for (const auto& m : a.maps) {
+    const auto eq = m.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
+      fmt::print(stderr, "hstmon: --map takes LOG_COLUMN=SIGNAL (e.g. Druck_A=p_mi), got '{}'\n", m);
+      return kExitUsage;
+    }
+    ro.column_map[m.substr(0, eq)] = m.substr(eq + 1);
+  }
+
+  ThesisParams<double> params;
+  ThesisInputs<double> inputs;
+  if (!a.params.empty()) {
+    const auto pf = host::read_params_file(a.params);
+    if (pf.error) {
+      fmt::print(stderr, "{}\n", pf.error->to_string());
+      return kExitBadInput;
+    }
+    if (pf.params) params = *pf.params;
+    if (pf.inputs) inputs = *pf.inputs;
+  }
+
+  const host::LogData log = host::read_log(a.log, ro);
+  for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
+  if (log.error) {
+    fmt::print(stderr, "{}\n", log.error->to_string());
+    if (!a.lenient || log.rows() == 0) return kExitBadInput;
+    fmt::print(stderr, "hstmon: --lenient: replaying the {} valid rows before the error\n", log.rows());
+  }
+
+  host::ReplayOptions opt;
+  opt.tick = a.tick;
+  opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
+  Progress progress;
+  progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
+  if (progress.on) opt.progress = [&progress](double f) { progress(f); };
+  const host::ReplayResult r = host::replay(log, params, inputs, opt);
+  progress.done();
+
+  if (a.json) {
+    print_json(a, r);
+  } else {
+    print_human(a, r);
+  }
+  int rc = log.error ? kExitBadInput : kExitOk;
+  if (!a.residuals_csv.empty()) {
+    const std::string err = write_residual_csv(a.residuals_csv, r);
+    if (!err.empty()) {
+      fmt::print(stderr, "hstmon: {}\n", err);
+      rc = kExitBadInput;
+    } else if (!a.json) {
+      fmt::print("  residuals written to {}\n", a.residuals_csv);
+    }
+  }
+  if (!a.plot.empty()) {
+    const std::string err = plot_trace(r, "hstmon replay " + a.log, a.plot);
+    if (!err.empty()) {
+      fmt::print(stderr, "hstmon: plot: {}\n", err);
+      rc = kExitBadInput;
+    } else if (!a.json) {
+      fmt::print("  plot written to {}\n", a.plot);
+    }
+  }
+  return rc;
+}
+
+}  // namespace
+
+void add_replay_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ReplayArgs>();
+  CLI::App* cmd = app.add_subcommand("replay", "Replay a sensor log through the observer and report residuals");
+  cmd->add_option("LOG", args->log, "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m)")->required();
+  cmd->add_option("--params", args->params, "JSON parameter file (default: thesis Table 2.2)");
+  cmd->add_flag("--json", args->json, "One JSON object per line instead of the human summary");
+  cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
+  cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
+  cmd->add_option("--tick", args->tick, "Observer tick [s] (default: the log's sample period, at most 0.01)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--init", args->init, "Initial state: auto, rest or steady")
+      ->check(CLI::IsMember({"auto", "rest", "steady"}));
+  cmd->add_option("--map", args->maps, "Map a log column to a signal: LOG_COLUMN=SIGNAL (repeatable)");
+  cmd->add_option("--separator", args->separator, "Field separator: , ; or tab (default: detected)");
+  cmd->add_flag("--lenient", args->lenient, "On a bad row, report it and replay the valid rows before it");
+  cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
+  cmd->callback([args, &exit_code]() { exit_code = run_replay(*args); });
+}
+
+}  // namespace hstmon::cli

@@ -1,0 +1,91 @@
+/// @file sensor_presets.cpp
+#include "hstmon_sim/sensor_presets.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace hstmon::sim {
+
+namespace {
+
+constexpr double kPressureTau = 1e-3;               // [s], assumed
+constexpr double kSpeedTau = 10e-3;                 // [s], assumed
+constexpr double kPressureNoise = 0.05 * kPaPerBar;  // [Pa], assumed
+constexpr double kSpeedNoise = 0.5 * kRadPerSecPerRpm;  // [rad/s], assumed
+
+ChannelSpec pressure(const char* name, double hi_bar, int bits) {
+  ChannelSpec c;
+  c.name = name;
+  c.tau = kPressureTau;
+  c.noise_std = kPressureNoise;
+  c.range_lo = 0.0;
+  c.range_hi = hi_bar * kPaPerBar;
+  c.quant_step = adc_step(c.range_lo, c.range_hi, bits);
+  return c;
+}
+
+ChannelSpec speed(double hi_rpm) {
+  ChannelSpec c;
+  c.name = "w_m";
+  c.tau = kSpeedTau;
+  c.noise_std = kSpeedNoise;
+  c.range_lo = 0.0;
+  c.range_hi = hi_rpm * kRadPerSecPerRpm;
+  c.quant_step = kRadPerSecPerRpm;  // 1 rpm
+  return c;
+}
+
+double period_of(double rate_hz) {
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) throw std::invalid_argument("sample rate must be > 0");
+  return 1.0 / rate_hz;
+}
+
+SensorConfig thesis_sensors(int bits, double period) {
+  SensorConfig c;
+  c.channels = {pressure("p_mi", 200.0, bits), pressure("p_mo", 200.0, bits), pressure("p_pp", 250.0, bits),
+                speed(3000.0)};
+  c.sample_period = period;
+  return c;
+}
+
+}  // namespace
+
+SensorConfig thesis_das_sensors() { return thesis_sensors(12, 4.0); }
+
+SensorConfig thesis_fast_sensors(double rate_hz) { return thesis_sensors(16, period_of(rate_hz)); }
+
+SensorConfig paper_logger_sensors(double rate_hz) {
+  SensorConfig c;
+  c.channels = {pressure("p_pump", 250.0, 12), pressure("p_mi", 250.0, 12), pressure("p_pp", 250.0, 12),
+                speed(5000.0)};
+  c.sample_period = period_of(rate_hz);
+  return c;
+}
+
+SensorConfig without_noise(SensorConfig c) {
+  for (ChannelSpec& ch : c.channels) ch.noise_std = 0.0;
+  return c;
+}
+
+SensorConfig ideal_sensors(SensorConfig c) {
+  for (ChannelSpec& ch : c.channels) {
+    ch.tau = 0.0;
+    ch.noise_std = 0.0;
+    ch.quant_step = 0.0;
+    ch.range_lo = -std::numeric_limits<double>::infinity();
+    ch.range_hi = std::numeric_limits<double>::infinity();
+  }
+  return c;
+}
+
+std::vector<std::string> sensor_preset_names() { return {"thesis_das", "fast", "paper_logger"}; }
+
+std::optional<SensorConfig> sensor_preset(std::string_view name) {
+  if (name == "thesis_das") return thesis_das_sensors();
+  if (name == "fast") return thesis_fast_sensors();
+  if (name == "paper_logger") return paper_logger_sensors();
+  return std::nullopt;
+}
+
+}  // namespace hstmon::sim

@@ -1,0 +1,82 @@
+#pragma once
+/// @file log_reader.hpp
+/// Reader for measurement logs: delimited text (CSV, semicolon or tab separated), one
+/// header row of column names with optional units, optionally a units row, then one
+/// row per sample. Values are converted to SI on read and stored column-major.
+///
+/// Format accepted:
+///  - optional UTF-8 BOM; LF or CRLF line ends; blank lines and lines whose first
+///    non-blank character is '#' are skipped anywhere;
+///  - header: `t[s],p_sup[bar],kp,p_mi[bar],...`; a unit in brackets `name[unit]` or
+///    parentheses `name (unit)`; no unit = SI; names may be double-quoted (without a
+///    separator inside the quotes);
+///  - separator auto-detected from the header line: tab if it has one, else ';' if it
+///    has one, else ','. Where the separator is not ',', a decimal comma is accepted;
+///  - units row (HBM catman / Spider8 exports): a line right after the header whose
+///    fields are all non-numeric or empty (at least one non-empty) gives the units;
+///  - data fields: decimal numbers (leading '+' and blanks around the number allowed).
+/// Errors (bad number, ragged row, unknown unit, time not strictly increasing, nan/inf,
+/// empty file, no data rows, NUL bytes or invalid UTF-8, duplicated or missing columns)
+/// carry file:line:column; nothing throws.
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hstmon_host/signals.hpp"
+#include "hstmon_host/source_error.hpp"
+
+namespace hstmon::host {
+
+/// Options of read_log / read_log_from_memory.
+struct ReadOptions {
+  /// Field separator: ',', ';' or '\t'; 0 = detect from the header line.
+  char separator = 0;
+  /// false: any error leaves the result with no rows. true: reading stops at the first
+  /// bad data row and the rows before it are kept (error is still set).
+  bool lenient = false;
+  /// Log column name → canonical signal name, e.g. {"Druck_A", "p_mi"}. Keys and
+  /// targets match ignoring ASCII case. A target of "" drops the column without a note.
+  std::map<std::string, std::string> column_map;
+};
+
+/// A log read into memory, column-major, in SI units.
+struct LogData {
+  std::string path;                                        ///< source name used in messages
+  std::vector<double> t;                                   ///< time [s], strictly increasing
+  /// Per signal (index(Signal)), values in SI; empty unless present. The time column
+  /// lives in `t`; values[index(Signal::kT)] stays empty.
+  std::array<std::vector<double>, kSignalCount> values;
+  std::array<bool, kSignalCount> present{};                ///< signal had a column
+  std::array<std::string, kSignalCount> source_units;      ///< unit as written ("" = SI)
+  std::array<std::size_t, kSignalCount> source_columns{};  ///< 1-based field index, 0 if absent
+  std::vector<std::string> notes;                          ///< "file:line:col: note: ..." lines
+  std::optional<LogError> error;                           ///< set when reading failed
+  std::size_t header_line = 0;                             ///< 1-based line of the header row
+
+  /// Number of data rows kept.
+  std::size_t rows() const noexcept { return t.size(); }
+  /// True when the whole file was read without error.
+  bool ok() const noexcept { return !error.has_value(); }
+  /// True when signal s had a column (always true for kT in a successful read).
+  bool has(Signal s) const noexcept { return present[index(s)]; }
+  /// Values of signal s in SI (`t` for Signal::kT); empty if absent.
+  const std::vector<double>& column(Signal s) const noexcept {
+    return s == Signal::kT ? t : values[index(s)];
+  }
+};
+
+/// Reads and parses the log file at `path` (whole file into memory, then
+/// read_log_from_memory). An unreadable file gives an error with line 0.
+LogData read_log(const std::string& path, const ReadOptions& options = {});
+
+/// Parses log text held in memory. `path_for_messages` names the source in errors and
+/// notes. Single pass, no per-field allocation; the text need not be NUL-terminated.
+LogData read_log_from_memory(std::string_view text, std::string path_for_messages,
+                             const ReadOptions& options = {});
+
+}  // namespace hstmon::host

@@ -1,0 +1,88 @@
+#pragma once
+/// @file replay.hpp
+/// Replays a log through the thesis observer: the host port's main loop. Each log row
+/// is one measurement; the observer ticks at a fixed rate in between (inputs held from
+/// the last row), so a 4 s DAS log and a 1 kHz log go through the same code.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "hstmon/thesis_params.hpp"
+#include "hstmon_host/log_reader.hpp"
+
+namespace hstmon::host {
+
+/// How the observer state is initialised at the first row.
+enum class InitMode {
+  kAuto,    ///< steady state if the first measured speed is above 5 % of the speed bound, else rest
+  kRest,    ///< at rest: ωm = 0, Ppp = Pbp
+  kSteady,  ///< the steady state for the first row's inputs
+};
+
+/// Options of replay().
+struct ReplayOptions {
+  double tick = 0.0;             ///< observer tick [s]; 0 = the log's median sample period, capped at 10 ms
+  InitMode init = InitMode::kAuto;
+  bool keep_trace = false;       ///< keep a TraceRow per log row (for residual CSV and plots)
+  /// Called with the fraction done (0…1) about every 1 % of rows; may be empty.
+  std::function<void(double)> progress;
+};
+
+/// Residual statistics of one channel over the replay, in SI units.
+struct ChannelStats {
+  std::size_t n = 0;           ///< residuals counted
+  double sum = 0.0;            ///< Σ r
+  double sumsq = 0.0;          ///< Σ r²
+  double max_abs = 0.0;        ///< max |r|
+  double max_signed = 0.0;     ///< r at the max |r| (sign kept)
+  double t_max = 0.0;          ///< log time of the max |r| [s]
+  std::size_t row_max = 0;     ///< 0-based data row of the max |r|
+
+  double mean() const noexcept;  ///< Σ r / n (0 when n = 0)
+  double rms() const noexcept;   ///< √(Σ r² / n) (0 when n = 0)
+};
+
+/// Measured, estimated and residual values at one log row (SI units).
+struct TraceRow {
+  double t = 0.0;                     ///< log time [s]
+  std::array<double, 4> y{};          ///< measured Pmi, Pmo, Ppp [Pa], ωm [rad/s] (NaN if absent)
+  std::array<double, 4> y_hat{};      ///< model estimate at the same instant
+  std::array<double, 4> r{};          ///< residual y − ŷ (NaN if not computed)
+  std::uint32_t health = 0;           ///< observer HealthFlag bits of this row's tick
+};
+
+/// Result of a replay.
+struct ReplayResult {
+  std::size_t rows = 0;                       ///< log rows replayed
+  std::uint64_t ticks = 0;                    ///< observer ticks run
+  double tick = 0.0;                          ///< tick used [s]
+  double t_first = 0.0;                       ///< first row's time [s]
+  double t_last = 0.0;                        ///< last row's time [s]
+  std::array<bool, 4> measured{};             ///< channel present in the log
+  std::array<ChannelStats, 4> channels{};     ///< per channel (Pmi, Pmo, Ppp, ωm)
+  std::uint32_t health = 0;                   ///< HealthFlag bits OR-ed over all ticks
+  std::size_t unhealthy_rows = 0;             ///< rows whose tick raised any flag
+  std::uint32_t max_substeps = 0;             ///< largest RK4 substep count of a tick
+  bool started_steady = false;                ///< initialised at steady state (else at rest)
+  std::vector<TraceRow> trace;                ///< per row, if ReplayOptions::keep_trace
+  std::vector<std::string> notes;             ///< what the replay assumed (defaults used, tick)
+};
+
+/// Replays `log` through an observer of the thesis model.
+/// Inputs missing from the log (p_sup, p_s, p_bp, kp) come from `defaults`; measured
+/// channels missing from the log are simply not compared. The log must be valid
+/// (read without error, or the valid prefix of a lenient read).
+ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
+                    const ThesisInputs<double>& defaults, const ReplayOptions& options);
+
+/// Names of the four measured channels in output order: p_mi, p_mo, p_pp, w_m.
+extern const std::array<Signal, 4> kMeasuredSignals;
+
+/// Text names of the HealthFlag bits set in `flags` ("substeps_clipped", ...).
+std::vector<std::string> health_names(std::uint32_t flags);
+
+}  // namespace hstmon::host

@@ -1,0 +1,605 @@
+#include "hstmon_host/log_reader.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <new>
+#include <memory>
+#include <system_error>
+
+#include "fast_decimal.hpp"
+#include "text_util.hpp"
+#include "utf8_check.hpp"
+
+namespace hstmon::host {
+
+namespace {
+
+using detail::char_column;
+using detail::printable;
+using detail::trim;
+
+/// One physical line: [begin, end) without the line break (and a trailing '\r').
+struct Line {
+  const char* begin = nullptr;
+  const char* end = nullptr;
+  const char* next = nullptr;  ///< first byte of the following line
+  std::size_t number = 0;      ///< 1-based
+};
+
+/// One field of the header or units row.
+struct Field {
+  std::string_view text;  ///< trimmed, unquoted
+  const char* pos;        ///< first byte of the raw field (for its column)
+};
+
+/// A header cell split into name and unit.
+struct HeaderCell {
+  std::string_view name;
+  const char* name_pos = nullptr;
+  std::string_view unit;
+  const char* unit_pos = nullptr;  ///< null when the header gives no unit
+};
+
+/// How one log column is stored.
+struct ColumnSpec {
+  std::vector<double>* dst = nullptr;  ///< null: column ignored
+  double factor = 1.0;
+  double offset = 0.0;
+  bool is_time = false;
+  std::string_view name;               ///< name as in the log, for messages
+};
+
+/// Largest field the decimal-comma path copies (longer fields are refused as bad numbers).
+constexpr std::size_t kMaxCommaField = 64;
+
+/// Rows to reserve for the data in [p, end): the line density of the first 256 KiB
+/// scaled to the whole text, with 10 % margin (exact for small texts). A longer tail
+/// only costs one regrowth; counting every line would cost a full pass.
+std::size_t estimate_rows(const char* p, const char* end) noexcept {
+  constexpr std::size_t kSample = std::size_t{256} << 10;
+  const auto total = static_cast<std::size_t>(end - p);
+  const std::size_t sample = std::min(total, kSample);
+  const auto lines = static_cast<std::size_t>(std::count(p, p + sample, '\n')) + 1;
+  if (sample == total) return lines;
+  const double per_byte = static_cast<double>(lines) / static_cast<double>(sample);
+  return static_cast<std::size_t>(per_byte * static_cast<double>(total) * 1.1) + 16;
+}
+
+/// Strips surrounding double quotes from a trimmed field.
+std::string_view unquote(std::string_view s) noexcept {
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') return trim(s.substr(1, s.size() - 2));
+  return s;
+}
+
+/// Splits [begin, end) at `sep`; each field trimmed and unquoted.
+std::vector<Field> split_fields(const char* begin, const char* end, char sep) {
+  std::vector<Field> out;
+  const char* f = begin;
+  for (;;) {
+    const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(end - f)));
+    const char* fe = s != nullptr ? s : end;
+    out.push_back({unquote(trim(std::string_view(f, static_cast<std::size_t>(fe - f)))), f});
+    if (s == nullptr) break;
+    f = s + 1;
+  }
+  return out;
+}
+
+/// Parses a whole field as a number (blanks, '+', decimal comma if allowed). Not the hot path.
+bool field_is_number(std::string_view s, bool decimal_comma) noexcept {
+  s = trim(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty() || s.size() > kMaxCommaField) return false;
+  char buf[kMaxCommaField];
+  std::memcpy(buf, s.data(), s.size());
+  if (decimal_comma) std::replace(buf, buf + s.size(), ',', '.');
+  double v;
+  const auto r = std::from_chars(buf, buf + s.size(), v);
+  return r.ec == std::errc() && r.ptr == buf + s.size();
+}
+
+class Parser {
+ public:
+  Parser(std::string_view text, const ReadOptions& options, LogData& out)
+      : opt_(options), out_(out) {
+    const bool bom = text.substr(0, 3) == "\xEF\xBB\xBF";
+    text_ = bom ? text.substr(3) : text;
+    cur_ = text_.data();
+    end_ = text_.data() + text_.size();
+    const std::size_t bad = detail::find_invalid_utf8(text_);
+    if (bad != std::string_view::npos) bad_ = text_.data() + bad;
+  }
+
+  void run() {
+    if (opt_.separator != 0 && opt_.separator != ',' && opt_.separator != ';' && opt_.separator != '\t') {
+      out_.error = LogError{out_.path, 0, 0, "separator option must be ',', ';', tab or 0 (detect)"};
+      return;
+    }
+    Line header;
+    if (!next_content_line(header)) {
+      if (out_.error) return;
+      if (only_blank_lines()) {
+        fail_at(1, 1, "empty file");
+      } else {
+        fail_eof("no header line (the file has only comments)");
+      }
+      return;
+    }
+    out_.header_line = header.number;
+    sep_ = opt_.separator != 0 ? opt_.separator : detect_separator(header);
+    decimal_comma_ = sep_ != ',';
+    if (!parse_header(header)) return;
+    Line first;
+    const bool have_first = next_content_line(first);
+    if (out_.error) return;
+    if (have_first && is_units_row(first)) {
+      if (!apply_units_row(first)) return;
+      if (!resolve_columns()) return;
+      if (!next_content_line(first)) {
+        if (!out_.error) fail_eof("no data rows");
+        return;
+      }
+    } else {
+      if (!resolve_columns()) return;
+      if (!have_first) {
+        fail_eof("no data rows");
+        return;
+      }
+    }
+    parse_rows(first);
+  }
+
+ private:
+  // ---- lines ---------------------------------------------------------------------------
+
+  /// Next line that is neither blank nor a '#' comment; false at end of text or when the
+  /// line holds binary junk (then error is set).
+  bool next_content_line(Line& line) {
+    while (cur_ < end_) {
+      const auto* nl = static_cast<const char*>(std::memchr(cur_, '\n', static_cast<std::size_t>(end_ - cur_)));
+      line.begin = cur_;
+      line.next = nl != nullptr ? nl + 1 : end_;
+      line.end = nl != nullptr ? nl : end_;
+      line.number = ++line_no_;
+      cur_ = line.next;
+      if (line.end > line.begin && line.end[-1] == '\r') --line.end;
+      if (bad_ != nullptr && bad_ < line.next) {
+        fail_binary(line);
+        return false;
+      }
+      if (line.begin == line.end) continue;
+      const char c0 = *line.begin;
+      if (c0 == '#') continue;
+      if (detail::is_blank(c0)) {
+        const char* p = line.begin;
+        while (p < line.end && detail::is_blank(*p)) ++p;
+        if (p == line.end || *p == '#') continue;
+      }
+      return true;
+    }
+    return false;
+  }
+
+  bool only_blank_lines() const noexcept {
+    return std::all_of(text_.begin(), text_.end(),
+                       [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; });
+  }
+
+  // ---- errors and notes ----------------------------------------------------------------
+
+  void fail_at(std::size_t line, std::size_t column, std::string message) {
+    out_.error = LogError{out_.path, line, column, std::move(message)};
+  }
+
+  void fail(const Line& line, const char* pos, std::string message) {
+    fail_at(line.number, char_column(line.begin, pos), std::move(message));
+  }
+
+  void fail_eof(std::string message) {
+    const detail::LineCol lc = detail::locate(text_, text_.size());
+    fail_at(lc.line, lc.column, std::move(message));
+  }
+
+  void fail_binary(const Line& line) {
+    const auto byte = static_cast<unsigned>(static_cast<unsigned char>(*bad_));
+    char msg[96];
+    if (byte == 0) {
+      std::snprintf(msg, sizeof msg, "NUL byte (binary data, not a text log)");
+    } else {
+      std::snprintf(msg, sizeof msg, "invalid UTF-8 byte 0x%02X (binary data, or text not in UTF-8)", byte);
+    }
+    fail(line, bad_, msg);
+  }
+
+  void note(const Line& line, const char* pos, const std::string& message) {
+    out_.notes.push_back(out_.path + ':' + std::to_string(line.number) + ':' +
+                         std::to_string(char_column(line.begin, pos)) + ": note: " + message);
+  }
+
+  // ---- header --------------------------------------------------------------------------
+
+  static char detect_separator(const Line& header) noexcept {
+    const auto n = static_cast<std::size_t>(header.end - header.begin);
+    if (std::memchr(header.begin, '\t', n) != nullptr) return '\t';
+    if (std::memchr(header.begin, ';', n) != nullptr) return ';';
+    return ',';
+  }
+
+  bool parse_header(const Line& header) {
+    header_ = header;
+    const std::vector<Field> fields = split_fields(header.begin, header.end, sep_);
+    cells_.reserve(fields.size());
+    for (const Field& f : fields) {
+      HeaderCell cell;
+      std::string_view s = f.text;
+      const std::size_t open_b = s.find('[');
+      const std::size_t open_p = s.find('(');
+      const std::size_t open = std::min(open_b, open_p);
+      if (open != std::string_view::npos) {
+        const char close = s[open] == '[' ? ']' : ')';
+        if (s.back() != close) {
+          fail(header, s.data() + open, std::string("unit in column header '") + printable(s) +
+                                            "' must end with '" + close + "'");
+          return false;
+        }
+        cell.name = trim(s.substr(0, open));
+        cell.unit = trim(s.substr(open + 1, s.size() - open - 2));
+        cell.unit_pos = s.data() + open + 1;
+      } else {
+        cell.name = s;
+      }
+      cell.name_pos = cell.name.empty() ? f.pos : cell.name.data();
+      if (cell.name.empty()) {
+        fail(header, f.pos, "empty column name");
+        return false;
+      }
+      cells_.push_back(cell);
+    }
+    // Duplicated names (ignoring case) are refused even for columns that would be ignored.
+    for (std::size_t i = 0; i < cells_.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (detail::iequals(cells_[i].name, cells_[j].name)) {
+          fail(header, cells_[i].name_pos, "duplicate column name '" + printable(cells_[i].name) +
+                                               "' (also field " + std::to_string(j + 1) + ")");
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// A units row: same line after the header, all fields non-numeric or empty, at least
+  /// one non-empty.
+  bool is_units_row(const Line& line) const {
+    const std::vector<Field> fields = split_fields(line.begin, line.end, sep_);
+    bool any = false;
+    for (const Field& f : fields) {
+      if (f.text.empty()) continue;
+      if (field_is_number(f.text, decimal_comma_)) return false;
+      any = true;
+    }
+    return any;
+  }
+
+  bool apply_units_row(const Line& line) {
+    const std::vector<Field> fields = split_fields(line.begin, line.end, sep_);
+    if (fields.size() != cells_.size()) {
+      const char* pos = fields.size() < cells_.size() ? line.end : fields[cells_.size()].pos;
+      fail(line, pos, "units row has " + std::to_string(fields.size()) + " fields, header has " +
+                          std::to_string(cells_.size()));
+      return false;
+    }
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      std::string_view u = fields[i].text;
+      if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
+        u = trim(u.substr(1, u.size() - 2));
+      }
+      HeaderCell& cell = cells_[i];
+      if (cell.unit_pos != nullptr && !cell.unit.empty()) {
+        if (!u.empty() && u != cell.unit) {
+          fail(line, fields[i].pos, "unit '" + printable(u) + "' of column '" + printable(cell.name) +
+                                        "' differs from '" + printable(cell.unit) + "' in the header");
+          return false;
+        }
+        continue;
+      }
+      cell.unit = u;
+      cell.unit_pos = u.empty() ? fields[i].pos : u.data();
+      unit_line_[i] = line;
+    }
+    return true;
+  }
+
+  /// Maps header cells to signals and units; fills cols_ and out_.present.
+  bool resolve_columns() {
+    struct MapEntry {
+      std::string key;
+      std::string target;
+      bool used = false;
+    };
+    std::vector<MapEntry> map;
+    map.reserve(opt_.column_map.size());
+    for (const auto& [k, v] : opt_.column_map) map.push_back({k, v, false});
+
+    std::array<std::size_t, kSignalCount> field_of{};  // 1-based field giving each signal
+    cols_.resize(cells_.size());
+    for (std::size_t i = 0; i < cells_.size(); ++i) {
+      const HeaderCell& cell = cells_[i];
+      std::string_view target = cell.name;
+      bool mapped = false;
+      for (MapEntry& e : map) {
+        if (detail::iequals(e.key, cell.name)) {
+          e.used = true;
+          target = e.target;
+          mapped = true;
+          break;
+        }
+      }
+      cols_[i].name = cell.name;
+      if (mapped && target.empty()) continue;  // dropped on request
+      const std::optional<Signal> sig = signal_from_name(target);
+      if (!sig) {
+        if (mapped) {
+          fail(header_, cell.name_pos, "column map sends '" + printable(cell.name) + "' to '" +
+                                           printable(target) + "', which is not a known signal");
+          return false;
+        }
+        note(header_, cell.name_pos, "column '" + printable(cell.name) + "' is not a known signal; ignored");
+        continue;
+      }
+      const std::size_t k = index(*sig);
+      if (field_of[k] != 0) {
+        fail(header_, cell.name_pos, "column '" + printable(cell.name) + "' gives signal '" +
+                                         std::string(signal_name(*sig)) + "', already given by field " +
+                                         std::to_string(field_of[k]));
+        return false;
+      }
+      field_of[k] = i + 1;
+      const SignalInfo& info = signal_info(*sig);
+      const UnitResult unit = parse_unit(info.quantity, cell.unit);
+      if (!unit.ok()) {
+        const auto it = unit_line_.find(i);
+        const Line& where = it != unit_line_.end() ? it->second : header_;
+        fail(where, cell.unit_pos, unit.error + " in column '" + printable(cell.name) + "'");
+        return false;
+      }
+      ColumnSpec& c = cols_[i];
+      c.factor = unit.conversion.factor;
+      c.offset = unit.conversion.offset;
+      c.is_time = *sig == Signal::kT;
+      c.dst = c.is_time ? &out_.t : &out_.values[k];
+      out_.present[k] = true;
+      out_.source_units[k] = std::string(cell.unit);
+      out_.source_columns[k] = i + 1;
+    }
+    if (field_of[index(Signal::kT)] == 0) {
+      fail(header_, header_.begin, "no time column 't' (name one 't', or map one with column_map)");
+      return false;
+    }
+    for (const MapEntry& e : map) {
+      if (!e.used) note(header_, header_.begin, "column map entry '" + printable(e.key) + "' matched no column");
+    }
+    return true;
+  }
+
+  // ---- data ----------------------------------------------------------------------------
+
+  /// Trims every column to `rows` values (lenient) or to none (strict).
+  void drop_rows_after_error(std::size_t rows) {
+    const std::size_t keep = opt_.lenient ? rows : 0;
+    for (ColumnSpec& c : cols_) {
+      if (c.dst != nullptr) c.dst->resize(std::min(c.dst->size(), keep));
+    }
+  }
+
+  /// True when [q, le) starts with "," or "-," (a decimal comma without integer digits).
+  static bool starts_with_comma(const char* q, const char* le) noexcept {
+    if (q < le && *q == '-') ++q;
+    return q < le && *q == ',';
+  }
+
+  bool blank_in_field(char c) const noexcept { return c == ' ' || (c == '\t' && sep_ != '\t'); }
+
+  /// Text of the field starting at f, for messages.
+  std::string field_text(const char* f, const char* le) const {
+    const auto* s = static_cast<const char*>(std::memchr(f, sep_, static_cast<std::size_t>(le - f)));
+    return printable(trim(std::string_view(f, static_cast<std::size_t>((s != nullptr ? s : le) - f))));
+  }
+
+  void parse_rows(Line line) {
+    const std::size_t ncols = cols_.size();
+    const std::size_t max_rows = estimate_rows(line.begin, end_);
+    for (ColumnSpec& c : cols_) {
+      if (c.dst != nullptr) c.dst->reserve(max_rows);
+    }
+    const char sep = sep_;
+    double last_t = -HUGE_VAL;
+    std::size_t rows = 0;
+    do {
+      const char* const lb = line.begin;
+      const char* const le = line.end;
+      const char* f = lb;
+      for (std::size_t c = 0; c < ncols; ++c) {
+        if (c != 0) {
+          if (f == le) {
+            fail(line, le, "row has " + std::to_string(c) + " fields, header has " + std::to_string(ncols));
+            drop_rows_after_error(rows);
+            return;
+          }
+          ++f;  // f was on the separator
+        }
+        const ColumnSpec& col = cols_[c];
+        if (col.dst == nullptr) {
+          const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(le - f)));
+          f = s != nullptr ? s : le;
+          continue;
+        }
+        const char* q = f;
+        while (q < le && blank_in_field(*q)) ++q;
+        if (q < le && *q == '+') ++q;
+        double v;
+        std::from_chars_result r{q, std::errc()};
+        if (!detail::fast_decimal(q, le, v, r.ptr)) r = std::from_chars(q, le, v);
+        const char* e = r.ptr;
+        // A decimal comma stops the parse at ',' (or, for ",5" / "-,5", refuses it).
+        const bool comma = decimal_comma_ && ((r.ec == std::errc() && e < le && *e == ',') ||
+                                              (r.ec == std::errc::invalid_argument && starts_with_comma(q, le)));
+        if (comma) {
+          // Copy the field to a stack buffer with '.' and parse again.
+          const auto* s = static_cast<const char*>(std::memchr(q, sep, static_cast<std::size_t>(le - q)));
+          const char* fe = s != nullptr ? s : le;
+          while (fe > q && blank_in_field(fe[-1])) --fe;
+          const auto n = static_cast<std::size_t>(fe - q);
+          char buf[kMaxCommaField];
+          e = q;
+          r.ec = std::errc::invalid_argument;
+          if (n <= kMaxCommaField) {
+            std::memcpy(buf, q, n);
+            std::replace(buf, buf + n, ',', '.');
+            const char* stop = nullptr;
+            if (detail::fast_decimal(buf, buf + n, v, stop) && stop == buf + n) {
+              r = {stop, std::errc()};
+            } else {
+              r = std::from_chars(buf, buf + n, v);
+            }
+            if (r.ec == std::errc() && r.ptr == buf + n) {
+              e = fe;
+            } else if (r.ec == std::errc()) {
+              r.ec = std::errc::invalid_argument;  // only part of the field is a number
+            }
+          }
+        }
+        if (r.ec == std::errc()) {
+          while (e < le && blank_in_field(*e)) ++e;
+        }
+        if (r.ec != std::errc() || (e < le && *e != sep)) {
+          const std::string text = field_text(f, le);
+          std::string msg;
+          if (r.ec == std::errc::result_out_of_range) {
+            msg = "number out of range '" + text + "'";
+          } else if (text.empty()) {
+            msg = "empty field";
+          } else {
+            msg = "bad number '" + text + "'";
+          }
+          fail(line, f, msg + " in column '" + printable(col.name) + "'");
+          drop_rows_after_error(rows);
+          return;
+        }
+        double si = v * col.factor;
+        if (col.offset != 0.0) si += col.offset;  // (adding +0 would turn -0 into +0)
+        if (!std::isfinite(si)) {
+          const std::string text = field_text(f, le);
+          fail(line, f, (std::isfinite(v) ? "value out of range after unit conversion '" : "non-finite value '") +
+                            text + "' in column '" + printable(col.name) + "'");
+          drop_rows_after_error(rows);
+          return;
+        }
+        if (col.is_time) {
+          if (!(si > last_t)) {
+            char msg[128];
+            std::snprintf(msg, sizeof msg, "time not strictly increasing: %.9g s after %.9g s", si, last_t);
+            fail(line, f, msg);
+            drop_rows_after_error(rows);
+            return;
+          }
+          last_t = si;
+        }
+        col.dst->push_back(si);
+        f = e;
+      }
+      if (f != le) {
+        std::string msg = "row has more than " + std::to_string(ncols) + " fields";
+        if (sep == ',') msg += " (a decimal comma needs ';' or tab as separator)";
+        fail(line, f + 1, msg);
+        drop_rows_after_error(rows);
+        return;
+      }
+      ++rows;
+    } while (next_content_line(line));
+    if (out_.error) drop_rows_after_error(rows);
+  }
+
+  const ReadOptions& opt_;
+  LogData& out_;
+  std::string_view text_;
+  const char* cur_ = nullptr;
+  const char* end_ = nullptr;
+  const char* bad_ = nullptr;  ///< first NUL / invalid UTF-8 byte, or null
+  std::size_t line_no_ = 0;
+  char sep_ = ',';
+  bool decimal_comma_ = false;
+  Line header_;
+  std::vector<HeaderCell> cells_;
+  std::map<std::size_t, Line> unit_line_;  ///< header cell → units row giving its unit
+  std::vector<ColumnSpec> cols_;
+};
+
+}  // namespace
+
+LogData read_log_from_memory(std::string_view text, std::string path_for_messages, const ReadOptions& options) {
+  LogData out;
+  out.path = std::move(path_for_messages);
+  try {
+    Parser parser(text, options, out);
+    parser.run();
+  } catch (const std::bad_alloc&) {
+    out.error = LogError{out.path, 0, 0, "out of memory"};
+  }
+  if (out.error && (!options.lenient || out.error->line == 0)) {
+    out.t.clear();
+    for (auto& v : out.values) v.clear();
+  }
+  return out;
+}
+
+LogData read_log(const std::string& path, const ReadOptions& options) {
+  const auto failed = [&path](const char* what, int err) {
+    LogData out;
+    out.path = path;
+    out.error = LogError{path, 0, 0, std::string(what) + ": " + std::generic_category().message(err)};
+    return out;
+  };
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::is_directory(st)) return failed("cannot read", EISDIR);
+  // Size hint for regular files; one spare byte so reading an unchanged file to its end
+  // needs no regrowth. A growing file or a pipe regrows by doubling.
+  std::size_t cap = std::size_t{1} << 16;
+  if (!ec && std::filesystem::is_regular_file(st)) {
+    const std::uintmax_t n = std::filesystem::file_size(path, ec);
+    if (!ec && n < (std::uintmax_t{1} << 40)) cap = static_cast<std::size_t>(n) + 1;
+  }
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return failed("cannot open", errno);
+  try {
+    std::unique_ptr<char[]> buf(new char[cap]);
+    std::size_t size = 0;
+    for (;;) {
+      if (size == cap) {
+        std::unique_ptr<char[]> bigger(new char[2 * cap]);
+        std::memcpy(bigger.get(), buf.get(), size);
+        buf = std::move(bigger);
+        cap *= 2;
+      }
+      const std::size_t got = std::fread(buf.get() + size, 1, cap - size, f);
+      size += got;
+      if (got == 0) break;
+    }
+    const int err = errno;
+    const bool read_error = std::ferror(f) != 0;
+    std::fclose(f);
+    if (read_error) return failed("cannot read", err != 0 ? err : EIO);
+    return read_log_from_memory(std::string_view(buf.get(), size), path, options);
+  } catch (const std::bad_alloc&) {
+    std::fclose(f);
+    return failed("cannot read", ENOMEM);
+  }
+}
+
+}  // namespace hstmon::host

@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# Instructions per observer tick, counted by callgrind (deterministic, unlike timings).
+#
+#   scripts/count_instructions.sh [options] [BUILD_DIR]
+#
+#   BUILD_DIR       build tree to use (default: <repo>/build/h-bench). Configured as Release
+#                   if it has no CMakeCache.txt; target hstmon_count_ticks is (re)built in it.
+#   -n, --ticks N   ticks counted per variant (default 10000)
+#   --no-build      use BUILD_DIR/bin/hstmon_count_ticks as it is
+#   --full          also count the odeint full stiff 4-state model (286 RK4 steps/tick;
+#                   informational, N/10 ticks)
+#   --annotate      print callgrind_annotate's function and source-line profile of our
+#                   double tick (hot spots in lib/)
+#   --keep          keep the callgrind.out files (their directory is printed)
+#   --target R      required ratio ours/odeint (default 0.8)
+#
+# Variants (bench/count_ticks.cpp, workload in bench/bench_common.hpp): our
+# Observer<ThesisReducedModel<T>>::step at 1 ms, T = double and float, at the nominal
+# operating point with all 4 channels measured; and the naive Boost.Odeint observer on the
+# same model (outputs() + 4 residuals + one runge_kutta4 step). Only the N ticks are
+# counted (CALLGRIND_START/STOP_INSTRUMENTATION, --instr-atstart=no).
+#
+# Exit status: 0 target met for both precisions, 1 target missed, 2 tool or build error.
+set -euo pipefail
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="$repo/build/h-bench"
+ticks=10000
+do_build=1
+full=0
+annotate=0
+keep=0
+target=0.8
+
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    -n|--ticks) ticks=${2:?}; shift 2 ;;
+    --no-build) do_build=0; shift ;;
+    --full) full=1; shift ;;
+    --annotate) annotate=1; shift ;;
+    --keep) keep=1; shift ;;
+    --target) target=${2:?}; shift 2 ;;
+    -h|--help) awk 'NR > 1 && /^#/ {sub(/^# ?/, ""); print; next} NR > 1 {exit}' "$0"; exit 0 ;;
+    -*) echo "unknown option: $1" >&2; exit 2 ;;
+    *) build=$1; shift ;;
+  esac
+done
+if ! [[ "$ticks" =~ ^[1-9][0-9]*$ ]]; then echo "ticks must be a positive integer" >&2; exit 2; fi
+
+for tool in valgrind awk; do
+  command -v "$tool" >/dev/null || { echo "$tool not found" >&2; exit 2; }
+done
+
+if [[ $do_build -eq 1 ]]; then
+  if [[ ! -f "$build/CMakeCache.txt" ]]; then
+    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 2
+  fi
+  cmake --build "$build" -j2 --target hstmon_count_ticks >/dev/null || exit 2
+fi
+bin="$build/bin/hstmon_count_ticks"
+[[ -x "$bin" ]] || { echo "$bin not found (build target hstmon_count_ticks)" >&2; exit 2; }
+build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+if [[ "$build_type" != Release && "$build_type" != RelWithDebInfo ]]; then
+  echo "warning: $build is a '${build_type:-unknown}' build; counts are only meaningful for Release" >&2
+fi
+
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/hstmon_callgrind.XXXXXX")
+if [[ $keep -eq 0 ]]; then trap 'rm -rf "$tmp"' EXIT; fi
+
+# count VARIANT TICKS -> prints total instructions of the instrumented region
+count() {
+  local v=$1 n=$2 out="$tmp/callgrind.out.$1"
+  if ! valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out" \
+        "$bin" "$v" "$n" >"$tmp/$v.log" 2>&1; then
+    echo "callgrind run of '$v' failed:" >&2; cat "$tmp/$v.log" >&2; exit 2
+  fi
+  local total
+  total=$(awk '/^totals:/ {print $2; exit}' "$out")
+  [[ -n "$total" ]] || total=$(awk '/^summary:/ {print $2; exit}' "$out")
+  [[ -n "$total" && "$total" -gt 0 ]] || { echo "no instruction count in $out" >&2; exit 2; }
+  echo "$total"
+}
+
+declare -A per
+variants=(ours_double ours_float odeint_double odeint_float)
+for v in "${variants[@]}"; do
+  total=$(count "$v" "$ticks") || exit 2
+  per[$v]=$(awk -v t="$total" -v n="$ticks" 'BEGIN {printf "%.1f", t / n}')
+done
+if [[ $full -eq 1 ]]; then
+  nf=$(( ticks / 10 > 0 ? ticks / 10 : 1 ))
+  total=$(count odeint_full "$nf") || exit 2
+  per[odeint_full]=$(awk -v t="$total" -v n="$nf" 'BEGIN {printf "%.1f", t / n}')
+fi
+
+status=0
+printf '\nInstructions per 1 ms tick (callgrind, %s ticks, %s build %s)\n\n' "$ticks" "${build_type:-?}" "$build"
+printf '%-34s %14s %12s %10s %6s\n' variant instr/tick ours/odeint target result
+printf '%-34s %14s %12s %10s %6s\n' ---------------------------------- -------------- ------------ ---------- ------
+for T in double float; do
+  o=${per[ours_$T]} b=${per[odeint_$T]}
+  ratio=$(awk -v o="$o" -v b="$b" 'BEGIN {printf "%.3f", o / b}')
+  ok=$(awk -v r="$ratio" -v t="$target" 'BEGIN {print (r <= t) ? "PASS" : "MISS"}')
+  [[ $ok == PASS ]] || status=1
+  printf '%-34s %14s %12s %10s %6s\n' "Observer<Reduced<$T>>::step" "$o" "$ratio" "<= ${target}x" "$ok"
+  printf '%-34s %14s\n' "odeint rk4 reduced<$T> (naive)" "$b"
+done
+if [[ $full -eq 1 ]]; then
+  printf '%-34s %14s %12s\n' "odeint rk4 full stiff, 286 steps" "${per[odeint_full]}" \
+    "$(awk -v o="${per[ours_double]}" -v b="${per[odeint_full]}" 'BEGIN {printf "%.4f", o / b}')"
+fi
+echo
+
+if [[ $annotate -eq 1 ]]; then
+  if command -v callgrind_annotate >/dev/null; then
+    echo "== callgrind_annotate: Observer<Reduced<double>>::step, per file:function and source line =="
+    callgrind_annotate --auto=yes --show-percs=no "$tmp/callgrind.out.ours_double" 2>/dev/null |
+      grep -vE '^ *\. ' | grep -vE '^\s*$'
+  else
+    echo "callgrind_annotate not found" >&2
+  fi
+fi
+if [[ $keep -eq 1 ]]; then echo "callgrind.out files kept in $tmp"; fi
+exit $status

@@ -1,0 +1,202 @@
+// Log reader: every malformed input gives one error with the exact line and column, no
+// crash, and (strict mode) no rows; lenient mode keeps the rows before the bad one.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hstmon_host/log_reader.hpp"
+
+namespace hh = hstmon::host;
+using hh::Signal;
+
+namespace {
+
+hh::LogData read(std::string_view text, const hh::ReadOptions& opt = {}) {
+  return hh::read_log_from_memory(text, "mem.csv", opt);
+}
+
+/// Reads `text` strictly and checks the error position and that the message contains
+/// `part`; also checks that no rows are left.
+void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part,
+                  const hh::ReadOptions& opt = {}) {
+  const hh::LogData d = read(text, opt);
+  ASSERT_FALSE(d.ok()) << "accepted: " << testing::PrintToString(std::string(text));
+  EXPECT_EQ(d.error->file, "mem.csv");
+  EXPECT_EQ(d.error->line, line) << d.error->to_string();
+  EXPECT_EQ(d.error->column, column) << d.error->to_string();
+  EXPECT_NE(d.error->message.find(part), std::string::npos) << d.error->to_string();
+  EXPECT_EQ(d.rows(), 0u);
+  for (const auto& v : d.values) EXPECT_TRUE(v.empty());
+}
+
+}  // namespace
+
+TEST(LogErrors, MessageFormat) {
+  const auto d = read("t,p_mi\n0,1\n0.001,1.2.3\n");
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.error->to_string(), "mem.csv:3:7: error: bad number '1.2.3' in column 'p_mi'");
+}
+
+TEST(LogErrors, BadNumbers) {
+  expect_error("t,p_mi\n0,1\n0.001,1.2.3\n", 3, 7, "bad number '1.2.3'");
+  expect_error("t,p_mi\n0,abc\n", 2, 3, "bad number 'abc' in column 'p_mi'");
+  expect_error("t,p_mi\nx,1\n", 2, 1, "bad number 'x' in column 't'");
+  expect_error("t,p_mi\n0,1.5x\n", 2, 3, "bad number '1.5x'");
+  expect_error("t,p_mi\n0,0x10\n", 2, 3, "bad number '0x10'");
+  expect_error("t,p_mi\n0,1 2\n", 2, 3, "bad number '1 2'");
+  expect_error("t,p_mi\n0,--1\n", 2, 3, "bad number '--1'");
+  expect_error("t,p_mi\n0,\"1\"\n", 2, 3, "bad number");
+  expect_error("t;p_mi\n0;1,2,3\n", 2, 3, "bad number '1,2,3'");
+  expect_error("t,p_mi\n0,1\r5\n", 2, 3, "bad number '1\\x0D5'");
+  expect_error("t;p_mi\n0;1,2345678901234567890123456789012345678901234567890123456789012345\n", 2, 3, "bad number");
+}
+
+TEST(LogErrors, EmptyField) {
+  expect_error("t,p_mi\n0,\n", 2, 3, "empty field in column 'p_mi'");
+  expect_error("t,p_mi,p_mo\n0,,1\n", 2, 3, "empty field in column 'p_mi'");
+  expect_error("t\tp_mi\n\t1\n", 2, 1, "empty field in column 't'");
+}
+
+TEST(LogErrors, RaggedRows) {
+  expect_error("t,p_mi,p_mo\n0,1,2\n0.001,1\n", 3, 8, "row has 2 fields, header has 3");
+  expect_error("t,p_mi\n0,1,2\n", 2, 5, "row has more than 2 fields");
+  expect_error("t,p_mi\n0,1,5\n", 2, 5, "decimal comma needs ';' or tab");
+  expect_error("t;p_mi;x\n0;1\n", 2, 4, "row has 2 fields, header has 3");
+  expect_error("t\tp_mi\n0\t1\t\n", 2, 5, "row has more than 2 fields");
+}
+
+TEST(LogErrors, UnitsRefused) {
+  expect_error("t[s],p_mi[bars]\n0,1\n", 1, 11, "unknown pressure unit 'bars' (use");
+  expect_error("t,p_mi[mpa]\n0,1\n", 1, 8, "ambiguous pressure unit 'mpa'");
+  expect_error("t[us],p_mi\n0,1\n", 1, 3, "unknown time unit 'us'");
+  expect_error("t,w_m[Hz]\n0,1\n", 1, 7, "unknown speed unit 'Hz'");
+  expect_error("t,kp[l/min]\n0,1\n", 1, 6, "unknown orifice coefficient unit");
+  expect_error("t\tp_mi\ns\tbars\n0\t1\n", 2, 3, "unknown pressure unit 'bars'");
+  expect_error("t[s]\tp_mi[bar]\ns\tkPa\n0\t1\n", 2, 3, "differs from 'bar' in the header");
+  expect_error("t\tp_mi\ns\n0\t1\n", 2, 2, "units row has 1 fields, header has 2");
+}
+
+TEST(LogErrors, HeaderProblems) {
+  expect_error("t,p_mi,P_MI\n0,1,2\n", 1, 8, "duplicate column name 'P_MI' (also field 2)");
+  expect_error("t,x,x\n0,1,2\n", 1, 5, "duplicate column name 'x'");
+  expect_error("p_mi,p_mo\n1,2\n", 1, 1, "no time column 't'");
+  expect_error("t,,p_mi\n0,1,2\n", 1, 3, "empty column name");
+  expect_error("t[s,p_mi\n0,1\n", 1, 2, "must end with ']'");
+  expect_error("t,p_mi (bar\n0,1\n", 1, 8, "must end with ')'");
+  hh::ReadOptions opt;
+  opt.column_map = {{"a", "p_mi"}};
+  expect_error("t,a,p_mi\n0,1,2\n", 1, 5, "gives signal 'p_mi', already given by field 2", opt);
+  opt.column_map = {{"a", "p_m"}};
+  expect_error("t,a\n0,1\n", 1, 3, "column map sends 'a' to 'p_m', which is not a known signal", opt);
+}
+
+TEST(LogErrors, TimeNotStrictlyIncreasing) {
+  expect_error("t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "time not strictly increasing: 0.001 s after 0.001 s");
+  expect_error("t,p_mi\n1,1\n0.5,1\n", 3, 1, "time not strictly increasing");
+  expect_error("p_mi;t[ms]\n1;0\n1;-1\n", 3, 3, "time not strictly increasing: -0.001 s after 0 s");
+}
+
+TEST(LogErrors, NonFiniteValues) {
+  expect_error("t,p_mi\n0,nan\n", 2, 3, "non-finite value 'nan' in column 'p_mi'");
+  expect_error("t,p_mi\n0,NaN\n", 2, 3, "non-finite value 'NaN'");
+  expect_error("t,p_mi\n0,inf\n", 2, 3, "non-finite value 'inf'");
+  expect_error("t,p_mi\n0,-Infinity\n", 2, 3, "non-finite value '-Infinity'");
+  expect_error("t,p_mi\ninf,1\n", 2, 1, "non-finite value 'inf' in column 't'");
+  expect_error("t,p_mi\n0,1e999\n", 2, 3, "number out of range '1e999'");
+  expect_error("t,p_mi[bar]\n0,1e305\n", 2, 3, "value out of range after unit conversion '1e305'");
+}
+
+TEST(LogErrors, EmptyAndHeaderOnly) {
+  expect_error("", 1, 1, "empty file");
+  expect_error("\n\r\n  \n", 1, 1, "empty file");
+  expect_error("\xEF\xBB\xBF", 1, 1, "empty file");
+  expect_error("# a\n# b\n", 3, 1, "no header line");
+  expect_error("t,p_mi\n", 2, 1, "no data rows");
+  expect_error("t,p_mi", 1, 7, "no data rows");
+  expect_error("t,p_mi\n# only a comment\n\n", 4, 1, "no data rows");
+  expect_error("t\tp_mi\ns\tbar\n", 3, 1, "no data rows");
+}
+
+TEST(LogErrors, BinaryJunk) {
+  using namespace std::string_literals;
+  expect_error("t,p_mi\n0,1\n0.001,1\0\x01\n"s, 3, 8, "NUL byte");
+  expect_error("t,p_mi\n0,1\xff\n", 2, 4, "invalid UTF-8 byte 0xFF");
+  expect_error("t,p\xC2\xB0\xff\n0,1\n", 1, 5, "invalid UTF-8 byte 0xFF");
+  expect_error("t,p_mi\n0,1\xC3", 2, 4, "invalid UTF-8 byte 0xC3");
+  expect_error("t,p_mi\n0,\xC0\x80\n", 2, 3, "invalid UTF-8 byte 0xC0");
+  expect_error("t,p_mi\n0,\xED\xA0\x80\n", 2, 3, "invalid UTF-8 byte 0xED");
+  expect_error("t,p_mi\n0,1\n# comment \x80\n1,2\n", 3, 11, "invalid UTF-8 byte 0x80");
+  std::string junk;
+  for (int i = 0; i < 4096; ++i) junk += static_cast<char>((i * 37 + 11) & 0xFF);
+  const auto d = read(junk);
+  ASSERT_FALSE(d.ok());
+  EXPECT_GE(d.error->line, 1u);
+  EXPECT_GE(d.error->column, 1u);
+  // A clean ASCII file 8 bytes at a time with the bad byte at every offset of a word.
+  for (std::size_t k = 0; k < 16; ++k) {
+    std::string text = "t,p_mi\n0,1\n0.001,1234567890123456\n";
+    text[13 + k] = '\0';
+    const auto e = read(text);
+    ASSERT_FALSE(e.ok());
+    EXPECT_EQ(e.error->line, 3u);
+    EXPECT_EQ(e.error->column, 3 + k);
+  }
+}
+
+TEST(LogErrors, StrictModeKeepsNoRows) {
+  const auto d = read("t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3,x\n3,4,5\n");
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.rows(), 0u);
+  EXPECT_TRUE(d.column(Signal::kPMi).empty());
+  EXPECT_TRUE(d.column(Signal::kPMo).empty());
+  EXPECT_TRUE(d.has(Signal::kPMi));  // the header was understood
+}
+
+TEST(LenientRead, KeepsTheValidPrefix) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  struct Case {
+    const char* what;
+    std::string text;
+    std::size_t rows, line, column;
+  };
+  const Case cases[] = {
+      {"bad number", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,x,4\n3,4,5\n", 2, 4, 3},
+      {"bad number in the last column", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3,x\n3,4,5\n", 2, 4, 5},
+      {"truncated last line", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3", 2, 4, 4},
+      {"time going back", "t,p_mi,p_mo\n0,1,2\n1,2,3\n0.5,3,4\n", 2, 4, 1},
+      {"nan", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,nan,4\n", 2, 4, 3},
+      {"binary tail", std::string("t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3,4\xff\xfe\n", 31), 2, 4, 6},
+      {"NUL tail", std::string("t,p_mi,p_mo\n0,1,2\n# c\n1,2,3\n\0\0\0\0", 33), 2, 5, 1},
+      {"first row bad", "t,p_mi,p_mo\n0,1\n", 0, 2, 4},
+  };
+  for (const Case& c : cases) {
+    const auto d = read(c.text, opt);
+    ASSERT_FALSE(d.ok()) << c.what;
+    EXPECT_EQ(d.rows(), c.rows) << c.what;
+    EXPECT_EQ(d.column(Signal::kPMi).size(), c.rows) << c.what;
+    EXPECT_EQ(d.column(Signal::kPMo).size(), c.rows) << c.what;
+    EXPECT_EQ(d.error->line, c.line) << c.what << ": " << d.error->to_string();
+    EXPECT_EQ(d.error->column, c.column) << c.what << ": " << d.error->to_string();
+    if (c.rows == 2) {
+      EXPECT_EQ(d.t[1], 1.0) << c.what;
+      EXPECT_EQ(d.column(Signal::kPMo)[1], 3.0) << c.what;
+    }
+  }
+}
+
+TEST(LenientRead, HeaderErrorsStillGiveNoRows) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const auto d = read("t,p_mi[bars]\n0,1\n", opt);
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.rows(), 0u);
+}
+
+TEST(LenientRead, CleanFileIsUnaffected) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const auto d = read("t,p_mi\n0,1\n1,2\n", opt);
+  ASSERT_TRUE(d.ok());
+  EXPECT_EQ(d.rows(), 2u);
+}
