@@ -96,7 +96,7 @@ TEST(NoHeap, PaperObserverStepDoesNotAllocate) {
 TEST(NoHeap, SteadyStateSolveDoesNotAllocate) {
   Armed a;
   hstmon::ThesisReducedModel<float> m;
-  hstmon::ThesisReducedModel<float>::State x;
+  hstmon::ThesisReducedModel<float>::State x = hstmon::ThesisReducedModel<float>::State::Zero();
   EXPECT_TRUE(m.steady_state(x));
   EXPECT_EQ(g_allocs, 0);
 }

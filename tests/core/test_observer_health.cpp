@@ -116,7 +116,7 @@ TEST(Observer, OutputInjectionPullsTowardsMeasurement) {
     hstmon::ThesisInputs<double> u_true;
     u_true.kp *= 0.9;
     truth.set_inputs(u_true);
-    hstmon::ThesisReducedModel<double>::State xt;
+    hstmon::ThesisReducedModel<double>::State xt = hstmon::ThesisReducedModel<double>::State::Zero();
     EXPECT_TRUE(truth.steady_state(xt));
     Obs<double> o;
     Obs<double>::Config c;

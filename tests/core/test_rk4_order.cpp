@@ -41,7 +41,7 @@ TEST(Rk4, ReducedThesisModelConvergesAtFourthOrder) {
   // A kp step from the nominal steady state: the smooth part of the observer's problem.
   auto run = [](int n_per_ms) {
     hstmon::ThesisReducedModel<double> m;
-    hstmon::ThesisReducedModel<double>::State x0;
+    hstmon::ThesisReducedModel<double>::State x0 = hstmon::ThesisReducedModel<double>::State::Zero();
     EXPECT_TRUE(m.steady_state(x0));
     hstmon::ThesisInputs<double> u;
     u.kp *= 0.5;

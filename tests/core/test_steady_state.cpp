@@ -17,7 +17,7 @@ Vec4 reduced_steady(T kp_scale) {
   ThesisInputs<T> u;
   u.kp *= kp_scale;
   m.set_inputs(u);
-  typename ThesisReducedModel<T>::State x;
+  typename ThesisReducedModel<T>::State x = ThesisReducedModel<T>::State::Zero();
   EXPECT_TRUE(m.steady_state(x));
   const auto y = m.outputs(x);
   return {y[0], y[1], y[2], y[3]};
@@ -67,7 +67,7 @@ TEST(SteadyState, FloatSolveWithinFloatPrecision) {
 TEST(SteadyState, FullModelDerivativeVanishesAtReducedSteadyState) {
   // The reduced model's fixed point is a fixed point of equations 2.5–2.8 too.
   hstmon::ThesisReducedModel<double> m;
-  hstmon::ThesisReducedModel<double>::State x;
+  hstmon::ThesisReducedModel<double>::State x = hstmon::ThesisReducedModel<double>::State::Zero();
   ASSERT_TRUE(m.steady_state(x));
   const auto y = m.outputs(x);
   const hstmon::ThesisState<double> s{y[0], y[1], y[2], y[3]};
@@ -96,7 +96,7 @@ TEST(SteadyState, ReversedSupplyRunsBackwards) {
   u.Psupl = 0;
   u.Ps = 3.5e6;
   m.set_inputs(u);
-  hstmon::ThesisReducedModel<double>::State x;
+  hstmon::ThesisReducedModel<double>::State x = hstmon::ThesisReducedModel<double>::State::Zero();
   ASSERT_TRUE(m.steady_state(x));
   EXPECT_LT(x[1], 0);
   EXPECT_NEAR(m.steady_torque(x[1]), 0, 1e-6);

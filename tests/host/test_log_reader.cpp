@@ -84,6 +84,15 @@ TEST(LogReader, SeparatorAndDecimalVariants) {
   }
 }
 
+TEST(LogReader, DecimalCommaWithoutIntegerDigits) {
+  const auto d = read("t;p_mi\n0;,5\n1; -,25 \n2;+1,\n");
+  EXPECT_LOG_OK(d);
+  ASSERT_EQ(d.rows(), 3u);
+  EXPECT_EQ(d.column(Signal::kPMi)[0], 0.5);
+  EXPECT_EQ(d.column(Signal::kPMi)[1], -0.25);
+  EXPECT_EQ(d.column(Signal::kPMi)[2], 1.0);
+}
+
 TEST(LogReader, ForcedSeparator) {
   hh::ReadOptions opt;
   opt.separator = ';';

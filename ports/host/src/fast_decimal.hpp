@@ -10,11 +10,13 @@
 
 namespace hstmon::host::detail {
 
-/// Parses [-]digits[.digits] at [p, end). On success stores the value, sets `stop` to
-/// the first byte after the number and returns true. Returns false (nothing stored)
-/// when the text is not such a number or is outside the exact range; the caller then
-/// falls back to std::from_chars, which gives the same result for everything accepted here.
-inline bool fast_decimal(const char* p, const char* end, double& value, const char*& stop) noexcept {
+/// Parses [-]digits[.digits] at [p, end); with `comma_point` a ',' is accepted as the
+/// decimal point too. On success stores the value, sets `stop` to the first byte after
+/// the number and returns true. Returns false (nothing stored) when the text is not such
+/// a number or is outside the exact range; the caller then falls back to
+/// std::from_chars, which gives the same result for everything accepted here.
+inline bool fast_decimal(const char* p, const char* end, double& value, const char*& stop,
+                         bool comma_point = false) noexcept {
   static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   constexpr std::uint64_t kMaxExact = std::uint64_t{1} << 53;
@@ -29,7 +31,7 @@ inline bool fast_decimal(const char* p, const char* end, double& value, const ch
     ++digits;
   }
   int fraction = 0;
-  if (s < end && *s == '.') {
+  if (s < end && (*s == '.' || (comma_point && *s == ','))) {
     ++s;
     while (s < end && static_cast<unsigned>(*s - '0') < 10u) {
       m = m * 10u + static_cast<unsigned>(*s - '0');

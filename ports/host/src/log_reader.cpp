@@ -444,9 +444,10 @@ class Parser {
         if (q < le && *q == '+') ++q;
         double v;
         std::from_chars_result r{q, std::errc()};
-        if (!detail::fast_decimal(q, le, v, r.ptr)) r = std::from_chars(q, le, v);
+        if (!detail::fast_decimal(q, le, v, r.ptr, decimal_comma_)) r = std::from_chars(q, le, v);
         const char* e = r.ptr;
-        // A decimal comma stops the parse at ',' (or, for ",5" / "-,5", refuses it).
+        // Decimal commas the fast path did not take (exponents, long significands) stop
+        // from_chars at ',' (or, for ",5" / "-,5", make it refuse the field).
         const bool comma = decimal_comma_ && ((r.ec == std::errc() && e < le && *e == ',') ||
                                               (r.ec == std::errc::invalid_argument && starts_with_comma(q, le)));
         if (comma) {

@@ -1,0 +1,99 @@
+// The hstmon CLI on malformed logs and parameter files: a clear error naming
+// file:line:column, a non-zero exit, never a crash; --lenient still replays the valid
+// rows before the error.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string cmd = std::string(HSTMON_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("hstmon_cli_" + name);
+  std::ofstream(path, std::ios::binary) << text;
+  return path.string();
+}
+
+const std::string kHeader = "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
+const std::string kRow0 = "0,33.12,1.879,171.08,1677.7\n";
+const std::string kRow1 = "0.01,33.12,1.879,171.08,1677.7\n";
+
+void expect_error_at(const std::string& name, const std::string& text, const std::string& where) {
+  const std::string path = write_file(name, text);
+  const CliRun r = run("replay " + path);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(path + ":" + where + ": error:"), std::string::npos) << r.output;
+}
+
+TEST(CliErrors, BadNumber) { expect_error_at("bad_number.csv", kHeader + kRow0 + "0.01,33.1.2,1.8,171,1677\n", "3:6"); }
+TEST(CliErrors, RaggedRow) { expect_error_at("ragged.csv", kHeader + kRow0 + "0.01,33.1,1.8,171\n", "3:18"); }
+TEST(CliErrors, UnknownUnit) { expect_error_at("unit.csv", "t[s],p_mi[furlong]\n0,1\n", "1:11"); }
+TEST(CliErrors, TimeGoesBackwards) { expect_error_at("time.csv", kHeader + kRow1 + kRow0, "3:1"); }
+TEST(CliErrors, NanValue) { expect_error_at("nan.csv", kHeader + kRow0 + "0.01,nan,1.8,171,1677\n", "3:6"); }
+TEST(CliErrors, EmptyFile) { expect_error_at("empty.csv", "", "1:1"); }
+TEST(CliErrors, BinaryJunk) {
+  expect_error_at("junk.csv", kHeader + kRow0 + std::string("0.01,\x00\xff\xfe,1,2,3\n", 15), "3:6");
+}
+
+TEST(CliErrors, MissingFileIsNamed) {
+  const CliRun r = run("replay /nonexistent/hstmon.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("/nonexistent/hstmon.csv"), std::string::npos) << r.output;
+}
+
+TEST(CliErrors, LenientReplaysTheValidPrefix) {
+  std::string text = kHeader;
+  for (int i = 0; i < 50; ++i) text += std::to_string(i * 0.01) + ",33.12,1.879,171.08,1677.7\n";
+  text += "0.5,33.1,oops,171,1677\n";
+  const std::string path = write_file("lenient.csv", text);
+  const CliRun strict = run("replay " + path);
+  EXPECT_EQ(strict.exit_code, 2);
+  EXPECT_EQ(strict.output.find("residual"), std::string::npos) << "strict mode must not report results";
+  const CliRun lenient = run("replay --lenient --json " + path);
+  EXPECT_EQ(lenient.exit_code, 2) << "the error still shows in the exit code";
+  EXPECT_NE(lenient.output.find(path + ":52:"), std::string::npos) << lenient.output;
+  EXPECT_NE(lenient.output.find("\"rows\":50"), std::string::npos) << lenient.output;
+}
+
+TEST(CliErrors, BadParamsFileNamesLineAndColumn) {
+  const std::string log = write_file("ok.csv", kHeader + kRow0 + kRow1);
+  const std::string params = write_file("bad.json", "{\n  \"model\": \"thesis\",\n  \"params\": {\n    \"Dm\": -1\n  }\n}\n");
+  const CliRun r = run("replay " + log + " --params " + params);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(params + ":4:"), std::string::npos) << r.output;
+}
+
+TEST(CliErrors, GoodLogReplays) {
+  const std::string log = write_file("good.csv", kHeader + kRow0 + kRow1);
+  const CliRun r = run("replay " + log);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Ppp [bar]"), std::string::npos) << r.output;
+}
+
+TEST(CliErrors, UsageErrorExitsOne) {
+  EXPECT_EQ(run("replay").exit_code, 1);
+  EXPECT_EQ(run("replay x.csv --init sideways").exit_code, 1);
+}
+
+}  // namespace
