@@ -5,14 +5,19 @@
 /// with. Both programs include this header so the timing benchmark and the instruction
 /// count measure exactly the same work.
 ///
-/// Baselines (what a naive observer built on odeint does per tick, no health checks):
-///   OdeintReduced<T>: ŷ = outputs(x); r = y − ŷ (4 channels); one runge_kutta4 step of
-///                     ThesisReducedModel<T>::derivative over the tick.
+/// Baselines (an observer built on odeint, per tick, no health checks):
+///   OdeintReduced<T>, n_sub = 1 ("naive"): ŷ = outputs(x); r = y − ŷ (4 channels); one
+///                     runge_kutta4 step of ThesisReducedModel<T>::derivative over the tick.
+///                     No stiffness control: unstable at start from rest (docs/numerics.md).
+///   OdeintReduced<T>, n_sub = safe_substeps(tick) ("safe fixed"): the same with the one
+///                     fixed substep count that is stable over the whole envelope, start
+///                     from rest included: ⌈ρ_rest·h/0.8⌉ = 22 at 1 ms.
 ///   OdeintFull:       the full stiff 4-state thesis_derivative, runge_kutta4 at the
 ///                     3.5 µs step its DCV modes (≈ −3.7e5 1/s) need: 286 steps per 1 ms tick.
 
 #include <array>
 #include <boost/numeric/odeint.hpp>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -80,7 +85,19 @@ int nominal_substeps(T tick) noexcept {
   return o.substeps();
 }
 
-/// The naive odeint observer on the same reduced model.
+/// Fixed RK4 substeps per tick that a non-adaptive observer needs to stay stable over the
+/// whole operating envelope: ρ is largest at rest (ωm = 0, Ppp = Pbp: both orifices in
+/// their laminar branch, ρ = 1.74e4 1/s), so n = ⌈ρ_rest·h / (λh)_max⌉, the observer's rule.
+template <typename T>
+int safe_substeps(T tick) noexcept {
+  const Reduced<T> m{};
+  const typename Obs<T>::Config cfg{};
+  const double want = static_cast<double>(m.spectral_radius(m.rest_state())) * static_cast<double>(tick) /
+                      static_cast<double>(cfg.lambda_h_max);
+  return static_cast<int>(std::ceil(want));
+}
+
+/// The odeint observer on the same reduced model, with a fixed substep count.
 template <typename T>
 class OdeintReduced {
  public:
@@ -89,7 +106,8 @@ class OdeintReduced {
   using State = typename Reduced<T>::State;
 
   /// @param tick   observer tick [s]
-  /// @param n_sub  RK4 steps per tick (1 at 1 ms; use the observer's substep count otherwise)
+  /// @param n_sub  RK4 steps per tick: 1 (naive at 1 ms), the observer's nominal count, or
+  ///               safe_substeps(tick)
   explicit OdeintReduced(T tick, int n_sub = 1) noexcept : n_(n_sub), dt_(tick / static_cast<T>(n_sub)) {
     const Obs<T> o = make_observer<T>(tick);  // same steady start as ours
     model_ = o.model();
@@ -114,6 +132,7 @@ class OdeintReduced {
 
   const Output& residual() const noexcept { return r_; }
   const state_type& state() const noexcept { return x_; }
+  int steps_per_tick() const noexcept { return n_; }
 
  private:
   Reduced<T> model_{};

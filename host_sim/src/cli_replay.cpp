@@ -13,6 +13,7 @@
 
 #include "cli_commands.hpp"
 #include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
 #include "residual_plot.hpp"
@@ -116,29 +117,33 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   }
 }
 
-// Residual CSV in display units, readable by hstmon's own log reader.
+// Residual CSV in display units (bar, rpm) through the host port's writer; rows where a
+// channel is absent carry "nan" there.
 std::string write_residual_csv(const std::string& path, const host::ReplayResult& r) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) return "cannot write " + path;
-  std::string header = "t[s]";
+  std::vector<host::CsvColumn> cols = {host::column_for(host::Signal::kT, "s")};
   for (int c = 0; c < 4; ++c) {
-    header += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}]", kDisplay[c].name, kDisplay[c].unit);
+    const auto q = c == 3 ? host::Quantity::kSpeed : host::Quantity::kPressure;
+    const std::string n = kDisplay[c].name;
+    cols.push_back({n, q, kDisplay[c].unit});
+    cols.push_back({n + "_hat", q, kDisplay[c].unit});
+    cols.push_back({"r_" + n, q, kDisplay[c].unit});
   }
-  header += ",health\n";
-  std::fputs(header.c_str(), f);
-  fmt::memory_buffer line;
-  for (const auto& row : r.trace) {
-    line.clear();
-    fmt::format_to(std::back_inserter(line), "{:.10g}", row.t);
-    for (int c = 0; c < 4; ++c) {
-      const double k = kDisplay[c].scale;
-      fmt::format_to(std::back_inserter(line), ",{:.9g},{:.9g},{:.9g}", row.y[c] * k, row.y_hat[c] * k, row.r[c] * k);
+  cols.push_back({"health", host::Quantity::kNone, ""});
+  host::CsvWriter w;
+  if (auto err = w.open(path, cols)) return err->to_string();
+  std::vector<double> row(cols.size());
+  for (const auto& tr : r.trace) {
+    row[0] = tr.t;
+    for (std::size_t c = 0; c < 4; ++c) {
+      row[1 + 3 * c] = tr.y[c];
+      row[2 + 3 * c] = tr.y_hat[c];
+      row[3 + 3 * c] = tr.r[c];
     }
-    fmt::format_to(std::back_inserter(line), ",{}\n", row.health);
-    std::fwrite(line.data(), 1, line.size(), f);
+    row[13] = static_cast<double>(tr.health);
+    if (!w.write_row(row)) break;
   }
-  const bool ok = std::fclose(f) == 0;
-  return ok ? std::string() : "error writing " + path;
+  const auto err = w.close();
+  return err ? err->to_string() : std::string();
 }
 
 int run_replay(const ReplayArgs& a) {
@@ -200,7 +205,7 @@ int run_replay(const ReplayArgs& a) {
   if (!a.residuals_csv.empty()) {
     const std::string err = write_residual_csv(a.residuals_csv, r);
     if (!err.empty()) {
-      fmt::print(stderr, "hstmon: {}\n", err);
+      fmt::print(stderr, "{}\n", err);
       rc = kExitBadInput;
     } else if (!a.json) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);

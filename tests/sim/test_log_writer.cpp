@@ -1,24 +1,13 @@
-// CSV log writer and the log layouts.
+// The simulator's log layouts (written through the host port's CsvWriter).
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <sstream>
 
-#include "hstmon_sim/csv_log_writer.hpp"
 #include "hstmon_sim/log_layout.hpp"
 
 namespace hstmon::sim {
 namespace {
-
-TEST(CsvLogWriter, HeaderAndTenDigitRows) {
-  std::ostringstream os;
-  CsvLogWriter w(os, {{"t", "s"}, {"kp", ""}, {"p", "bar"}});
-  w.write_row({0.001, 4.41e-8, 33.120790521234});
-  w.write_row({2.0, -0.0, std::numeric_limits<double>::infinity()});
-  EXPECT_EQ(os.str(), "t[s],kp,p[bar]\n0.001,4.41e-08,33.12079052\n2,-0,inf\n");
-  EXPECT_THROW(w.write_row({1.0}), std::invalid_argument);
-  EXPECT_THROW(CsvLogWriter(os, {}), std::invalid_argument);
-}
 
 TEST(LogLayout, ThesisColumnsAndUnitConversion) {
   Measurement<ThesisInputs<double>> m;

@@ -10,7 +10,7 @@
 #include <ostream>
 #include <vector>
 
-#include "hstmon_sim/csv_log_writer.hpp"
+#include "hstmon_host/log_writer.hpp"
 #include "hstmon_sim/measure.hpp"
 
 namespace hstmon::sim {
@@ -26,17 +26,17 @@ struct LogUnits {
   SpeedUnit speed = SpeedUnit::kRadPerSec;     ///< unit of the speed column
 };
 
-/// Columns of a thesis log.
-std::vector<LogColumn> thesis_log_columns(const LogUnits& units);
+/// Columns of a thesis log (the host port's writer converts SI values to their units).
+std::vector<host::CsvColumn> thesis_log_columns(const LogUnits& units);
 /// Columns of a paper log.
-std::vector<LogColumn> paper_log_columns(const LogUnits& units);
+std::vector<host::CsvColumn> paper_log_columns(const LogUnits& units);
 
-/// Row of a thesis log for measurement m (values converted from SI to `units`).
-std::vector<double> thesis_log_row(const Measurement<ThesisInputs<double>>& m, const LogUnits& units);
-/// Row of a paper log for measurement m.
-std::vector<double> paper_log_row(const Measurement<PaperInputs<double>>& m, const LogUnits& units);
+/// Row of a thesis log for measurement m, in SI (the column order above).
+std::vector<double> thesis_log_row(const Measurement<ThesisInputs<double>>& m);
+/// Row of a paper log for measurement m, in SI.
+std::vector<double> paper_log_row(const Measurement<PaperInputs<double>>& m);
 
-/// Writes a complete thesis log (header and rows).
+/// Writes a complete thesis log (header and rows), 10 significant digits.
 void write_log(std::ostream& os, const ThesisMeasurements& ms, const LogUnits& units);
 /// Writes a complete paper log (header and rows).
 void write_log(std::ostream& os, const PaperMeasurements& ms, const LogUnits& units);

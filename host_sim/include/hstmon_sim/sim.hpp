@@ -1,7 +1,6 @@
 #pragma once
 /// @file sim.hpp
 /// Umbrella header of the host reference simulator (namespace hstmon::sim).
-#include "hstmon_sim/csv_log_writer.hpp"
 #include "hstmon_sim/gaussian.hpp"
 #include "hstmon_sim/log_layout.hpp"
 #include "hstmon_sim/measure.hpp"

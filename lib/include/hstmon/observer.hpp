@@ -4,7 +4,7 @@
 /// residual per measured channel, r = y − ŷ, with optional output injection x += L·r.
 ///
 /// Each tick, with inputs u_n and measurement y_n sampled at t_n:
-///   1. ŷ_n = h(x_n, u_n) and k1 = f(x_n, u_n) in one model evaluation;
+///   1. ŷ_n = h(x_n, u_n), k1 = f(x_n, u_n) and the checks at x_n in one model evaluation;
 ///   2. r_n = y_n − ŷ_n on the channels marked valid and finite;
 ///   3. x_n += L·r_n (skipped when L = 0);
 ///   4. x_{n+1} = RK4 over the tick in n_sub substeps, n_sub = ⌈ρ·h / (λh)_max⌉, with ρ the
@@ -14,8 +14,11 @@
 /// throws, and is O(n_sub).
 ///
 /// Model requirements (see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
-/// kOutputs, set_inputs(), static inputs_valid(), derivative(x, Output*),
-/// spectral_radius(x), state_plausible(x), algebraic_ok(x).
+/// kOutputs, set_inputs(), static inputs_valid(), outputs(x), rest_state(),
+/// steady_state(x), derivative(x) (RK4 stages), state_plausible(x), and
+///   State tick_derivative(x, rho_max, Output& y, T& rho, bool& alg_ok):
+///     derivative(x) with y = outputs(x), rho = spectral radius of ∂f/∂x [1/s] (or 0 if it
+///     is ≤ rho_max, NaN if x is), alg_ok = the model's algebraic solve contracts at x.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -66,6 +69,7 @@ class Observer {
     model_ = model;
     cfg_ = cfg;
     tick_per_lambda_h_ = cfg.tick / cfg.lambda_h_max;
+    rho_one_ = cfg.lambda_h_max / cfg.tick;
     has_gain_ = !cfg.gain.isZero(T(0));
     reset(model_.rest_state());
     return Status::kOk;
@@ -117,30 +121,39 @@ class Observer {
       flags |= kHealthInputNonFinite;
     }
 
-    State k1 = model_.derivative(s_.x, &yhat_);
-    // Locals, not members, inside the loop: r_valid_ is a char type and may alias
-    // anything, so updating it per channel would force reloads of m and yhat_.
-    const unsigned wanted = m.valid & ((1u << kOutputs) - 1u);
-    unsigned used = 0;
+    T rho;
+    bool alg_ok;
+    State k1 = model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok);
+    const unsigned wanted = m.valid & kAllChannels;
+    unsigned used = wanted;
     Output r;
-    for (int i = 0; i < kOutputs; ++i) {
-      const bool use = (((wanted >> i) & 1u) != 0) & std::isfinite(m.y[i]);
-      r[i] = use ? m.y[i] - yhat_[i] : T(0);
-      used |= static_cast<unsigned>(use) << i;
+    if (wanted == kAllChannels && all_finite(m.y)) {
+      r = m.y - yhat_;  // the usual tick: every channel, no per-channel branches
+    } else {
+      // Locals, not members, inside the loop: r_valid_ is a char type and may alias
+      // anything, so updating it per channel would force reloads of m and yhat_.
+      used = 0;
+      for (int i = 0; i < kOutputs; ++i) {
+        const bool use = (((wanted >> i) & 1u) != 0) & std::isfinite(m.y[i]);
+        r[i] = use ? m.y[i] - yhat_[i] : T(0);
+        used |= static_cast<unsigned>(use) << i;
+      }
+      if (used != wanted) flags |= kHealthMeasNonFinite;
     }
     r_ = r;
     r_valid_ = static_cast<std::uint8_t>(used);
-    if (used != wanted) flags |= kHealthMeasNonFinite;
-    if (has_gain_ && r_valid_ != 0) {
-      s_.add(cfg_.gain * r_);  // masked channels carry r = 0
-      k1 = model_.derivative(s_.x);
+    if (has_gain_ && used != 0) {
+      s_.add(cfg_.gain * r);  // masked channels carry r = 0
+      Output y_injected;      // ŷ stays the pre-injection estimate
+      k1 = model_.tick_derivative(s_.x, rho_one_, y_injected, rho, alg_ok);
     }
 
     // Substeps from the local stiffness: |λ|·h_sub ≤ lambda_h_max keeps RK4 both stable
     // and accurate (its stability limit on the negative real axis is ≈ 2.79).
-    // Common case first: ρ·h/(λh)_max ≤ 1 needs one substep, no ceil and no division.
+    // Common case first: ρ ≤ rho_one_ needs one substep; the model then reports ρ = 0
+    // without its square root, and here there is no ceil and no division.
     // NaN compares false and also gets one substep (the state check below flags it).
-    const T want = model_.spectral_radius(s_.x) * tick_per_lambda_h_;
+    const T want = rho * tick_per_lambda_h_;
     int n = 1;
     T h = cfg_.tick;
     if (want > T(1)) {
@@ -152,7 +165,7 @@ class Observer {
       }
       h = cfg_.tick / static_cast<T>(n);
     }
-    if (!model_.algebraic_ok(s_.x)) flags |= kHealthAlgebraicDiverged;
+    if (!alg_ok) flags |= kHealthAlgebraicDiverged;
 
     // One rk4_step call site, so it inlines; k1 is re-evaluated for each later substep.
     for (int i = 0;;) {
@@ -162,7 +175,7 @@ class Observer {
     }
     substeps_ = static_cast<std::uint16_t>(n);
 
-    if (!s_.x.allFinite()) {
+    if (!all_finite(s_.x)) {
       flags |= kHealthStateNonFinite;
       s_.reset(last_good_);
     } else {
@@ -198,9 +211,18 @@ class Observer {
   const Model& model() const noexcept { return model_; }
 
  private:
+  /// True when every element of v is finite, in one reduction: v·0 is ±0 for finite
+  /// elements and NaN for ±Inf/NaN ones (IEEE; hence never -ffast-math).
+  template <typename V>
+  static bool all_finite(const V& v) noexcept {
+    return (v * T(0)).sum() == T(0);
+  }
+
   Model model_{};
   Config cfg_{};
-  T tick_per_lambda_h_ = T(1e-3) / T(0.8);  ///< cfg_.tick / cfg_.lambda_h_max
+  static constexpr unsigned kAllChannels = (1u << kOutputs) - 1u;
+  T tick_per_lambda_h_ = T(1e-3) / T(0.8);  ///< cfg_.tick / cfg_.lambda_h_max [s]
+  T rho_one_ = T(0.8) / T(1e-3);            ///< largest ρ that one substep covers [1/s]
   CompensatedState<State> s_{};
   State last_good_ = State::Zero();
   Output yhat_ = Output::Zero();

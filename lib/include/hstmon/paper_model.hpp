@@ -127,7 +127,22 @@ class PaperModel {
     return r;
   }
 
+  /// No algebraic part: always true.
   bool algebraic_ok(const State&) const noexcept { return true; }
+
+  /// derivative(x, &y) with the observer's per-tick checks (Observer's model interface).
+  /// @param x        state (Ps, Pmi, Ppp [Pa], ωm [rad/s])
+  /// @param rho_max  unused: the Gershgorin bound is cheap, so ρ is always returned [1/s]
+  /// @param y        out: outputs at x (= x)
+  /// @param rho      out: spectral_radius(x) [1/s]
+  /// @param alg_ok   out: algebraic_ok(x) (true)
+  /// @return         derivative(x) [Pa/s, rad/s²]
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+    (void)rho_max;
+    rho = spectral_radius(x);
+    alg_ok = algebraic_ok(x);
+    return derivative(x, &y);
+  }
 
   /// True when pressures stay within [−1 bar, 2·Pmax] gauge and |ωm| within the speed
   /// pump B's whole flow could drive.

@@ -44,6 +44,23 @@ inline T signed_root_slope(T x, T x_t) noexcept {
   return (T(5) - T(3) * (x * x) / (x_t * x_t)) / (T(4) * std::sqrt(x_t));
 }
 
+/// signed_root(x, x_t), and signed_root_slope(x, x_t) in slope, sharing the square root.
+/// @param x      pressure difference [Pa]
+/// @param x_t    transition pressure ΔP_t > 0 [Pa]
+/// @param slope  out: d(signed_root)/dx [1/√Pa]
+/// @return       [√Pa]
+template <typename T>
+inline T signed_root(T x, T x_t, T& slope) noexcept {
+  const T ax = std::fabs(x);
+  if (ax >= x_t) {
+    const T r = std::sqrt(ax);
+    slope = T(0.5) / r;
+    return x < T(0) ? -r : r;
+  }
+  slope = signed_root_slope(x, x_t);
+  return signed_root(x, x_t);
+}
+
 namespace detail {
 
 #if defined(__GNUC__)
@@ -92,6 +109,21 @@ inline T signed_square(T y, T x_t) noexcept {
   return detail::signed_square_laminar(y, x_t);
 }
 
+/// signed_square for hot loops, with √x_t precomputed: the branch tests |y| ≥ √x_t, which
+/// reuses |y| (the two tests differ only by rounding, where both branches agree).
+/// @param y         Q/k [√Pa]
+/// @param x_t       transition pressure ΔP_t > 0 [Pa]
+/// @param root_x_t  √x_t [√Pa]
+/// @return          pressure difference [Pa]
+template <typename T>
+inline T signed_square(T y, T x_t, T root_x_t) noexcept {
+  const T ay = std::fabs(y);
+  if (ay >= root_x_t) {
+    return y * ay;
+  }
+  return detail::signed_square_laminar(y, x_t);
+}
+
 /// Derivative d(signed_square)/dy = 1 / signed_root_slope(x) [√Pa].
 /// @param y    Q/k [√Pa]
 /// @param x_t  transition pressure ΔP_t > 0 [Pa]
@@ -102,6 +134,20 @@ inline T signed_square_slope(T y, T x_t) noexcept {
     return T(2) * std::fabs(y);
   }
   return T(1) / signed_root_slope(signed_square(y, x_t), x_t);
+}
+
+/// signed_square_slope with √x_t precomputed; same branch as signed_square(y, x_t, root_x_t).
+/// @param y         Q/k [√Pa]
+/// @param x_t       transition pressure ΔP_t > 0 [Pa]
+/// @param root_x_t  √x_t [√Pa]
+/// @return          [√Pa]
+template <typename T>
+inline T signed_square_slope(T y, T x_t, T root_x_t) noexcept {
+  const T ay = std::fabs(y);
+  if (ay >= root_x_t) {
+    return T(2) * ay;
+  }
+  return T(1) / signed_root_slope(detail::signed_square_laminar(y, x_t), x_t);
 }
 
 }  // namespace hstmon

@@ -55,8 +55,9 @@ class ThesisReducedModel {
 
   /// True when the inputs are finite and kp is non-negative.
   static bool inputs_valid(const Inputs& u) noexcept {
-    return std::isfinite(u.Psupl) && std::isfinite(u.Ps) && std::isfinite(u.Pbp) &&
-           std::isfinite(u.kp) && u.kp >= T(0);
+    // v·0 is ±0 for finite v and NaN for ±Inf/NaN: one test for all four, no branches.
+    const T z = u.Psupl * T(0) + u.Ps * T(0) + u.Pbp * T(0) + u.kp * T(0);
+    return z == T(0) && u.kp >= T(0);
   }
 
   /// Replaces the parameters and recomputes the derived coefficients. O(1).
@@ -71,10 +72,13 @@ class ThesisReducedModel {
     Dp_J_ = p.Dp / p.J;
     R_J_ = (p.Rf + p.Rbl) / p.J;
     Dm_4kf_ = p.Dm / (T(4) * p.kf);
+    kappa_ = inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
+    root_dp_t_dcv_ = std::sqrt(p.dp_t_dcv);
+    jac_dcv_ = T(2) * Dm_J_ * p.Dm * inv_kf_;
+    K_Dp_Dp_J_ = K_Dp_ * Dp_J_;
     // Largest |Q/kf| at which one DCV refinement is exact to rounding: contraction
     // c = 2·max(|y|, √ΔP_t)·κ ≤ √ε/2 (κ = (g_lkg + 2·g_ipl)/kf). 0 if never.
-    const T kappa = inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
-    const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa);
+    const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa_);
     one_refinement_y_ = (std::isfinite(y_max) && y_max >= std::sqrt(p.dp_t_dcv)) ? y_max : T(0);
   }
 
@@ -91,24 +95,7 @@ class ThesisReducedModel {
   /// @param w_m  motor speed [rad/s]
   /// @param Pmi  out: motor inlet pressure [Pa]
   /// @param Pmo  out: motor outlet pressure [Pa]
-  void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept {
-    const T q_m = p_.Dm * w_m;
-    const T y_m = q_m * inv_kf_;
-    const T dp_m = signed_square(y_m, p_.dp_t_dcv);
-    Pmi = u_.Psupl - dp_m;
-    Pmo = u_.Ps + dp_m;
-    // The refinement contracts by dcv_contraction(w_m) ≤ 2·max(|y_m|, √ΔP_t)·κ; its
-    // error after one step is about that squared (relative). Below
-    // one_refinement_y_ it is under half an ulp, and the second step is skipped.
-    const int n = std::fabs(y_m) <= one_refinement_y_ ? 1 : kDcvIterations;
-    for (int i = 0; i < n; ++i) {
-      const T q_ipl = (Pmi - Pmo) * g_ipl_;
-      const T q_in = q_m + Pmi * g_lkg_ + q_ipl;
-      const T q_out = q_m + q_ipl - Pmo * g_lkg_;
-      Pmi = u_.Psupl - signed_square(q_in * inv_kf_, p_.dp_t_dcv);
-      Pmo = u_.Ps + signed_square(q_out * inv_kf_, p_.dp_t_dcv);
-    }
-  }
+  void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept { (void)dcv_solve(w_m, Pmi, Pmo); }
 
   /// Time derivative of (Ppp, ωm) and, if y is given, the outputs at x (shared work).
   /// @param x  state (Ppp [Pa], ωm [rad/s])
@@ -116,17 +103,29 @@ class ThesisReducedModel {
   /// @return   (dPpp/dt [Pa/s], dωm/dt [rad/s²])
   State derivative(const State& x, Output* y = nullptr) const noexcept {
     T Pmi, Pmo;
-    dcv_pressures(x[1], Pmi, Pmo);
+    (void)dcv_solve(x[1], Pmi, Pmo);
     const T dPpp = x[0] - u_.Pbp;
-    State d;
-    d[0] = K_Dp_ * x[1] - K_kp_ * signed_root(dPpp, p_.dp_t_prv);
-    d[1] = Dm_J_ * (Pmi - Pmo) - R_J_ * x[1] - Dp_J_ * dPpp;
-    if (y != nullptr) {
-      (*y)[kChPmi] = Pmi;
-      (*y)[kChPmo] = Pmo;
-      (*y)[kChPpp] = x[0];
-      (*y)[kChWm] = x[1];
-    }
+    return rates(x, Pmi, Pmo, dPpp, signed_root(dPpp, p_.dp_t_prv), y);
+  }
+
+  /// derivative(x, &y) and the observer's per-tick checks at x in one evaluation: the
+  /// Jacobian reuses the DCV flow Q/kf and the PRV's √|ΔP|, and ρ is only computed
+  /// exactly (one square root) when it exceeds rho_max.
+  /// @param x        state (Ppp [Pa], ωm [rad/s])
+  /// @param rho_max  spectral radius below which its exact value is not needed [1/s], ≥ 0
+  /// @param y        out: outputs at x, as derivative(x, &y)
+  /// @param rho      out: spectral_radius(x) [1/s] if above rho_max, else 0 (NaN stays NaN)
+  /// @param alg_ok   out: algebraic_ok(x)
+  /// @return         derivative(x) [Pa/s, rad/s²]
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+    T Pmi, Pmo;
+    const T y_m = dcv_solve(x[1], Pmi, Pmo);
+    const T dPpp = x[0] - u_.Pbp;
+    T s_prv;
+    const State d = rates(x, Pmi, Pmo, dPpp, signed_root(dPpp, p_.dp_t_prv, s_prv), &y);
+    const T s_dcv = signed_square_slope(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
+    rho = jacobian_radius(-K_kp_ * s_prv, s_dcv, rho_max);
+    alg_ok = s_dcv * kappa_ < T(0.5);
     return d;
   }
 
@@ -145,25 +144,15 @@ class ThesisReducedModel {
   /// Spectral radius of ∂f/∂x at x [1/s]: exact for the 2×2 Jacobian, with the DCV
   /// pressures' sensitivity to ωm included. Sets the RK4 substep count.
   T spectral_radius(const State& x) const noexcept {
-    const T q_m = p_.Dm * x[1];
-    // dΔP/dQ of both DCV orifices, leakage neglected (its effect is < 1e-8 relative).
-    const T s_dcv = T(2) * signed_square_slope(q_m * inv_kf_, p_.dp_t_dcv) * inv_kf_;
-    const T a = -K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv);
-    const T b = K_Dp_;
-    const T c = -Dp_J_;
-    const T d = -R_J_ - Dm_J_ * p_.Dm * s_dcv;
-    const T tr = a + d;
-    const T det = a * d - b * c;
-    const T disc = T(0.25) * tr * tr - det;
-    return disc >= T(0) ? T(0.5) * std::fabs(tr) + std::sqrt(disc) : std::sqrt(det);
+    const T s_dcv = signed_square_slope(p_.Dm * x[1] * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
+    return jacobian_radius(-K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv), s_dcv, T(0));
   }
 
   /// Contraction factor of the DCV fixed-point iteration at speed w_m [-]. Below about
   /// 0.01 the kDcvIterations refinements are exact to rounding; at 1 or more the
   /// quasi-steady solve does not converge and the reduced model is not valid.
   T dcv_contraction(T w_m) const noexcept {
-    const T q_m = p_.Dm * w_m;
-    return signed_square_slope(q_m * inv_kf_, p_.dp_t_dcv) * inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
+    return signed_square_slope(p_.Dm * w_m * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_) * kappa_;
   }
 
   /// True when the quasi-steady DCV solve contracts at x (see dcv_contraction).
@@ -223,12 +212,76 @@ class ThesisReducedModel {
   }
 
  private:
+  /// dcv_pressures(); returns y_m = Dm·ωm/kf [√Pa] for the Jacobian.
+  T dcv_solve(T w_m, T& Pmi, T& Pmo) const noexcept {
+    const T q_m = p_.Dm * w_m;
+    const T y_m = q_m * inv_kf_;
+    const T dp_m = signed_square(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
+    Pmi = u_.Psupl - dp_m;
+    Pmo = u_.Ps + dp_m;
+    // The refinement contracts by dcv_contraction(w_m) ≤ 2·max(|y_m|, √ΔP_t)·κ; its
+    // error after one step is about that squared (relative). Below
+    // one_refinement_y_ it is under half an ulp, and the later steps are skipped
+    // (NaN takes them all). Straight-line first step: no loop counter per evaluation.
+    dcv_refine(q_m, Pmi, Pmo);
+    if (!(std::fabs(y_m) <= one_refinement_y_)) {
+      for (int i = 1; i < kDcvIterations; ++i) dcv_refine(q_m, Pmi, Pmo);
+    }
+    return y_m;
+  }
+
+  /// One fixed-point step of the DCV flow balances with the leakage flows at (Pmi, Pmo).
+  void dcv_refine(T q_m, T& Pmi, T& Pmo) const noexcept {
+    const T q_ipl = (Pmi - Pmo) * g_ipl_;
+    const T q_in = q_m + Pmi * g_lkg_ + q_ipl;
+    const T q_out = q_m + q_ipl - Pmo * g_lkg_;
+    Pmi = u_.Psupl - signed_square(q_in * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
+    Pmo = u_.Ps + signed_square(q_out * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
+  }
+
+  /// (dPpp/dt, dωm/dt) from the DCV pressures and the PRV's signed_root(Ppp − Pbp); fills y if given.
+  State rates(const State& x, T Pmi, T Pmo, T dPpp, T root_prv, Output* y) const noexcept {
+    State d;
+    d[0] = K_Dp_ * x[1] - K_kp_ * root_prv;
+    d[1] = Dm_J_ * (Pmi - Pmo) - R_J_ * x[1] - Dp_J_ * dPpp;
+    if (y != nullptr) {
+      (*y)[kChPmi] = Pmi;
+      (*y)[kChPmo] = Pmo;
+      (*y)[kChPpp] = x[0];
+      (*y)[kChWm] = x[1];
+    }
+    return d;
+  }
+
+  /// Spectral radius of the 2×2 Jacobian [[a, K·Dp], [−Dp/J, d]] [1/s], exact, or 0 when
+  /// it is at most rho_max (then no square root: a complex pair has ρ² = det; a real
+  /// pair has ρ = |tr|/2 + √disc ≤ rho_max ⟺ m = rho_max − |tr|/2 ≥ 0 and disc ≤ m²).
+  /// @param a      ∂(dPpp/dt)/∂Ppp = −K·kp·(PRV slope) [1/s]
+  /// @param s_dcv  signed_square_slope at the DCV flow Q/kf [√Pa]; leakage neglected
+  ///               (its effect is < 1e-8 relative)
+  T jacobian_radius(T a, T s_dcv, T rho_max) const noexcept {
+    const T d = -R_J_ - jac_dcv_ * s_dcv;
+    const T tr = a + d;
+    const T det = a * d + K_Dp_Dp_J_;
+    const T disc = T(0.25) * tr * tr - det;
+    const T half_tr = T(0.5) * std::fabs(tr);
+    if (disc >= T(0)) {
+      const T m = rho_max - half_tr;
+      return (m >= T(0) && disc <= m * m) ? T(0) : half_tr + std::sqrt(disc);
+    }
+    return det <= rho_max * rho_max ? T(0) : std::sqrt(det);  // NaN: sqrt(NaN)
+  }
+
   /// Pressure difference behind speed_bound() [Pa].
   T speed_bound_dp() const noexcept { return std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv; }
 
   Params p_{};
   Inputs u_{};
   T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{}, Dm_4kf_{}, one_refinement_y_{};
+  T kappa_{};      ///< DCV contraction per unit slope, (g_lkg + 2·g_ipl)/kf [1/√Pa]
+  T root_dp_t_dcv_{};  ///< √dp_t_dcv [√Pa]
+  T jac_dcv_{};    ///< 2·Dm²/(J·kf): ∂(dωm/dt)/∂ωm per unit DCV slope [1/(s·√Pa)]
+  T K_Dp_Dp_J_{};  ///< K·Dp²/J = −J12·J21 of the Jacobian [1/s²]
 };
 
 }  // namespace hstmon
