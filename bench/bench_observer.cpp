@@ -1,14 +1,17 @@
 // Per-tick cost of hstmon::Observer<ThesisReducedModel<T>>::step at the nominal operating
-// point, next to a naive Boost.Odeint observer doing the same job on the same model
-// (bench_common.hpp). Everything runs in one executable so the ratios come from one run.
+// point, next to Boost.Odeint observers doing the same job on the same model
+// (bench_common.hpp): "naive" (ours' nominal RK4 step count, no stiffness control) and
+// "safe fixed" (the one fixed count stable over the whole envelope: 22 at 1 ms). Everything
+// runs in one executable so the ratios come from one run.
 //
 //   <build>/bin/hstmon_bench_observer [--benchmark_repetitions=5 --benchmark_report_aggregates_only=true]
 //
 // Counters:
 //   ns_per_tick      thread CPU time per tick measured inside the benchmark (the ratios use it)
-//   ratio_vs_odeint  ours / odeint at the same tick and precision, from the Odeint* run
-//                    earlier in this process (registered first)
-//   Interleaved/*    ours and odeint alternate in blocks of 1024 ticks within one benchmark,
+//   ratio_vs_naive   ours / naive odeint at the same tick and precision, from the
+//                    Odeint_Reduced run earlier in this process (registered first)
+//   ratio_vs_safe    ours / safe fixed-substep odeint, from the Odeint_Safe run
+//   Interleaved/*    ours and naive odeint alternate in blocks of 1024 ticks in one benchmark,
 //                    so machine noise hits both equally: ours_ns, odeint_ns, ratio
 // The machine is shared, so read ratios, not absolute times; count_instructions.sh gives
 // the deterministic comparison.
@@ -58,6 +61,13 @@ T tick_of(const benchmark::State& state) {
   return static_cast<T>(state.range(0)) * T(1e-6);
 }
 
+/// One tick as one out-of-line call for every variant, as in firmware (and count_ticks.cpp).
+template <typename Sim, typename T>
+__attribute__((noinline)) void one_tick(Sim& sim, const hstmon::ThesisInputs<T>& u,
+                                    const typename Obs<T>::Measurement& m) {
+  sim.step(u, m);
+}
+
 template <typename Sim, typename T>
 void run_ticks(benchmark::State& state, Sim& sim, const MeasurementTable<T>& table, double* ns_per_tick) {
   hstmon::ThesisInputs<T> u{};
@@ -65,7 +75,7 @@ void run_ticks(benchmark::State& state, Sim& sim, const MeasurementTable<T>& tab
   const double t0 = thread_seconds();
   for (auto _ : state) {
     benchmark::DoNotOptimize(u);  // inputs come from outside each tick
-    sim.step(u, table[i++]);
+    one_tick(sim, u, table[i++]);
     benchmark::DoNotOptimize(sim.residual());
     benchmark::ClobberMemory();
   }
@@ -88,6 +98,18 @@ void BM_Odeint_Reduced(benchmark::State& state) {
 }
 
 template <typename T>
+void BM_Odeint_Safe(benchmark::State& state) {
+  const T tick = tick_of<T>(state);
+  const int n_sub = hstmon_bench::safe_substeps<T>(tick);
+  OdeintReduced<T> sim(tick, n_sub);
+  const MeasurementTable<T> table(hstmon_bench::make_observer<T>(tick).estimate());
+  double ns = 0;
+  run_ticks(state, sim, table, &ns);
+  baseline()["safe/" + key<T>(static_cast<int>(state.range(0)))] = ns;
+  state.counters["rk4_steps"] = n_sub;
+}
+
+template <typename T>
 void BM_Ours(benchmark::State& state) {
   const T tick = tick_of<T>(state);
   Obs<T> sim = hstmon_bench::make_observer<T>(tick);
@@ -97,8 +119,10 @@ void BM_Ours(benchmark::State& state) {
   if (sim.health() != 0) state.SkipWithError("observer raised health flags at the nominal point");
   state.counters["rk4_steps"] = sim.substeps();
   baseline()["ours/" + key<T>(static_cast<int>(state.range(0)))] = ns;
-  const auto it = baseline().find(key<T>(static_cast<int>(state.range(0))));
-  if (it != baseline().end() && it->second > 0) state.counters["ratio_vs_odeint"] = ns / it->second;
+  const auto naive = baseline().find(key<T>(static_cast<int>(state.range(0))));
+  if (naive != baseline().end() && naive->second > 0) state.counters["ratio_vs_naive"] = ns / naive->second;
+  const auto safe = baseline().find("safe/" + key<T>(static_cast<int>(state.range(0))));
+  if (safe != baseline().end() && safe->second > 0) state.counters["ratio_vs_safe"] = ns / safe->second;
 }
 
 void BM_Odeint_Full_Stiff(benchmark::State& state) {
@@ -130,14 +154,14 @@ void BM_Interleaved(benchmark::State& state) {
     const double t0 = thread_seconds();
     for (int k = 0; k < kBlock; ++k) {
       benchmark::DoNotOptimize(u);
-      ours.step(u, table[i++]);
+      one_tick(ours, u, table[i++]);
       benchmark::DoNotOptimize(ours.residual());
       benchmark::ClobberMemory();
     }
     const double t1 = thread_seconds();
     for (int k = 0; k < kBlock; ++k) {
       benchmark::DoNotOptimize(u);
-      theirs.step(u, table[j++]);
+      one_tick(theirs, u, table[j++]);
       benchmark::DoNotOptimize(theirs.residual());
       benchmark::ClobberMemory();
     }
@@ -161,6 +185,8 @@ void BM_Interleaved(benchmark::State& state) {
 // Argument: tick in µs.
 BENCHMARK_TEMPLATE(BM_Odeint_Reduced, double)->Arg(1000)->Arg(10000);
 BENCHMARK_TEMPLATE(BM_Odeint_Reduced, float)->Arg(1000)->Arg(10000);
+BENCHMARK_TEMPLATE(BM_Odeint_Safe, double)->Arg(1000)->Arg(10000);
+BENCHMARK_TEMPLATE(BM_Odeint_Safe, float)->Arg(1000)->Arg(10000);
 BENCHMARK_TEMPLATE(BM_Ours, double)->Arg(1000)->Arg(10000);
 BENCHMARK_TEMPLATE(BM_Ours, float)->Arg(1000)->Arg(10000);
 BENCHMARK(BM_Odeint_Full_Stiff)->Arg(1000);

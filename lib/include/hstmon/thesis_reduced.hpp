@@ -74,6 +74,8 @@ class ThesisReducedModel {
     Dm_4kf_ = p.Dm / (T(4) * p.kf);
     kappa_ = inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
     root_dp_t_dcv_ = std::sqrt(p.dp_t_dcv);
+    g_lkg_kf_ = g_lkg_ * inv_kf_;
+    g_ipl_kf_ = g_ipl_ * inv_kf_;
     jac_dcv_ = T(2) * Dm_J_ * p.Dm * inv_kf_;
     K_Dp_Dp_J_ = K_Dp_ * Dp_J_;
     // Largest |Q/kf| at which one DCV refinement is exact to rounding: contraction
@@ -223,20 +225,21 @@ class ThesisReducedModel {
     // error after one step is about that squared (relative). Below
     // one_refinement_y_ it is under half an ulp, and the later steps are skipped
     // (NaN takes them all). Straight-line first step: no loop counter per evaluation.
-    dcv_refine(q_m, Pmi, Pmo);
+    dcv_refine(y_m, Pmi, Pmo);
     if (!(std::fabs(y_m) <= one_refinement_y_)) {
-      for (int i = 1; i < kDcvIterations; ++i) dcv_refine(q_m, Pmi, Pmo);
+      for (int i = 1; i < kDcvIterations; ++i) dcv_refine(y_m, Pmi, Pmo);
     }
     return y_m;
   }
 
-  /// One fixed-point step of the DCV flow balances with the leakage flows at (Pmi, Pmo).
-  void dcv_refine(T q_m, T& Pmi, T& Pmo) const noexcept {
-    const T q_ipl = (Pmi - Pmo) * g_ipl_;
-    const T q_in = q_m + Pmi * g_lkg_ + q_ipl;
-    const T q_out = q_m + q_ipl - Pmo * g_lkg_;
-    Pmi = u_.Psupl - signed_square(q_in * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
-    Pmo = u_.Ps + signed_square(q_out * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
+  /// One fixed-point step of the DCV flow balances with the leakage flows at (Pmi, Pmo),
+  /// in units of Q/kf [√Pa] (leakage conductances pre-divided by kf).
+  void dcv_refine(T y_m, T& Pmi, T& Pmo) const noexcept {
+    const T y_ipl = (Pmi - Pmo) * g_ipl_kf_;
+    const T y_in = y_m + Pmi * g_lkg_kf_ + y_ipl;
+    const T y_out = y_m + y_ipl - Pmo * g_lkg_kf_;
+    Pmi = u_.Psupl - signed_square(y_in, p_.dp_t_dcv, root_dp_t_dcv_);
+    Pmo = u_.Ps + signed_square(y_out, p_.dp_t_dcv, root_dp_t_dcv_);
   }
 
   /// (dPpp/dt, dωm/dt) from the DCV pressures and the PRV's signed_root(Ppp − Pbp); fills y if given.
@@ -280,6 +283,7 @@ class ThesisReducedModel {
   T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{}, Dm_4kf_{}, one_refinement_y_{};
   T kappa_{};      ///< DCV contraction per unit slope, (g_lkg + 2·g_ipl)/kf [1/√Pa]
   T root_dp_t_dcv_{};  ///< √dp_t_dcv [√Pa]
+  T g_lkg_kf_{}, g_ipl_kf_{};  ///< leakage conductances / kf [1/√Pa]
   T jac_dcv_{};    ///< 2·Dm²/(J·kf): ∂(dωm/dt)/∂ωm per unit DCV slope [1/(s·√Pa)]
   T K_Dp_Dp_J_{};  ///< K·Dp²/J = −J12·J21 of the Jacobian [1/s²]
 };
