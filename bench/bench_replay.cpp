@@ -1,6 +1,6 @@
 // Replay throughput: a one-hour 1 kHz log (3.6 M rows) generated in memory, then
 //   Parse        hstmon::host::read_log_from_memory alone
-//   Step         Observer<ThesisReducedModel<double>> over the parsed rows (1 ms tick)
+//   Step         hstmon::host::replay over the parsed rows (observer at 1 ms + statistics)
 //   ParseAndStep both, i.e. what replaying a log from memory costs
 // Target: ≥ 3.6 M rows/s (an hour of 1 kHz data in a second). Counters rows_per_s and
 // x_target (rows/s over the target; ≥ 1 meets it). Rates use process CPU time, which on
@@ -21,6 +21,7 @@
 
 #include "bench_common.hpp"
 #include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/replay.hpp"
 
 namespace {
 
@@ -88,30 +89,14 @@ const LogData& parsed_log() {
   return log;
 }
 
-/// Steps the observer once per row (1 ms tick, the log's rate); returns OR-ed health.
+/// Replays the parsed rows with the host port's replay loop (the one `hstmon replay`
+/// runs: inputs per row, observer tick per row, residual statistics); returns the health.
 std::uint32_t step_all(const LogData& log) {
-  const std::vector<double>& p_sup = log.column(Signal::kPSup);
-  const std::vector<double>& kp = log.column(Signal::kKp);
-  const std::vector<double>& p_mi = log.column(Signal::kPMi);
-  const std::vector<double>& p_mo = log.column(Signal::kPMo);
-  const std::vector<double>& p_pp = log.column(Signal::kPPp);
-  const std::vector<double>& w_m = log.column(Signal::kWm);
-  hstmon::ThesisInputs<double> u{};
-  u.Psupl = p_sup[0];
-  u.kp = kp[0];
-  hstmon_bench::Obs<double> obs = hstmon_bench::make_observer<double>(1e-3);
-  (void)obs.reset_steady(u);
-  hstmon_bench::Obs<double>::Measurement m;
-  m.valid = 0x0F;
-  const std::size_t n = log.rows();
-  for (std::size_t i = 0; i < n; ++i) {
-    u.Psupl = p_sup[i];
-    u.kp = kp[i];
-    m.y << p_mi[i], p_mo[i], p_pp[i], w_m[i];
-    obs.step(u, m);
-    benchmark::DoNotOptimize(obs.residual());
-  }
-  return obs.health();
+  hstmon::host::ReplayOptions opt;
+  opt.tick = 1e-3;
+  const hstmon::host::ReplayResult r = hstmon::host::replay(log, {}, {}, opt);
+  benchmark::DoNotOptimize(r.channels);
+  return r.health;
 }
 
 bool check(benchmark::State& state, const LogData& log) {

@@ -84,6 +84,7 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
       j["max_abs"] = number_or_null(s.max_abs);
       j["max"] = number_or_null(s.max_signed);
       j["t_max"] = s.t_max;
+      j["noise"] = number_or_null(s.noise());
     }
     fmt::print("{}\n", j.dump());
   }
@@ -94,18 +95,31 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
              r.t_last, r.tick * 1e3, r.ticks, r.started_steady ? "at steady state" : "at rest");
   for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
-  fmt::print("\n  residual = measured − model\n");
-  fmt::print("  {:<12} {:>12} {:>12} {:>12} {:>12}\n", "channel", "mean", "RMS", "max |r|", "at t [s]");
+  fmt::print("\n  residual = measured − model; noise = scatter estimated from successive samples\n");
+  fmt::print("  {:<12} {:>11} {:>11} {:>11} {:>11} {:>10}\n", "channel", "mean", "RMS", "noise", "peak", "at t [s]");
   for (int c = 0; c < 4; ++c) {
     const auto& s = r.channels[static_cast<std::size_t>(c)];
     const std::string label = fmt::format("{} [{}]", kDisplay[c].label, kDisplay[c].unit);
     if (!r.measured[static_cast<std::size_t>(c)]) {
-      fmt::print("  {:<12} {:>12}\n", label, "not in log");
+      fmt::print("  {:<12} {:>11}\n", label, "not in log");
       continue;
     }
     const double k = kDisplay[c].scale;
-    fmt::print("  {:<12} {:>12.4g} {:>12.4g} {:>12.4g} {:>12.6g}\n", label, s.mean() * k, s.rms() * k, s.max_signed * k,
-               s.t_max);
+    fmt::print("  {:<12} {:>11.4g} {:>11.4g} {:>11.4g} {:>11.4g} {:>10.6g}\n", label, s.mean() * k, s.rms() * k,
+               s.noise() * k, s.max_signed * k, s.t_max);
+  }
+  std::string beyond;
+  for (int c = 0; c < 4; ++c) {
+    const auto& s = r.channels[static_cast<std::size_t>(c)];
+    // A mean beyond 5 noise levels is no sensor scatter: the model and the machine disagree.
+    if (s.n > 1 && std::fabs(s.mean()) > 5.0 * s.noise() + 1e-12) {
+      beyond += fmt::format("{}{}{}", beyond.empty() ? "" : ", ", kDisplay[c].label, s.mean() > 0 ? "+" : "−");
+    }
+  }
+  if (beyond.empty()) {
+    fmt::print("\n  residual means are within the sensor noise on every measured channel\n");
+  } else {
+    fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
   }
   const auto names = host::health_names(r.health);
   if (names.empty()) {

@@ -13,6 +13,9 @@ const std::array<Signal, 4> kMeasuredSignals = {Signal::kPMi, Signal::kPMo, Sign
 
 double ChannelStats::mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
 double ChannelStats::rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
+double ChannelStats::noise() const noexcept {
+  return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0;
+}
 
 std::vector<std::string> health_names(std::uint32_t flags) {
   static const std::pair<std::uint32_t, const char*> names[] = {
@@ -146,6 +149,11 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
       if (!(rv & (1u << c))) continue;
       ChannelStats& st = res.channels[static_cast<std::size_t>(c)];
       const double rc = r[c];
+      if (st.n > 0) {
+        st.sumsq_diff += (rc - st.last) * (rc - st.last);
+        ++st.n_diff;
+      }
+      st.last = rc;
       ++st.n;
       st.sum += rc;
       st.sumsq += rc * rc;

@@ -41,9 +41,16 @@ struct ChannelStats {
   double max_signed = 0.0;     ///< r at the max |r| (sign kept)
   double t_max = 0.0;          ///< log time of the max |r| [s]
   std::size_t row_max = 0;     ///< 0-based data row of the max |r|
+  std::size_t n_diff = 0;      ///< successive residual pairs counted
+  double sumsq_diff = 0.0;     ///< Σ (r_k − r_{k−1})² over successive rows
+  double last = 0.0;           ///< previous residual (for the differences)
 
   double mean() const noexcept;  ///< Σ r / n (0 when n = 0)
   double rms() const noexcept;   ///< √(Σ r² / n) (0 when n = 0)
+  /// Noise level estimated from successive differences, √(Σ Δr² / 2(n−1)): white sensor
+  /// noise shows up in full, slow model errors hardly at all, so RMS ≫ noise means the
+  /// model and the machine disagree beyond what the sensors scatter. 0 for n < 2.
+  double noise() const noexcept;
 };
 
 /// Measured, estimated and residual values at one log row (SI units).
