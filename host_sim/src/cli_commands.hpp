@@ -14,5 +14,6 @@ enum ExitCode : int {
 
 /// `hstmon replay LOG ...`
 void add_replay_command(CLI::App& app, int& exit_code);
+void add_identify_command(CLI::App& app, int& exit_code);  ///< `hstmon identify LOG... --out FILE`
 
 }  // namespace hstmon::cli

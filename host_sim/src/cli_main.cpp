@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "hstmon 0.1.0");
   int exit_code = hstmon::cli::kExitOk;
   hstmon::cli::add_replay_command(app, exit_code);
+  hstmon::cli::add_identify_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -34,6 +34,7 @@ struct ReplayArgs {
   std::string separator;
   bool lenient = false;
   bool no_progress = false;
+  bool no_diagnosis = false;
 };
 
 struct Display {
@@ -59,6 +60,12 @@ struct Progress {
 };
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json event_json(const host::ReplayEvent& e) {
+  nlohmann::json cands = nlohmann::json::array();
+  for (const auto& c : e.candidates) cands.push_back({{"fault", c.fault}, {"score", c.score}});
+  return {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
+}
 
 void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
   nlohmann::json head = {{"type", "replay"},
@@ -88,6 +95,39 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
     }
     fmt::print("{}\n", j.dump());
   }
+  for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
+  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", r.final_status}, {"events", r.events.size()}}.dump());
+}
+
+// Candidates in words: "kp- (0.998), Pbp+ (0.71) and 3 more".
+std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
+  std::string out;
+  for (std::size_t j = 0; j < e.candidates.size() && j < show; ++j) {
+    out += fmt::format("{}{} ({:.3f})", j ? ", " : "", e.candidates[j].fault, e.candidates[j].score);
+  }
+  const std::size_t more = static_cast<std::size_t>(e.consistent) > show ? static_cast<std::size_t>(e.consistent) - show : 0;
+  if (more > 0) out += fmt::format(" and {} more", more);
+  return out;
+}
+
+void print_events(const host::ReplayResult& r) {
+  if (r.events.empty()) {
+    fmt::print("\n  diagnosis: no fault detected (status {})\n", r.final_status);
+    return;
+  }
+  fmt::print("\n  diagnosis (single-fault hypotheses, best first):\n");
+  for (const auto& e : r.events) {
+    if (e.event == "cleared") {
+      fmt::print("    t = {:>9.3f} s  cleared: residuals back within their bounds\n", e.t);
+    } else if (e.event == "isolated") {
+      fmt::print("    t = {:>9.3f} s  isolated: {}\n", e.t, candidate_list(e, 3));
+    } else if (e.event == "detected") {
+      fmt::print("    t = {:>9.3f} s  detected: {} hypotheses consistent so far: {}\n", e.t, e.consistent, candidate_list(e, 4));
+    } else {
+      fmt::print("    t = {:>9.3f} s  {}: {}\n", e.t, e.event, candidate_list(e, 4));
+    }
+  }
+  fmt::print("    status at the end of the log: {}\n", r.final_status);
 }
 
 void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
@@ -121,6 +161,7 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
   }
+  print_events(r);
   const auto names = host::health_names(r.health);
   if (names.empty()) {
     fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
@@ -204,6 +245,7 @@ int run_replay(const ReplayArgs& a) {
   opt.tick = a.tick;
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
+  opt.diagnose = !a.no_diagnosis;
   Progress progress;
   progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
   if (progress.on) opt.progress = [&progress](double f) { progress(f); };
@@ -255,6 +297,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--separator", args->separator, "Field separator: , ; or tab (default: detected)");
   cmd->add_flag("--lenient", args->lenient, "On a bad row, report it and replay the valid rows before it");
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
+  cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->callback([args, &exit_code]() { exit_code = run_replay(*args); });
 }
 

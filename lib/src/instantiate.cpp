@@ -18,4 +18,18 @@ template ThesisState<float> thesis_derivative(const ThesisParams<float>&, const 
                                               const ThesisState<float>&) noexcept;
 template ThesisState<double> thesis_derivative(const ThesisParams<double>&, const ThesisInputs<double>&,
                                                const ThesisState<double>&) noexcept;
+template class TwoSidedCusum<float>;
+template class TwoSidedCusum<double>;
+template class ResidualEvaluator<float>;
+template class ResidualEvaluator<double>;
+template class SensorCheck<float>;
+template class SensorCheck<double>;
+template class FaultMatcher<float>;
+template class FaultMatcher<double>;
+template class Monitor<float>;
+template class Monitor<double>;
+template Status thesis_model_bound(const ThesisReducedModel<float>&, const ThesisUncertainty<float>&,
+                                   float (&)[kFdiChannels]) noexcept;
+template Status thesis_model_bound(const ThesisReducedModel<double>&, const ThesisUncertainty<double>&,
+                                   double (&)[kFdiChannels]) noexcept;
 }  // namespace hstmon

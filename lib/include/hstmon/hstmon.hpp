@@ -1,12 +1,20 @@
 #pragma once
 /// @file hstmon.hpp
 /// Umbrella header of the hstmon core.
+#include "hstmon/cusum.hpp"
+#include "hstmon/fault_matcher.hpp"
+#include "hstmon/fault_signature.hpp"
+#include "hstmon/monitor.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon/paper_model.hpp"
 #include "hstmon/pump_curve.hpp"
+#include "hstmon/residual_bounds.hpp"
+#include "hstmon/residual_evaluator.hpp"
 #include "hstmon/rk4.hpp"
+#include "hstmon/sensor_check.hpp"
 #include "hstmon/signed_root.hpp"
 #include "hstmon/status.hpp"
+#include "hstmon/symbol.hpp"
 #include "hstmon/thesis_model.hpp"
 #include "hstmon/thesis_params.hpp"
 #include "hstmon/thesis_reduced.hpp"

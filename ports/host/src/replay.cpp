@@ -4,7 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "hstmon/observer.hpp"
+#include "hstmon/generated/thesis_signatures.hpp"
+#include "hstmon/monitor.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
 namespace hstmon::host {
@@ -32,7 +33,17 @@ std::vector<std::string> health_names(std::uint32_t flags) {
 namespace {
 
 using Model = ThesisReducedModel<double>;
-using Obs = Observer<Model>;
+using Mon = Monitor<double>;
+using Obs = Mon::Obs;
+
+ReplayEvent to_replay_event(const Mon::Event& e) {
+  ReplayEvent out;
+  out.t = e.time;
+  out.event = to_string(e.kind);
+  out.consistent = e.consistent;
+  for (int j = 0; j < e.count; ++j) out.candidates.push_back({e.candidate[j].name, e.candidate[j].score});
+  return out;
+}
 
 // Median of the positive sample intervals; 0 for fewer than two rows.
 double median_interval(const std::vector<double>& t) {
@@ -101,10 +112,16 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   }
   res.tick = tick;
 
-  Obs obs;
-  Obs::Config cfg;
-  cfg.tick = tick;
-  obs.configure(Model(params), cfg);
+  Mon mon;
+  Mon::Config cfg;
+  cfg.observer.tick = tick;
+  // Without diagnosis the matcher gets an empty table: it then never raises an event.
+  const int table_rows = options.diagnose ? kThesisSignatureCount : 0;
+  if (mon.configure(params, cfg, kThesisSignatures, table_rows) != Status::kOk) {
+    res.notes.push_back("invalid parameters or configuration: nothing replayed");
+    return res;
+  }
+  const Obs& obs = mon.observer();
 
   const ThesisInputs<double> u0 = in.at(0);
   bool steady = options.init == InitMode::kSteady;
@@ -113,11 +130,11 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     m.set_inputs(u0);
     steady = std::fabs(meas[kChWm][0]) > 0.05 * m.speed_bound();
   }
-  if (steady && obs.reset_steady(u0) == Status::kOk) {
+  if (steady && mon.reset_steady(u0) == Status::kOk) {
     res.started_steady = true;
   } else {
     if (steady) res.notes.push_back("no steady state for the first row's inputs: started at rest");
-    obs.reset_rest(u0);
+    mon.reset_rest(u0);
   }
 
   if (options.keep_trace) res.trace.reserve(rows);
@@ -126,18 +143,28 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   ThesisInputs<double> u_prev = u0;
   Obs::Measurement m;
   const Obs::Measurement none;
+  Mon::Event ev;
+  auto drain_events = [&] {
+    while (mon.pop_event(ev)) res.events.push_back(to_replay_event(ev));
+  };
 
   for (std::size_t k = 0; k < rows; ++k) {
     // Ticks without a measurement until the model clock reaches this row (inputs held).
     const double t_row = t[k] - res.t_first;
     while (t_row - static_cast<double>(obs.ticks()) * tick > 0.5 * tick) {
-      res.health |= obs.step(u_prev, none);
+      mon.step(res.t_first + static_cast<double>(obs.ticks()) * tick, u_prev, none);
+      res.health |= mon.health();
       res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     }
     const ThesisInputs<double> u = in.at(k);
     for (int c = 0; c < 4; ++c) m.y[c] = meas[c] ? meas[c][k] : 0.0;
     m.valid = mask;
-    const std::uint32_t flags = obs.step(u, m);
+    mon.step(t[k], u, m);
+    drain_events();
+    if (k == 0) {
+      for (int c = 0; c < 4; ++c) res.thresholds[static_cast<std::size_t>(c)] = mon.evaluator().bound(c);
+    }
+    const std::uint32_t flags = mon.health();
     res.health |= flags;
     if (flags) ++res.unhealthy_rows;
     res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
@@ -178,7 +205,9 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     }
     if (options.progress && (k + 1) % progress_every == 0) options.progress(static_cast<double>(k + 1) / static_cast<double>(rows));
   }
+  drain_events();
   res.ticks = obs.ticks();
+  res.final_status = to_string(mon.matcher().status());
   return res;
 }
 

@@ -28,6 +28,7 @@ struct ReplayOptions {
   double tick = 0.0;             ///< observer tick [s]; 0 = the log's median sample period, capped at 10 ms
   InitMode init = InitMode::kAuto;
   bool keep_trace = false;       ///< keep a TraceRow per log row (for residual CSV and plots)
+  bool diagnose = true;          ///< run the fault matcher on the residuals (events, candidates)
   /// Called with the fraction done (0…1) about every 1 % of rows; may be empty.
   std::function<void(double)> progress;
 };
@@ -62,6 +63,20 @@ struct TraceRow {
   std::uint32_t health = 0;           ///< observer HealthFlag bits of this row's tick
 };
 
+/// A ranked fault hypothesis of an event.
+struct ReplayCandidate {
+  std::string fault;   ///< "kp-", "sensor_p_pp", …
+  double score = 0.0;  ///< matcher score in [−1, 1] (higher is better) [-]
+};
+
+/// A matcher event: an episode detected, isolated, ambiguous, unexplained or cleared.
+struct ReplayEvent {
+  double t = 0.0;                          ///< log time [s]
+  std::string event;                       ///< "detected", "isolated", "ambiguous", "unexplained", "cleared"
+  int consistent = 0;                      ///< hypotheses still consistent (may exceed candidates.size())
+  std::vector<ReplayCandidate> candidates; ///< best first (empty for "cleared")
+};
+
 /// Result of a replay.
 struct ReplayResult {
   std::size_t rows = 0;                       ///< log rows replayed
@@ -76,10 +91,14 @@ struct ReplayResult {
   std::uint32_t max_substeps = 0;             ///< largest RK4 substep count of a tick
   bool started_steady = false;                ///< initialised at steady state (else at rest)
   std::vector<TraceRow> trace;                ///< per row, if ReplayOptions::keep_trace
+  std::vector<ReplayEvent> events;            ///< matcher events in time order (if diagnose)
+  std::string final_status = "nominal";       ///< matcher status after the last row
+  std::array<double, 4> thresholds{};         ///< residual bound per channel at the first row (model bound + 2σ) [SI]
   std::vector<std::string> notes;             ///< what the replay assumed (defaults used, tick)
 };
 
-/// Replays `log` through an observer of the thesis model.
+/// Replays `log` through the thesis monitor (observer, sensor checks, residual
+/// evaluator and the fault matcher with the generated signature table).
 /// Inputs missing from the log (p_sup, p_s, p_bp, kp) come from `defaults`; measured
 /// channels missing from the log are simply not compared. The log must be valid
 /// (read without error, or the valid prefix of a lenient read).

@@ -1,0 +1,129 @@
+/// @file fdi_app.cpp
+/// hstmon-fdi: qualitative diagnosis of the thesis rig on the host.
+///   hstmon-fdi graph [--nonlinear] [--json]          edges of the temporal causal graph
+///   hstmon-fdi tree CHANNEL [--minus] [--linearised] fault tree of p_mi|p_mo|p_pp|w_m (or any node)
+///   hstmon-fdi backward e31+ [--nonlinear] [--json]  fault candidates of an observation
+///   hstmon-fdi forward kp- [--order N] [--linearised] [--json]  predicted signature
+///   hstmon-fdi crosscheck [--t-early S] [--json]     TCG vs the nonlinear model
+///   hstmon-fdi header --out FILE [--sigma-p BAR] [--sigma-w RPM] [--step F] [--order N]
+/// backward and graph default to the linearised graph of Fig. 2.14 (the thesis's TCG);
+/// tree and forward default to Fig. 2.3's parameters (kp, kfi, kfo), the names of the catalogue.
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "fdi_report.hpp"
+#include "hstmon_fdi/backward.hpp"
+#include "hstmon_fdi/crosscheck.hpp"
+#include "hstmon_fdi/fault_catalogue.hpp"
+#include "hstmon_fdi/fault_tree.hpp"
+#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/signature_table.hpp"
+#include "hstmon_fdi/thesis_tcg.hpp"
+
+namespace {
+
+using namespace hstmon::fdi;
+
+ValveModel valves(bool linearised) { return linearised ? ValveModel::kLinearised : ValveModel::kNonlinear; }
+
+/// Accepts the thesis's variable names for the measured channels too.
+std::string channel_node(const std::string& name) {
+  if (name == "Pmi") return "p_mi";
+  if (name == "Pmo") return "p_mo";
+  if (name == "Ppp") return "p_pp";
+  if (name == "wm" || name == "omega_m") return "w_m";
+  return name;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hstmon-fdi: bond graph, temporal causal graph, fault trees and signature table of the thesis HST"};
+  app.require_subcommand(1);
+
+  bool json = false, nonlinear = false, linearised = false, minus = false;
+  std::string observation, channel, fault, out;
+  int order = 4;
+  CrosscheckOptions cc;
+  SignatureOptions so;
+  double sigma_p_bar = so.sigma_pressure / 1e5;
+
+  CLI::App* graph = app.add_subcommand("graph", "edges of the temporal causal graph (Markdown table)");
+  graph->add_flag("--nonlinear", nonlinear, "Fig. 2.3 valve parameters (kfi, kfo, kp) instead of Fig. 2.14 (Rin, Rout, Rpl)");
+  graph->add_flag("--json", json, "JSON output");
+
+  CLI::App* tree = app.add_subcommand("tree", "fault tree of a channel going up (or --minus down)");
+  tree->add_option("channel", channel, "p_mi | p_mo | p_pp | w_m (or Pmi, …, or any node e4, f24)")->required();
+  tree->add_flag("--minus", minus, "root event is a decrease");
+  tree->add_flag("--linearised", linearised, "Fig. 2.14 parameters (Rin, Rout, Rpl)");
+
+  CLI::App* back = app.add_subcommand("backward", "fault candidates of an observation, e.g. e31+ or p_pp+");
+  back->add_option("observation", observation, "node with + or -")->required();
+  back->add_flag("--nonlinear", nonlinear, "Fig. 2.3 valve parameters");
+  back->add_flag("--json", json, "JSON output");
+
+  CLI::App* fwd = app.add_subcommand("forward", "predicted signature of a fault, e.g. kp- or Rpl+");
+  fwd->add_option("fault", fault, "catalogue fault (kp-, Rbl+, …) or graph parameter (Rpl+, Kpmi-)")->required();
+  fwd->add_option("--order", order, "highest derivative predicted")->check(CLI::Range(0, 12));
+  fwd->add_flag("--linearised", linearised, "Fig. 2.14 graph (Rin, Rout, Rpl)");
+  fwd->add_flag("--json", json, "JSON output");
+
+  CLI::App* check = app.add_subcommand("crosscheck", "TCG predictions against the nonlinear model");
+  check->add_option("--t-early", cc.t_early, "reference deviation read this long after the fault [s]")->check(CLI::PositiveNumber);
+  check->add_flag("--json", json, "JSON output");
+
+  CLI::App* header = app.add_subcommand("header", "write the constexpr signature table");
+  header->add_option("--out", out, "output file, - for stdout")->required();
+  header->add_option("--sigma-p", sigma_p_bar, "pressure noise level [bar]")->check(CLI::PositiveNumber);
+  header->add_option("--sigma-w", so.sigma_speed_rpm, "speed noise level [rpm]")->check(CLI::PositiveNumber);
+  header->add_option("--step", so.direction_step, "relative fault size for the direction vector")->check(CLI::Range(1e-6, 0.5));
+  header->add_option("--order", so.max_order, "highest derivative order of the TCG")->check(CLI::Range(0, 12));
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*graph) {
+      const CausalGraph g = thesis_tcg(valves(!nonlinear));
+      std::cout << (json ? json_edges(g).dump(2) + "\n" : markdown_edges(g));
+    } else if (*tree) {
+      const CausalGraph g = thesis_tcg(valves(linearised));
+      std::cout << render_fault_tree(fault_tree(g, channel_node(channel), minus ? -1 : 1));
+    } else if (*back) {
+      std::string node;
+      int sign = 0;
+      parse_observation(observation, node, sign);
+      const CausalGraph g = thesis_tcg(valves(!nonlinear));
+      const BackwardResult r = backward_propagate(g, channel_node(node), sign);
+      std::cout << (json ? json_backward(r).dump(2) + "\n" : text_backward(r));
+    } else if (*fwd) {
+      std::string param;
+      int sign = 0;
+      parse_fault(fault, param, sign);
+      const ValveModel v = valves(linearised);
+      const CausalGraph g = thesis_tcg(v);
+      const std::vector<ParamStep> steps = fault_steps(param, sign, v);
+      const ForwardResult q = forward_qualitative(g, steps, order);
+      const ForwardResult w = forward_weighted(g, steps, order);
+      std::cout << (json ? json_forward(q, w).dump(2) + "\n" : markdown_forward(q, w));
+    } else if (*check) {
+      const std::vector<CrosscheckRow> rows = run_crosscheck(cc);
+      std::cout << (json ? json_crosscheck(rows).dump(2) + "\n" : markdown_crosscheck(rows));
+    } else if (*header) {
+      so.sigma_pressure = sigma_p_bar * 1e5;
+      const std::string text = render_signature_header(build_signature_rows(so), so);
+      if (out == "-") {
+        std::cout << text;
+      } else {
+        std::ofstream f(out, std::ios::binary);
+        if (!(f << text)) throw std::runtime_error("cannot write " + out);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "hstmon-fdi: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,439 @@
+// `hstmon identify LOG... --out FILE [--header FILE.hpp] [--json] [--report DIR]`: steady
+// windows → steady-state regression of the thesis model → estimates with intervals,
+// correlations, identifiability and the Table 2.3 validation; writes the parameter file and
+// optionally a generated C++ header. `--paper FILE.csv` fits pump B's curve and the valve
+// port areas of the paper rig; `--studies` runs its parameter studies (Figs. 7–9).
+// docs/identification.md describes the method and the formats.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_commands.hpp"
+#include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/params_file.hpp"
+#include "hstmon_ident/identified_outputs.hpp"
+#include "hstmon_ident/operating_points.hpp"
+#include "hstmon_ident/paper_studies.hpp"
+#include "hstmon_ident/paper_tables.hpp"
+#include "hstmon_ident/plots.hpp"
+#include "hstmon_ident/port_area.hpp"
+#include "hstmon_ident/pump_curve_fit.hpp"
+#include "hstmon_ident/steady_windows.hpp"
+#include "hstmon_ident/thesis_fit.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+namespace id = hstmon::ident;
+
+struct IdentifyArgs {
+  std::vector<std::string> logs;
+  std::string out;
+  std::string header;
+  bool json = false;
+  std::string report;
+  std::string prior;
+  double min_duration = 1.0;
+  std::size_t min_samples = 3;
+  bool assume_steady = false;
+  bool setting_per_window = false;
+  std::size_t min_settings = 3;
+  double noise_pressure = 0.0;
+  double noise_speed = 0.0;
+  std::string paper;
+  double cd = 0.61;
+  double rho = 870.0;
+  bool studies = false;
+};
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// Appends to the report text and echoes it to stdout unless JSON is on.
+struct Report {
+  bool quiet = false;
+  std::string text;
+  template <typename... A>
+  void operator()(fmt::format_string<A...> f, A&&... a) {
+    const std::string s = fmt::format(f, std::forward<A>(a)...);
+    text += s;
+    if (!quiet) fmt::print("{}", s);
+  }
+};
+
+void plot_or_warn(const std::string& err) {
+  if (!err.empty()) fmt::print(stderr, "hstmon: warning: {}\n", err);
+}
+
+int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+  ThesisParams<double> prior;
+  ThesisInputs<double> defaults;
+  if (!a.prior.empty()) {
+    const auto pf = host::read_params_file(a.prior);
+    if (pf.error) {
+      fmt::print(stderr, "{}\n", pf.error->to_string());
+      return kExitBadInput;
+    }
+    prior = *pf.params;
+    defaults = *pf.inputs;
+  }
+  id::SteadyWindowOptions wo;
+  wo.min_duration = a.min_duration;
+  wo.min_samples = a.min_samples;
+  wo.assume_steady = a.assume_steady;
+  id::OperatingPointOptions po;
+  po.defaults = defaults;
+  po.setting_per_window = a.setting_per_window;
+  std::vector<id::OperatingPoint> points;
+  std::vector<std::string> settings;
+  nlohmann::json jwin = nlohmann::json::array();
+  rep("hstmon identify — steady-state regression of the thesis model (seed 000 §2.3)\n\n");
+  for (const std::string& path : a.logs) {
+    const host::LogData log = host::read_log(path);
+    for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
+    if (log.error) {
+      fmt::print(stderr, "{}\n", log.error->to_string());
+      return kExitBadInput;
+    }
+    const id::SteadyWindowResult w = id::find_steady_windows(log, wo);
+    if (w.error) {
+      fmt::print(stderr, "{}\n", *w.error);
+      return kExitBadInput;
+    }
+    if (w.windows.empty()) {
+      fmt::print(stderr,
+                 "{}: error: no steady window ({} rows; every run of samples drifts or is shorter than {} samples / "
+                 "{:g} s — try --assume-steady for logs recorded only at steady state)\n",
+                 path, log.rows(), a.assume_steady ? 1 : a.min_samples, a.assume_steady ? 0.0 : a.min_duration);
+      return kExitBadInput;
+    }
+    rep("{}: {} rows, {} steady windows, {} samples not steady\n", path, log.rows(), w.windows.size(),
+        w.rejected_samples);
+    for (const auto& win : w.windows) {
+      rep("  t = {:>9.4g} … {:<9.4g} s  n = {:<6} {}\n", win.t0, win.t1, win.samples(),
+          win.assumed ? "(steadiness assumed)" : "");
+      nlohmann::json jw = {{"log", path}, {"t0", win.t0}, {"t1", win.t1}, {"samples", win.samples()}, {"assumed", win.assumed}};
+      for (std::size_t k = 0; k < host::kSignalCount; ++k) {
+        if (!w.measured[k]) continue;
+        const auto s = static_cast<host::Signal>(k);
+        jw[std::string(host::signal_name(s))] = {{"mean", num(win.stats[k].mean)}, {"scatter", num(win.stats[k].scatter)},
+                                                 {"slope", num(win.stats[k].slope)}};
+      }
+      jwin.push_back(jw);
+    }
+    id::append_operating_points(log, w, po, points, settings);
+  }
+  js["windows"] = jwin;
+
+  id::ThesisFitOptions fo;
+  fo.prior = prior;
+  fo.min_settings = a.min_settings;
+  if (a.noise_pressure > 0.0) fo.noise[0] = fo.noise[1] = fo.noise[2] = a.noise_pressure;
+  if (a.noise_speed > 0.0) fo.noise[3] = a.noise_speed;
+  const id::ThesisFitResult fit = id::fit_thesis_steady(points, settings, fo);
+  if (!fit.ok()) {
+    std::string files;
+    for (const auto& l : a.logs) files += (files.empty() ? "" : ", ") + l;
+    fmt::print(stderr, "{}: error: {}\n", files, *fit.error);
+    return kExitBadInput;
+  }
+
+  static const char* const kCh[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
+  rep("\nPRV settings (each gets its own kp):\n");
+  for (std::size_t s = 0; s < settings.size(); ++s) rep("  [{}] {}\n", s + 1, settings[s]);
+  rep("\nnoise per channel (weights):\n");
+  for (std::size_t c = 0; c < 4; ++c) {
+    rep("  {:<4} {:>10.4g} {:<6} ({})\n", kCh[c], c == 3 ? fit.noise[c] * 30.0 / M_PI : fit.noise[c] * 1e-5,
+        c == 3 ? "rpm" : "bar", fit.noise_source[c]);
+  }
+  rep("\nfit: {} operating points, {} scalar samples, {} unknowns, dof {:g}; s² = {:.4g} (≈ 1 when the noise "
+      "model fits); t(0.975) = {:.4g}\n",
+      fit.points.size(), fit.samples, fit.fitted.size(), fit.dof, fit.s2, fit.t_value);
+  rep("Levenberg–Marquardt: {} ({} evaluations); Jacobian rank {} of {}, condition {:.3g}\n\n", fit.lm_status,
+      fit.evaluations, fit.rank, fit.fitted.size(), fit.condition);
+  rep("  {:<8} {:>13} {:>11} {:>27}  {}\n", "param", "estimate", "SE", "95 % interval", "unit");
+  nlohmann::json jp = nlohmann::json::array();
+  for (const auto& e : fit.params) {
+    if (e.status == id::ParamStatus::kNotIdentifiable) {
+      rep("  {:<8} {:>13.6g} {:>11} {:>27}  {}  NOT IDENTIFIABLE — held at prior\n", e.name, e.value, "—", "—", e.unit);
+    } else {
+      rep("  {:<8} {:>13.6g} {:>11.3g} [{:>12.6g}, {:>12.6g}]  {}\n", e.name, e.value, e.se, e.ci_lo, e.ci_hi, e.unit);
+    }
+    jp.push_back({{"name", e.name},
+                  {"unit", e.unit},
+                  {"value", num(e.value)},
+                  {"prior", num(e.prior)},
+                  {"se", num(e.se)},
+                  {"se_log", num(e.se_log)},
+                  {"ci", {num(e.ci_lo), num(e.ci_hi)}},
+                  {"sensitivity_sigma", num(e.sensitivity)},
+                  {"identifiable", e.status == id::ParamStatus::kEstimated},
+                  {"note", e.note}});
+  }
+  for (const auto& e : fit.params) {
+    if (e.status == id::ParamStatus::kNotIdentifiable) rep("  {}: {}\n", e.name, e.note);
+  }
+  rep("  Rf and Rbl act only as their sum (Rf + Rbl)·ωm in eq. 2.8: one parameter; written split in the prior's "
+      "ratio (Rf = {:.6g}, Rbl = {:.6g}).\n",
+      fit.fitted_params.Rf, fit.fitted_params.Rbl);
+
+  rep("\ncorrelation of the estimates (ln-parameters):\n  {:>8}", "");
+  for (const auto& n : fit.fitted) rep(" {:>7}", n);
+  rep("\n");
+  nlohmann::json jc = nlohmann::json::array();
+  for (std::size_t i = 0; i < fit.fitted.size(); ++i) {
+    rep("  {:>8}", fit.fitted[i]);
+    nlohmann::json row = nlohmann::json::array();
+    for (std::size_t j = 0; j < fit.fitted.size(); ++j) {
+      rep(" {:>7.3f}", fit.correlation(i, j));
+      row.push_back(num(fit.correlation(i, j)));
+    }
+    jc.push_back(row);
+    rep("\n");
+  }
+
+  rep("\nvalidation (Table 2.3 form; error = (model − data)/data, negative: model below data):\n");
+  rep("  {:<8} {:>8} {:>14} {:>12}\n", "Variable", "points", "Average Error", "RMS Error");
+  nlohmann::json jv = nlohmann::json::array();
+  for (const auto& v : fit.validation) {
+    rep("  {:<8} {:>8} {:>13.3f}% {:>11.3f}%\n", v.signal, v.points, v.avg_error_pct, v.rms_error_pct);
+    jv.push_back({{"signal", v.signal}, {"points", v.points}, {"avg_error_pct", num(v.avg_error_pct)},
+                  {"rms_error_pct", num(v.rms_error_pct)}});
+  }
+  for (const auto& n : fit.notes) rep("note: {}\n", n);
+  js["thesis"] = {{"parameters", jp},
+                  {"fitted", fit.fitted},
+                  {"correlation", jc},
+                  {"validation", jv},
+                  {"settings", settings},
+                  {"s2", num(fit.s2)},
+                  {"dof", num(fit.dof)},
+                  {"samples", fit.samples},
+                  {"condition", num(fit.condition)},
+                  {"rank", fit.rank},
+                  {"noise", {num(fit.noise[0]), num(fit.noise[1]), num(fit.noise[2]), num(fit.noise[3])}},
+                  {"lm_status", fit.lm_status},
+                  {"notes", fit.notes}};
+
+  if (const auto err = id::write_identified_params(a.out, fit)) {
+    fmt::print(stderr, "{}\n", *err);
+    return kExitBadInput;
+  }
+  rep("\nwrote parameter file {} (hstmon replay --params {})\n", a.out, a.out);
+  if (!a.header.empty()) {
+    if (const auto err = id::write_params_header(a.header, fit)) {
+      fmt::print(stderr, "{}\n", *err);
+      return kExitBadInput;
+    }
+    rep("wrote generated header {}\n", a.header);
+  }
+  if (!a.report.empty()) {
+    // Figs. 2.5–2.7 form: each pressure against speed, measured and model.
+    for (std::size_t c = 0; c < 3; ++c) {
+      id::PlotSeries meas{"measured (window means)", {}, {}, true}, model{"model, fitted parameters", {}, {}, true};
+      for (std::size_t w = 0; w < fit.points.size(); ++w) {
+        const auto& p = fit.points[w];
+        if (!std::isfinite(p.y[c]) || !std::isfinite(p.y[3])) continue;
+        meas.x.push_back(p.y[3] * 30.0 / M_PI);
+        meas.y.push_back(p.y[c] * 1e-5);
+        model.x.push_back(fit.predicted[w][3] * 30.0 / M_PI);
+        model.y.push_back(fit.predicted[w][c] * 1e-5);
+      }
+      if (meas.x.empty()) continue;
+      plot_or_warn(id::plot_xy(a.report + "/validation_" + std::string(kCh[c]) + ".svg",
+                               fmt::format("{}: experiment and model at steady state", kCh[c]), "speed [rpm]",
+                               fmt::format("{} [bar]", kCh[c]), {meas, model}));
+    }
+  }
+  return kExitOk;
+}
+
+int run_paper(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+  const id::PaperTables t = id::read_paper_tables(a.paper);
+  if (t.error) {
+    fmt::print(stderr, "{}\n", t.error->to_string());
+    return kExitBadInput;
+  }
+  rep("\nhstmon identify --paper {} — seed 001 §IV estimates (Cd = {:g}, ρ = {:g} kg/m³)\n", a.paper, a.cd, a.rho);
+  nlohmann::json jpaper;
+  if (!t.pump.empty()) {
+    const id::PumpCurveFit f = id::fit_pump_curve(t.pump);
+    if (!f.ok()) {
+      fmt::print(stderr, "{}: error: {}\n", a.paper, *f.error);
+      return kExitBadInput;
+    }
+    rep("\npump B flow–pressure curve ({} samples, RMS residual {:.4g} l/min, condition {:.3g}):\n", f.n,
+        f.rms * 6e4, f.condition);
+    const std::array<double, 5> v{f.params.Q0, f.params.R, f.params.Pc, f.params.Pk, f.params.Pmax};
+    const std::array<const char*, 5> unit{"m^3/s", "Pa*s/m^3", "Pa", "Pa", "Pa"};
+    nlohmann::json jp = nlohmann::json::array();
+    for (std::size_t k = 0; k < 5; ++k) {
+      rep("  {:<5} {:>12.6g} ± {:<10.3g} [{:>12.6g}, {:>12.6g}] {}{}\n", id::pump_curve_param_names()[k], v[k], f.se[k],
+          f.ci_lo[k], f.ci_hi[k], unit[k], f.identifiable[k] ? "" : "  NOT IDENTIFIABLE from these data");
+      jp.push_back({{"name", id::pump_curve_param_names()[k]}, {"value", num(v[k])}, {"se", num(f.se[k])},
+                    {"ci", {num(f.ci_lo[k]), num(f.ci_hi[k])}}, {"unit", unit[k]}, {"identifiable", f.identifiable[k]}});
+    }
+    jpaper["pump_curve"] = {{"parameters", jp}, {"rms", num(f.rms)}, {"samples", f.n}};
+    if (!a.report.empty()) {
+      PumpCurve<double> c;
+      c.make(f.params);
+      id::PlotSeries data{"data", {}, {}, true}, model{"fitted 3-region curve", {}, {}, false};
+      for (const auto& s : t.pump) {
+        data.x.push_back(s.p * 1e-5);
+        data.y.push_back(s.q * 6e4);
+      }
+      double pmax = 0.0;
+      for (const auto& s : t.pump) pmax = std::max(pmax, s.p);
+      for (int i = 0; i <= 400; ++i) {
+        const double p = pmax * i / 400.0;
+        model.x.push_back(p * 1e-5);
+        model.y.push_back(c.flow(p) * 6e4);
+      }
+      plot_or_warn(id::plot_xy(a.report + "/pump_curve.svg", "Pump B flow vs pressure (Fig. 3/4)", "P [bar]", "Q [l/min]",
+                               {data, model}));
+    }
+  }
+  for (int kind = 0; kind < 2; ++kind) {
+    const auto& groups = kind == 0 ? t.dcv : t.prv;
+    if (groups.empty()) continue;
+    const char* name = kind == 0 ? "DCV" : "PRV";
+    rep("\n{} port areas from Q = Cd·A·√(2|ΔP|/ρ) (line through the origin):\n", name);
+    rep("  {:<8} {:>4} {:>12} {:>10} {:>27} {:>8}\n", "opening", "n", "A [m²]", "SE", "95 % interval", "R²");
+    nlohmann::json ja = nlohmann::json::array();
+    std::vector<id::PlotSeries> series;
+    for (const auto& [label, samples] : groups) {
+      const id::PortAreaFit f = id::fit_port_area(label, samples, a.cd, a.rho);
+      if (!f.ok()) {
+        fmt::print(stderr, "{}: error: {} {}\n", a.paper, name, *f.error);
+        return kExitBadInput;
+      }
+      rep("  {:<8} {:>4} {:>12.5g} {:>10.3g} [{:>12.5g}, {:>12.5g}] {:>8.5f}\n", label, f.n, f.area, f.area_se, f.ci_lo,
+          f.ci_hi, f.r2);
+      ja.push_back({{"opening", label}, {"n", f.n}, {"area", num(f.area)}, {"se", num(f.area_se)},
+                    {"ci", {num(f.ci_lo), num(f.ci_hi)}}, {"cd_area", num(f.cd_area)}, {"r2", num(f.r2)}});
+      id::PlotSeries d{label + " data", {}, {}, true}, l{label + " fit", {}, {}, false};
+      double xmax = 0.0;
+      for (const auto& s : samples) {
+        const double x = std::copysign(std::sqrt(2.0 * std::fabs(s.dp) / a.rho), s.dp);
+        d.x.push_back(x);
+        d.y.push_back(s.q * 6e4);
+        xmax = std::max(xmax, std::fabs(x));
+      }
+      l.x = {0.0, xmax};
+      l.y = {0.0, f.cd_area * xmax * 6e4};
+      series.push_back(d);
+      series.push_back(l);
+    }
+    jpaper[kind == 0 ? "dcv" : "prv"] = ja;
+    if (!a.report.empty()) {
+      plot_or_warn(id::plot_xy(a.report + (kind == 0 ? "/dcv_port_areas.svg" : "/prv_port_areas.svg"),
+                               fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == 0 ? 5 : 6),
+                               "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series));
+    }
+  }
+  js["paper"] = jpaper;
+  return kExitOk;
+}
+
+void run_studies(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+  const std::vector<double> K{3e10, 1e11, 3e11, 1e12};
+  const std::vector<double> A{3.86e-6, 4.29e-6, 4.43e-6, 4.77e-6, 5e-6};
+  // Long enough for the softest K to settle (the last sample is taken as the final value).
+  const std::vector<id::ParameterStudy> studies{id::study_speed_vs_bulk_stiffness(K, 12.0, 5e-3),
+                                                id::study_speed_vs_dcv_area(A),
+                                                id::study_pump_pressure_vs_bulk_stiffness(K, 12.0, 2e-3)};
+  rep("\nparameter studies of seed 001 (paper model, Table I, from rest):\n");
+  nlohmann::json jst = nlohmann::json::array();
+  for (const auto& s : studies) {
+    rep("  {}\n  {:<24} {:>10} {:>10} {:>10} {:>12} {:>12}\n", s.title, "value", "final", "peak", "t_peak [s]",
+        "t_90% [s]", "settle 2% [s]");
+    nlohmann::json jc = nlohmann::json::array();
+    std::vector<id::PlotSeries> series;
+    for (const auto& c : s.curves) {
+      rep("  {:<24} {:>10.5g} {:>10.5g} {:>10.4g} {:>12.4g} {:>12.4g}   [{}]\n", c.label, c.final_value * s.scale,
+          c.peak * s.scale, c.t_peak, c.rise_time, c.settling_time, s.unit);
+      jc.push_back({{"label", c.label}, {"value", c.value}, {"final", c.final_value}, {"peak", c.peak},
+                    {"t_peak", c.t_peak}, {"rise_time", c.rise_time}, {"settling_time", c.settling_time}});
+      id::PlotSeries ps{c.label, c.t, {}, false};
+      for (double y : c.y) ps.y.push_back(y * s.scale);
+      series.push_back(std::move(ps));
+    }
+    jst.push_back({{"name", s.name}, {"output", s.output}, {"curves", jc}});
+    plot_or_warn(id::plot_xy(a.report + "/" + s.name + ".svg", s.title, "t [s]",
+                             fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series));
+  }
+  js["studies"] = jst;
+}
+
+int run_identify(const IdentifyArgs& a) {
+  if (a.logs.empty() && a.paper.empty() && !a.studies) {
+    fmt::print(stderr, "hstmon identify: give LOG files, --paper FILE.csv or --studies\n");
+    return kExitUsage;
+  }
+  if (!a.logs.empty() && a.out.empty()) {
+    fmt::print(stderr, "hstmon identify: --out FILE is required with LOG files\n");
+    return kExitUsage;
+  }
+  if (a.studies && a.report.empty()) {
+    fmt::print(stderr, "hstmon identify: --studies needs --report DIR for its plots\n");
+    return kExitUsage;
+  }
+  if (!a.report.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.report, ec);
+    if (ec) {
+      fmt::print(stderr, "{}: error: cannot create report directory: {}\n", a.report, ec.message());
+      return kExitBadInput;
+    }
+  }
+  Report rep;
+  rep.quiet = a.json;
+  nlohmann::json js = {{"type", "identify"}};
+  int rc = kExitOk;
+  if (!a.logs.empty()) rc = run_thesis(a, rep, js);
+  if (rc == kExitOk && !a.paper.empty()) rc = run_paper(a, rep, js);
+  if (rc == kExitOk && a.studies) run_studies(a, rep, js);
+  if (rc != kExitOk) return rc;
+  if (a.json) fmt::print("{}\n", js.dump(2));
+  if (!a.report.empty()) {
+    std::ofstream(a.report + "/report.txt") << rep.text;
+    std::ofstream(a.report + "/report.json") << js.dump(2) << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_identify_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<IdentifyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "identify", "Identify thesis-model parameters from steady states in logs; paper-rig pump curve and port areas");
+  cmd->add_option("logs", args->logs, "thesis-rig logs (CSV as for replay) with steady operating points");
+  cmd->add_option("--out", args->out, "parameter file to write (JSON, read by replay --params)");
+  cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
+  cmd->add_flag("--json", args->json, "print the results as JSON instead of the human report");
+  cmd->add_option("--report", args->report, "directory for report.txt, report.json and SVG plots");
+  cmd->add_option("--prior", args->prior, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)");
+  cmd->add_option("--min-duration", args->min_duration, "shortest steady window [s]")->capture_default_str();
+  cmd->add_option("--min-samples", args->min_samples, "fewest samples in a steady window")->capture_default_str();
+  cmd->add_flag("--assume-steady", args->assume_steady,
+                "accept windows of one sample (DAS logs recorded only at steady state)");
+  cmd->add_flag("--setting-per-window", args->setting_per_window,
+                "give every steady window its own kp, even when the log has a kp column");
+  cmd->add_option("--min-settings", args->min_settings, "fewest PRV settings (loads) accepted")->capture_default_str();
+  cmd->add_option("--noise-pressure", args->noise_pressure,
+                  "pressure noise σ [Pa] for the weights (default: from the window scatter)");
+  cmd->add_option("--noise-speed", args->noise_speed, "speed noise σ [rad/s] for the weights (default: from the window scatter)");
+  cmd->add_option("--paper", args->paper, "paper-rig table (kind,label,p,q): pump curve and DCV/PRV port areas");
+  cmd->add_option("--cd", args->cd, "discharge coefficient for the port areas")->capture_default_str();
+  cmd->add_option("--rho", args->rho, "oil density [kg/m^3] for the port areas")->capture_default_str();
+  cmd->add_flag("--studies", args->studies, "run the paper's parameter studies (Figs. 7-9) into --report DIR");
+  cmd->callback([args, &exit_code]() { exit_code = run_identify(*args); });
+}
+
+}  // namespace hstmon::cli

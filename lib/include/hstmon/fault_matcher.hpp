@@ -1,0 +1,518 @@
+#pragma once
+/// @file fault_matcher.hpp
+/// Progressive single-fault isolation over a fault-signature table (fault_signature.hpp),
+/// fed each tick by a ResidualEvaluator (channel alarms) and a SensorCheck (raw-value
+/// plausibility).
+///
+/// An episode starts when a channel alarms or a sensor check fails (status kDetected,
+/// event "detected"). As evidence arrives, every hypothesis whose signature an observed
+/// symbol contradicts is dropped:
+///  - at each channel's alarm onset, its slope symbol (symbol.hpp) against the row's slope;
+///  - order_window after detection, the first-deviating channels (those that alarmed in
+///    the window) must include one with the row's smallest predicted order (+ order_slack);
+///  - after settle_time + average_time, the magnitude symbols (window mean less the
+///    pre-fault baseline, dead band k_zero·σ) against the rows' magnitudes. An observed
+///    kQualZero contradicts a predicted ± only when the row's direction, scaled to the
+///    observed deviation, predicts more than k_expect·σ on that channel (a small fault
+///    need not show on every channel).
+/// kQualAny matches everything. A channel with a sensor flag is masked, and while any
+/// channel is flagged only the sensor rows of flagged channels are candidates: a
+/// sensor problem is never reported as a parameter fault.
+///
+/// Ranking: score = cosine between the noise-normalised deviation vector v (window mean
+/// less baseline, divided by σ; before the window ends, the latest residual) and the
+/// row's `direction`, over unmasked channels; a sensor row scores |v_ch|/|v| on its
+/// channel. With several candidates left after the window, the status is kIsolated if
+/// the best leads the second by tie_margin in angle, else kAmbiguous. With none left it
+/// is kUnexplained (no single fault in the table fits). When no channel is in alarm and
+/// no sensor is flagged for clear_hold, the episode ends (event "cleared", kNominal).
+///
+/// Storage: Capacity hypotheses in the object (7 bytes each in float) plus a 4-event queue
+/// and the latest event (≈ 200 bytes each on a 64-bit host; 1.7 KB in all for float, 64);
+/// update() is O(Capacity·channels) and sorts (insertion, O(Capacity²)) only when the
+/// candidate set or scores change; it never allocates and never throws. The table is
+/// borrowed (typically a constexpr array in flash) and must outlive the matcher.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "hstmon/fault_signature.hpp"
+#include "hstmon/residual_evaluator.hpp"
+#include "hstmon/status.hpp"
+#include "hstmon/symbol.hpp"
+
+namespace hstmon {
+
+/// State of the matcher.
+enum class MatchStatus : std::uint8_t {
+  kNominal = 0,      ///< no channel in alarm, no sensor flagged
+  kDetected = 1,     ///< an episode is running; evidence still arriving, > 1 candidate
+  kIsolated = 2,     ///< one candidate, or the best leads by tie_margin after the window
+  kAmbiguous = 3,    ///< several candidates after the window, none clearly best
+  kUnexplained = 4,  ///< every hypothesis contradicted (a fault outside the table, or several)
+};
+
+/// Kind of an event in the matcher's queue.
+enum class MatchEventKind : std::uint8_t {
+  kDetected = 0,     ///< an episode started
+  kIsolated = 1,     ///< status became kIsolated
+  kAmbiguous = 2,    ///< status became kAmbiguous
+  kUnexplained = 3,  ///< status became kUnexplained
+  kCleared = 4,      ///< the episode ended (back to kNominal)
+};
+
+/// Lower-case name of a status ("nominal", "detected", …), for logs.
+constexpr const char* to_string(MatchStatus s) noexcept {
+  switch (s) {
+    case MatchStatus::kNominal: return "nominal";
+    case MatchStatus::kDetected: return "detected";
+    case MatchStatus::kIsolated: return "isolated";
+    case MatchStatus::kAmbiguous: return "ambiguous";
+    case MatchStatus::kUnexplained: return "unexplained";
+  }
+  return "?";
+}
+
+/// Lower-case name of an event kind ("detected", "isolated", …), for logs.
+constexpr const char* to_string(MatchEventKind k) noexcept {
+  switch (k) {
+    case MatchEventKind::kDetected: return "detected";
+    case MatchEventKind::kIsolated: return "isolated";
+    case MatchEventKind::kAmbiguous: return "ambiguous";
+    case MatchEventKind::kUnexplained: return "unexplained";
+    case MatchEventKind::kCleared: return "cleared";
+  }
+  return "?";
+}
+
+/// A ranked hypothesis.
+template <typename T>
+struct MatchCandidate {
+  std::int16_t index = -1;    ///< row in the table
+  const char* name = nullptr; ///< the row's name (points into the table)
+  T score = T(0);             ///< ranking score in [−1, 1] (cosine; see the file comment) [-]
+};
+
+/// One event: what happened, when, and the candidates best first.
+template <typename T>
+struct MatchEvent {
+  static constexpr int kMaxCandidates = 8;  ///< candidates carried by an event
+  MatchEventKind kind = MatchEventKind::kDetected;
+  T time = T(0);                  ///< time passed to the update that raised it [s]
+  std::uint8_t count = 0;         ///< entries used in candidate[] (≤ kMaxCandidates)
+  std::uint8_t consistent = 0;    ///< consistent hypotheses in total (may exceed count)
+  MatchCandidate<T> candidate[kMaxCandidates]{};  ///< best first; empty for kCleared
+};
+
+template <typename T, int Capacity = 64>
+class FaultMatcher {
+ public:
+  static_assert(Capacity >= 1 && Capacity <= 127, "hypothesis indices are stored in 8 bits");
+  static constexpr int kChannels = kFdiChannels;
+  static constexpr std::size_t kCap_ = static_cast<std::size_t>(Capacity);  ///< array extent
+  using Evaluator = ResidualEvaluator<T, kFdiChannels>;
+  using Candidate = MatchCandidate<T>;
+  using Event = MatchEvent<T>;
+
+  /// Configuration; validated by configure(). Times in seconds, k_* in units of σ.
+  struct Config {
+    /// Channels that alarm within this time of detection count as deviating first [s], ≥ 0.
+    /// 20 ms: twice the speed sensor's lag; sensor lags and the per-channel bounds
+    /// (ωm's is 119 σ, Pmi's 5 σ at ±2 %) reorder detection within a few ms.
+    T order_window = T(0.02);
+    /// Integrations beyond a row's smallest predicted order still accepted as first [-].
+    std::uint8_t order_slack = 0;
+    /// Wait after detection before averaging [s], ≥ 0 (slowest thesis mode −153 ± 307i 1/s
+    /// has decayed to 0.05 % after 50 ms).
+    T settle_time = T(0.05);
+    /// Averaging window for magnitudes and direction [s], > 0 (100 samples at 1 kHz:
+    /// the mean's noise is σ/10).
+    T average_time = T(0.1);
+    T k_zero = T(3);      ///< dead band of the magnitude symbol on the baseline-relative mean [σ], ≥ 0
+    T k_expect = T(6);    ///< predicted deviation above which an observed 0 contradicts ± [σ], ≥ 0
+    T tie_margin = T(0.01);  ///< angle lead of the best candidate needed to isolate [rad], ≥ 0
+    T clear_hold = T(0.5);   ///< quiet time that ends an episode [s], ≥ 0
+    /// Samples of the running mean that tracks each residual's pre-fault baseline while
+    /// nominal (then an exponential average over this many samples) [-], ≥ 1.
+    std::uint32_t baseline_samples = 1000;
+  };
+
+  FaultMatcher() noexcept = default;
+
+  /// Takes a table and a configuration, and resets.
+  /// @param table  count rows, borrowed (must outlive the matcher); null only if count = 0
+  /// @param count  rows in the table, 0 … Capacity
+  /// @return       kOk, or kInvalidConfig (matcher unchanged)
+  Status configure(const FaultSignature* table, int count, const Config& c) noexcept {
+    const bool ok = count >= 0 && count <= Capacity && (table != nullptr || count == 0) &&
+                    nonneg(c.order_window) && nonneg(c.settle_time) && nonneg(c.average_time) &&
+                    c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) && nonneg(c.tie_margin) &&
+                    nonneg(c.clear_hold) && c.baseline_samples >= 1;
+    if (!ok) return Status::kInvalidConfig;
+    table_ = table;
+    count_ = count;
+    cfg_ = c;
+    for (int k = 0; k < count; ++k) {
+      const FaultSignature& f = table[k];
+      int ch = -1;
+      for (int i = 0; i < kChannels; ++i) {
+        if (f.channel[i].magnitude != kQualZero) ch = (ch == -1) ? i : -2;
+      }
+      sensor_ch_[k] = static_cast<std::int8_t>(f.sensor && ch >= 0 ? ch : -1);
+    }
+    reset();
+    return Status::kOk;
+  }
+
+  /// Back to kNominal: episode, baseline and event queue cleared.
+  void reset() noexcept {
+    end_episode();
+    for (int i = 0; i < kChannels; ++i) {
+      base_[i] = T(0);
+      base_n_[i] = 0;
+    }
+    ev_head_ = 0;
+    ev_count_ = 0;
+    ev_dropped_ = 0;
+    has_latest_ = false;
+  }
+
+  /// Advances one tick.
+  /// @param t            time of the evaluated sample [s], non-decreasing
+  /// @param ev           the evaluator, already updated with this tick's residuals
+  /// @param sensor_mask  bit i set: channel i failed a sensor check this tick (SensorCheck::mask())
+  /// @return             status() after the tick
+  MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0) noexcept {
+    const unsigned all = (1u << kChannels) - 1u;
+    const unsigned sensors = sensor_mask & all;
+    const unsigned alarm = ev.alarm() & all;
+    const bool active = (alarm | sensors) != 0;
+
+    if (status_ == MatchStatus::kNominal) {
+      if (!active) {
+        track_baseline(ev);
+        return status_;
+      }
+      start_episode(t);
+    }
+    if (active) t_active_ = t;
+
+    bool changed = false;
+    // Sensor flags: mask the channels; only their sensor rows remain candidates.
+    if ((sensors & ~static_cast<unsigned>(masked_)) != 0) {
+      masked_ = static_cast<std::uint8_t>(masked_ | sensors);
+      changed = true;
+    }
+    // Alarm onsets: slope symbol and rank (channels rising on the same tick share a rank).
+    unsigned rising = alarm & ~static_cast<unsigned>(masked_) & ~static_cast<unsigned>(seen_);
+    if (rising != 0) {
+      ++rank_;
+      for (int i = 0; i < kChannels; ++i) {
+        if ((rising >> i) & 1u) {
+          sym_[i].slope = ev.alarm_sign(i) > 0 ? std::int8_t{kQualPlus} : std::int8_t{kQualMinus};
+          sym_[i].rank = rank_;
+          if (t - t_det_ <= cfg_.order_window) first_ = static_cast<std::uint8_t>(first_ | (1u << i));
+        }
+      }
+      seen_ = static_cast<std::uint8_t>(seen_ | rising);
+      changed = true;
+    }
+    if (!order_done_ && t - t_det_ > cfg_.order_window) {
+      order_done_ = true;
+      changed = true;
+    }
+    // Window: mean residual per channel over [t_det + settle, t_det + settle + average).
+    const T w0 = t_det_ + cfg_.settle_time;
+    if (!window_done_) {
+      if (t >= w0 + cfg_.average_time) {
+        finish_window(ev);
+        changed = true;
+      } else if (t >= w0) {
+        for (int i = 0; i < kChannels; ++i) {
+          if ((ev.valid() >> i) & 1u) {
+            sum_[i] += ev.residual(i);
+            ++n_[i];
+          }
+        }
+      }
+    }
+    if (!window_done_ && (changed || first_tick_)) live_vector(ev);
+    if (changed || first_tick_) {
+      eliminate();
+      rank_candidates();
+      decide(t);
+    }
+    first_tick_ = false;
+
+    if (!active && t - t_active_ >= cfg_.clear_hold) {
+      push_event(MatchEventKind::kCleared, t, false);
+      end_episode();
+    }
+    return status_;
+  }
+
+  /// Current status.
+  MatchStatus status() const noexcept { return status_; }
+  /// Consistent hypotheses now.
+  int candidate_count() const noexcept { return n_alive_; }
+  /// Consistent hypothesis of rank r (0 = best), r < candidate_count().
+  Candidate candidate(int r) const noexcept { return make_candidate(order_[r]); }
+  /// Symbols observed on channel i in this episode.
+  const ChannelSymbol& symbol(int i) const noexcept { return sym_[i]; }
+  /// Bit i set: channel i deviated first (alarmed within order_window of detection).
+  std::uint8_t first_channels() const noexcept { return first_; }
+  /// Bit i set: channel i is masked by a sensor flag in this episode.
+  std::uint8_t sensor_masked() const noexcept { return masked_; }
+  /// Time the episode was detected [s] (meaningful when status() ≠ kNominal).
+  T detection_time() const noexcept { return t_det_; }
+  /// True once the averaging window of this episode is complete.
+  bool window_done() const noexcept { return window_done_; }
+  /// Noise-normalised deviation of channel i (window mean, or latest residual before the
+  /// window ends, less the baseline, over σ) [-].
+  T deviation(int i) const noexcept { return v_[i]; }
+  /// Pre-fault residual baseline of channel i [channel unit].
+  T baseline(int i) const noexcept { return base_[i]; }
+
+  /// Removes the oldest queued event into e. @return false if the queue is empty.
+  bool pop_event(Event& e) noexcept {
+    if (ev_count_ == 0) return false;
+    e = events_[ev_head_];
+    ev_head_ = static_cast<std::uint8_t>((ev_head_ + 1) % kQueue);
+    --ev_count_;
+    return true;
+  }
+  /// The most recent event (queued or already popped); null before the first.
+  const Event* latest_event() const noexcept { return has_latest_ ? &latest_ : nullptr; }
+  /// Events lost because the queue (4 entries) was full [-].
+  std::uint32_t events_dropped() const noexcept { return ev_dropped_; }
+  const Config& config() const noexcept { return cfg_; }
+
+ private:
+  static constexpr int kQueue = 4;
+  static bool nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
+  static bool responds(const ChannelSignature& s) noexcept {
+    return s.magnitude != kQualZero || s.slope != kQualZero;
+  }
+
+  void end_episode() noexcept {
+    status_ = MatchStatus::kNominal;
+    for (int i = 0; i < kChannels; ++i) {
+      sym_[i] = ChannelSymbol{};
+      sum_[i] = T(0);
+      n_[i] = 0;
+      v_[i] = T(0);
+    }
+    v_norm_ = T(0);
+    n_alive_ = 0;
+    masked_ = seen_ = first_ = 0;
+    rank_ = 0;
+    order_done_ = window_done_ = false;
+    first_tick_ = false;
+  }
+
+  void start_episode(T t) noexcept {
+    end_episode();
+    status_ = MatchStatus::kDetected;
+    t_det_ = t;
+    t_active_ = t;
+    first_tick_ = true;
+    for (int k = 0; k < count_; ++k) alive_[k] = true;
+    detected_pending_ = true;
+  }
+
+  void track_baseline(const Evaluator& ev) noexcept {
+    for (int i = 0; i < kChannels; ++i) {
+      if (((ev.valid() >> i) & 1u) == 0) continue;
+      if (base_n_[i] < cfg_.baseline_samples) ++base_n_[i];
+      base_[i] += (ev.residual(i) - base_[i]) / static_cast<T>(base_n_[i]);
+    }
+  }
+
+  void set_vector(const T* dev) noexcept {
+    T s = T(0);
+    for (int i = 0; i < kChannels; ++i) {
+      v_[i] = ((masked_ >> i) & 1u) ? T(0) : dev[i];
+      s += v_[i] * v_[i];
+    }
+    v_norm_ = std::sqrt(s);
+  }
+
+  void live_vector(const Evaluator& ev) noexcept {
+    T d[kChannels];
+    for (int i = 0; i < kChannels; ++i) d[i] = (ev.residual(i) - base_[i]) / ev.sigma(i);
+    set_vector(d);
+  }
+
+  void finish_window(const Evaluator& ev) noexcept {
+    window_done_ = true;
+    T d[kChannels];
+    for (int i = 0; i < kChannels; ++i) {
+      d[i] = n_[i] > 0 ? (sum_[i] / static_cast<T>(n_[i]) - base_[i]) / ev.sigma(i) : T(0);
+    }
+    set_vector(d);
+    for (int i = 0; i < kChannels; ++i) {
+      if (n_[i] > 0 && ((masked_ >> i) & 1u) == 0) sym_[i].magnitude = qual_sign(d[i], cfg_.k_zero);
+    }
+  }
+
+  /// Norm of the row's direction over the unmasked channels [-].
+  T dir_norm(const FaultSignature& f) const noexcept {
+    T s = T(0);
+    for (int i = 0; i < kChannels; ++i) {
+      if (((masked_ >> i) & 1u) == 0) s += static_cast<T>(f.direction[i]) * static_cast<T>(f.direction[i]);
+    }
+    return std::sqrt(s);
+  }
+
+  bool consistent(int k) const noexcept {
+    const FaultSignature& f = table_[k];
+    if (masked_ != 0) return sensor_ch_[k] >= 0 && ((masked_ >> sensor_ch_[k]) & 1u) != 0;
+    const T dn = dir_norm(f);
+    for (int i = 0; i < kChannels; ++i) {
+      const ChannelSignature& p = f.channel[i];
+      if (!qual_consistent(p.slope, sym_[i].slope)) return false;
+      if (!qual_consistent(p.magnitude, sym_[i].magnitude)) {
+        // Observed 0 where ± is predicted: a contradiction only if the row, scaled to
+        // the observed deviation, predicts a visible change on this channel.
+        const bool soft = sym_[i].magnitude == kQualZero && dn > T(0) &&
+                          std::fabs(static_cast<T>(f.direction[i])) / dn * v_norm_ <= cfg_.k_expect;
+        if (!soft) return false;
+      }
+    }
+    if (order_done_) {
+      int omin = 255;
+      for (int i = 0; i < kChannels; ++i) {
+        if (responds(f.channel[i]) && f.channel[i].order < omin) omin = f.channel[i].order;
+      }
+      if (omin != 255) {
+        bool found = false;
+        for (int i = 0; i < kChannels; ++i) {
+          found = found || (((first_ >> i) & 1u) != 0 && responds(f.channel[i]) &&
+                            f.channel[i].order <= omin + cfg_.order_slack);
+        }
+        if (!found && first_ != 0) return false;
+      }
+    }
+    return true;
+  }
+
+  T score(int k) const noexcept {
+    if (!(v_norm_ > T(0))) return T(0);
+    const int s = sensor_ch_[k];
+    if (s >= 0) return ((masked_ >> s) & 1u) ? T(1) : std::fabs(v_[s]) / v_norm_;
+    const FaultSignature& f = table_[k];
+    const T dn = dir_norm(f);
+    if (!(dn > T(0))) return T(0);
+    T dot = T(0);
+    for (int i = 0; i < kChannels; ++i) {
+      if (((masked_ >> i) & 1u) == 0) dot += static_cast<T>(f.direction[i]) * v_[i];
+    }
+    return dot / (dn * v_norm_);
+  }
+
+  void eliminate() noexcept {
+    int n = 0;
+    for (int k = 0; k < count_; ++k) {
+      if (alive_[k] || masked_ != 0) alive_[k] = consistent(k);
+      if (alive_[k]) order_[n++] = static_cast<std::int8_t>(k);
+    }
+    n_alive_ = n;
+  }
+
+  void rank_candidates() noexcept {
+    for (int j = 0; j < n_alive_; ++j) score_[order_[j]] = score(order_[j]);
+    for (int j = 1; j < n_alive_; ++j) {  // insertion sort, best first, stable
+      const std::int8_t k = order_[j];
+      int i = j - 1;
+      while (i >= 0 && score_[order_[i]] < score_[k]) {
+        order_[i + 1] = order_[i];
+        --i;
+      }
+      order_[i + 1] = k;
+    }
+  }
+
+  static T angle(T c) noexcept { return std::acos(c > T(1) ? T(1) : (c < T(-1) ? T(-1) : c)); }
+
+  void decide(T t) noexcept {
+    if (detected_pending_) {
+      detected_pending_ = false;
+      push_event(MatchEventKind::kDetected, t, true);
+    }
+    MatchStatus s;
+    if (n_alive_ == 0) {
+      s = MatchStatus::kUnexplained;
+    } else if (n_alive_ == 1) {
+      s = MatchStatus::kIsolated;
+    } else if (!window_done_ && masked_ == 0) {
+      s = MatchStatus::kDetected;
+    } else {
+      const T gap = angle(score_[order_[1]]) - angle(score_[order_[0]]);
+      s = gap >= cfg_.tie_margin ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
+    }
+    if (s != status_) {
+      status_ = s;
+      if (s == MatchStatus::kIsolated) push_event(MatchEventKind::kIsolated, t, true);
+      if (s == MatchStatus::kAmbiguous) push_event(MatchEventKind::kAmbiguous, t, true);
+      if (s == MatchStatus::kUnexplained) push_event(MatchEventKind::kUnexplained, t, true);
+    }
+  }
+
+  Candidate make_candidate(int k) const noexcept {
+    Candidate c;
+    c.index = static_cast<std::int16_t>(k);
+    c.name = table_[k].name;
+    c.score = score_[k];
+    return c;
+  }
+
+  void push_event(MatchEventKind kind, T t, bool with_candidates) noexcept {
+    Event e;
+    e.kind = kind;
+    e.time = t;
+    if (with_candidates) {
+      const int n = n_alive_ < Event::kMaxCandidates ? n_alive_ : Event::kMaxCandidates;
+      for (int j = 0; j < n; ++j) e.candidate[j] = make_candidate(order_[j]);
+      e.count = static_cast<std::uint8_t>(n);
+      e.consistent = static_cast<std::uint8_t>(n_alive_);
+    }
+    latest_ = e;
+    has_latest_ = true;
+    if (ev_count_ == kQueue) {  // full: drop the oldest
+      ev_head_ = static_cast<std::uint8_t>((ev_head_ + 1) % kQueue);
+      --ev_count_;
+      ++ev_dropped_;
+    }
+    events_[(ev_head_ + ev_count_) % kQueue] = e;
+    ++ev_count_;
+  }
+
+  const FaultSignature* table_ = nullptr;
+  int count_ = 0;
+  Config cfg_{};
+  MatchStatus status_ = MatchStatus::kNominal;
+  bool alive_[kCap_] = {};
+  T score_[kCap_] = {};
+  std::int8_t order_[kCap_] = {};   ///< consistent rows, best first
+  std::int8_t sensor_ch_[kCap_] = {};  ///< channel of a sensor row, −1 for others
+  int n_alive_ = 0;
+  ChannelSymbol sym_[kChannels]{};
+  T base_[kChannels] = {};   ///< residual baseline [channel unit]
+  std::uint32_t base_n_[kChannels] = {};
+  T sum_[kChannels] = {};    ///< window sum [channel unit]
+  std::uint32_t n_[kChannels] = {};
+  T v_[kChannels] = {};      ///< normalised deviation [-]
+  T v_norm_ = T(0);
+  T t_det_ = T(0);           ///< [s]
+  T t_active_ = T(0);        ///< last time a channel was in alarm or flagged [s]
+  std::uint8_t masked_ = 0, seen_ = 0, first_ = 0, rank_ = 0;
+  bool order_done_ = false, window_done_ = false, first_tick_ = false, detected_pending_ = false;
+  Event events_[kQueue]{};
+  Event latest_{};
+  std::uint8_t ev_head_ = 0, ev_count_ = 0;
+  bool has_latest_ = false;
+  std::uint32_t ev_dropped_ = 0;
+};
+
+}  // namespace hstmon

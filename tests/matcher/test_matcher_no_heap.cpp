@@ -1,0 +1,135 @@
+// The matcher tick must not touch the heap: evaluator, sensor check and matcher run a
+// fault episode (detection, isolation, sensor flags, cleared) under the allocation trap of
+// tests/core/test_no_heap.cpp, in float and double, on a constexpr table.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+#include "hstmon/hstmon.hpp"
+#include "test_table.hpp"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define HSTMON_HEAP_TRAP 0
+#else
+#define HSTMON_HEAP_TRAP 1
+#endif
+
+#if HSTMON_HEAP_TRAP
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+extern "C" void __libc_free(void*);
+
+namespace {
+std::atomic<bool> g_armed{false};
+std::atomic<long> g_allocs{0};
+void note() {
+  if (g_armed.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
+}
+}  // namespace
+
+extern "C" void* malloc(std::size_t n) {
+  note();
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t a, std::size_t b) {
+  note();
+  return __libc_calloc(a, b);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  note();
+  return __libc_realloc(p, n);
+}
+extern "C" void free(void* p) { __libc_free(p); }
+void* operator new(std::size_t n) {
+  note();
+  if (void* p = __libc_malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { __libc_free(p); }
+void operator delete[](void* p) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+#else
+namespace {
+std::atomic<bool> g_armed{false};
+std::atomic<long> g_allocs{0};
+}  // namespace
+#endif
+
+namespace {
+
+#define SKIP_WITHOUT_TRAP() \
+  if (!HSTMON_HEAP_TRAP) GTEST_SKIP() << "heap trap not installed under ASan"
+
+struct Armed {
+  Armed() {
+    g_allocs = 0;
+    g_armed = true;
+  }
+  ~Armed() { g_armed = false; }
+};
+
+TEST(MatcherNoHeap, TrapWorks) {
+  SKIP_WITHOUT_TRAP();
+  long n;
+  {
+    Armed a;
+    void* p = std::malloc(16);
+    std::free(p);
+    n = g_allocs;
+  }
+  EXPECT_EQ(n, 1);
+}
+
+template <typename T>
+long allocations_in_episode(int& events) {
+  Armed a;
+  hstmon::ResidualEvaluator<T> ev;
+  hstmon::SensorCheck<T> sc;
+  hstmon::FaultMatcher<T> m;
+  if (m.configure(hstmon_test::kTestTable, hstmon_test::kTestTableCount, {}) != hstmon::Status::kOk) return -1;
+  hstmon::ThesisReducedModel<T> model;
+  T bound[4];
+  if (hstmon::thesis_model_bound(model, hstmon::ThesisUncertainty<T>{}, bound) != hstmon::Status::kOk) return -1;
+  ev.set_model_bound(bound);
+  const T dev[4] = {T(24.9), T(-24.9), T(1114), T(-1409)};
+  unsigned lcg = 1;
+  typename hstmon::FaultMatcher<T>::Event e;
+  events = 0;
+  for (int k = 0; k < 6000; ++k) {
+    const T t = static_cast<T>(k) * T(1e-3);
+    T r[4], y[4];
+    for (int i = 0; i < 4; ++i) {
+      lcg = lcg * 1664525u + 1013904223u;
+      const T noise = static_cast<T>(lcg >> 8) / T(16777216) - T(0.5);
+      const T fault = (k >= 1000 && k < 2000) ? dev[i] : T(0);
+      r[i] = ev.sigma(i) * (noise + fault);
+      y[i] = (i == 3 ? T(100) : T(1e6)) + r[i];  // a raw value that moves with the noise
+    }
+    if (k >= 3500 && k < 3700) y[2] = T(NAN);  // a sensor episode
+    ev.update(r, 0xF);
+    m.update(t, ev, sc.update(y, 0xF));
+    while (m.pop_event(e)) {
+      ++events;
+      if (std::getenv("HSTMON_DEBUG_EVENTS")) std::printf("%d %s %.3f\n", static_cast<int>(sizeof(T)), hstmon::to_string(e.kind), static_cast<double>(e.time));
+    }
+  }
+  return g_allocs;
+}
+
+TEST(MatcherNoHeap, EpisodeDoesNotAllocate) {
+  SKIP_WITHOUT_TRAP();
+  int events_d = 0, events_f = 0;
+  EXPECT_EQ(allocations_in_episode<double>(events_d), 0);
+  EXPECT_EQ(allocations_in_episode<float>(events_f), 0);
+  EXPECT_GE(events_d, 4);  // detected, isolated, cleared, detected (+ isolated, cleared)
+  EXPECT_GE(events_f, 4);
+}
+
+}  // namespace
