@@ -15,6 +15,9 @@ packages=(
   libgtest-dev                # unit tests
   libbenchmark-dev            # benchmarks
   valgrind                    # instruction counts (callgrind)
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # Cortex-M4F firmware
+  qemu-system-arm             # runs the firmware (mps2-an386) in tests/firmware and footprint.sh
+  g++-aarch64-linux-gnu qemu-user googletest  # aarch64 cross build; lib tests under qemu-aarch64
 )
 
 missing=()

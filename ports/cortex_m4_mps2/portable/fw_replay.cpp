@@ -1,0 +1,354 @@
+// Portable firmware replay loop (see fw_replay.hpp). Compiled for Cortex-M4F and for the
+// host; keep it free of anything either side lacks (no <cstdio>, no heap, no exceptions).
+#include "fw_replay.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "hstmon/observer.hpp"
+#include "hstmon/thesis_reduced.hpp"
+
+namespace hstmon::fw {
+
+namespace {
+
+using Model = ThesisReducedModel<float>;
+using Obs = Observer<Model>;
+
+// The observer is static, not on the stack: its size is the monitor's RAM, and it keeps
+// the replay's stack use small and independent of the model.
+Obs g_obs;
+
+/// One JSON line at a time, assembled in a fixed buffer and handed to the sink.
+class Line {
+ public:
+  explicit Line(Sink out) noexcept : out_(out) {}
+  Line& raw(const char* s) noexcept {
+    while (*s != '\0' && n_ + 1 < sizeof(buf_)) buf_[n_++] = *s++;
+    buf_[n_] = '\0';
+    return *this;
+  }
+  Line& key(const char* k) noexcept {
+    raw(first_ ? "\"" : ",\"").raw(k).raw("\":");
+    first_ = false;
+    return *this;
+  }
+  Line& str(const char* k, const char* v) noexcept { return key(k).raw("\"").raw(v).raw("\""); }
+  Line& num(const char* k, double v) noexcept {
+    char b[32];
+    format_double(b, v);
+    return key(k).raw(b);
+  }
+  Line& uint(const char* k, std::uint64_t v) noexcept {
+    char b[24];
+    format_uint(b, v);
+    return key(k).raw(b);
+  }
+  Line& boolean(const char* k, bool v) noexcept { return key(k).raw(v ? "true" : "false"); }
+  /// Closes the object and hands the line to the sink.
+  void end() noexcept { raw("}\n").flush(); }
+  /// Hands the buffer to the sink as it is (for non-JSON lines).
+  void flush() noexcept {
+    out_(buf_);
+    n_ = 0;
+    first_ = true;
+    buf_[0] = '\0';
+  }
+  Line& begin() noexcept { return raw("{"); }
+
+ private:
+  Sink out_;
+  char buf_[384] = {};
+  std::size_t n_ = 0;
+  bool first_ = true;
+};
+
+/// Residual statistics of one channel; the fields and formulas of host::ChannelStats.
+struct Stats {
+  std::uint64_t n = 0, n_diff = 0;
+  double sum = 0, sumsq = 0, max_abs = 0, max_signed = 0, t_max = 0, sumsq_diff = 0, last = 0;
+  double mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
+  double rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
+  double noise() const noexcept { return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0; }
+};
+
+/// Median of up to 63 strided sample intervals, rounded to 1 ns, capped at 10 ms: the host
+/// rule (replay.cpp samples up to 4096 intervals) on a bounded sample, identical on the
+/// uniformly sampled logs hstmon-sim writes.
+double log_tick(const LogView& log, int t_col) noexcept {
+  if (log.rows < 2) return 1e-3;
+  constexpr std::size_t kMax = 63;
+  double dt[kMax];
+  std::size_t stride = log.rows / kMax;
+  if (stride == 0) stride = 1;
+  std::size_t m = 0;
+  for (std::size_t i = stride; i < log.rows && m < kMax; i += stride) {
+    const double a = log.data[(i - stride) * static_cast<std::size_t>(log.cols) + static_cast<std::size_t>(t_col)];
+    const double b = log.data[i * static_cast<std::size_t>(log.cols) + static_cast<std::size_t>(t_col)];
+    const double v = (b - a) * log.scale[t_col] / static_cast<double>(stride);
+    std::size_t j = m++;  // insertion sort: m ≤ 63
+    for (; j > 0 && dt[j - 1] > v; --j) dt[j] = dt[j - 1];
+    dt[j] = v;
+  }
+  const double med = dt[m / 2];
+  if (!(med > 0.0)) return 1e-3;
+  const double r = std::round(med * 1e9) * 1e-9;
+  return r < 10e-3 ? r : 10e-3;
+}
+
+constexpr const char* kChannelName[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
+constexpr const char* kInputNote[4] = {"p_sup (Psupl)", "p_s (Ps)", "p_bp (Pbp)", "kp"};
+
+// FNV-1a 64 over bytes: a cheap, exact fingerprint of every residual of the replay.
+void fnv1a(std::uint64_t& h, const void* p, std::size_t n) noexcept {
+  const auto* b = static_cast<const unsigned char*>(p);
+  for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
+}
+
+}  // namespace
+
+int format_uint(char* buf, std::uint64_t v) noexcept {
+  char tmp[24];
+  int n = 0;
+  do {
+    tmp[n++] = static_cast<char>('0' + static_cast<int>(v % 10u));
+    v /= 10u;
+  } while (v != 0);
+  for (int i = 0; i < n; ++i) buf[i] = tmp[n - 1 - i];
+  buf[n] = '\0';
+  return n;
+}
+
+int format_double(char* buf, double v) noexcept {
+  if (!std::isfinite(v)) {
+    std::memcpy(buf, "null", 5);
+    return 4;
+  }
+  int n = 0;
+  if (std::signbit(v)) buf[n++] = '-';
+  double a = std::fabs(v);
+  if (a == 0.0) {
+    buf[n++] = '0';
+    buf[n] = '\0';
+    return n;
+  }
+  // Scale into [1, 10) by powers of ten; each step rounds once (≤ 1e-14 relative over the
+  // double range), far below the 12 digits printed.
+  int e = 0;
+  while (a >= 1e16) { a *= 1e-16; e += 16; }
+  while (a >= 10.0) { a *= 0.1; ++e; }
+  while (a < 1e-16) { a *= 1e16; e -= 16; }
+  while (a < 1.0) { a *= 10.0; --e; }
+  auto d = static_cast<std::uint64_t>(a * 1e11 + 0.5);
+  if (d >= 1000000000000ull) { d /= 10u; ++e; }
+  char digits[24];
+  format_uint(digits, d);
+  int last = 11;  // trim trailing zeros of the fraction
+  while (last > 0 && digits[last] == '0') --last;
+  buf[n++] = digits[0];
+  if (last > 0) {
+    buf[n++] = '.';
+    for (int i = 1; i <= last; ++i) buf[n++] = digits[i];
+  }
+  if (e != 0) {
+    buf[n++] = 'e';
+    buf[n++] = e < 0 ? '-' : '+';
+    n += format_uint(buf + n, static_cast<std::uint64_t>(e < 0 ? -e : e));
+  }
+  buf[n] = '\0';
+  return n;
+}
+
+int format_hex_float(char* buf, float v) noexcept {
+  std::uint32_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  int n = 0;
+  const bool neg = (bits >> 31) != 0;
+  const auto exp_field = static_cast<int>((bits >> 23) & 0xffu);
+  std::uint32_t frac = bits & 0x7fffffu;
+  if (neg) buf[n++] = '-';
+  if (exp_field == 0xff) {
+    std::memcpy(buf + n, frac ? "nan" : "inf", 4);
+    return n + 3;
+  }
+  int e;
+  if (exp_field == 0) {
+    if (frac == 0) {
+      std::memcpy(buf + n, "0x0p+0", 7);
+      return n + 6;
+    }
+    e = -126;  // subnormal: normalise, as printf does after the conversion to double
+    while ((frac & 0x800000u) == 0) { frac <<= 1; --e; }
+    frac &= 0x7fffffu;
+  } else {
+    e = exp_field - 127;
+  }
+  std::memcpy(buf + n, "0x1", 3);
+  n += 3;
+  std::uint32_t f = frac << 1;  // 24 bits = 6 hex digits
+  if (f != 0) {
+    buf[n++] = '.';
+    for (int shift = 20; shift >= 0 && f != 0; shift -= 4) {
+      buf[n++] = "0123456789abcdef"[(f >> shift) & 0xfu];
+      f &= (1u << shift) - 1u;
+    }
+  }
+  buf[n++] = 'p';
+  buf[n++] = e < 0 ? '-' : '+';
+  n += format_uint(buf + n, static_cast<std::uint64_t>(e < 0 ? -e : e));
+  return n;
+}
+
+std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt) noexcept {
+  Line line(out);
+  int col[kSigCount];
+  for (int& c : col) c = -1;
+  for (int c = 0; c < log.cols; ++c) {
+    const int s = log.signal[c];
+    if (s >= 0 && s < kSigCount && col[s] < 0) col[s] = c;
+  }
+  const auto cols = static_cast<std::size_t>(log.cols);
+  // Value of signal s at row k in SI (double, as the host reader stores it).
+  auto at = [&](std::size_t k, int s) noexcept {
+    return log.data[k * cols + static_cast<std::size_t>(col[s])] * log.scale[col[s]];
+  };
+  const ThesisInputs<float> defaults;
+  auto inputs_at = [&](std::size_t k) noexcept {
+    ThesisInputs<float> u = defaults;
+    if (col[kSigPSup] >= 0) u.Psupl = static_cast<float>(at(k, kSigPSup));
+    if (col[kSigPS] >= 0) u.Ps = static_cast<float>(at(k, kSigPS));
+    if (col[kSigPBp] >= 0) u.Pbp = static_cast<float>(at(k, kSigPBp));
+    if (col[kSigKp] >= 0) u.kp = static_cast<float>(at(k, kSigKp));
+    return u;
+  };
+
+  std::uint8_t mask = 0;
+  for (int c = 0; c < 4; ++c) {
+    if (col[kSigPMi + c] >= 0) mask = static_cast<std::uint8_t>(mask | (1u << c));
+  }
+  const std::size_t rows = col[kSigT] >= 0 ? log.rows : 0;
+  const double t_first = rows ? at(0, kSigT) : 0.0;
+  const double t_last = rows ? at(rows - 1, kSigT) : 0.0;
+  const double tick = rows ? log_tick(log, col[kSigT]) : 1e-3;
+
+  Obs::Config cfg;
+  cfg.tick = static_cast<float>(tick);
+  (void)g_obs.configure(Model(ThesisParams<float>{}), cfg);
+  bool started_steady = false;
+  std::uint32_t health = 0, max_substeps = 0;
+  std::uint64_t unhealthy = 0, digest = 0xcbf29ce484222325ull;
+  Stats st[4];
+  if (rows > 0) {
+    const ThesisInputs<float> u0 = inputs_at(0);
+    bool steady = false;
+    if (col[kSigWm] >= 0) {  // init auto: steady when the first speed shows the machine running
+      Model m{ThesisParams<float>{}};
+      m.set_inputs(u0);
+      steady = std::fabs(at(0, kSigWm)) > 0.05 * static_cast<double>(m.speed_bound());
+    }
+    if (steady && g_obs.reset_steady(u0) == Status::kOk) {
+      started_steady = true;
+    } else {
+      (void)g_obs.reset_rest(u0);
+    }
+
+    ThesisInputs<float> u_prev = u0;
+    Obs::Measurement m;
+    const Obs::Measurement none;
+    for (std::size_t k = 0; k < rows; ++k) {
+      const double t_row = at(k, kSigT) - t_first;
+      while (t_row - static_cast<double>(g_obs.ticks()) * tick > 0.5 * tick) {
+        health |= g_obs.step(u_prev, none);
+        if (g_obs.substeps() > max_substeps) max_substeps = g_obs.substeps();
+      }
+      const ThesisInputs<float> u = inputs_at(k);
+      for (int c = 0; c < 4; ++c) m.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(k, kSigPMi + c)) : 0.0f;
+      m.valid = mask;
+      const std::uint32_t flags = g_obs.step(u, m);
+      health |= flags;
+      if (flags) ++unhealthy;
+      if (g_obs.substeps() > max_substeps) max_substeps = g_obs.substeps();
+      u_prev = u;
+
+      const auto& r = g_obs.residual();
+      const std::uint8_t rv = g_obs.residual_valid();
+      fnv1a(digest, r.data(), sizeof(float) * 4);
+      fnv1a(digest, &flags, sizeof flags);
+      for (int c = 0; c < 4; ++c) {
+        if (!(rv & (1u << c))) continue;
+        Stats& s = st[c];
+        const double rc = static_cast<double>(r[c]);
+        if (s.n > 0) {
+          s.sumsq_diff += (rc - s.last) * (rc - s.last);
+          ++s.n_diff;
+        }
+        s.last = rc;
+        ++s.n;
+        s.sum += rc;
+        s.sumsq += rc * rc;
+        if (std::fabs(rc) > s.max_abs) {
+          s.max_abs = std::fabs(rc);
+          s.max_signed = rc;
+          s.t_max = at(k, kSigT);
+        }
+      }
+      if (opt.trace) {
+        char b[40];
+        line.raw("trace ");
+        format_uint(b, k);
+        line.raw(b).raw(" ");
+        format_uint(b, flags);
+        line.raw(b);
+        for (int c = 0; c < 4; ++c) {
+          format_hex_float(b, r[c]);
+          line.raw(" ").raw(b);
+        }
+        line.raw("\n").flush();
+      }
+    }
+  }
+
+  // Header line: the fields of `hstmon replay --json`.
+  line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
+      .num("t_last", t_last).num("tick_s", tick).uint("ticks", g_obs.ticks()).str("start", started_steady ? "steady" : "rest");
+  line.key("health").raw("[");
+  static const char* const kHealthNames[] = {"input_non_finite", "measurement_non_finite", "substeps_clipped",
+                                             "state_non_finite", "state_out_of_bounds", "algebraic_diverged"};
+  bool first = true;
+  for (int b = 0; b < 6; ++b) {
+    if (health & (1u << b)) {
+      line.raw(first ? "\"" : ",\"").raw(kHealthNames[b]).raw("\"");
+      first = false;
+    }
+  }
+  line.raw("]").uint("unhealthy_rows", unhealthy).uint("max_substeps", max_substeps);
+  line.key("notes").raw("[");
+  first = true;
+  for (int i = 0; i < 4; ++i) {
+    if (col[kSigPSup + i] < 0) {
+      line.raw(first ? "\"" : ",\"").raw(kInputNote[i]).raw(" not in log: held at the parameter value\"");
+      first = false;
+    }
+  }
+  line.raw("]").end();
+
+  for (int c = 0; c < 4; ++c) {
+    const Stats& s = st[c];
+    line.begin().str("type", "residual").str("channel", kChannelName[c]).str("unit", c == 3 ? "rad/s" : "Pa")
+        .boolean("measured", (mask >> c) & 1u).uint("n", s.n);
+    if (s.n > 0) {
+      line.num("mean", s.mean()).num("rms", s.rms()).num("max_abs", s.max_abs).num("max", s.max_signed)
+          .num("t_max", s.t_max).num("noise", s.noise());
+    }
+    line.end();
+  }
+
+  char hex[20];
+  for (int i = 0; i < 16; ++i) hex[i] = "0123456789abcdef"[(digest >> (60 - 4 * i)) & 0xfu];
+  hex[16] = '\0';
+  line.begin().str("type", "firmware").str("scalar", "float").str("residual_digest", hex).end();
+  return health;
+}
+
+}  // namespace hstmon::fw

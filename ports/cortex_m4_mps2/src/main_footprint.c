@@ -1,0 +1,142 @@
+/* Footprint image: one monitor through the C API, as C firmware would hold it. Built
+ * twice — with HSTMON_FW_WITH_MONITOR=1 and =0 — so that the difference of the two
+ * images' sizes is what one monitor costs in flash and RAM (scripts/footprint.sh).
+ * With the monitor it also measures, under `qemu -icount shift=0`:
+ *  - instructions per hstmon_step() at the nominal operating point, 1 ms tick
+ *    (SysTick calibrated against a loop of known length; loop overhead measured with a
+ *    call to an empty function and subtracted);
+ *  - the stack depth below main's frame (stack painting): over create + reset_steady
+ *    + read, and over the timed steps alone.
+ * Prints one JSON line: {"type":"footprint",…}; exit status 0. */
+#include <stdint.h>
+
+#include "hstmon_c.h"
+#include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/semihosting.h"
+
+#ifndef HSTMON_FW_WITH_MONITOR
+#define HSTMON_FW_WITH_MONITOR 1
+#endif
+
+enum { kTicks = 2000, kCalibLoop = 100000 };
+
+static char line[512];
+static unsigned pos;
+
+static void put(const char* s) {
+  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
+  line[pos] = '\0';
+}
+
+static void put_uint(const char* key, uint32_t v) {
+  char tmp[12];
+  int n = 0;
+  put(pos > 1u ? ",\"" : "\"");
+  put(key);
+  put("\":");
+  do {
+    tmp[n++] = (char)('0' + (int)(v % 10u));
+    v /= 10u;
+  } while (v != 0u);
+  while (n > 0) {
+    const char c[2] = {tmp[--n], '\0'};
+    put(c);
+  }
+}
+
+#if HSTMON_FW_WITH_MONITOR
+static hstmon_monitor_storage storage; /* the monitor's RAM */
+static volatile uint32_t sink;         /* keeps results observable */
+
+extern uint32_t __stack_limit__[];
+#define STACK_PAINT 0xA5A5A5A5u
+
+/* Fills the unused stack below this function's frame with a pattern. */
+__attribute__((noinline)) static void paint_stack(void) {
+  uint32_t* sp;
+  __asm volatile("mov %0, sp" : "=r"(sp));
+  for (volatile uint32_t* p = __stack_limit__; p < sp - 16; ++p) *p = STACK_PAINT;
+}
+
+/* Lowest stack address written since paint_stack(). */
+static uintptr_t stack_low_water(void) {
+  const uint32_t* p = __stack_limit__;
+  while (*p == STACK_PAINT) ++p;
+  return (uintptr_t)p;
+}
+
+__attribute__((noinline)) static uint32_t empty_step(hstmon_monitor* m, const hstmon_sample* s) {
+  __asm volatile("" ::"r"(m), "r"(s) : "memory");
+  return 0u;
+}
+
+typedef uint32_t (*step_fn)(hstmon_monitor*, const hstmon_sample*);
+
+/* SysTick counts for kTicks calls of f, with ±50 Pa / ±0.05 rad/s alternating noise. */
+__attribute__((noinline)) static uint32_t time_ticks(step_fn f, hstmon_monitor* m, hstmon_sample* s) {
+  const float base[HSTMON_CHANNELS] = {s->y[0], s->y[1], s->y[2], s->y[3]};
+  const uint32_t a = cycles_now();
+  for (int k = 0; k < kTicks; ++k) {
+    const float d = (k & 1) ? 1.0f : -1.0f;
+    s->y[0] = base[0] + 50.0f * d;
+    s->y[1] = base[1] - 50.0f * d;
+    s->y[2] = base[2] + 50.0f * d;
+    s->y[3] = base[3] + 0.05f * d;
+    sink = f(m, s);
+  }
+  const uint32_t b = cycles_now();
+  return cycles_elapsed(a, b);
+}
+#endif
+
+int main(void) {
+  cycles_start();
+  /* Two loop lengths: the difference removes the fixed cost of the call and reads. */
+  const uint32_t c1 = cycles_known_loop(kCalibLoop);
+  const uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
+  /* instructions per SysTick count = 2·kCalibLoop / (c2 − c1), as a ratio */
+  const uint32_t calib_instr = 2u * kCalibLoop;
+  const uint32_t calib_counts = c2 - c1;
+  put("{\"type\":\"footprint\"");
+  put_uint("with_monitor", HSTMON_FW_WITH_MONITOR);
+  put_uint("calib_instructions", calib_instr);
+  put_uint("calib_counts", calib_counts);
+#if HSTMON_FW_WITH_MONITOR
+  uintptr_t sp_main;
+  __asm volatile("mov %0, sp" : "=r"(sp_main));
+  paint_stack();
+  hstmon_config cfg;
+  hstmon_default_config(&cfg);
+  cfg.tick_s = 1e-3f;
+  hstmon_monitor* m = 0;
+  if (hstmon_create(&storage, sizeof storage, &cfg, &m) != HSTMON_OK) semihost_exit(10);
+  hstmon_inputs u;
+  hstmon_default_inputs(&u);
+  if (hstmon_reset_steady(m, &u) != HSTMON_OK) semihost_exit(11);
+  hstmon_report r;
+  hstmon_read(m, &r);
+  hstmon_sample s;
+  s.t_s = 0.0f;
+  s.u = u;
+  for (int i = 0; i < HSTMON_CHANNELS; ++i) s.y[i] = r.estimate[i];
+  s.valid = 0x0F;
+  const uint32_t stack_bytes = (uint32_t)(sp_main - stack_low_water());
+  paint_stack(); /* again: the step path alone */
+  const uint32_t counts_step = time_ticks(hstmon_step, m, &s);
+  const uint32_t stack_step_bytes = (uint32_t)(sp_main - stack_low_water());
+  const uint32_t counts_empty = time_ticks(empty_step, m, &s);
+  hstmon_read(m, &r);
+  put_uint("monitor_bytes", (uint32_t)hstmon_monitor_size());
+  put_uint("storage_bytes", (uint32_t)sizeof storage);
+  put_uint("ticks", kTicks);
+  put_uint("counts_step_loop", counts_step);
+  put_uint("counts_empty_loop", counts_empty);
+  put_uint("health", r.health);
+  put_uint("max_substeps", r.substeps);
+  put_uint("stack_bytes", stack_bytes);
+  put_uint("stack_step_bytes", stack_step_bytes);
+#endif
+  put("}\n");
+  semihost_write0(line);
+  return 0;
+}

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Builds the Cortex-M4F firmware (toolchains/arm-none-eabi.cmake) and runs an image under
+# QEMU's mps2-an386 with semihosting; the image's output goes to stdout, its exit status
+# is this script's.
+#
+#   scripts/firmware.sh [IMAGE] [--build-dir DIR] [--no-build] [--log CSV] [--timeout S]
+#
+# IMAGE: replay (default; the JSON lines of `hstmon replay --json` for the embedded log),
+#        replay_trace (plus one %a line of residuals per row), footprint, footprint_empty
+#        (run with -icount shift=0: 1 instruction = 1 ns of virtual time), heap_probe
+#        (must FAIL to link: checks the no-heap rule; exit 0 when it does fail).
+# Defaults: build dir build/firmware-arm, log examples/prv_blockage.csv, timeout 300 s.
+# Exit status: the image's; 124 on timeout; 2 on a bad command line or build failure.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+image=replay
+build="$root/build/firmware-arm"
+do_build=1
+log=""
+timeout_s=300
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build-dir) build="$2"; shift 2 ;;
+    --no-build) do_build=0; shift ;;
+    --log) log="$(realpath "$2")"; shift 2 ;;
+    --timeout) timeout_s="$2"; shift 2 ;;
+    replay|replay_trace|footprint|footprint_empty|heap_probe) image="$1"; shift ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    *) echo "firmware.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+for tool in arm-none-eabi-g++ qemu-system-arm cmake; do
+  command -v "$tool" >/dev/null || { echo "firmware.sh: '$tool' not found (bash scripts/install-deps.sh)" >&2; exit 2; }
+done
+
+if [ "$do_build" = 1 ]; then
+  cfg=(-S "$root" -B "$build" --toolchain "$root/toolchains/arm-none-eabi.cmake"
+       -DCMAKE_BUILD_TYPE=Release -DHSTMON_WERROR=ON)
+  [ -n "$log" ] && cfg+=("-DHSTMON_FW_LOG=$log")
+  cmake "${cfg[@]}" >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 2; }
+  if [ "$image" = heap_probe ]; then
+    if cmake --build "$build" --target hstmon_fw_heap_probe -j2 >"$build.heap_probe.log" 2>&1; then
+      echo "firmware.sh: heap_probe linked, but an image that calls malloc must not" >&2
+      exit 1
+    fi
+    if grep -q "undefined reference to \`__wrap_malloc'" "$build.heap_probe.log"; then
+      echo "heap_probe: link refused as intended (undefined reference to __wrap_malloc)"
+      exit 0
+    fi
+    cat "$build.heap_probe.log" >&2
+    exit 2
+  fi
+  cmake --build "$build" -j2 --target hstmon_fw_replay hstmon_fw_replay_trace hstmon_fw_footprint \
+    hstmon_fw_footprint_empty >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
+fi
+
+elf="$build/bin/hstmon_fw_$image.elf"
+[ -f "$elf" ] || { echo "firmware.sh: $elf not built" >&2; exit 2; }
+# Semihosting output goes to a file chardev (without one, QEMU 7 writes it to stderr,
+# mixed with its own messages); the file is copied to stdout afterwards.
+tmp="$(mktemp)"
+trap 'rm -f "$tmp"' EXIT
+qemu=(qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none
+      -chardev "file,id=semihost,path=$tmp"
+      -semihosting-config enable=on,target=native,chardev=semihost -kernel "$elf")
+case "$image" in footprint*) qemu+=(-icount shift=0) ;; esac
+rc=0
+timeout "$timeout_s" "${qemu[@]}" </dev/null || rc=$?
+cat "$tmp"
+[ "$rc" = 124 ] && echo "firmware.sh: $image timed out after $timeout_s s" >&2
+exit "$rc"

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Footprint and cost of one monitor on Cortex-M4F (float, -O2), against the budgets of
+# issue 4. Builds the firmware (scripts/firmware.sh), then:
+#  - flash / RAM: arm-none-eabi-size of the footprint image (one monitor through the C
+#    API: create, reset, step, read) minus the same image without the monitor;
+#  - stack: measured by stack painting in that image under qemu (deepest use below
+#    main's frame over create, reset_steady and 2000 steps); the largest single frame of
+#    the C API object from -fstack-usage (.su) is shown too (-Wstack-usage=512 also
+#    fails the build on a larger frame);
+#  - instructions per 1 ms tick at the nominal point: qemu -icount shift=0 (1 instruction
+#    = 1 ns), SysTick calibrated on a loop of known length, loop overhead subtracted;
+#  - heap: no malloc/_sbrk symbol in the image, and an image that calls malloc must not link.
+#   scripts/footprint.sh [--build-dir DIR] [--no-build]
+# Exit status: 0 all budgets met; 1 a budget exceeded; 2 build or run failure.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$root/build/firmware-arm"
+no_build=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build-dir) build="$2"; shift 2 ;;
+    --no-build) no_build=(--no-build); shift ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    *) echo "footprint.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+# Budgets (issue 4).
+max_flash=16384 max_ram=1024 max_stack=512 max_instr=1000
+
+fw() { "$root/scripts/firmware.sh" "$@" --build-dir "$build"; }
+with_json="$(fw footprint "${no_build[@]}")" || { echo "footprint.sh: footprint image failed" >&2; exit 2; }
+fw footprint_empty --no-build >/dev/null || { echo "footprint.sh: empty image failed" >&2; exit 2; }
+field() { echo "$with_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+
+read -r t1 d1 b1 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint.elf" | awk 'NR==2{print $1,$2,$3}')
+read -r t0 d0 b0 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
+flash=$(( (t1 + d1) - (t0 + d0) ))
+ram=$(( (d1 + b1) - (d0 + b0) ))
+stack=$(field stack_bytes)
+su="$(find "$build" -path '*hstmon_c.dir*' -name '*.su' | head -1)"
+frame=$(awk -F'\t' '{ if ($2 > m) m = $2 } END { print m + 0 }' "$su")
+instr=$(awk -v s="$(field counts_step_loop)" -v e="$(field counts_empty_loop)" -v ci="$(field calib_instructions)" \
+  -v cc="$(field calib_counts)" -v n="$(field ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')
+heap_syms=$(arm-none-eabi-nm "$build/bin/hstmon_fw_footprint.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+heap_probe="refused"
+fw heap_probe >/dev/null 2>&1 || heap_probe="LINKED"
+
+fail=0
+row() {  # name value unit budget
+  local ok="ok"
+  if [ "$2" -gt "$4" ]; then ok="OVER"; fail=1; fi
+  printf "  %-44s %8s %-6s %8s   %s\n" "$1" "$2" "$3" "≤ $4" "$ok"
+}
+echo "hstmon footprint: one monitor (C API, float observer), Cortex-M4F, -O2, arm-none-eabi-gcc $(arm-none-eabi-gcc -dumpversion)"
+printf "  %-44s %8s %-6s %8s\n" "what" "value" "unit" "budget"
+row "flash (text+data, image with − without)" "$flash" "B" "$max_flash"
+row "RAM (data+bss, image with − without)" "$ram" "B" "$max_ram"
+printf "  %-44s %8s %-6s\n" "  of which the monitor object" "$(field monitor_bytes)" "B"
+row "stack, create + reset_steady (painting)" "$stack" "B" "$max_stack"
+row "stack, step (painting, incl. timing loop)" "$(field stack_step_bytes)" "B" "$max_stack"
+printf "  %-44s %8s %-6s\n" "  largest single frame (.su, C API object)" "$frame" "B"
+row "instructions per 1 ms tick (qemu icount)" "$instr" "instr" "$max_instr"
+printf "  %-44s %8s %-6s\n" "  RK4 substeps of the measured ticks" "$(field max_substeps)" ""
+row "heap: malloc/_sbrk/new symbols in image" "$heap_syms" "" 0
+if [ "$heap_probe" != refused ]; then echo "  heap: an image calling malloc LINKED (must be refused)"; fail=1; fi
+echo "  heap: an image that calls malloc: link $heap_probe"
+exit $fail

@@ -1,0 +1,104 @@
+// Compares two outputs of `hstmon replay --json` (or of the firmware replay): same
+// header counts (rows, ticks, tick, start, health, unhealthy rows, max substeps), and per
+// channel the same n and residual statistics within a tolerance:
+//   |a − b| ≤ rel·max(|a|, |b|) + abs_c,  abs_c = --abs-pa [Pa] or --abs-rad [rad/s],
+// and the same time of the peak unless the two peaks' sizes are within that tolerance
+// of the other build's (two near-equal peaks may swap). Lines of other types (the
+// firmware's digest, later matcher events) are ignored here.
+//   hstmon_fw_compare A.jsonl B.jsonl [--rel R] [--abs-pa P] [--abs-rad W]
+// Exit status: 0 agree, 1 differ (each difference printed), 2 usage or unreadable input.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+using nlohmann::json;
+
+namespace {
+
+struct Parsed {
+  json header;
+  std::map<std::string, json> channels;
+};
+
+bool load(const char* path, Parsed& p) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] != '{') continue;  // qemu or trace noise
+    const json j = json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.contains("type")) continue;
+    if (j["type"] == "replay") p.header = j;
+    if (j["type"] == "residual") p.channels[j["channel"].get<std::string>()] = j;
+  }
+  return !p.header.is_null() && p.channels.size() == 4;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s A.jsonl B.jsonl [--rel R] [--abs-pa P] [--abs-rad W]\n", argv[0]);
+    return 2;
+  }
+  double rel = 1e-4, abs_pa = 1.0, abs_rad = 1e-4;
+  for (int i = 3; i + 1 < argc; i += 2) {
+    const std::string k = argv[i];
+    const double v = std::atof(argv[i + 1]);
+    if (k == "--rel") rel = v;
+    else if (k == "--abs-pa") abs_pa = v;
+    else if (k == "--abs-rad") abs_rad = v;
+    else { std::fprintf(stderr, "unknown option %s\n", k.c_str()); return 2; }
+  }
+  Parsed a, b;
+  if (!load(argv[1], a) || !load(argv[2], b)) {
+    std::fprintf(stderr, "cannot read a replay header and 4 residual lines from %s and %s\n", argv[1], argv[2]);
+    return 2;
+  }
+  int bad = 0;
+  for (const char* k : {"rows", "ticks", "start", "health", "unhealthy_rows", "max_substeps"}) {
+    if (a.header[k] != b.header[k]) {
+      std::printf("header %s: %s vs %s\n", k, a.header[k].dump().c_str(), b.header[k].dump().c_str());
+      ++bad;
+    }
+  }
+  for (const char* k : {"tick_s", "t_first", "t_last"}) {
+    if (std::fabs(a.header[k].get<double>() - b.header[k].get<double>()) > 1e-9) {
+      std::printf("header %s: %s vs %s\n", k, a.header[k].dump().c_str(), b.header[k].dump().c_str());
+      ++bad;
+    }
+  }
+  double worst = 0.0;
+  for (auto& [name, ja] : a.channels) {
+    const json& jb = b.channels[name];
+    if (ja["n"] != jb["n"] || ja["measured"] != jb["measured"]) {
+      std::printf("%s: n/measured %s/%s vs %s/%s\n", name.c_str(), ja["n"].dump().c_str(), ja["measured"].dump().c_str(),
+                  jb["n"].dump().c_str(), jb["measured"].dump().c_str());
+      ++bad;
+      continue;
+    }
+    if (!ja.contains("mean")) continue;
+    const double abs_c = ja["unit"] == "Pa" ? abs_pa : abs_rad;
+    for (const char* k : {"mean", "rms", "max_abs", "max", "noise"}) {
+      const double x = ja[k].get<double>(), y = jb[k].get<double>();
+      const double tol = rel * std::fmax(std::fabs(x), std::fabs(y)) + abs_c;
+      worst = std::fmax(worst, std::fabs(x - y) / tol);
+      if (!(std::fabs(x - y) <= tol)) {
+        std::printf("%s %s: %.17g vs %.17g (|Δ| %.3g > tol %.3g)\n", name.c_str(), k, x, y, std::fabs(x - y), tol);
+        ++bad;
+      }
+    }
+    const double ta = ja["t_max"].get<double>(), tb = jb["t_max"].get<double>();
+    if (std::fabs(ta - tb) > 1e-9) {
+      std::printf("%s t_max: %.17g vs %.17g (peak at a different row)\n", name.c_str(), ta, tb);
+      ++bad;
+    }
+  }
+  std::printf("%s: worst |Δ|/tol = %.3g (rel %.3g, abs %.3g Pa, %.3g rad/s)\n", bad ? "DIFFER" : "agree", worst, rel,
+              abs_pa, abs_rad);
+  return bad ? 1 : 0;
+}

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# One firmware test case (registered by CMakeLists.txt in this folder). Environment:
+#   FW_SRC (repo root), FW_BUILD (cross build dir), FW_LOG (embedded log), FW_OUT (scratch
+#   dir), FW_HOST (host float replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional).
+# Exit 77 = skipped (no cross toolchain / no qemu / no CLI in this build).
+set -euo pipefail
+case_name="$1"
+mkdir -p "$FW_OUT"
+out="$FW_OUT/$case_name"
+# Float vs double tolerance (docs/firmware.md): relative 1e-5 of the statistic, plus
+# 1 Pa (0.01 mbar) on pressures and 1e-4 rad/s (0.001 rpm) on speed.
+tol=(--rel 1e-5 --abs-pa 1 --abs-rad 1e-4)
+
+need_cross() {
+  for t in arm-none-eabi-g++ qemu-system-arm; do
+    command -v "$t" >/dev/null || { echo "skipped: $t not installed"; exit 77; }
+  done
+}
+need_cli() {
+  [ -n "${HSTMON_CLI:-}" ] && [ -x "$HSTMON_CLI" ] || { echo "skipped: hstmon CLI not built"; exit 77; }
+  "$HSTMON_CLI" replay --json --no-progress "$FW_LOG" >"$out.cli.jsonl"
+}
+fw() { "$FW_SRC/scripts/firmware.sh" "$@" --build-dir "$FW_BUILD" --log "$FW_LOG"; }
+
+case "$case_name" in
+  host_float_vs_cli)  # the portable loop in float (host) vs the double CLI
+    need_cli
+    "$FW_HOST" >"$out.fw.jsonl"
+    "$FW_COMPARE" "$out.cli.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
+  build)              # fixture: configure and build every image, run the smallest
+    need_cross
+    fw footprint_empty ;;
+  heap_probe)         # an image that calls malloc must not link
+    need_cross
+    fw heap_probe ;;
+  qemu_vs_cli)        # Cortex-M4F under qemu vs the double CLI
+    need_cross; need_cli
+    fw replay --no-build >"$out.fw.jsonl"
+    "$FW_COMPARE" "$out.cli.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
+  qemu_bitexact)      # Cortex-M4F vs host float, every residual of every row in %a
+    need_cross
+    fw replay_trace --no-build >"$out.qemu.txt"
+    "$FW_HOST" --trace >"$out.host.txt"
+    if cmp -s "$out.qemu.txt" "$out.host.txt"; then
+      echo "bit-exact: $(grep -c '^trace' "$out.host.txt") rows, $(grep residual_digest "$out.host.txt")"
+    else
+      echo "firmware and host float differ:"; diff "$out.qemu.txt" "$out.host.txt" | head -20; exit 1
+    fi ;;
+  footprint)          # budgets: flash, RAM, stack, instructions per tick, heap
+    need_cross
+    "$FW_SRC/scripts/footprint.sh" --build-dir "$FW_BUILD" --no-build ;;
+  *) echo "fw_test.sh: unknown case $case_name" >&2; exit 2 ;;
+esac
