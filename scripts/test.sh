@@ -1,10 +1,25 @@
 #!/usr/bin/env bash
-# Installs dependencies, builds the host debug configuration (warnings are errors) and
-# runs the whole test suite with CTest.
+# Installs dependencies, then runs every test:
+#   1. aarch64 cross build of the core's unit tests, run under qemu user mode;
+#   2. the firmware footprint and cost budgets on Cortex-M4F under qemu (exits non-zero
+#      if one is exceeded);
+#   3. the host debug build (warnings are errors) and the whole host suite with CTest,
+#      which includes the firmware image under qemu-system-arm compared with the host.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
+jobs=$(nproc)
 bash scripts/install-deps.sh
+
+echo "== aarch64: core unit tests under qemu-aarch64"
+cmake -S . -B build/aarch64 --toolchain toolchains/aarch64-linux-gnu.cmake -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/aarch64 -j"$jobs" >/dev/null
+ctest --test-dir build/aarch64 -j"$jobs" --output-on-failure | tail -n 3
+
+echo "== Cortex-M4F: footprint and cost budgets"
+bash scripts/footprint.sh
+
+echo "== host: build and full suite"
 cmake --preset host-debug >/dev/null
-cmake --build --preset host-debug -j"$(nproc)"
-ctest --preset host-debug -j"$(nproc)"
+cmake --build --preset host-debug -j"$jobs"
+ctest --preset host-debug -j"$jobs"
