@@ -1,0 +1,152 @@
+/// @file param_fault.cpp
+#include "hstmon_sim/param_fault.hpp"
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "hstmon/thesis_reduced.hpp"
+#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sim/thesis_reference.hpp"
+
+namespace hstmon::sim {
+
+namespace {
+
+// Fine steps per sample period (as measure.cpp: lags fed at ≤ lag_step).
+std::size_t substeps(const SensorConfig& cfg) {
+  if (!(std::isfinite(cfg.sample_period) && cfg.sample_period > 0.0)) {
+    throw std::invalid_argument("measure_with_fault: sample_period must be > 0");
+  }
+  if (cfg.channels.size() != 4) throw std::invalid_argument("measure_with_fault: need 4 channels");
+  bool any_lag = false;
+  for (const ChannelSpec& c : cfg.channels) any_lag = any_lag || c.tau > 0.0;
+  if (!any_lag) return 1;
+  if (!(std::isfinite(cfg.lag_step) && cfg.lag_step > 0.0)) {
+    throw std::invalid_argument("measure_with_fault: lag_step must be > 0");
+  }
+  const double m = std::ceil(cfg.sample_period / cfg.lag_step * (1.0 - 1e-12));
+  if (m > 1e9) throw std::invalid_argument("measure_with_fault: lag_step too small for the sample period");
+  return static_cast<std::size_t>(std::fmax(1.0, m));
+}
+
+constexpr std::size_t kBatch = 1u << 16;
+
+}  // namespace
+
+ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConfig& cfg, std::uint64_t seed,
+                                      const ThesisParams<double>& p, double fault_time,
+                                      const ThesisParams<double>& faulty, const ReferenceTolerances& tol) {
+  validate(sc);
+  if (!ThesisReducedModel<double>::params_valid(faulty)) {
+    throw std::invalid_argument("measure_with_fault: invalid faulty parameters");
+  }
+  const std::size_t m = substeps(cfg);
+  const double period = cfg.sample_period;
+  const double h = period / static_cast<double>(m);
+  const double t_max = sc.duration * (1.0 + 1e-12);
+  auto t_raw = [&](std::size_t i) { return static_cast<double>(i / m) * period + static_cast<double>(i % m) * h; };
+  std::size_t n_last = static_cast<std::size_t>(sc.duration / h) + 2;
+  while (n_last > 0 && t_raw(n_last) > t_max) --n_last;
+  auto t_fine = [&](std::size_t i) { return std::fmin(t_raw(i), sc.duration); };
+
+  // Segments: the schedule's, split at the fault time.
+  struct Segment {
+    double end;
+    ThesisInputs<double> u;
+    bool faulty;
+  };
+  std::vector<Segment> segs;
+  for (std::size_t k = 0; k < sc.schedule.size(); ++k) {
+    const double a = sc.schedule[k].t_start;
+    const double b = segment_end(sc, k);
+    if (fault_time > a && fault_time < b) {
+      segs.push_back({fault_time, sc.schedule[k].u, false});
+      segs.push_back({b, sc.schedule[k].u, true});
+    } else {
+      segs.push_back({b, sc.schedule[k].u, a >= fault_time});
+    }
+  }
+
+  auto ref = std::make_unique<ThesisReference>(segs.front().faulty ? faulty : p,
+                                               thesis_initial_state(sc, p), 0.0, tol);
+  bool ref_faulty = segs.front().faulty;
+
+  SensorChain chain(cfg.channels, seed);
+  ThesisMeasurements out;
+  out.reserve(n_last / m + 1);
+  double x[4];
+  to_array(ref->state(), x);
+  chain.reset(x);
+  Measurement<ThesisInputs<double>> row;
+  row.t = 0.0;
+  row.u = logged_inputs_at(sc, 0.0);
+  chain.measure(row.y.data());
+  out.push_back(row);
+
+  std::size_t i = 0;
+  double t_last = 0.0;
+  auto on_sample = [&](double t, const ThesisState<double>& xs) {
+    ++i;
+    double v[4];
+    to_array(xs, v);
+    chain.advance(v, t - t_last);
+    t_last = t;
+    if (i % m == 0) {
+      Measurement<ThesisInputs<double>> r;
+      r.t = t;
+      r.u = logged_inputs_at(sc, t);
+      chain.measure(r.y.data());
+      out.push_back(r);
+    }
+  };
+  std::vector<double> batch;
+  batch.reserve(kBatch);
+  for (const Segment& s : segs) {
+    if (s.faulty && !ref_faulty) {
+      const ThesisState<double> x0 = ref->state();
+      const double t0 = ref->time();
+      ref = std::make_unique<ThesisReference>(faulty, x0, t0, tol);
+      ref_faulty = true;
+    }
+    for (;;) {
+      batch.clear();
+      for (std::size_t j = i + 1; j <= n_last && batch.size() < kBatch && t_fine(j) <= s.end; ++j) {
+        batch.push_back(t_fine(j));
+      }
+      const bool last_batch = batch.size() < kBatch;
+      ref->advance_to(last_batch ? s.end : batch.back(), s.u, batch, on_sample);
+      if (last_batch) break;
+    }
+  }
+  return out;
+}
+
+void inject_sensor_fault(ThesisMeasurements& ms, const SensorConfig& cfg, const SensorFault& f) {
+  if (f.channel < 0 || f.channel > 3) throw std::invalid_argument("inject_sensor_fault: channel must be 0..3");
+  if (cfg.channels.size() != 4) throw std::invalid_argument("inject_sensor_fault: need 4 channels");
+  const auto ch = static_cast<std::size_t>(f.channel);
+  const ChannelSpec& spec = cfg.channels[ch];
+  bool have_held = false;
+  double held = 0.0;
+  for (auto& r : ms) {
+    if (r.t < f.t_start) {
+      held = r.y[ch];
+      have_held = true;
+      continue;
+    }
+    switch (f.kind) {
+      case SensorFaultKind::kBias: r.y[ch] = clip_and_quantise(r.y[ch] + f.value, spec); break;
+      case SensorFaultKind::kDrift: r.y[ch] = clip_and_quantise(r.y[ch] + f.value * (r.t - f.t_start), spec); break;
+      case SensorFaultKind::kStuck:
+        if (!have_held) {
+          held = r.y[ch];
+          have_held = true;
+        }
+        r.y[ch] = held;
+        break;
+    }
+  }
+}
+
+}  // namespace hstmon::sim
