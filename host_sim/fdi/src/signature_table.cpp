@@ -17,15 +17,22 @@ namespace {
 
 constexpr double kRpmPerRadS = 60.0 / (2.0 * 3.14159265358979323846);
 
-/// Steady-state change (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) for parameter `name` scaled by factor.
-std::array<double, 4> steady_change(const std::string& name, double factor, const double (&y0)[4]) {
+/// Steady-state change (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) for parameter `name` scaled by
+/// factor, at the load given by kp × kp_scale (1 = Table 2.2).
+std::array<double, 4> steady_change(const std::string& name, double factor, double kp_scale = 1.0) {
   ThesisParams<double> p{};
   ThesisInputs<double> u{};
+  u.kp *= kp_scale;
+  double y0[4];
+  if (!steady_outputs(p, u, y0)) throw std::runtime_error("signature table: no nominal steady state");
   scale_parameter(name, factor, p, u);
   double y[4];
   if (!steady_outputs(p, u, y)) throw std::runtime_error("signature table: no steady state for " + name);
   return {y[0] - y0[0], y[1] - y0[1], y[2] - y0[2], y[3] - y0[3]};
 }
+
+/// The loads of the cross-check besides nominal: light (kp × 1.6) and heavy (kp × 0.65).
+constexpr double kOtherLoads[] = {1.6, 0.65};
 
 const char* qual_enumerator(std::int8_t q) {
   switch (q) {
@@ -51,7 +58,7 @@ std::vector<SignatureRow> build_signature_rows(const SignatureOptions& opt) {
   }
   const OperatingPoint op = operating_point();
   const CausalGraph g = thesis_tcg(ValveModel::kNonlinear, op);
-  const double y0[4] = {op.x.Pmi, op.x.Pmo, op.x.Ppp, op.x.w_m};
+  const double y0[4] = {op.x.Pmi, op.x.Pmo, op.x.Ppp, op.x.w_m};  // nominal, for the zero tolerance
   const double sigma[4] = {opt.sigma_pressure, opt.sigma_pressure, opt.sigma_pressure, opt.sigma_speed_rpm / kRpmPerRadS};
   std::vector<SignatureRow> rows;
   for (const FaultParameter& fp : fault_parameters()) {
@@ -60,8 +67,10 @@ std::vector<SignatureRow> build_signature_rows(const SignatureOptions& opt) {
       SignatureRow row{};
       row.name = fault_name(fp.name, dir);
       row.sig.sensor = false;
-      const std::array<double, 4> ss = steady_change(fp.name, 1.0 + dir * fp.crosscheck_step, y0);
-      const std::array<double, 4> small = steady_change(fp.name, 1.0 + dir * opt.direction_step, y0);
+      const std::array<double, 4> ss = steady_change(fp.name, 1.0 + dir * fp.crosscheck_step);
+      const std::array<double, 4> small = steady_change(fp.name, 1.0 + dir * opt.direction_step);
+      std::array<std::array<double, 4>, 2> other{};
+      for (std::size_t l = 0; l < 2; ++l) other[l] = steady_change(fp.name, 1.0 + dir * fp.crosscheck_step, kOtherLoads[l]);
       const std::vector<ParamStep> steps = fault_steps(fp.name, dir, ValveModel::kNonlinear);
       const ForwardResult tcg = forward_qualitative(g, steps, opt.max_order);
       const ForwardResult weighted = forward_weighted(g, steps, opt.max_order);
@@ -74,8 +83,11 @@ std::vector<SignatureRow> build_signature_rows(const SignatureOptions& opt) {
         const QualSign mag = qual_from_value(ss[c], 1e-12 * std::fabs(y0[c]));
         const QualSign mag_small = qual_from_value(small[c], 1e-12 * std::fabs(y0[c]));
         const ChannelPrediction& pr = tcg.channel[c];
-        // Near an extremum (Ppp against Dp) the sign depends on the fault size: promise nothing.
-        ch.magnitude = mag == mag_small ? mag : kQualAny;
+        // Near an extremum (Ppp against Dp) the sign depends on the fault size or on the
+        // load (the table must hold over the operating range): promise nothing there.
+        bool same_over_loads = true;
+        for (const auto& o : other) same_over_loads &= qual_from_value(o[c], 1e-12 * std::fabs(y0[c])) == mag;
+        ch.magnitude = (mag == mag_small && same_over_loads) ? mag : kQualAny;
         // Opposite paths meeting: the operating-point gains decide (they match the nonlinear 0+ slope).
         ch.slope = pr.order < 0 ? kQualZero : (pr.slope == kQualAny ? weighted.channel[c].slope : pr.slope);
         ch.order = static_cast<std::uint8_t>(pr.order < 0 ? 0 : pr.order);
@@ -90,6 +102,8 @@ std::vector<SignatureRow> build_signature_rows(const SignatureOptions& opt) {
         }
         if (mag != mag_small) {
           disagree += std::string(disagree.empty() ? "" : ", ") + kMeasurementNodes[c] + " steady sign depends on size";
+        } else if (!same_over_loads) {
+          disagree += std::string(disagree.empty() ? "" : ", ") + kMeasurementNodes[c] + " steady sign depends on load";
         }
       }
       row.note = disagree;
@@ -124,7 +138,8 @@ std::string render_signature_header(const std::vector<SignatureRow>& rows, const
   s += "///   hstmon-fdi header --out lib/include/hstmon/generated/thesis_signatures.hpp\n";
   s += std::string("/// Options: ") + opts + ".\n";
   s += "/// Per channel (Pmi, Pmo, Ppp, wm) {magnitude, slope, order}: magnitude = sign of the nonlinear\n";
-  s += "/// steady-state change at Table 2.2 (step 10 %, kp 50 %); slope and order = the temporal causal\n";
+  s += "/// steady-state change at Table 2.2 (step 10 %, kp 50 %), kQualAny where that sign changes with\n";
+  s += "/// the fault size or between light (kp x 1.6) and heavy (kp x 0.65) load; slope and order = the temporal causal\n";
   s += "/// graph of Fig. 2.3 (docs/fdi.md). direction = unit vector of the noise-scaled steady-state\n";
   s += "/// residual of a small fault; zero where the fault does not move the steady state.\n\n";
   s += "#include \"hstmon/fault_signature.hpp\"\n\n";

@@ -5,7 +5,8 @@
 ///   hstmon-fdi header --out lib/include/hstmon/generated/thesis_signatures.hpp
 /// Options: sigma_pressure = 5000 Pa, sigma_speed = 0.5 rpm, direction step = 5 %, TCG order <= 4.
 /// Per channel (Pmi, Pmo, Ppp, wm) {magnitude, slope, order}: magnitude = sign of the nonlinear
-/// steady-state change at Table 2.2 (step 10 %, kp 50 %); slope and order = the temporal causal
+/// steady-state change at Table 2.2 (step 10 %, kp 50 %), kQualAny where that sign changes with
+/// the fault size or between light (kp x 1.6) and heavy (kp x 0.65) load; slope and order = the temporal causal
 /// graph of Fig. 2.3 (docs/fdi.md). direction = unit vector of the noise-scaled steady-state
 /// residual of a small fault; zero where the fault does not move the steady state.
 
@@ -31,8 +32,8 @@ inline constexpr FaultSignature kThesisSignatures[] = {
     {"Rf+", false, {{kQualPlus, kQualPlus, 2}, {kQualMinus, kQualMinus, 2}, {kQualMinus, kQualMinus, 2}, {kQualMinus, kQualMinus, 1}}, {0.010346f, -0.010346f, -0.886820f, -0.461884f}},
     // Dp-: p_mi TCG ambiguous (slope from gains), p_mo TCG ambiguous (slope from gains), p_pp steady sign depends on size, w_m TCG ambiguous (slope from gains)
     {"Dp-", false, {{kQualMinus, kQualMinus, 2}, {kQualPlus, kQualPlus, 2}, {kQualAny, kQualMinus, 1}, {kQualPlus, kQualPlus, 1}}, {-0.022981f, 0.022981f, 0.025835f, 0.999138f}},
-    // Dp+: p_mi TCG ambiguous (slope from gains), p_mo TCG ambiguous (slope from gains), p_pp TCG + vs steady -, w_m TCG ambiguous (slope from gains)
-    {"Dp+", false, {{kQualPlus, kQualPlus, 2}, {kQualMinus, kQualMinus, 2}, {kQualMinus, kQualPlus, 1}, {kQualMinus, kQualMinus, 1}}, {0.021728f, -0.021728f, -0.097391f, -0.994772f}},
+    // Dp+: p_mi TCG ambiguous (slope from gains), p_mo TCG ambiguous (slope from gains), p_pp TCG + vs steady -, p_pp steady sign depends on load, w_m TCG ambiguous (slope from gains)
+    {"Dp+", false, {{kQualPlus, kQualPlus, 2}, {kQualMinus, kQualMinus, 2}, {kQualAny, kQualPlus, 1}, {kQualMinus, kQualMinus, 1}}, {0.021728f, -0.021728f, -0.097391f, -0.994772f}},
     // Dm-: p_pp TCG ambiguous (slope from gains), w_m TCG ambiguous (slope from gains)
     {"Dm-", false, {{kQualPlus, kQualPlus, 1}, {kQualMinus, kQualMinus, 1}, {kQualMinus, kQualMinus, 2}, {kQualMinus, kQualMinus, 1}}, {0.033404f, -0.033404f, -0.883935f, -0.465217f}},
     // Dm+: p_pp TCG ambiguous (slope from gains), w_m TCG ambiguous (slope from gains)
