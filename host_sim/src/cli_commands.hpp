@@ -15,5 +15,6 @@ enum ExitCode : int {
 /// `hstmon replay LOG ...`
 void add_replay_command(CLI::App& app, int& exit_code);
 void add_identify_command(CLI::App& app, int& exit_code);  ///< `hstmon identify LOG... --out FILE`
+void add_gap_command(CLI::App& app, int& exit_code);  ///< `hstmon gap --fit LOG_A --check LOG_B`
 
 }  // namespace hstmon::cli

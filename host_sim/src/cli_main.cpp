@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   int exit_code = hstmon::cli::kExitOk;
   hstmon::cli::add_replay_command(app, exit_code);
   hstmon::cli::add_identify_command(app, exit_code);
+  hstmon::cli::add_gap_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

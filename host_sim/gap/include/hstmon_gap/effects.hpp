@@ -1,0 +1,108 @@
+#pragma once
+/// @file effects.hpp
+/// Library of unmodelled effects for the thesis HST model, and the host-side simulator of
+/// an *extended* model: the thesis model (equations 2.5–2.8, DCV side quasi-steady as in
+/// thesis_reduced.hpp) plus any set of switchable effects, each with a few parameters.
+/// docs/gap.md gives the equations of every effect.
+///
+/// Public types are std::vector based (lib/ defines EIGEN_NO_MALLOC for its users).
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hstmon/thesis_params.hpp"
+
+namespace hstmon::gap {
+
+/// The effects of the library.
+enum class Effect : int {
+  kCoulombFriction = 0,   ///< Coulomb (+ optional Stribeck) torque on the shaft
+  kPressureTorqueLoss,    ///< torque loss ∝ motor pressure difference (mechanical efficiency)
+  kMotorLeakage,          ///< realistic internal (cross-port) + external motor leakage
+  kPrvCracking,           ///< PRV passes flow only above a cracking pressure
+  kSupplyFlowLimit,       ///< pump B: finite pressure-compensated flow (hstmon::PumpCurve)
+  kAirEntrainment,        ///< pressure-dependent effective bulk modulus of the Ppp volume
+  kSensorLag,             ///< first-order lag on the pressure channels
+  kSensorOffset,          ///< constant offset on one channel (which one is fitted)
+};
+inline constexpr int kEffectCount = 8;
+
+/// One parameter of an effect. The fitter works on x = value / scale.
+struct ParamInfo {
+  std::string name;   ///< key in JSON ("tc")
+  std::string unit;   ///< SI unit ("N*m")
+  double scale;       ///< typical magnitude [unit]
+  double init;        ///< start value of a fit [unit]
+  bool positive;      ///< the model uses |value|
+};
+
+/// Static description of an effect.
+struct EffectInfo {
+  Effect id;
+  std::string name;          ///< "coulomb_friction"
+  std::string description;   ///< one line
+  std::vector<ParamInfo> params;
+  /// Time scale [s] below which the effect only shows in transients; 0 = visible in steady
+  /// state. With a sample period much longer than this the data cannot identify it.
+  double transient_time_scale;
+};
+
+/// Description of effect e.
+const EffectInfo& effect_info(Effect e);
+/// All effects, in library order.
+const std::vector<Effect>& all_effects();
+/// Effect with this name, if any.
+std::optional<Effect> effect_from_name(std::string_view name);
+
+/// Channels of the thesis rig (same order as hstmon::ThesisChannel).
+inline constexpr int kChannels = 4;
+/// Canonical column names of the channels ("p_mi", "p_mo", "p_pp", "w_m").
+const std::array<const char*, kChannels>& channel_names();
+
+/// One active effect with its parameter values (SI, order as effect_info(id).params).
+/// `channel` selects the channel of kSensorOffset (0 p_mi, 1 p_mo, 2 p_pp, 3 w_m).
+struct ActiveEffect {
+  Effect id = Effect::kCoulombFriction;
+  std::vector<double> values;
+  int channel = 2;
+};
+
+/// Active effect with its default (start) parameter values.
+ActiveEffect default_effect(Effect e, int channel = 2);
+
+/// The extended model: nominal thesis parameters + active effects.
+struct ExtendedModel {
+  ThesisParams<double> nominal{};
+  std::vector<ActiveEffect> effects;
+};
+
+/// Inputs per log row, held until the next row (zero-order hold). SI.
+struct InputSeries {
+  std::vector<double> t, Psupl, Ps, Pbp, kp;
+  std::size_t size() const noexcept { return t.size(); }
+};
+
+/// Settings of simulate().
+struct SimOptions {
+  double max_step = 2.5e-4;  ///< largest internal step [s] (ROS2, fixed per log interval)
+  double preroll = 1.0;      ///< time held at the first row's inputs before t0 [s]
+};
+
+/// Outputs sampled at the log rows: y[k] = (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at t[k].
+struct SimResult {
+  std::vector<std::array<double, kChannels>> y;
+  bool ok = false;
+  std::string error;  ///< set when !ok
+};
+
+/// Simulates the extended model open loop through the logged inputs, starting from the
+/// steady state of the first row's inputs (nominal steady state + preroll with the
+/// effects). Linearly implicit 2-stage Rosenbrock (ROS2, L-stable) with a finite-difference
+/// Jacobian on (Ppp, ωm); the step is fixed per log interval, so outputs are smooth in the
+/// effect parameters (what a finite-difference Levenberg–Marquardt needs).
+SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt = {});
+
+}  // namespace hstmon::gap

@@ -1,0 +1,558 @@
+/// @file gap.cpp
+/// Residual decomposition, effect fitting and ranking (see gap.hpp, docs/gap.md).
+#include "hstmon_gap/gap.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "hstmon_ident/least_squares.hpp"
+
+namespace hstmon::gap {
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr std::array<double, kChannels> kNoiseFloor = {500.0, 500.0, 500.0, 0.02};  // Pa, Pa, Pa, rad/s
+constexpr host::Signal kChannelSignal[kChannels] = {host::Signal::kPMi, host::Signal::kPMo, host::Signal::kPPp,
+                                                    host::Signal::kWm};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return kNan;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// A log prepared for the analysis: inputs, measured channels, noise, masks.
+struct Prepared {
+  InputSeries u;
+  std::vector<std::array<double, kChannels>> y;
+  std::array<bool, kChannels> present{};
+  std::array<double, kChannels> noise{};
+  std::vector<char> transient;
+  double dt = 0;
+  std::size_t n_resid = 0;  // number of weighted residuals
+};
+
+Prepared prepare(const host::LogData& log, const ThesisInputs<double>& defaults, double settle) {
+  Prepared p;
+  p.u = inputs_from_log(log, defaults);
+  const std::size_t n = log.rows();
+  p.y.assign(n, {});
+  for (int c = 0; c < kChannels; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    p.present[ci] = log.has(kChannelSignal[c]);
+    if (!p.present[ci]) continue;
+    const auto& col = log.column(kChannelSignal[c]);
+    std::vector<double> d;
+    d.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      p.y[k][ci] = col[k];
+      if (k > 0) d.push_back(std::fabs(col[k] - col[k - 1]));
+    }
+    // Robust scatter from successive differences: σ = 1.4826·median|Δy|/√2.
+    const double s = d.empty() ? 0.0 : 1.4826 * median(d) / std::sqrt(2.0);
+    p.noise[ci] = std::max(s, kNoiseFloor[ci]);
+    p.n_resid += n;
+  }
+  std::vector<double> dts;
+  for (std::size_t k = 1; k < n; ++k) dts.push_back(log.t[k] - log.t[k - 1]);
+  p.dt = dts.empty() ? 0.0 : median(dts);
+  p.transient.assign(n, 0);
+  double t_change = -1e300;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0) {
+      auto changed = [](double a, double b) { return std::fabs(a - b) > 5e-3 * std::max(std::fabs(a), std::fabs(b)); };
+      if (changed(p.u.kp[k], p.u.kp[k - 1]) || changed(p.u.Psupl[k], p.u.Psupl[k - 1]) ||
+          changed(p.u.Pbp[k] + 1e5, p.u.Pbp[k - 1] + 1e5)) {
+        t_change = log.t[k - 1];
+      }
+    }
+    p.transient[k] = (log.t[k] - t_change <= settle + 1e-12) ? 1 : 0;
+  }
+  return p;
+}
+
+// Weighted residuals (data − model)/noise, channel-major, present channels only.
+void weighted_residuals(const Prepared& p, const std::vector<std::array<double, kChannels>>& model,
+                        std::vector<double>& r) {
+  r.resize(p.n_resid);
+  std::size_t i = 0;
+  for (int c = 0; c < kChannels; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    if (!p.present[ci]) continue;
+    for (std::size_t k = 0; k < p.y.size(); ++k) r[i++] = (p.y[k][ci] - model[k][ci]) / p.noise[ci];
+  }
+}
+
+double pooled_rms_w(const Prepared& p, const std::vector<std::array<double, kChannels>>& model) {
+  std::vector<double> r;
+  weighted_residuals(p, model, r);
+  double s = 0;
+  for (double v : r) s += v * v;
+  return r.empty() ? 0.0 : std::sqrt(s / static_cast<double>(r.size()));
+}
+
+PartStats part(const Prepared& p, const std::vector<std::array<double, kChannels>>& res_w, const std::string& label,
+               const std::vector<char>& mask) {
+  PartStats s;
+  s.label = label;
+  std::size_t cnt = 0;
+  std::array<double, kChannels> acc{};
+  for (std::size_t k = 0; k < mask.size(); ++k) {
+    if (!mask[k]) continue;
+    ++cnt;
+    for (std::size_t c = 0; c < kChannels; ++c) acc[c] += res_w[k][c] * res_w[k][c];
+  }
+  s.fraction = mask.empty() ? 0.0 : static_cast<double>(cnt) / static_cast<double>(mask.size());
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    s.rms_w[c] = (cnt > 0 && p.present[c]) ? std::sqrt(acc[c] / static_cast<double>(cnt)) : kNan;
+  }
+  return s;
+}
+
+Where decompose(const Prepared& p, const std::vector<std::array<double, kChannels>>& model, double significance) {
+  Where w;
+  const std::size_t n = p.y.size();
+  w.sample_period = p.dt;
+  std::vector<std::array<double, kChannels>> rw(n);
+  double pooled = 0;
+  int used = 0;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    auto& cs = w.channels[c];
+    cs.present = p.present[c];
+    if (!cs.present) {
+      for (std::size_t k = 0; k < n; ++k) rw[k][c] = 0;
+      continue;
+    }
+    double s = 0, s2 = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = p.y[k][c] - model[k][c];
+      s += r;
+      s2 += r * r;
+      rw[k][c] = r / p.noise[c];
+    }
+    cs.mean = s / static_cast<double>(n);
+    cs.rms = std::sqrt(s2 / static_cast<double>(n));
+    cs.noise = p.noise[c];
+    cs.rms_w = cs.rms / cs.noise;
+    pooled += cs.rms_w * cs.rms_w;
+    ++used;
+    if (cs.rms_w > significance) w.significant = true;
+  }
+  w.rms_w_total = used > 0 ? std::sqrt(pooled / used) : 0.0;
+  // Load bins by kp: one per distinct setting (≤ 6), else tertiles.
+  std::vector<double> kps;
+  for (double v : p.u.kp) {
+    if (std::none_of(kps.begin(), kps.end(), [&](double q) { return std::fabs(q - v) <= 1e-3 * std::fabs(v); }))
+      kps.push_back(v);
+    if (kps.size() > 6) break;
+  }
+  std::vector<std::pair<double, double>> bins;  // [lo, hi]
+  if (kps.size() <= 6) {
+    std::sort(kps.begin(), kps.end());
+    for (double v : kps) bins.emplace_back(v * (1 - 1e-3), v * (1 + 1e-3));
+  } else {
+    std::vector<double> s = p.u.kp;
+    std::sort(s.begin(), s.end());
+    const double q1 = s[s.size() / 3], q2 = s[2 * s.size() / 3];
+    bins = {{s.front(), q1}, {std::nextafter(q1, 1e300), q2}, {std::nextafter(q2, 1e300), s.back()}};
+  }
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    std::vector<char> mask(n);
+    for (std::size_t k = 0; k < n; ++k) mask[k] = p.u.kp[k] >= bins[b].first && p.u.kp[k] <= bins[b].second;
+    char buf[96];
+    if (kps.size() <= 6) {
+      std::snprintf(buf, sizeof buf, "kp=%.4g%s", 0.5 * (bins[b].first + bins[b].second),
+                    b == 0 && bins.size() > 1 ? " (heaviest load)" : (b + 1 == bins.size() && bins.size() > 1 ? " (lightest load)" : ""));
+    } else {
+      std::snprintf(buf, sizeof buf, "kp in [%.4g, %.4g]", bins[b].first, bins[b].second);
+    }
+    w.load_bins.push_back(part(p, rw, buf, mask));
+  }
+  std::vector<char> st(n), tr(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    tr[k] = p.transient[k];
+    st[k] = !p.transient[k];
+  }
+  w.phases.push_back(part(p, rw, "steady", st));
+  w.phases.push_back(part(p, rw, "transient", tr));
+  // Bands: centred 0.5 s moving mean (slow) and the rest (fast).
+  const std::size_t half = p.dt > 0 ? static_cast<std::size_t>(std::floor(0.25 / p.dt)) : 0;
+  std::vector<std::array<double, kChannels>> slow(n), fast(n);
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    std::vector<double> cum(n + 1, 0.0);
+    for (std::size_t k = 0; k < n; ++k) cum[k + 1] = cum[k] + rw[k][c];
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t a = k >= half ? k - half : 0, b = std::min(n, k + half + 1);
+      slow[k][c] = (cum[b] - cum[a]) / static_cast<double>(b - a);
+      fast[k][c] = rw[k][c] - slow[k][c];
+    }
+  }
+  std::vector<char> all(n, 1);
+  w.bands.push_back(part(p, slow, "slow (< ~2 Hz)", all));
+  w.bands.push_back(part(p, fast, "fast", all));
+  return w;
+}
+
+// The parameters being fitted for one effect set: x ↔ model.
+struct Layout {
+  std::vector<ActiveEffect> effects;  // start values
+  std::vector<std::pair<std::size_t, std::size_t>> index;  // (effect, value) per x entry
+  bool refit = false;
+
+  std::size_t size() const { return index.size() + (refit ? 2 : 0); }
+
+  std::vector<double> x0() const {
+    std::vector<double> x;
+    for (const auto& [e, v] : index) {
+      x.push_back(effects[e].values[v] / effect_info(effects[e].id).params[v].scale);
+    }
+    if (refit) {
+      x.push_back(0.0);
+      x.push_back(0.0);
+    }
+    return x;
+  }
+
+  ExtendedModel model(const ThesisParams<double>& nominal, const std::vector<double>& x) const {
+    ExtendedModel m;
+    m.nominal = nominal;
+    m.effects = effects;
+    for (std::size_t i = 0; i < index.size(); ++i) {
+      const auto [e, v] = index[i];
+      m.effects[e].values[v] = x[i] * effect_info(effects[e].id).params[v].scale;
+    }
+    if (refit) {
+      m.nominal.kf *= std::exp(0.1 * x[index.size()]);
+      const double f = std::exp(0.3 * x[index.size() + 1]);
+      m.nominal.Rf *= f;
+      m.nominal.Rbl *= f;
+    }
+    return m;
+  }
+};
+
+Layout make_layout(const std::vector<ActiveEffect>& effects, bool refit) {
+  Layout l;
+  l.effects = effects;
+  l.refit = refit;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    for (std::size_t v = 0; v < effects[e].values.size(); ++v) l.index.emplace_back(e, v);
+  }
+  return l;
+}
+
+double bic(double ssr, std::size_t n, std::size_t k) {
+  const double nn = static_cast<double>(n);
+  return nn * std::log(std::max(ssr, 1e-300) / nn) + static_cast<double>(k) * std::log(nn);
+}
+
+std::string set_name(const std::vector<Effect>& s) {
+  std::string n;
+  for (Effect e : s) n += (n.empty() ? "" : "+") + effect_info(e).name;
+  return n;
+}
+
+class Analysis {
+ public:
+  Analysis(const Prepared& a, const Prepared& b, const ThesisParams<double>& p, const GapOptions& o, GapResult& res)
+      : A_(a), B_(b), p_(p), o_(o), res_(res) {}
+
+  std::vector<std::array<double, kChannels>> sim(const ExtendedModel& m, const Prepared& d, bool& ok) {
+    ++res_.simulations;
+    SimResult s = simulate(m, d.u, o_.sim);
+    ok = s.ok;
+    return std::move(s.y);
+  }
+
+  EffectFit fit(const std::vector<ActiveEffect>& start, double ssr_nominal_a, double rms_w_nominal_a,
+                double rms_w_nominal_b, const std::vector<std::array<double, kChannels>>& nominal_b) {
+    EffectFit f;
+    for (const auto& a : start) {
+      f.effects.push_back(a.id);
+      if (a.id == Effect::kSensorOffset) f.offset_channel = a.channel;
+    }
+    f.name = set_name(f.effects);
+    const Layout L = make_layout(start, o_.refit_nominal);
+    const std::size_t m = A_.n_resid;
+    ident::ResidualFn fn = [&](const std::vector<double>& x, std::vector<double>& r) {
+      bool ok = false;
+      const auto y = sim(L.model(p_, x), A_, ok);
+      if (!ok) return false;
+      weighted_residuals(A_, y, r);
+      return true;
+    };
+    ident::LmOptions lo;
+    lo.tolerance = 1e-7;
+    lo.max_evaluations = static_cast<int>(40 + 30 * L.size());
+    const ident::LmResult lm = ident::levenberg_marquardt(fn, m, L.x0(), lo);
+    f.converged = lm.converged && lm.finite;
+    f.evaluations = lm.evaluations;
+    f.k = static_cast<int>(L.size());
+    f.model = L.model(p_, lm.x);
+    const double ssr = lm.finite ? lm.ssr : std::numeric_limits<double>::infinity();
+    f.delta_bic_fit = bic(ssr, m, L.size()) - bic(ssr_nominal_a, m, 0);
+    f.shrink_fit = 1.0 - std::sqrt(ssr / static_cast<double>(m)) / rms_w_nominal_a;
+    // Uncertainty: linearised covariance at the optimum.
+    std::vector<double> se(L.size(), std::numeric_limits<double>::infinity());
+    if (lm.finite) {
+      std::vector<double> steps;
+      for (double v : lm.x) steps.push_back(1e-4 * std::max(std::fabs(v), 0.01));
+      ident::DenseMatrix jac;
+      if (ident::central_jacobian(fn, m, lm.x, steps, jac)) {
+        const auto st = ident::linear_stats(jac, ssr / static_cast<double>(m - L.size()));
+        se = st.se;
+      }
+    }
+    for (std::size_t i = 0; i < L.index.size(); ++i) {
+      const auto [e, v] = L.index[i];
+      const auto& info = effect_info(start[e].id);
+      const auto& pi = info.params[v];
+      ParamEstimate pe;
+      pe.effect = info.name;
+      pe.name = pi.name;
+      pe.unit = pi.unit;
+      if (start[e].id == Effect::kSensorOffset) {
+        pe.unit = start[e].channel == 3 ? "rad/s" : "Pa";
+        pe.name = std::string("offset_") + channel_names()[static_cast<std::size_t>(start[e].channel)];
+      }
+      const double val = lm.x[i] * pi.scale;
+      pe.value = pi.positive ? std::fabs(val) : val;
+      pe.se = se[i] * pi.scale;
+      pe.identified = std::isfinite(pe.se) && pe.se < std::fabs(pe.value);
+      f.params.push_back(pe);
+    }
+    if (o_.refit_nominal) {
+      const std::size_t i = L.index.size();
+      f.params.push_back({"nominal", "kf", "m^3/(s*sqrt(Pa))", f.model.nominal.kf,
+                          p_.kf * 0.1 * se[i], std::isfinite(se[i])});
+      f.params.push_back({"nominal", "Rf+Rbl", "N*m*s/rad", f.model.nominal.Rf + f.model.nominal.Rbl,
+                          (p_.Rf + p_.Rbl) * 0.3 * se[i + 1], std::isfinite(se[i + 1])});
+    }
+    // Check log.
+    bool ok = false;
+    const auto yb = sim(f.model, B_, ok);
+    f.rms_w_before_check = rms_w_nominal_b;
+    if (ok) {
+      f.rms_w_after_check = pooled_rms_w(B_, yb);
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        if (!B_.present[c]) {
+          f.rms_before_check[c] = f.rms_after_check[c] = kNan;
+          continue;
+        }
+        double s0 = 0, s1 = 0;
+        for (std::size_t k = 0; k < yb.size(); ++k) {
+          s0 += std::pow(B_.y[k][c] - nominal_b[k][c], 2);
+          s1 += std::pow(B_.y[k][c] - yb[k][c], 2);
+        }
+        f.rms_before_check[c] = std::sqrt(s0 / static_cast<double>(yb.size()));
+        f.rms_after_check[c] = std::sqrt(s1 / static_cast<double>(yb.size()));
+      }
+    } else {
+      f.rms_w_after_check = std::numeric_limits<double>::infinity();
+    }
+    f.shrink_check = rms_w_nominal_b > 0 ? 1.0 - f.rms_w_after_check / rms_w_nominal_b : 0.0;
+    if (!std::isfinite(f.shrink_check)) f.shrink_check = -1.0;
+    return f;
+  }
+
+ private:
+  const Prepared& A_;
+  const Prepared& B_;
+  ThesisParams<double> p_;
+  const GapOptions& o_;
+  GapResult& res_;
+};
+
+double score(const EffectFit& f) { return f.shrink_check - 0.005 * (f.k - 1); }
+
+}  // namespace
+
+InputSeries inputs_from_log(const host::LogData& log, const ThesisInputs<double>& d) {
+  InputSeries u;
+  const std::size_t n = log.rows();
+  u.t = log.t;
+  auto col = [&](host::Signal s, double def) {
+    return log.has(s) ? log.column(s) : std::vector<double>(n, def);
+  };
+  u.Psupl = col(host::Signal::kPSup, d.Psupl);
+  u.Ps = col(host::Signal::kPS, d.Ps);
+  u.Pbp = col(host::Signal::kPBp, d.Pbp);
+  u.kp = col(host::Signal::kKp, d.kp);
+  return u;
+}
+
+GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, const ThesisParams<double>& params,
+                  const ThesisInputs<double>& defaults, const GapOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  GapResult res;
+  for (const auto* lg : {&fit_log, &check_log}) {
+    if (!lg->ok() || lg->rows() < 10) {
+      res.error = lg->path + ": log unusable (needs at least 10 rows)";
+      return res;
+    }
+    if (!lg->has(host::Signal::kPMi) && !lg->has(host::Signal::kPMo) && !lg->has(host::Signal::kPPp) &&
+        !lg->has(host::Signal::kWm)) {
+      res.error = lg->path + ": no measured channel (p_mi, p_mo, p_pp, w_m)";
+      return res;
+    }
+  }
+  const Prepared A = prepare(fit_log, defaults, o.settle_time);
+  const Prepared B = prepare(check_log, defaults, o.settle_time);
+  Analysis an(A, B, params, o, res);
+  ExtendedModel nominal;
+  nominal.nominal = params;
+  bool ok_a = false, ok_b = false;
+  const auto ya = an.sim(nominal, A, ok_a);
+  const auto yb = an.sim(nominal, B, ok_b);
+  if (!ok_a || !ok_b) {
+    res.error = "the nominal model cannot be simulated with these inputs";
+    return res;
+  }
+  res.where_fit = decompose(A, ya, o.significance);
+  res.where_check = decompose(B, yb, o.significance);
+  res.t_check = check_log.t;
+  res.kp_check = B.u.kp;
+  res.data_check = B.y;
+  res.nominal_check = yb;
+  res.best_check = yb;
+  res.t_fit = fit_log.t;
+  res.kp_fit = A.u.kp;
+  res.data_fit = A.y;
+  res.nominal_fit = ya;
+  res.ok = true;
+
+  // Which effects can the sampling see?
+  const double dt = std::max(A.dt, B.dt);
+  std::vector<Effect> candidates;
+  for (Effect e : o.effects) {
+    const auto& info = effect_info(e);
+    if (info.transient_time_scale > 0 && dt > 20.0 * info.transient_time_scale) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "sample period %.3g s is far longer than the effect's time scale (~%.3g s): it only shows in "
+                    "transients the log does not resolve",
+                    dt, info.transient_time_scale);
+      res.not_identifiable.push_back({e, buf});
+      continue;
+    }
+    candidates.push_back(e);
+  }
+
+  if (!res.where_fit.significant && !res.where_check.significant) {
+    res.verdict = "no_significant_gap";
+    res.verdict_text = "the nominal model matches both logs within the noise; no effect is needed";
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return res;
+  }
+  std::vector<double> ra;
+  weighted_residuals(A, ya, ra);
+  double ssr0 = 0;
+  for (double v : ra) ssr0 += v * v;
+  const double rmsw_a = std::sqrt(ssr0 / static_cast<double>(ra.size()));
+  const double rmsw_b = pooled_rms_w(B, yb);
+
+  // Single effects.
+  std::vector<EffectFit> singles;
+  for (Effect e : candidates) {
+    ActiveEffect a = default_effect(e);
+    if (e == Effect::kSensorOffset) {
+      // Channel whose mean residual explains most of the fit log (closed form).
+      double best = -1;
+      for (int c = 0; c < kChannels; ++c) {
+        const auto ci = static_cast<std::size_t>(c);
+        if (!A.present[ci]) continue;
+        const double gain = std::pow(res.where_fit.channels[ci].mean / A.noise[ci], 2);
+        if (gain > best) {
+          best = gain;
+          a.channel = c;
+          a.values[0] = res.where_fit.channels[ci].mean;
+        }
+      }
+    } else if (e == Effect::kSupplyFlowLimit) {
+      double qmax = 0;
+      for (const auto& y : A.y) qmax = std::max(qmax, params.Dm * std::fabs(y[3]));
+      if (!A.present[3]) qmax = 1.5e-3;
+      a.values[0] = 1.02 * qmax;
+    }
+    singles.push_back(an.fit({a}, ssr0, rmsw_a, rmsw_b, yb));
+  }
+  std::vector<EffectFit> useful;
+  for (auto& f : singles) {
+    if (f.delta_bic_fit < -10.0 && f.shrink_check > 0.0) {
+      useful.push_back(std::move(f));
+    } else {
+      res.rejected.push_back(std::move(f));
+    }
+  }
+  std::sort(useful.begin(), useful.end(), [](const EffectFit& x, const EffectFit& y) { return score(x) > score(y); });
+
+  // Pairs among the best few.
+  std::vector<EffectFit> pairs;
+  const std::size_t np = std::min<std::size_t>(useful.size(), static_cast<std::size_t>(std::max(0, o.pair_candidates)));
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = i + 1; j < np; ++j) {
+      std::vector<ActiveEffect> st;
+      for (const auto* f : {&useful[i], &useful[j]}) {
+        for (const auto& ae : f->model.effects) st.push_back(ae);
+      }
+      EffectFit pf = an.fit(st, ssr0, rmsw_a, rmsw_b, yb);
+      const EffectFit& bi = useful.front();  // best single effect overall
+      const bool needed = pf.shrink_check >= bi.shrink_check + 0.05 && pf.delta_bic_fit < bi.delta_bic_fit - 10.0 &&
+                          std::all_of(pf.params.begin(), pf.params.end(), [](const ParamEstimate& q) {
+                            return q.effect == "nominal" || q.identified;
+                          });
+      if (needed) {
+        pairs.push_back(std::move(pf));
+      } else {
+        res.rejected.push_back(std::move(pf));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const EffectFit& x, const EffectFit& y) { return score(x) > score(y); });
+  for (auto& f : pairs) res.ranking.push_back(std::move(f));
+  for (auto& f : useful) res.ranking.push_back(std::move(f));
+
+  if (res.ranking.empty()) {
+    res.verdict = "unexplained";
+    res.verdict_text = "no effect of the library reduces the gap on the fit log";
+  } else {
+    const EffectFit& best = res.ranking.front();
+    for (Effect e : best.effects) res.explained_by.push_back(effect_info(e).name);
+    if (best.shrink_check >= 0.5) {
+      res.verdict = best.effects.size() > 1 ? "explained_by_pair" : "explained";
+    } else if (best.shrink_check >= 0.2) {
+      res.verdict = "partly_explained";
+    } else {
+      res.verdict = "unexplained";
+    }
+    // Another set (not containing the best's effects) doing as well: the data cannot tell.
+    for (std::size_t i = 1; i < res.ranking.size(); ++i) {
+      const EffectFit& f = res.ranking[i];
+      const bool disjoint = std::none_of(f.effects.begin(), f.effects.end(), [&](Effect e) {
+        return std::find(best.effects.begin(), best.effects.end(), e) != best.effects.end();
+      });
+      if (disjoint && best.shrink_check - f.shrink_check < 0.02 && f.delta_bic_fit - best.delta_bic_fit < 10.0) {
+        if (res.cannot_tell_apart.empty()) res.cannot_tell_apart.push_back(best.name);
+        res.cannot_tell_apart.push_back(f.name);
+      }
+    }
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%s: %s shrinks the check-log gap by %.0f %% (noise-weighted RMS %.3g -> %.3g)%s",
+                  res.verdict.c_str(), best.name.c_str(), 100.0 * best.shrink_check, best.rms_w_before_check,
+                  best.rms_w_after_check,
+                  res.cannot_tell_apart.empty() ? "" : "; other effects explain it as well - the data cannot tell them apart");
+    res.verdict_text = buf;
+    bool ok = false;
+    res.best_check = an.sim(best.model, B, ok);
+    if (!ok) res.best_check = yb;
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace hstmon::gap

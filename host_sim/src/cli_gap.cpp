@@ -1,0 +1,102 @@
+// `hstmon gap --fit LOG_A --check LOG_B [--params FILE] [--json] [--report DIR]`: where the
+// thesis model and the machine disagree, which unmodelled effect of the library explains
+// it (fitted on LOG_A, judged on the withheld LOG_B), and how far the gap shrinks.
+// docs/gap.md describes the method and the output.
+#include <fmt/format.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_commands.hpp"
+#include "hstmon_gap/gap.hpp"
+#include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/params_file.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+struct GapArgs {
+  std::string fit, check, params, report;
+  bool json = false;
+  bool refit = false;
+  std::vector<std::string> effects;
+  double max_step = 2.5e-4;
+};
+
+int run_gap_command(const GapArgs& a) {
+  ThesisParams<double> params;
+  ThesisInputs<double> inputs;
+  if (!a.params.empty()) {
+    const auto pf = host::read_params_file(a.params);
+    if (pf.error) {
+      fmt::print(stderr, "{}\n", pf.error->to_string());
+      return kExitBadInput;
+    }
+    if (pf.params) params = *pf.params;
+    if (pf.inputs) inputs = *pf.inputs;
+  }
+  gap::GapOptions o;
+  o.refit_nominal = a.refit;
+  o.sim.max_step = a.max_step;
+  if (!a.effects.empty()) {
+    o.effects.clear();
+    for (const auto& n : a.effects) {
+      const auto e = gap::effect_from_name(n);
+      if (!e) {
+        fmt::print(stderr, "error: unknown effect '{}'\n", n);
+        return kExitUsage;
+      }
+      o.effects.push_back(*e);
+    }
+  }
+  host::LogData logs[2];
+  const std::string* paths[2] = {&a.fit, &a.check};
+  for (int i = 0; i < 2; ++i) {
+    logs[i] = host::read_log(*paths[i]);
+    for (const auto& n : logs[i].notes) fmt::print(stderr, "{}\n", n);
+    if (logs[i].error) {
+      fmt::print(stderr, "{}\n", logs[i].error->to_string());
+      return kExitBadInput;
+    }
+  }
+  const gap::GapResult r = gap::run_gap(logs[0], logs[1], params, inputs, o);
+  if (!r.ok) {
+    fmt::print(stderr, "error: {}\n", r.error);
+    return kExitBadInput;
+  }
+  if (a.json) {
+    fmt::print("{}\n", gap::to_json(r));
+  } else {
+    fmt::print("hstmon gap --fit {} --check {}\n\n{}", a.fit, a.check, gap::to_text(r));
+  }
+  if (!a.report.empty()) {
+    const std::string err = gap::write_report(r, a.report, a.fit, a.check);
+    if (!err.empty()) {
+      fmt::print(stderr, "error: report: {}\n", err);
+      return kExitBadInput;
+    }
+    if (!a.json) fmt::print("report: {}/report.md\n", a.report);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_gap_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<GapArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "gap", "Where model and machine disagree, which unmodelled effect explains it, and how far the gap shrinks");
+  cmd->add_option("--fit", args->fit, "log to fit the effects on (CSV as for replay, with p_sup and kp)")->required();
+  cmd->add_option("--check", args->check, "withheld log to judge the fitted effects on")->required();
+  cmd->add_option("--params", args->params, "nominal parameter file (default Table 2.2)");
+  cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
+  cmd->add_option("--report", args->report, "directory for report.md and PNG plots");
+  cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
+  cmd->add_option("--effects", args->effects, "restrict the library to these effects (names)");
+  cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();
+  cmd->callback([args, &exit_code]() { exit_code = run_gap_command(*args); });
+}
+
+}  // namespace hstmon::cli
