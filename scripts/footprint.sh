@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Footprint and cost of one monitor on Cortex-M4F (float, -O2), against the budgets of
-# issue 4. Builds the firmware (scripts/firmware.sh), then:
+# issue 4. One monitor = the C API's hstmon::Monitor<float, 26, 2, 1>: observer, sensor
+# checks, residual evaluator, fault matcher. Builds the firmware (scripts/firmware.sh), then:
 #  - flash / RAM: arm-none-eabi-size of the footprint image (one monitor through the C
 #    API: create, reset, step, read) minus the same image without the monitor;
 #  - stack: measured by stack painting in that image under qemu (deepest use below
@@ -10,6 +11,8 @@
 #  - instructions per 1 ms tick at the nominal point: qemu -icount shift=0 (1 instruction
 #    = 1 ns), SysTick calibrated on a loop of known length, loop overhead subtracted;
 #  - heap: no malloc/_sbrk symbol in the image, and an image that calls malloc must not link.
+# Reported without a budget: the first step after a reset or an input change (recomputes
+# the model bound: ≈ 20 steady-state solves) and the costliest tick of a fault episode.
 #   scripts/footprint.sh [--build-dir DIR] [--no-build]
 # Exit status: 0 all budgets met; 1 a budget exceeded; 2 build or run failure.
 set -euo pipefail
@@ -41,6 +44,7 @@ su="$(find "$build" -path '*hstmon_c.dir*' -name '*.su' | head -1)"
 frame=$(awk -F'\t' '{ if ($2 > m) m = $2 } END { print m + 0 }' "$su")
 instr=$(awk -v s="$(field counts_step_loop)" -v e="$(field counts_empty_loop)" -v ci="$(field calib_instructions)" \
   -v cc="$(field calib_counts)" -v n="$(field ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')
+to_instr() { awk -v c="$1" -v ci="$(field calib_instructions)" -v cc="$(field calib_counts)" 'BEGIN { printf "%.0f", c * ci / cc }'; }
 heap_syms=$(arm-none-eabi-nm "$build/bin/hstmon_fw_footprint.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
 heap_probe="refused"
 fw heap_probe >/dev/null 2>&1 || heap_probe="LINKED"
@@ -51,7 +55,7 @@ row() {  # name value unit budget
   if [ "$2" -gt "$4" ]; then ok="OVER"; fail=1; fi
   printf "  %-44s %8s %-6s %8s   %s\n" "$1" "$2" "$3" "≤ $4" "$ok"
 }
-echo "hstmon footprint: one monitor (C API, float observer), Cortex-M4F, -O2, arm-none-eabi-gcc $(arm-none-eabi-gcc -dumpversion)"
+echo "hstmon footprint: one monitor (C API: float observer + evaluator + matcher), Cortex-M4F, -O2, arm-none-eabi-gcc $(arm-none-eabi-gcc -dumpversion)"
 printf "  %-44s %8s %-6s %8s\n" "what" "value" "unit" "budget"
 row "flash (text+data, image with − without)" "$flash" "B" "$max_flash"
 row "RAM (data+bss, image with − without)" "$ram" "B" "$max_ram"
@@ -61,6 +65,10 @@ row "stack, step (painting, incl. timing loop)" "$(field stack_step_bytes)" "B" 
 printf "  %-44s %8s %-6s\n" "  largest single frame (.su, C API object)" "$frame" "B"
 row "instructions per 1 ms tick (qemu icount)" "$instr" "instr" "$max_instr"
 printf "  %-44s %8s %-6s\n" "  RK4 substeps of the measured ticks" "$(field max_substeps)" ""
+printf "  %-44s %8s %-6s\n" "first step after reset/input change (bound)" "$(to_instr "$(field counts_bound_step)")" "instr"
+printf "  %-44s %8s %-6s\n" "  its stack (painting)" "$(field stack_bound_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "costliest tick of a fault episode (±40)" "$(to_instr "$(field counts_episode_max)")" "instr"
+printf "  %-44s %8s %-6s\n" "  stack over the episode (painting)" "$(field stack_episode_bytes)" "B"
 row "heap: malloc/_sbrk/new symbols in image" "$heap_syms" "" 0
 if [ "$heap_probe" != refused ]; then echo "  heap: an image calling malloc LINKED (must be refused)"; fail=1; fi
 echo "  heap: an image that calls malloc: link $heap_probe"

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # One firmware test case (registered by CMakeLists.txt in this folder). Environment:
 #   FW_SRC (repo root), FW_BUILD (cross build dir), FW_LOG (embedded log), FW_OUT (scratch
-#   dir), FW_HOST (host float replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional).
+#   dir), FW_HOST (host float replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional),
+#   FW_MIN_EVENTS (matcher events the log must give; 2 for the default prv_blockage.csv).
 # Exit 77 = skipped (no cross toolchain / no qemu / no CLI in this build).
 set -euo pipefail
 case_name="$1"
 mkdir -p "$FW_OUT"
 out="$FW_OUT/$case_name"
 # Float vs double tolerance (docs/firmware.md): relative 1e-5 of the statistic, plus
-# 1 Pa (0.01 mbar) on pressures and 1e-4 rad/s (0.001 rpm) on speed.
-tol=(--rel 1e-5 --abs-pa 1 --abs-rad 1e-4)
+# 1 Pa (0.01 mbar) on pressures and 1e-4 rad/s (0.001 rpm) on speed; matcher events
+# exact (kinds, row times, candidate names and order), scores within 1e-4.
+tol=(--rel 1e-5 --abs-pa 1 --abs-rad 1e-4 --score 1e-4 --min-events "${FW_MIN_EVENTS:-0}")
 
 need_cross() {
   for t in arm-none-eabi-g++ qemu-system-arm; do

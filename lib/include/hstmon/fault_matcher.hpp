@@ -27,8 +27,12 @@
 /// is kUnexplained (no single fault in the table fits). When no channel is in alarm and
 /// no sensor is flagged for clear_hold, the episode ends (event "cleared", kNominal).
 ///
-/// Storage: Capacity hypotheses in the object (7 bytes each in float) plus a 4-event queue
-/// and the latest event (≈ 200 bytes each on a 64-bit host; 1.7 KB in all for float, 64);
+/// Storage: Capacity hypotheses in the object (7 bytes each in float) plus a queue of
+/// QueueDepth events of EventCandidates candidates each (defaults 4 and 8: ≈ 200 bytes per
+/// event on a 64-bit host, 108 on a 32-bit one; ≈ 1.5 KB in all for float, 64 rows, on
+/// 64-bit). Firmware picks smaller sizes through the template parameters (the C API:
+/// 26 rows, 2 events of 1 candidate); they change storage only, never the logic — one
+/// update() raises at most 2 events, so a depth of 2 drained every tick loses none;
 /// update() is O(Capacity·channels) and sorts (insertion, O(Capacity²)) only when the
 /// candidate set or scores change; it never allocates and never throws. The table is
 /// borrowed (typically a constexpr array in flash) and must outlive the matcher.
@@ -94,26 +98,32 @@ struct MatchCandidate {
   T score = T(0);             ///< ranking score in [−1, 1] (cosine; see the file comment) [-]
 };
 
-/// One event: what happened, when, and the candidates best first.
-template <typename T>
+/// One event: what happened, when, and the candidates best first (at most MaxCandidates).
+template <typename T, int MaxCandidates = 8>
 struct MatchEvent {
-  static constexpr int kMaxCandidates = 8;  ///< candidates carried by an event
+  static_assert(MaxCandidates >= 1 && MaxCandidates <= 255, "count is stored in 8 bits");
+  static constexpr int kMaxCandidates = MaxCandidates;  ///< candidates carried by an event
   MatchEventKind kind = MatchEventKind::kDetected;
   T time = T(0);                  ///< time passed to the update that raised it [s]
   std::uint8_t count = 0;         ///< entries used in candidate[] (≤ kMaxCandidates)
   std::uint8_t consistent = 0;    ///< consistent hypotheses in total (may exceed count)
-  MatchCandidate<T> candidate[kMaxCandidates]{};  ///< best first; empty for kCleared
+  MatchCandidate<T> candidate[static_cast<std::size_t>(MaxCandidates)]{};  ///< best first; empty for kCleared
 };
 
-template <typename T, int Capacity = 64>
+/// @tparam Capacity         hypotheses (table rows) the object can hold, 1 … 127
+/// @tparam QueueDepth       events queued until popped (oldest dropped when full), 1 … 255
+/// @tparam EventCandidates  candidates an event carries (the rest: candidate()), 1 … 255
+template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8>
 class FaultMatcher {
  public:
   static_assert(Capacity >= 1 && Capacity <= 127, "hypothesis indices are stored in 8 bits");
+  static_assert(QueueDepth >= 1 && QueueDepth <= 255, "queue indices are stored in 8 bits");
   static constexpr int kChannels = kFdiChannels;
   static constexpr std::size_t kCap_ = static_cast<std::size_t>(Capacity);  ///< array extent
   using Evaluator = ResidualEvaluator<T, kFdiChannels>;
   using Candidate = MatchCandidate<T>;
-  using Event = MatchEvent<T>;
+  using Event = MatchEvent<T, EventCandidates>;
+  static constexpr int kQueueDepth = QueueDepth;  ///< events held until popped
 
   /// Configuration; validated by configure(). Times in seconds, k_* in units of σ.
   struct Config {
@@ -283,13 +293,15 @@ class FaultMatcher {
     return true;
   }
   /// The most recent event (queued or already popped); null before the first.
-  const Event* latest_event() const noexcept { return has_latest_ ? &latest_ : nullptr; }
-  /// Events lost because the queue (4 entries) was full [-].
+  /// (Its queue slot: popping copies out and leaves the slot, and only a newer event,
+  /// then the latest, overwrites it.)
+  const Event* latest_event() const noexcept { return has_latest_ ? &events_[latest_] : nullptr; }
+  /// Events lost because the queue (QueueDepth entries) was full [-].
   std::uint32_t events_dropped() const noexcept { return ev_dropped_; }
   const Config& config() const noexcept { return cfg_; }
 
  private:
-  static constexpr int kQueue = 4;
+  static constexpr int kQueue = QueueDepth;
   static bool nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
   static bool responds(const ChannelSignature& s) noexcept {
     return s.magnitude != kQualZero || s.slope != kQualZero;
@@ -477,14 +489,14 @@ class FaultMatcher {
       e.count = static_cast<std::uint8_t>(n);
       e.consistent = static_cast<std::uint8_t>(n_alive_);
     }
-    latest_ = e;
-    has_latest_ = true;
     if (ev_count_ == kQueue) {  // full: drop the oldest
       ev_head_ = static_cast<std::uint8_t>((ev_head_ + 1) % kQueue);
       --ev_count_;
       ++ev_dropped_;
     }
-    events_[(ev_head_ + ev_count_) % kQueue] = e;
+    latest_ = static_cast<std::uint8_t>((ev_head_ + ev_count_) % kQueue);
+    events_[latest_] = e;
+    has_latest_ = true;
     ++ev_count_;
   }
 
@@ -508,9 +520,8 @@ class FaultMatcher {
   T t_active_ = T(0);        ///< last time a channel was in alarm or flagged [s]
   std::uint8_t masked_ = 0, seen_ = 0, first_ = 0, rank_ = 0;
   bool order_done_ = false, window_done_ = false, first_tick_ = false, detected_pending_ = false;
-  Event events_[kQueue]{};
-  Event latest_{};
-  std::uint8_t ev_head_ = 0, ev_count_ = 0;
+  Event events_[static_cast<std::size_t>(QueueDepth)]{};
+  std::uint8_t ev_head_ = 0, ev_count_ = 0, latest_ = 0;
   bool has_latest_ = false;
   std::uint32_t ev_dropped_ = 0;
 };

@@ -24,14 +24,17 @@
 
 namespace hstmon {
 
-template <typename T, int Capacity = 64>
+/// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
+///   (table rows, queued events, candidates per event); firmware shrinks them (the C API
+///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
+template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8>
 class Monitor {
  public:
   using Model = ThesisReducedModel<T>;
   using Obs = Observer<Model>;
   using Evaluator = ResidualEvaluator<T>;
   using Sensors = SensorCheck<T>;
-  using Matcher = FaultMatcher<T, Capacity>;
+  using Matcher = FaultMatcher<T, Capacity, QueueDepth, EventCandidates>;
   using Measurement = typename Obs::Measurement;
   using Event = typename Matcher::Event;
 

@@ -1,11 +1,17 @@
-/* hstmon C API: the thesis-rig monitor (observer in float) behind plain C structs, for C
- * firmware and for PLC runtimes that call C (see hstmon_fb.st for an IEC 61131-3 wrapper).
+/* hstmon C API: the thesis-rig monitor in float — observer, sensor checks, residual
+ * evaluator and fault matcher over the generated 26-row signature table
+ * (hstmon::Monitor<float, 26, 2, 1>) — behind plain C structs, for C firmware and for PLC
+ * runtimes that call C (see hstmon_fb.st for an IEC 61131-3 wrapper).
  *
  * - No heap: the monitor lives in a caller-provided buffer of hstmon_monitor_size() bytes
  *   (at most HSTMON_MONITOR_STORAGE_BYTES), aligned to HSTMON_MONITOR_ALIGN; a static
  *   `hstmon_monitor_storage` object has both.
  * - Never blocks, never throws, never calls the C library's allocator; every function is
- *   O(1) except hstmon_reset_steady() (a bounded root search, ≤ ~300 model evaluations).
+ *   O(1) except hstmon_reset_steady() (a bounded root search, ≤ ~300 model evaluations)
+ *   and the first hstmon_step() after a reset or an input change, which recomputes the
+ *   model bound of the thresholds (≈ 20 steady-state solves; docs/firmware.md has the
+ *   cost). A tick with a sample also runs the fault matcher (O(26 rows) when it changes
+ *   its candidate set, O(1) while nominal).
  * - Not thread-safe per monitor: one task steps one monitor; separate monitors are
  *   independent.
  * - Units are SI throughout: pressures in Pa (gauge), speed in rad/s, time in s.
@@ -22,8 +28,13 @@ extern "C" {
 #endif
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
- *  (checked at compile time in hstmon_c.cpp). */
-#define HSTMON_MONITOR_STORAGE_BYTES 384u
+ *  (checked at compile time in hstmon_c.cpp): 1008 on 32-bit targets (the monitor is
+ *  1008 bytes on the Cortex-M4F), 1040 on 64-bit hosts (8-byte pointers, padding). */
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define HSTMON_MONITOR_STORAGE_BYTES 1040u
+#else
+#define HSTMON_MONITOR_STORAGE_BYTES 1008u
+#endif
 /** Alignment the monitor buffer needs [bytes]: 16 for Eigen's vectorised fixed-size types
  *  on SSE/NEON hosts (4 would do on Cortex-M4, which has no SIMD unit Eigen uses). */
 #define HSTMON_MONITOR_ALIGN 16
@@ -107,6 +118,47 @@ typedef struct hstmon_report {
   uint64_t ticks;                   /**< ticks since the last reset */
 } hstmon_report;
 
+/** Diagnosis status of the fault matcher (hstmon::MatchStatus). */
+typedef enum hstmon_match {
+  HSTMON_MATCH_NOMINAL = 0,     /**< no channel in alarm, no sensor flagged */
+  HSTMON_MATCH_DETECTED = 1,    /**< an episode is running; evidence still arriving, > 1 candidate */
+  HSTMON_MATCH_ISOLATED = 2,    /**< one candidate, or the best leads clearly after the averaging window */
+  HSTMON_MATCH_AMBIGUOUS = 3,   /**< several candidates after the window, none clearly best */
+  HSTMON_MATCH_UNEXPLAINED = 4  /**< every single-fault hypothesis of the table contradicted */
+} hstmon_match;
+
+/** Kind of a matcher event (hstmon::MatchEventKind). */
+typedef enum hstmon_event_kind {
+  HSTMON_EVENT_DETECTED = 0,     /**< an episode started */
+  HSTMON_EVENT_ISOLATED = 1,     /**< status became HSTMON_MATCH_ISOLATED */
+  HSTMON_EVENT_AMBIGUOUS = 2,    /**< status became HSTMON_MATCH_AMBIGUOUS */
+  HSTMON_EVENT_UNEXPLAINED = 3,  /**< status became HSTMON_MATCH_UNEXPLAINED */
+  HSTMON_EVENT_CLEARED = 4       /**< the episode ended (back to nominal) */
+} hstmon_event_kind;
+
+/** Fault rows of the signature table the monitor holds (its hypotheses). */
+#define HSTMON_MAX_FAULTS 26
+/** Events queued until popped; the oldest is dropped when full. One tick raises at most
+ *  2 (detected and isolated together), so popping after every tick loses none. */
+#define HSTMON_EVENT_QUEUE 2
+/** Candidates an event carries (the best); hstmon_candidates() gives all of them. */
+#define HSTMON_EVENT_CANDIDATES 1
+
+/** A ranked fault hypothesis. */
+typedef struct hstmon_candidate {
+  const char* name;  /**< "kp-", "Dp+", "sensor_p_pp", … (static storage: the table in flash) */
+  float score;       /**< ranking score in [-1, 1], higher is better (cosine of the deviation) [-] */
+} hstmon_candidate;
+
+/** A matcher event. */
+typedef struct hstmon_event {
+  float t_s;              /**< t_s of the sample whose tick raised it [s] */
+  uint8_t kind;           /**< hstmon_event_kind */
+  uint8_t consistent;     /**< consistent hypotheses in total then (0 for CLEARED) */
+  uint8_t count;          /**< entries used in candidate[] (≤ HSTMON_EVENT_CANDIDATES) */
+  hstmon_candidate candidate[HSTMON_EVENT_CANDIDATES];  /**< best first; empty for CLEARED */
+} hstmon_event;
+
 /** Opaque monitor handle; points into the caller's buffer. */
 typedef struct hstmon_monitor hstmon_monitor;
 
@@ -130,8 +182,9 @@ void hstmon_default_config(hstmon_config* cfg);
 /** Fills u with the thesis's nominal inputs (35 bar, 0 bar, 10 bar, kp = 4.41e-8). */
 void hstmon_default_inputs(hstmon_inputs* u);
 
-/** Constructs a monitor in buf (placement; no heap) and resets it at rest for the
- *  default inputs. The buffer must stay valid while the monitor is used; there is no
+/** Constructs a monitor in buf (placement; no heap) with the generated fault-signature
+ *  table and the default evaluator, sensor-check and matcher settings (those of
+ *  `hstmon replay`), and resets it at rest for the default inputs. The buffer must stay valid while the monitor is used; there is no
  *  destroy (nothing to release): drop or reuse the buffer.
  *  @param buf   ≥ hstmon_monitor_size() bytes, aligned to HSTMON_MONITOR_ALIGN
  *  @param size  size of buf [bytes]
@@ -149,8 +202,15 @@ hstmon_status hstmon_reset_steady(hstmon_monitor* m, const hstmon_inputs* u);
  *  @return HSTMON_OK or HSTMON_INVALID_INPUTS (monitor unchanged) */
 hstmon_status hstmon_reset_rest(hstmon_monitor* m, const hstmon_inputs* u);
 
-/** Advances one tick with sample s. Non-finite inputs or measurements are flagged and
- *  skipped, never propagated.
+/** Advances one tick with sample s: observer, sensor checks, residual evaluator and (if
+ *  s->valid ≠ 0) the fault matcher. Non-finite inputs or measurements are flagged and
+ *  skipped by the observer, never propagated; a non-finite measurement also flags its
+ *  sensor, and the matcher then considers only that sensor's fault row.
+ *  s->t_s is the time the matcher uses (windows, event times): non-decreasing, in
+ *  seconds. As a float it resolves t·6e-8 s — 61 µs at 1 000 s, 1 ms at 16 000 s — so
+ *  on a long run rebase it (e.g. to 0) while hstmon_match_status() is NOMINAL: the
+ *  matcher keeps no time across episodes. s = NULL: no sample, the model advances with
+ *  the last inputs (the matcher is not run).
  *  @return this tick's HSTMON_HEALTH_* bits (also latched into the report's health) */
 uint32_t hstmon_step(hstmon_monitor* m, const hstmon_sample* s);
 
@@ -159,6 +219,26 @@ void hstmon_read(const hstmon_monitor* m, hstmon_report* r);
 
 /** Latched HSTMON_HEALTH_* bits since the last reset (cheaper than hstmon_read). */
 uint32_t hstmon_health(const hstmon_monitor* m);
+
+/** The fault matcher's status after the last tick (HSTMON_MATCH_NOMINAL for NULL). */
+hstmon_match hstmon_match_status(const hstmon_monitor* m);
+
+/** The consistent fault hypotheses now, best first.
+ *  @param out  receives min(total, max) candidates (may be NULL when max is 0)
+ *  @return     the number of consistent hypotheses in total (0 when nominal; may exceed max) */
+int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max);
+
+/** Removes the oldest queued event into out.
+ *  @return 1 if an event was written, 0 if the queue is empty (or m/out is NULL) */
+int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out);
+
+/** Events lost because the queue was full since the last reset. */
+uint32_t hstmon_events_dropped(const hstmon_monitor* m);
+
+/** Lower-case name of a status or event kind ("nominal", "isolated", "cleared", …); "?"
+ *  for an unknown value. */
+const char* hstmon_match_name(hstmon_match s);
+const char* hstmon_event_name(hstmon_event_kind k);
 
 #ifdef __cplusplus
 }

@@ -1,28 +1,45 @@
-// C API over the float thesis observer (ports/c_api/include/hstmon_c.h). A thin layer:
-// copies between plain C structs and the core's types, placement-new into the caller's
-// buffer; all numerics stay in lib/.
+// C API over the float thesis monitor (ports/c_api/include/hstmon_c.h): observer, sensor
+// checks, residual evaluator and fault matcher (hstmon::Monitor). A thin layer: copies
+// between plain C structs and the core's types, placement-new into the caller's buffer;
+// all numerics stay in lib/.
 #include "hstmon_c.h"
 
 #include <cstdint>
 #include <new>
 
-#include "hstmon/observer.hpp"
+#include "hstmon/generated/thesis_signatures.hpp"
+#include "hstmon/monitor.hpp"
 #include "hstmon/status.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
 namespace {
 
-using Model = hstmon::ThesisReducedModel<float>;
-using Obs = hstmon::Observer<Model>;
+// Firmware sizes: every row of the table, 2 queued events of 1 candidate each (the full
+// ranking is read live with hstmon_candidates()), so one monitor fits in 1 KiB on the M4F.
+using Mon = hstmon::Monitor<float, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE, HSTMON_EVENT_CANDIDATES>;
+using Model = Mon::Model;
+using Obs = Mon::Obs;
 
 }  // namespace
 
-// The object behind the opaque handle. Later stages of issue 4 (residual evaluation, the
-// fault matcher) become members here and are stepped from hstmon_step(); the C structs
-// grow fields, the calling pattern stays.
+// The object behind the opaque handle.
 struct hstmon_monitor {
-  Obs obs;
+  Mon mon;
 };
+
+static_assert(hstmon::kThesisSignatureCount <= HSTMON_MAX_FAULTS, "the table must fit: raise HSTMON_MAX_FAULTS");
+static_assert(static_cast<int>(hstmon::MatchStatus::kNominal) == HSTMON_MATCH_NOMINAL &&
+                  static_cast<int>(hstmon::MatchStatus::kDetected) == HSTMON_MATCH_DETECTED &&
+                  static_cast<int>(hstmon::MatchStatus::kIsolated) == HSTMON_MATCH_ISOLATED &&
+                  static_cast<int>(hstmon::MatchStatus::kAmbiguous) == HSTMON_MATCH_AMBIGUOUS &&
+                  static_cast<int>(hstmon::MatchStatus::kUnexplained) == HSTMON_MATCH_UNEXPLAINED,
+              "hstmon_match differs from hstmon::MatchStatus");
+static_assert(static_cast<int>(hstmon::MatchEventKind::kDetected) == HSTMON_EVENT_DETECTED &&
+                  static_cast<int>(hstmon::MatchEventKind::kIsolated) == HSTMON_EVENT_ISOLATED &&
+                  static_cast<int>(hstmon::MatchEventKind::kAmbiguous) == HSTMON_EVENT_AMBIGUOUS &&
+                  static_cast<int>(hstmon::MatchEventKind::kUnexplained) == HSTMON_EVENT_UNEXPLAINED &&
+                  static_cast<int>(hstmon::MatchEventKind::kCleared) == HSTMON_EVENT_CLEARED,
+              "hstmon_event_kind differs from hstmon::MatchEventKind");
 
 static_assert(sizeof(hstmon_monitor) <= HSTMON_MONITOR_STORAGE_BYTES,
               "raise HSTMON_MONITOR_STORAGE_BYTES in hstmon_c.h");
@@ -71,6 +88,22 @@ hstmon::ThesisParams<float> to_core(const hstmon_params& p) noexcept {
   return v;
 }
 
+// Construction and configuration in separate frames (noinline): the temporaries of the
+// members' constructors and the Monitor::Config are never on the stack together, which
+// keeps hstmon_create's stack depth within the 512-byte budget on the M4F.
+__attribute__((noinline)) hstmon_monitor* construct(void* buf) noexcept {
+  return new (buf) hstmon_monitor{};  // placement: no allocation
+}
+
+__attribute__((noinline)) hstmon::Status configure(hstmon_monitor& m, const hstmon::ThesisParams<float>& p,
+                                                   const hstmon_config& c) noexcept {
+  Mon::Config mc;  // evaluator, sensor checks, matcher, uncertainty: the defaults (as `hstmon replay`)
+  mc.observer.tick = c.tick_s;
+  mc.observer.lambda_h_max = c.lambda_h_max;
+  mc.observer.max_substeps = c.max_substeps;
+  return m.mon.configure(p, mc, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
+}
+
 }  // namespace
 
 extern "C" {
@@ -81,7 +114,7 @@ void hstmon_default_config(hstmon_config* cfg) {
   if (cfg == nullptr) return;
   const hstmon::ThesisParams<float> p;  // Table 2.2
   cfg->params = hstmon_params{p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf, p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
-  const Obs::Config c;
+  const Obs::Config c;  // the observer part of Mon::Config; the rest stays at its defaults
   cfg->tick_s = c.tick;
   cfg->lambda_h_max = c.lambda_h_max;
   cfg->max_substeps = c.max_substeps;
@@ -101,13 +134,9 @@ hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hs
   }
   const hstmon::ThesisParams<float> p = to_core(cfg->params);
   if (!Model::params_valid(p)) return HSTMON_INVALID_PARAMS;
-  Obs::Config oc;
-  oc.tick = cfg->tick_s;
-  oc.lambda_h_max = cfg->lambda_h_max;
-  oc.max_substeps = cfg->max_substeps;
   // On refusal the handle stays NULL; the buffer holds nothing the caller may use.
-  auto* m = new (buf) hstmon_monitor{};  // placement: no allocation
-  const hstmon::Status s = m->obs.configure(Model(p), oc);
+  hstmon_monitor* m = construct(buf);
+  const hstmon::Status s = configure(*m, p, *cfg);
   if (s != hstmon::Status::kOk) {
     m->~hstmon_monitor();
     return to_c(s);
@@ -118,40 +147,87 @@ hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hs
 
 hstmon_status hstmon_reset_steady(hstmon_monitor* m, const hstmon_inputs* u) {
   if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
-  return to_c(m->obs.reset_steady(to_core(*u)));
+  return to_c(m->mon.reset_steady(to_core(*u)));
 }
 
 hstmon_status hstmon_reset_rest(hstmon_monitor* m, const hstmon_inputs* u) {
   if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
-  return to_c(m->obs.reset_rest(to_core(*u)));
+  return to_c(m->mon.reset_rest(to_core(*u)));
 }
 
 uint32_t hstmon_step(hstmon_monitor* m, const hstmon_sample* s) {
   if (m == nullptr) return 0;
-  if (s == nullptr) {  // no sample: advance the model with the inputs held
-    return m->obs.step(m->obs.model().inputs(), Obs::Measurement{});
+  if (s == nullptr) {  // no sample: advance the model with the inputs held (the matcher does not run)
+    (void)m->mon.step(0.0f, m->mon.observer().model().inputs(), Obs::Measurement{});
+    return m->mon.health();
   }
   Obs::Measurement meas;
   meas.y << s->y[0], s->y[1], s->y[2], s->y[3];
   meas.valid = s->valid;
-  return m->obs.step(to_core(s->u), meas);
+  (void)m->mon.step(s->t_s, to_core(s->u), meas);
+  return m->mon.health();
 }
 
 void hstmon_read(const hstmon_monitor* m, hstmon_report* r) {
   if (m == nullptr || r == nullptr) return;
-  const auto& res = m->obs.residual();
-  const auto& est = m->obs.estimate();
+  const Obs& obs = m->mon.observer();
+  const auto& res = obs.residual();
+  const auto& est = obs.estimate();
   for (int i = 0; i < HSTMON_CHANNELS; ++i) {
     r->residual[i] = res[i];
     r->estimate[i] = est[i];
   }
-  r->residual_valid = m->obs.residual_valid();
-  r->substeps = m->obs.substeps();
-  r->last_health = m->obs.last_health();
-  r->health = m->obs.health();
-  r->ticks = m->obs.ticks();
+  r->residual_valid = obs.residual_valid();
+  r->substeps = obs.substeps();
+  r->last_health = obs.last_health();
+  r->health = obs.health();
+  r->ticks = obs.ticks();
 }
 
-uint32_t hstmon_health(const hstmon_monitor* m) { return m != nullptr ? m->obs.health() : 0u; }
+uint32_t hstmon_health(const hstmon_monitor* m) { return m != nullptr ? m->mon.observer().health() : 0u; }
+
+hstmon_match hstmon_match_status(const hstmon_monitor* m) {
+  return m != nullptr ? static_cast<hstmon_match>(m->mon.matcher().status()) : HSTMON_MATCH_NOMINAL;
+}
+
+int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max) {
+  if (m == nullptr) return 0;
+  const Mon::Matcher& mt = m->mon.matcher();
+  const int total = mt.candidate_count();
+  for (int r = 0; out != nullptr && r < total && r < max; ++r) {
+    const auto c = mt.candidate(r);
+    out[r] = hstmon_candidate{c.name, c.score};
+  }
+  return total;
+}
+
+int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {
+  if (m == nullptr || out == nullptr) return 0;
+  Mon::Event e;
+  if (!m->mon.pop_event(e)) return 0;
+  out->t_s = e.time;
+  out->kind = static_cast<uint8_t>(e.kind);
+  out->consistent = e.consistent;
+  out->count = e.count;
+  for (int j = 0; j < HSTMON_EVENT_CANDIDATES; ++j) {
+    out->candidate[j] = j < e.count ? hstmon_candidate{e.candidate[j].name, e.candidate[j].score}
+                                    : hstmon_candidate{nullptr, 0.0f};
+  }
+  return 1;
+}
+
+uint32_t hstmon_events_dropped(const hstmon_monitor* m) {
+  return m != nullptr ? m->mon.matcher().events_dropped() : 0u;
+}
+
+const char* hstmon_match_name(hstmon_match s) {
+  return static_cast<unsigned>(s) <= 4u ? hstmon::to_string(static_cast<hstmon::MatchStatus>(s))
+                                                               : "?";
+}
+
+const char* hstmon_event_name(hstmon_event_kind k) {
+  return static_cast<unsigned>(k) <= 4u ? hstmon::to_string(static_cast<hstmon::MatchEventKind>(k))
+                                                               : "?";
+}
 
 }  // extern "C"

@@ -1,6 +1,8 @@
 /* C test of the hstmon C API, compiled as C11: the header must be plain C, and the
  * monitor must behave through it as through the C++ core (steady state gives zero
- * residuals, bad inputs and NaN are flagged and never propagate). Exit status 0 = pass. */
+ * residuals and a nominal diagnosis, bad inputs and NaN are flagged and never propagate,
+ * a large Ppp deviation is detected and gets a candidate set, a NaN sensor is isolated as
+ * that sensor). Exit status 0 = pass. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -41,6 +43,14 @@ static hstmon_sample sample_at_estimate(const hstmon_monitor* m, const hstmon_in
   return s;
 }
 
+/* Sensor-like scatter around base: ±50 Pa, ±0.05 rad/s alternating (a constant value
+ * would be flagged as a stuck sensor after 100 samples). */
+static const float kDither[HSTMON_CHANNELS] = {50.0f, -50.0f, 50.0f, 0.05f};
+static void dither(hstmon_sample* s, const float* base, int k) {
+  int i;
+  for (i = 0; i < HSTMON_CHANNELS; ++i) s->y[i] = base[i] + ((k & 1) ? kDither[i] : -kDither[i]);
+}
+
 static void test_create(void) {
   hstmon_config cfg;
   hstmon_monitor* m = (hstmon_monitor*)&storage; /* must be reset to NULL on failure */
@@ -64,10 +74,12 @@ static void test_steady_state_zero_residuals(void) {
   hstmon_inputs u;
   hstmon_sample s;
   hstmon_report r;
+  float base[HSTMON_CHANNELS];
   int k, i;
   hstmon_default_inputs(&u);
   CHECK(hstmon_reset_steady(m, &u) == HSTMON_OK);
   s = sample_at_estimate(m, &u);
+  memcpy(base, s.y, sizeof base);
   CHECK(s.y[HSTMON_CH_WM] > 100.0f); /* running: ≈ 1678 rpm = 176 rad/s */
   for (k = 0; k < 1000; ++k) {
     s.t_s = (float)k * 1e-3f;
@@ -79,6 +91,79 @@ static void test_steady_state_zero_residuals(void) {
     /* float steady state: a few ulps of the value, never a drift */
     CHECK(fabsf(r.residual[i]) <= 1e-5f * fabsf(s.y[i]) + 1e-3f);
   }
+  /* the exact same value 1000 times is a stuck sensor: flagged, only sensor rows left */
+  CHECK(hstmon_match_status(m) != HSTMON_MATCH_NOMINAL);
+  /* with sensor scatter the diagnosis stays nominal, residuals stay at the scatter */
+  CHECK(hstmon_reset_steady(m, &u) == HSTMON_OK);
+  for (k = 0; k < 1000; ++k) {
+    s.t_s = (float)k * 1e-3f;
+    dither(&s, base, k);
+    CHECK(hstmon_step(m, &s) == 0u);
+  }
+  hstmon_read(m, &r);
+  for (i = 0; i < HSTMON_CHANNELS; ++i) CHECK(fabsf(r.residual[i]) <= 1.01f * fabsf(kDither[i]) + 1e-5f * fabsf(base[i]));
+  /* the diagnosis: nothing happened */
+  CHECK(hstmon_match_status(m) == HSTMON_MATCH_NOMINAL);
+  CHECK(hstmon_candidates(m, NULL, 0) == 0);
+  {
+    hstmon_event e;
+    CHECK(hstmon_pop_event(m, &e) == 0);
+  }
+  CHECK(strcmp(hstmon_match_name(HSTMON_MATCH_NOMINAL), "nominal") == 0);
+  CHECK(strcmp(hstmon_event_name(HSTMON_EVENT_CLEARED), "cleared") == 0);
+}
+
+/* Ppp measured 10 bar above the model for 0.3 s: the CUSUM alarms on Ppp, the matcher
+ * detects an episode with candidates (hypotheses whose Ppp rises), then decides. */
+static void test_ppp_jump_detected(void) {
+  hstmon_monitor* m = make_monitor();
+  hstmon_inputs u;
+  hstmon_sample s;
+  hstmon_event e;
+  hstmon_candidate c[HSTMON_MAX_FAULTS];
+  float base[HSTMON_CHANNELS];
+  int k, n, events = 0, detected = 0, decided = 0, total;
+  float t_detected = -1.0f;
+  hstmon_default_inputs(&u);
+  CHECK(hstmon_reset_steady(m, &u) == HSTMON_OK);
+  s = sample_at_estimate(m, &u);
+  memcpy(base, s.y, sizeof base);
+  for (k = 0; k < 100; ++k) { /* 0.1 s nominal: the baseline */
+    s.t_s = (float)k * 1e-3f;
+    dither(&s, base, k);
+    CHECK(hstmon_step(m, &s) == 0u);
+  }
+  CHECK(hstmon_match_status(m) == HSTMON_MATCH_NOMINAL);
+  base[HSTMON_CH_PPP] += 10e5f; /* +10 bar: ≫ the model bound (≈ 5 bar) + CUSUM threshold */
+  for (k = 100; k < 400; ++k) {
+    s.t_s = (float)k * 1e-3f;
+    dither(&s, base, k);
+    CHECK(hstmon_step(m, &s) == 0u); /* a diagnosis is no health problem of the observer */
+    while (hstmon_pop_event(m, &e)) {
+      ++events;
+      if (e.kind == HSTMON_EVENT_DETECTED) {
+        ++detected;
+        t_detected = e.t_s;
+        CHECK(e.consistent >= 1 && e.count == 1 && e.candidate[0].name != NULL);
+        CHECK(e.candidate[0].score >= -1.0f && e.candidate[0].score <= 1.0f);
+      } else if (e.kind != HSTMON_EVENT_CLEARED) {
+        ++decided;
+        CHECK(e.t_s > t_detected && t_detected >= 0.1f);
+      }
+    }
+  }
+  CHECK(detected == 1 && events >= 1 && decided >= 1);
+  CHECK(hstmon_events_dropped(m) == 0u); /* popped every tick: nothing lost */
+  CHECK(hstmon_match_status(m) != HSTMON_MATCH_NOMINAL);
+  total = hstmon_candidates(m, c, HSTMON_MAX_FAULTS);
+  CHECK(total >= 1 || hstmon_match_status(m) == HSTMON_MATCH_UNEXPLAINED);
+  for (n = 0; n < total && n < HSTMON_MAX_FAULTS; ++n) {
+    CHECK(c[n].name != NULL && strlen(c[n].name) > 0);
+    if (n > 0) CHECK(c[n].score <= c[n - 1].score); /* best first */
+  }
+  CHECK(hstmon_candidates(m, c, 1) == total); /* the total, whatever max */
+  printf("test_c_api: Ppp +10 bar: detected at %.3f s, status %s, %d candidate(s)%s%s\n", (double)t_detected,
+         hstmon_match_name(hstmon_match_status(m)), total, total > 0 ? ", best " : "", total > 0 ? c[0].name : "");
 }
 
 static void test_bad_inputs_flagged(void) {
@@ -119,6 +204,17 @@ static void test_nan_measurement_flagged(void) {
   s = sample_at_estimate(m, &u);
   s.y[HSTMON_CH_PPP] = NAN;
   CHECK((hstmon_step(m, &s) & HSTMON_HEALTH_MEAS_NON_FINITE) != 0u);
+  {
+    /* the sensor check flags Ppp: only its sensor row remains, isolated at once */
+    hstmon_candidate c[2];
+    hstmon_event e;
+    CHECK(hstmon_match_status(m) == HSTMON_MATCH_ISOLATED);
+    CHECK(hstmon_candidates(m, c, 2) == 1 && strcmp(c[0].name, "sensor_p_pp") == 0);
+    CHECK(hstmon_pop_event(m, &e) == 1 && e.kind == HSTMON_EVENT_DETECTED);
+    CHECK(hstmon_pop_event(m, &e) == 1 && e.kind == HSTMON_EVENT_ISOLATED && e.count == 1 &&
+          strcmp(e.candidate[0].name, "sensor_p_pp") == 0);
+    CHECK(hstmon_pop_event(m, &e) == 0);
+  }
   hstmon_read(m, &r);
   CHECK(r.residual_valid == (0x0F & ~(1u << HSTMON_CH_PPP)));
   CHECK(r.residual[HSTMON_CH_PPP] == 0.0f);
@@ -141,11 +237,15 @@ static void test_nan_measurement_flagged(void) {
   CHECK(hstmon_step(NULL, &s) == 0u);
   CHECK(hstmon_reset_rest(NULL, &u) == HSTMON_INVALID_INPUTS);
   CHECK(hstmon_health(NULL) == 0u);
+  CHECK(hstmon_match_status(NULL) == HSTMON_MATCH_NOMINAL);
+  CHECK(hstmon_candidates(NULL, NULL, 0) == 0);
+  CHECK(hstmon_pop_event(NULL, NULL) == 0);
 }
 
 int main(void) {
   test_create();
   test_steady_state_zero_residuals();
+  test_ppp_jump_detected();
   test_bad_inputs_flagged();
   test_nan_measurement_flagged();
   if (failures != 0) {

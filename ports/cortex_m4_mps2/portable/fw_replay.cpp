@@ -6,19 +6,22 @@
 #include <cstdint>
 #include <cstring>
 
-#include "hstmon/observer.hpp"
 #include "hstmon/thesis_reduced.hpp"
+#include "hstmon_c.h"
 
 namespace hstmon::fw {
 
 namespace {
 
 using Model = ThesisReducedModel<float>;
-using Obs = Observer<Model>;
 
-// The observer is static, not on the stack: its size is the monitor's RAM, and it keeps
-// the replay's stack use small and independent of the model.
-Obs g_obs;
+// The monitor is the C API's (hstmon_c.h: observer, sensor checks, evaluator, matcher,
+// the 26-row table), in static storage: its size is the monitor's RAM, and it keeps the
+// replay's stack use small and independent of the model.
+hstmon_monitor_storage g_storage;
+
+/// Candidates printed per event: as many as the host's events carry (MatchEvent<double>).
+constexpr int kPrintCandidates = 8;
 
 /// One JSON line at a time, assembled in a fixed buffer and handed to the sink.
 class Line {
@@ -56,10 +59,15 @@ class Line {
     buf_[0] = '\0';
   }
   Line& begin() noexcept { return raw("{"); }
+  /// The next key is the first of a nested object (no comma before it).
+  Line& first_key() noexcept {
+    first_ = true;
+    return *this;
+  }
 
  private:
   Sink out_;
-  char buf_[384] = {};
+  char buf_[640] = {};  // an event line with 8 candidates is ≈ 450 characters
   std::size_t n_ = 0;
   bool first_ = true;
 };
@@ -215,10 +223,10 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
   };
   const ThesisInputs<float> defaults;
   auto inputs_at = [&](std::size_t k) noexcept {
-    ThesisInputs<float> u = defaults;
-    if (col[kSigPSup] >= 0) u.Psupl = static_cast<float>(at(k, kSigPSup));
-    if (col[kSigPS] >= 0) u.Ps = static_cast<float>(at(k, kSigPS));
-    if (col[kSigPBp] >= 0) u.Pbp = static_cast<float>(at(k, kSigPBp));
+    hstmon_inputs u{defaults.Psupl, defaults.Ps, defaults.Pbp, defaults.kp};
+    if (col[kSigPSup] >= 0) u.p_sup = static_cast<float>(at(k, kSigPSup));
+    if (col[kSigPS] >= 0) u.p_s = static_cast<float>(at(k, kSigPS));
+    if (col[kSigPBp] >= 0) u.p_bp = static_cast<float>(at(k, kSigPBp));
     if (col[kSigKp] >= 0) u.kp = static_cast<float>(at(k, kSigKp));
     return u;
   };
@@ -232,65 +240,109 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
   const double t_last = rows ? at(rows - 1, kSigT) : 0.0;
   const double tick = rows ? log_tick(log, col[kSigT]) : 1e-3;
 
-  Obs::Config cfg;
-  cfg.tick = static_cast<float>(tick);
-  (void)g_obs.configure(Model(ThesisParams<float>{}), cfg);
+  // As ports/host/src/replay.cpp: default parameters and monitor settings, the log's tick.
+  hstmon_config cfg;
+  hstmon_default_config(&cfg);
+  cfg.tick_s = static_cast<float>(tick);
+  hstmon_monitor* mon = nullptr;
+  if (hstmon_create(&g_storage, sizeof g_storage, &cfg, &mon) != HSTMON_OK) return ~0u;
+  hstmon_report rep{};
   bool started_steady = false;
   std::uint32_t health = 0, max_substeps = 0;
-  std::uint64_t unhealthy = 0, digest = 0xcbf29ce484222325ull;
+  std::uint64_t unhealthy = 0, digest = 0xcbf29ce484222325ull, n_events = 0, event_mismatch = 0;
   Stats st[4];
+  // One `hstmon replay --json` event line: keys in the host's (nlohmann's sorted) order;
+  // t is the row's time (the event's float t_s must be that row's, checked).
+  auto print_event = [&](const hstmon_event& e, double t_row) noexcept {
+    hstmon_candidate live[kPrintCandidates];
+    int shown = e.count;
+    const hstmon_candidate* cand = e.candidate;
+    bool same = e.t_s == static_cast<float>(t_row);
+    if (e.kind != HSTMON_EVENT_CLEARED) {
+      // The event stores the best HSTMON_EVENT_CANDIDATES; the rest is the live ranking,
+      // which is the event's when the queue is drained after every tick (all events of a
+      // tick are raised after its ranking). Checked on the stored part.
+      const int total = hstmon_candidates(mon, live, kPrintCandidates);
+      bool match = total == e.consistent;
+      for (int j = 0; match && j < e.count; ++j) {
+        match = live[j].name == e.candidate[j].name && std::memcmp(&live[j].score, &e.candidate[j].score, sizeof(float)) == 0;
+      }
+      if (match) {
+        shown = total < kPrintCandidates ? total : kPrintCandidates;
+        cand = live;
+      }
+      same = same && match;
+    }
+    if (!same) ++event_mismatch;
+    line.begin().key("candidates").raw("[");
+    for (int j = 0; j < shown; ++j) {
+      line.raw(j ? ",{" : "{");
+      line.first_key().str("fault", cand[j].name).num("score", static_cast<double>(cand[j].score)).raw("}");
+    }
+    line.raw("]").uint("consistent", e.consistent).str("event", hstmon_event_name(static_cast<hstmon_event_kind>(e.kind)))
+        .num("t", t_row).str("type", "event").end();
+    ++n_events;
+  };
+
   if (rows > 0) {
-    const ThesisInputs<float> u0 = inputs_at(0);
+    const hstmon_inputs u0 = inputs_at(0);
     bool steady = false;
     if (col[kSigWm] >= 0) {  // init auto: steady when the first speed shows the machine running
       Model m{ThesisParams<float>{}};
-      m.set_inputs(u0);
+      m.set_inputs(ThesisInputs<float>{u0.p_sup, u0.p_s, u0.p_bp, u0.kp});
       steady = std::fabs(at(0, kSigWm)) > 0.05 * static_cast<double>(m.speed_bound());
     }
-    if (steady && g_obs.reset_steady(u0) == Status::kOk) {
+    if (steady && hstmon_reset_steady(mon, &u0) == HSTMON_OK) {
       started_steady = true;
     } else {
-      (void)g_obs.reset_rest(u0);
+      (void)hstmon_reset_rest(mon, &u0);
     }
 
-    ThesisInputs<float> u_prev = u0;
-    Obs::Measurement m;
-    const Obs::Measurement none;
+    hstmon_sample s{};
+    hstmon_sample none{};  // inputs held, nothing measured (valid = 0): the matcher does not run
+    none.u = u0;
+    hstmon_event ev;
+    hstmon_read(mon, &rep);
     for (std::size_t k = 0; k < rows; ++k) {
       const double t_row = at(k, kSigT) - t_first;
-      while (t_row - static_cast<double>(g_obs.ticks()) * tick > 0.5 * tick) {
-        health |= g_obs.step(u_prev, none);
-        if (g_obs.substeps() > max_substeps) max_substeps = g_obs.substeps();
+      while (t_row - static_cast<double>(rep.ticks) * tick > 0.5 * tick) {
+        none.t_s = static_cast<float>(t_first + static_cast<double>(rep.ticks) * tick);
+        health |= hstmon_step(mon, &none);
+        hstmon_read(mon, &rep);
+        if (rep.substeps > max_substeps) max_substeps = rep.substeps;
       }
-      const ThesisInputs<float> u = inputs_at(k);
-      for (int c = 0; c < 4; ++c) m.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(k, kSigPMi + c)) : 0.0f;
-      m.valid = mask;
-      const std::uint32_t flags = g_obs.step(u, m);
+      s.t_s = static_cast<float>(at(k, kSigT));
+      s.u = inputs_at(k);
+      for (int c = 0; c < 4; ++c) s.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(k, kSigPMi + c)) : 0.0f;
+      s.valid = mask;
+      const std::uint32_t flags = hstmon_step(mon, &s);
+      while (hstmon_pop_event(mon, &ev)) print_event(ev, at(k, kSigT));
       health |= flags;
       if (flags) ++unhealthy;
-      if (g_obs.substeps() > max_substeps) max_substeps = g_obs.substeps();
-      u_prev = u;
+      hstmon_read(mon, &rep);
+      if (rep.substeps > max_substeps) max_substeps = rep.substeps;
+      none.u = s.u;
 
-      const auto& r = g_obs.residual();
-      const std::uint8_t rv = g_obs.residual_valid();
-      fnv1a(digest, r.data(), sizeof(float) * 4);
+      const float* r = rep.residual;
+      const std::uint8_t rv = rep.residual_valid;
+      fnv1a(digest, r, sizeof(float) * 4);
       fnv1a(digest, &flags, sizeof flags);
       for (int c = 0; c < 4; ++c) {
         if (!(rv & (1u << c))) continue;
-        Stats& s = st[c];
+        Stats& sc = st[c];
         const double rc = static_cast<double>(r[c]);
-        if (s.n > 0) {
-          s.sumsq_diff += (rc - s.last) * (rc - s.last);
-          ++s.n_diff;
+        if (sc.n > 0) {
+          sc.sumsq_diff += (rc - sc.last) * (rc - sc.last);
+          ++sc.n_diff;
         }
-        s.last = rc;
-        ++s.n;
-        s.sum += rc;
-        s.sumsq += rc * rc;
-        if (std::fabs(rc) > s.max_abs) {
-          s.max_abs = std::fabs(rc);
-          s.max_signed = rc;
-          s.t_max = at(k, kSigT);
+        sc.last = rc;
+        ++sc.n;
+        sc.sum += rc;
+        sc.sumsq += rc * rc;
+        if (std::fabs(rc) > sc.max_abs) {
+          sc.max_abs = std::fabs(rc);
+          sc.max_signed = rc;
+          sc.t_max = at(k, kSigT);
         }
       }
       if (opt.trace) {
@@ -311,7 +363,7 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
 
   // Header line: the fields of `hstmon replay --json`.
   line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
-      .num("t_last", t_last).num("tick_s", tick).uint("ticks", g_obs.ticks()).str("start", started_steady ? "steady" : "rest");
+      .num("t_last", t_last).num("tick_s", tick).uint("ticks", rep.ticks).str("start", started_steady ? "steady" : "rest");
   line.key("health").raw("[");
   static const char* const kHealthNames[] = {"input_non_finite", "measurement_non_finite", "substeps_clipped",
                                              "state_non_finite", "state_out_of_bounds", "algebraic_diverged"};
@@ -344,10 +396,15 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
     line.end();
   }
 
+  // The diagnosis line of `hstmon replay --json` (keys sorted, as there).
+  line.begin().uint("events", n_events).str("status", hstmon_match_name(hstmon_match_status(mon))).str("type", "diagnosis").end();
+
   char hex[20];
   for (int i = 0; i < 16; ++i) hex[i] = "0123456789abcdef"[(digest >> (60 - 4 * i)) & 0xfu];
   hex[16] = '\0';
-  line.begin().str("type", "firmware").str("scalar", "float").str("residual_digest", hex).end();
+  line.begin().str("type", "firmware").str("scalar", "float").str("residual_digest", hex)
+      .uint("events_dropped", hstmon_events_dropped(mon))
+      .uint("event_mismatches", event_mismatch).end();
   return health;
 }
 

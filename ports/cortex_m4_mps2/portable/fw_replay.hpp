@@ -5,10 +5,12 @@
 /// fw_replay.cpp, so the two can be compared bit for bit; a third comparison, with the
 /// double host CLI (`hstmon replay --json`), is within a float tolerance.
 ///
-/// It mirrors ports/host/src/replay.cpp: one observer tick per log row, extra ticks with
-/// inputs held where the log is slower than the tick, init auto (steady if running), and
-/// the same per-channel statistics — in double, so only the observer runs in float — and
-/// prints the same JSON lines as `hstmon replay --json`.
+/// It mirrors ports/host/src/replay.cpp: one monitor tick per log row (the C API's
+/// monitor: observer, sensor checks, evaluator, fault matcher), extra ticks with inputs
+/// held and no measurement where the log is slower than the tick, init auto (steady if
+/// running), the same per-channel statistics — in double, so only the monitor runs in
+/// float — and prints the same JSON lines as `hstmon replay --json`, matcher events
+/// (streamed as they happen) and the final diagnosis included.
 
 #include <cstddef>
 #include <cstdint>
@@ -50,11 +52,13 @@ struct ReplayOptions {
   bool trace = false;
 };
 
-/// Replays `log` through the float thesis observer (Table 2.2, nominal inputs where a
-/// column is missing) and writes the JSON lines of `hstmon replay --json`, then a
-/// `{"type":"firmware",…}` line with an FNV-1a digest of every residual's bits.
-/// Never allocates; stack use is a few hundred bytes plus the observer (static).
-/// @return the observer's HealthFlag bits OR-ed over the replay
+/// Replays `log` through the C API's float monitor (Table 2.2, nominal inputs where a
+/// column is missing, the generated fault table) and writes the JSON lines of `hstmon
+/// replay --json` (event lines as they happen), then a `{"type":"firmware",…}` line with
+/// an FNV-1a digest of every residual's bits, events dropped and event mismatches.
+/// Never allocates; stack use is about a kilobyte (an output line, the bound) plus the
+/// monitor (static).
+/// @return the observer's HealthFlag bits OR-ed over the replay (~0 if the monitor could not be created)
 std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt = {}) noexcept;
 
 /// Text helpers shared with the port's mains (bounded; never allocate).

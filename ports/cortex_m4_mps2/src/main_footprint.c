@@ -1,12 +1,19 @@
 /* Footprint image: one monitor through the C API, as C firmware would hold it. Built
  * twice — with HSTMON_FW_WITH_MONITOR=1 and =0 — so that the difference of the two
  * images' sizes is what one monitor costs in flash and RAM (scripts/footprint.sh).
- * With the monitor it also measures, under `qemu -icount shift=0`:
+ * With the monitor (observer + sensor checks + evaluator + fault matcher, the C API's
+ * hstmon::Monitor<float, 26, 2, 1>) it also measures, under `qemu -icount shift=0`:
  *  - instructions per hstmon_step() at the nominal operating point, 1 ms tick
  *    (SysTick calibrated against a loop of known length; loop overhead measured with a
  *    call to an empty function and subtracted);
+ *  - instructions of the first step after the reset, which also recomputes the model
+ *    bound of the thresholds (≈ 20 steady-state solves; again on every input change);
+ *  - the most instructions of one step during a fault episode (Ppp +10 bar for 300
+ *    ticks: detection, alarm onsets, the end of the averaging window — the matcher's
+ *    elimination and ranking over the 26 rows);
  *  - the stack depth below main's frame (stack painting): over create + reset_steady
- *    + read, and over the timed steps alone.
+ *    + read, over the bound recomputation, over the timed nominal steps, and over the
+ *    episode.
  * Prints one JSON line: {"type":"footprint",…}; exit status 0. */
 #include <stdint.h>
 
@@ -20,7 +27,8 @@
 
 enum { kTicks = 2000, kCalibLoop = 100000 };
 
-static char line[512];
+static char line[768];
+static volatile uint32_t sink; /* keeps results observable (in both images: not the monitor's RAM) */
 static unsigned pos;
 
 static void put(const char* s) {
@@ -46,7 +54,6 @@ static void put_uint(const char* key, uint32_t v) {
 
 #if HSTMON_FW_WITH_MONITOR
 static hstmon_monitor_storage storage; /* the monitor's RAM */
-static volatile uint32_t sink;         /* keeps results observable */
 
 extern uint32_t __stack_limit__[];
 #define STACK_PAINT 0xA5A5A5A5u
@@ -101,6 +108,7 @@ int main(void) {
   put_uint("with_monitor", HSTMON_FW_WITH_MONITOR);
   put_uint("calib_instructions", calib_instr);
   put_uint("calib_counts", calib_counts);
+  sink = calib_counts;
 #if HSTMON_FW_WITH_MONITOR
   uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
@@ -121,17 +129,47 @@ int main(void) {
   for (int i = 0; i < HSTMON_CHANNELS; ++i) s.y[i] = r.estimate[i];
   s.valid = 0x0F;
   const uint32_t stack_bytes = (uint32_t)(sp_main - stack_low_water());
-  paint_stack(); /* again: the step path alone */
+  paint_stack(); /* the first step: a tick plus the model bound for the new inputs */
+  const uint32_t b0 = cycles_now();
+  sink = hstmon_step(m, &s);
+  const uint32_t counts_bound = cycles_elapsed(b0, cycles_now());
+  const uint32_t stack_bound_bytes = (uint32_t)(sp_main - stack_low_water());
+  paint_stack(); /* again: the nominal step path alone */
   const uint32_t counts_step = time_ticks(hstmon_step, m, &s);
   const uint32_t stack_step_bytes = (uint32_t)(sp_main - stack_low_water());
   const uint32_t counts_empty = time_ticks(empty_step, m, &s);
   hstmon_read(m, &r);
+  const uint32_t health_nominal = r.health;
+  const uint32_t status_nominal = (uint32_t)hstmon_match_status(m);
+  /* A fault episode: Ppp 10 bar above the model; the costliest single tick. */
+  paint_stack();
+  uint32_t counts_episode_max = 0u, events = 0u;
+  const float ppp = s.y[HSTMON_CH_PPP];
+  for (int k = 0; k < 300; ++k) {
+    const float d = (k & 1) ? 1.0f : -1.0f;
+    s.y[HSTMON_CH_PPP] = ppp + 10e5f + 50.0f * d;
+    const uint32_t a = cycles_now();
+    sink = hstmon_step(m, &s);
+    const uint32_t c = cycles_elapsed(a, cycles_now());
+    if (c > counts_episode_max) counts_episode_max = c;
+    hstmon_event e;
+    while (hstmon_pop_event(m, &e)) ++events;
+  }
+  const uint32_t stack_episode_bytes = (uint32_t)(sp_main - stack_low_water());
+  const uint32_t status_episode = (uint32_t)hstmon_match_status(m);
   put_uint("monitor_bytes", (uint32_t)hstmon_monitor_size());
   put_uint("storage_bytes", (uint32_t)sizeof storage);
   put_uint("ticks", kTicks);
   put_uint("counts_step_loop", counts_step);
   put_uint("counts_empty_loop", counts_empty);
-  put_uint("health", r.health);
+  put_uint("health", health_nominal);
+  put_uint("status_nominal", status_nominal);
+  put_uint("counts_bound_step", counts_bound);
+  put_uint("stack_bound_bytes", stack_bound_bytes);
+  put_uint("counts_episode_max", counts_episode_max);
+  put_uint("stack_episode_bytes", stack_episode_bytes);
+  put_uint("episode_events", events);
+  put_uint("status_episode", status_episode);
   put_uint("max_substeps", r.substeps);
   put_uint("stack_bytes", stack_bytes);
   put_uint("stack_step_bytes", stack_step_bytes);

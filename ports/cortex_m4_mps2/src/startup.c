@@ -65,3 +65,11 @@ __attribute__((section(".isr_vector"), used)) static const vector_entry vectors[
     {.handler = Default_Handler},       /* PendSV */
     {.handler = Default_Handler},       /* SysTick (not enabled as an interrupt) */
 };
+
+/* errno for the C library's math wrappers: the matcher's acosf (newlib's wrapper sets
+ * errno on a domain error, which cannot happen — the argument is clamped to [-1, 1]).
+ * Defining __errno here keeps newlib's errno.o out, and with it its 96-byte reentrancy
+ * structure (impure_data) and _impure_ptr: one int of RAM instead of ≈ 100 bytes. */
+int* __errno(void);
+static int fw_errno;
+int* __errno(void) { return &fw_errno; }
