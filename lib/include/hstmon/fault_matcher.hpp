@@ -393,9 +393,12 @@ class FaultMatcher {
       }
     }
     if (order_done_) {
+      // Smallest predicted order among the channels that have alarmed in this episode: a
+      // fast channel whose threshold the fault never reaches (ωm's bound is ~20× Pmi's)
+      // says nothing about which channel should have moved first.
       int omin = 255;
       for (int i = 0; i < kChannels; ++i) {
-        if (responds(f.channel[i]) && f.channel[i].order < omin) omin = f.channel[i].order;
+        if (responds(f.channel[i]) && ((seen_ >> i) & 1u) != 0 && f.channel[i].order < omin) omin = f.channel[i].order;
       }
       if (omin != 255) {
         bool found = false;

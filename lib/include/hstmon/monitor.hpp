@@ -11,7 +11,9 @@
 /// steady-state solves, so a few hundred microseconds on a Cortex-M4, once per change.
 /// step() never allocates or throws.
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/fault_signature.hpp"
@@ -45,6 +47,12 @@ class Monitor {
     typename Sensors::Config sensors{};       ///< physical ranges, stuck detection
     typename Matcher::Config matcher{};       ///< windows, tie margin, clear hold
     ThesisUncertainty<T> uncertainty{};       ///< relative parameter uncertainty behind the model bound
+    /// After an input change the residuals are not accumulated for this long [s], ≥ 0.
+    /// The bounds cover steady-state parameter error only; the transducer lags (10 ms on
+    /// speed) and the ±2 % parameter error in the transient are not in the model, and a
+    /// load step would otherwise read as a fault. 50 ms = 5 speed-sensor lags; a fault
+    /// coinciding with a setting change is detected that much later.
+    T input_settle_time = T(0.05);
   };
 
   Monitor() noexcept = default;
@@ -55,13 +63,15 @@ class Monitor {
   Status configure(const ThesisParams<T>& params, const Config& c, const FaultSignature* table,
                    int count) noexcept {
     if (!Model::params_valid(params)) return Status::kInvalidParams;
+    if (!(std::isfinite(c.input_settle_time) && c.input_settle_time >= T(0))) return Status::kInvalidConfig;
     Status s = obs_.configure(Model(params), c.observer);
     if (s == Status::kOk) s = ev_.configure(c.evaluator);
     if (s == Status::kOk) s = sensors_.configure(c.sensors);
     if (s == Status::kOk) s = matcher_.configure(table, count, c.matcher);
     if (s != Status::kOk) return s;
     uncertainty_ = c.uncertainty;
-    bound_inputs_valid_ = false;
+    settle_time_ = c.input_settle_time;
+    bound_valid_ = false;
     return Status::kOk;
   }
 
@@ -85,10 +95,18 @@ class Monitor {
   /// @param m  raw measurement at t (m.valid = 0: no sample this tick, the model just advances)
   /// @return   the matcher's status after the tick
   MatchStatus step(T t, const ThesisInputs<T>& u, const Measurement& m) noexcept {
+    // The observer holds the last good inputs when u is invalid, so a change is what it
+    // actually took on, not what was offered.
+    const ThesisInputs<T> before = obs_.model().inputs();
     health_ = obs_.step(u, m);
-    if (!bound_inputs_valid_ || !same_inputs(u, bound_inputs_)) update_bound();
+    if (!bound_valid_ || !same_inputs(obs_.model().inputs(), before)) {
+      // The first inputs after a reset are no change: the observer starts consistent.
+      if (bound_valid_) settle_until_ = t + settle_time_;
+      update_bound();
+    }
     const std::uint8_t sensor_mask = sensors_.update(m.y.data(), m.valid);
-    ev_.update(obs_.residual().data(), obs_.residual_valid());
+    const bool settling = t < settle_until_;
+    ev_.update(obs_.residual().data(), settling ? std::uint8_t{0} : obs_.residual_valid());
     if (m.valid == 0) return matcher_.status();
     return matcher_.update(t, ev_, sensor_mask);
   }
@@ -114,7 +132,8 @@ class Monitor {
     ev_.reset();
     sensors_.reset();
     matcher_.reset();
-    bound_inputs_valid_ = false;
+    bound_valid_ = false;
+    settle_until_ = -std::numeric_limits<T>::infinity();
   }
 
   // Keeps the last good bound when the new operating point has no steady state.
@@ -124,8 +143,7 @@ class Monitor {
       for (int i = 0; i < kFdiChannels; ++i) bound_[i] = m[i];
       (void)ev_.set_model_bound(bound_);
     }
-    bound_inputs_ = obs_.model().inputs();
-    bound_inputs_valid_ = true;
+    bound_valid_ = true;
   }
 
   Obs obs_{};
@@ -133,10 +151,11 @@ class Monitor {
   Sensors sensors_{};
   Matcher matcher_{};
   ThesisUncertainty<T> uncertainty_{};
-  ThesisInputs<T> bound_inputs_{};
   T bound_[kFdiChannels] = {};
   std::uint32_t health_ = 0;
-  bool bound_inputs_valid_ = false;
+  T settle_time_ = T(0.05);
+  T settle_until_ = -std::numeric_limits<T>::infinity();  ///< residuals ignored before this time [s]
+  bool bound_valid_ = false;
 };
 
 }  // namespace hstmon
