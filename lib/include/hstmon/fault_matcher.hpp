@@ -163,6 +163,7 @@ class FaultMatcher {
     table_ = table;
     count_ = count;
     cfg_ = c;
+    set_margin(c.tie_margin);
     for (int k = 0; k < count; ++k) {
       const FaultSignature& f = table[k];
       int ch = -1;
@@ -334,10 +335,13 @@ class FaultMatcher {
   }
 
   void track_baseline(const Evaluator& ev) noexcept {
+    const unsigned valid = ev.valid();
+    const std::uint32_t n_max = cfg_.baseline_samples;
     for (int i = 0; i < kChannels; ++i) {
-      if (((ev.valid() >> i) & 1u) == 0) continue;
-      if (base_n_[i] < cfg_.baseline_samples) ++base_n_[i];
-      base_[i] += (ev.residual(i) - base_[i]) / static_cast<T>(base_n_[i]);
+      if (((valid >> i) & 1u) == 0) continue;
+      std::uint32_t n = base_n_[i];
+      if (n < n_max) base_n_[i] = ++n;
+      base_[i] += (ev.residual(i) - base_[i]) / static_cast<T>(n);
     }
   }
 
@@ -448,7 +452,36 @@ class FaultMatcher {
     }
   }
 
-  static T angle(T c) noexcept { return std::acos(c > T(1) ? T(1) : (c < T(-1) ? T(-1) : c)); }
+  static T clamp_unit(T c) noexcept { return c > T(1) ? T(1) : (c < T(-1) ? T(-1) : c); }
+
+  /// cos and sin of the tie margin m (Taylor series; m in [0, π]: every term is kept
+  /// until it is below rounding), so isolation needs no acos on the tick path.
+  void set_margin(T m) noexcept {
+    constexpr T kPi = T(3.14159265358979323846);
+    const bool never = !(m <= kPi);  // a lead beyond π is impossible
+    const T x = never ? T(0) : m;
+    T c = T(1), s = x, tc = T(1), ts = x;
+    for (int k = 1; k <= 16; ++k) {  // x^(2k)/(2k)!, x^(2k+1)/(2k+1)!: π^34/34! < 1e-19
+      tc = -tc * x * x / static_cast<T>((2 * k - 1) * (2 * k));
+      ts = -ts * x * x / static_cast<T>((2 * k) * (2 * k + 1));
+      c += tc;
+      s += ts;
+    }
+    cos_margin_ = never ? T(-2) : c;  // −2: s0 < −cos m always, so never a lead
+    sin_margin_ = s;
+  }
+
+  /// acos(s1) − acos(s0) ≥ tie_margin for the best two scores s0 ≥ s1 (clamped to
+  /// [−1, 1]), without acos: with a0 = acos(s0) and m the margin, the lead holds iff
+  /// a0 + m ≤ π (s0 ≥ −cos m) and s1 ≤ cos(a0 + m) = s0·cos m − sin a0·sin m, cos being
+  /// decreasing on [0, π]. sin a0 = √((1 − s0)(1 + s0)) (no cancellation near s0 = ±1).
+  bool leads_by_margin(T s0, T s1) const noexcept {
+    s0 = clamp_unit(s0);
+    s1 = clamp_unit(s1);
+    if (s0 < -cos_margin_) return false;
+    const T sin_a0 = std::sqrt((T(1) - s0) * (T(1) + s0));
+    return s1 <= s0 * cos_margin_ - sin_a0 * sin_margin_;
+  }
 
   void decide(T t) noexcept {
     if (detected_pending_) {
@@ -463,8 +496,7 @@ class FaultMatcher {
     } else if (!window_done_ && masked_ == 0) {
       s = MatchStatus::kDetected;
     } else {
-      const T gap = angle(score_[order_[1]]) - angle(score_[order_[0]]);
-      s = gap >= cfg_.tie_margin ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
+      s = leads_by_margin(score_[order_[0]], score_[order_[1]]) ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
     }
     if (s != status_) {
       status_ = s;
@@ -482,7 +514,8 @@ class FaultMatcher {
     return c;
   }
 
-  void push_event(MatchEventKind kind, T t, bool with_candidates) noexcept {
+  // Out of line: called from five places, at most twice per tick, only on a change.
+  HSTMON_NOINLINE void push_event(MatchEventKind kind, T t, bool with_candidates) noexcept {
     Event e;
     e.kind = kind;
     e.time = t;
@@ -506,6 +539,7 @@ class FaultMatcher {
   const FaultSignature* table_ = nullptr;
   int count_ = 0;
   Config cfg_{};
+  T cos_margin_ = T(1), sin_margin_ = T(0);  ///< of cfg_.tie_margin (set_margin; −2: > π)
   MatchStatus status_ = MatchStatus::kNominal;
   bool alive_[kCap_] = {};
   T score_[kCap_] = {};

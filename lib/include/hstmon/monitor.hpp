@@ -24,6 +24,12 @@
 #include "hstmon/status.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
+#if defined(__GNUC__)
+#define HSTMON_RESET_PATH __attribute__((noinline, cold))
+#else
+#define HSTMON_RESET_PATH
+#endif
+
 namespace hstmon {
 
 /// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
@@ -72,6 +78,27 @@ class Monitor {
     uncertainty_ = c.uncertainty;
     settle_time_ = c.input_settle_time;
     bound_valid_ = false;
+    return Status::kOk;
+  }
+
+  /// New parameters, observer configuration and fault table; the evaluator, sensor checks
+  /// and matcher keep their other settings, and so do the uncertainty and the settle time
+  /// (on a default-constructed monitor: the defaults, i.e. configure() with Config{} but
+  /// c.observer = observer). Resets like configure(), and like reset_rest() forgets the
+  /// settling of the last input change. What the C API uses: no Config is
+  /// built, so a whole Config and the model are never on the stack together (the create
+  /// stack budget on the M4F), and no default configuration is materialised again (flash).
+  /// @return kOk, kInvalidParams, or kInvalidConfig
+  Status reconfigure(const ThesisParams<T>& params, const typename Obs::Config& observer, const FaultSignature* table,
+                     int count) noexcept {
+    if (!Model::params_valid(params)) return Status::kInvalidParams;
+    Status s = obs_.configure(Model(params), observer);
+    if (s == Status::kOk) {
+      const typename Matcher::Config mc = matcher_.config();  // a copy: configure() assigns it
+      s = matcher_.configure(table, count, mc);
+    }
+    if (s != Status::kOk) return s;
+    reset_rest_of_chain();
     return Status::kOk;
   }
 
@@ -128,7 +155,9 @@ class Monitor {
     return a.Psupl == b.Psupl && a.Ps == b.Ps && a.Pbp == b.Pbp && a.kp == b.kp;
   }
 
-  void reset_rest_of_chain() noexcept {
+  // Out of line and cold (size-optimised): one copy for reconfigure, reset_steady and
+  // reset_rest (flash); it runs once per reset.
+  HSTMON_RESET_PATH void reset_rest_of_chain() noexcept {
     ev_.reset();
     sensors_.reset();
     matcher_.reset();

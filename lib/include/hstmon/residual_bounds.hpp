@@ -22,6 +22,14 @@
 #include "hstmon/status.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
+/// The bound runs once per input change, not per tick: optimised for size and kept out
+/// of the tick path (GCC, Clang; the steady-state solves it calls keep their own options).
+#if defined(__GNUC__)
+#define HSTMON_BOUND_PATH __attribute__((noinline, cold))
+#else
+#define HSTMON_BOUND_PATH
+#endif
+
 namespace hstmon {
 
 /// Relative uncertainty ε of each thesis parameter and logged input [-] (fraction of the
@@ -43,7 +51,7 @@ struct ThesisUncertainty {
 /// Steady-state outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) for parameters p and inputs u.
 /// @return false if p is invalid or u admits no steady state (y untouched)
 template <typename T>
-bool steady_outputs(const ThesisParams<T>& p, const ThesisInputs<T>& u,
+HSTMON_BOUND_PATH bool steady_outputs(const ThesisParams<T>& p, const ThesisInputs<T>& u,
                     typename ThesisReducedModel<T>::Output& y) noexcept {
   using Model = ThesisReducedModel<T>;
   if (!Model::params_valid(p)) return false;
@@ -63,7 +71,7 @@ bool steady_outputs(const ThesisParams<T>& p, const ThesisInputs<T>& u,
 /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState (the nominal or a
 ///               perturbed model has no steady state)
 template <typename T>
-Status thesis_model_bound(const ThesisReducedModel<T>& model, const ThesisUncertainty<T>& eps,
+HSTMON_BOUND_PATH Status thesis_model_bound(const ThesisReducedModel<T>& model, const ThesisUncertainty<T>& eps,
                           T (&m)[kFdiChannels]) noexcept {
   using Model = ThesisReducedModel<T>;
   using P = ThesisParams<T>;

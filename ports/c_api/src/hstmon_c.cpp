@@ -59,6 +59,15 @@ static_assert(HSTMON_CH_PMI == static_cast<int>(hstmon::kChPmi) && HSTMON_CH_PMO
                   HSTMON_CH_WM == static_cast<int>(hstmon::kChWm) && HSTMON_CHANNELS == Model::kOutputs,
               "channel order differs from hstmon::ThesisChannel");
 
+// Rarely run paths (create, reset, read, events) are cold for GCC and Clang: optimised
+// for size (most of the C API's flash) and kept off the tick path; hstmon_step and what it
+// inlines stay at the build's -O2.
+#if defined(__GNUC__)
+#define HSTMON_C_RARE __attribute__((cold))
+#else
+#define HSTMON_C_RARE
+#endif
+
 namespace {
 
 hstmon_status to_c(hstmon::Status s) noexcept { return static_cast<hstmon_status>(s); }
@@ -89,19 +98,21 @@ hstmon::ThesisParams<float> to_core(const hstmon_params& p) noexcept {
 }
 
 // Construction and configuration in separate frames (noinline): the temporaries of the
-// members' constructors and the Monitor::Config are never on the stack together, which
-// keeps hstmon_create's stack depth within the 512-byte budget on the M4F.
-__attribute__((noinline)) hstmon_monitor* construct(void* buf) noexcept {
+// members' constructors and of the configuration are never on the stack together, and
+// Monitor::reconfigure sets the observer and the table on the freshly constructed monitor,
+// whose other parts keep their default configurations (no Monitor::Config next to the
+// model), which keeps hstmon_create's stack depth within the 512-byte budget on the M4F.
+__attribute__((noinline)) HSTMON_C_RARE hstmon_monitor* construct(void* buf) noexcept {
   return new (buf) hstmon_monitor{};  // placement: no allocation
 }
 
-__attribute__((noinline)) hstmon::Status configure(hstmon_monitor& m, const hstmon::ThesisParams<float>& p,
-                                                   const hstmon_config& c) noexcept {
-  Mon::Config mc;  // evaluator, sensor checks, matcher, uncertainty: the defaults (as `hstmon replay`)
-  mc.observer.tick = c.tick_s;
-  mc.observer.lambda_h_max = c.lambda_h_max;
-  mc.observer.max_substeps = c.max_substeps;
-  return m.mon.configure(p, mc, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
+__attribute__((noinline)) HSTMON_C_RARE hstmon::Status configure(hstmon_monitor& m, const hstmon::ThesisParams<float>& p,
+                                                               const hstmon_config& c) noexcept {
+  Obs::Config oc;  // the rest (evaluator, sensor checks, matcher, uncertainty): defaults, as `hstmon replay`
+  oc.tick = c.tick_s;
+  oc.lambda_h_max = c.lambda_h_max;
+  oc.max_substeps = c.max_substeps;
+  return m.mon.reconfigure(p, oc, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
 }
 
 }  // namespace
@@ -110,7 +121,7 @@ extern "C" {
 
 size_t hstmon_monitor_size(void) { return sizeof(hstmon_monitor); }
 
-void hstmon_default_config(hstmon_config* cfg) {
+HSTMON_C_RARE void hstmon_default_config(hstmon_config* cfg) {
   if (cfg == nullptr) return;
   const hstmon::ThesisParams<float> p;  // Table 2.2
   cfg->params = hstmon_params{p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf, p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
@@ -120,20 +131,20 @@ void hstmon_default_config(hstmon_config* cfg) {
   cfg->max_substeps = c.max_substeps;
 }
 
-void hstmon_default_inputs(hstmon_inputs* u) {
+HSTMON_C_RARE void hstmon_default_inputs(hstmon_inputs* u) {
   if (u == nullptr) return;
   const hstmon::ThesisInputs<float> v;
   *u = hstmon_inputs{v.Psupl, v.Ps, v.Pbp, v.kp};
 }
 
-hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hstmon_monitor** out) {
+HSTMON_C_RARE hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hstmon_monitor** out) {
   if (out != nullptr) *out = nullptr;
   if (buf == nullptr || cfg == nullptr || out == nullptr || size < sizeof(hstmon_monitor) ||
       reinterpret_cast<std::uintptr_t>(buf) % alignof(hstmon_monitor) != 0) {
     return HSTMON_INVALID_CONFIG;
   }
   const hstmon::ThesisParams<float> p = to_core(cfg->params);
-  if (!Model::params_valid(p)) return HSTMON_INVALID_PARAMS;
+  // Invalid parameters: reconfigure() refuses them (kInvalidParams) before anything else.
   // On refusal the handle stays NULL; the buffer holds nothing the caller may use.
   hstmon_monitor* m = construct(buf);
   const hstmon::Status s = configure(*m, p, *cfg);
@@ -145,12 +156,12 @@ hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hs
   return HSTMON_OK;
 }
 
-hstmon_status hstmon_reset_steady(hstmon_monitor* m, const hstmon_inputs* u) {
+HSTMON_C_RARE hstmon_status hstmon_reset_steady(hstmon_monitor* m, const hstmon_inputs* u) {
   if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
   return to_c(m->mon.reset_steady(to_core(*u)));
 }
 
-hstmon_status hstmon_reset_rest(hstmon_monitor* m, const hstmon_inputs* u) {
+HSTMON_C_RARE hstmon_status hstmon_reset_rest(hstmon_monitor* m, const hstmon_inputs* u) {
   if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
   return to_c(m->mon.reset_rest(to_core(*u)));
 }
@@ -168,7 +179,7 @@ uint32_t hstmon_step(hstmon_monitor* m, const hstmon_sample* s) {
   return m->mon.health();
 }
 
-void hstmon_read(const hstmon_monitor* m, hstmon_report* r) {
+HSTMON_C_RARE void hstmon_read(const hstmon_monitor* m, hstmon_report* r) {
   if (m == nullptr || r == nullptr) return;
   const Obs& obs = m->mon.observer();
   const auto& res = obs.residual();
@@ -190,7 +201,7 @@ hstmon_match hstmon_match_status(const hstmon_monitor* m) {
   return m != nullptr ? static_cast<hstmon_match>(m->mon.matcher().status()) : HSTMON_MATCH_NOMINAL;
 }
 
-int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max) {
+HSTMON_C_RARE int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max) {
   if (m == nullptr) return 0;
   const Mon::Matcher& mt = m->mon.matcher();
   const int total = mt.candidate_count();
@@ -201,7 +212,7 @@ int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max) {
   return total;
 }
 
-int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {
+HSTMON_C_RARE int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {
   if (m == nullptr || out == nullptr) return 0;
   Mon::Event e;
   if (!m->mon.pop_event(e)) return 0;
