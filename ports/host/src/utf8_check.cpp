@@ -75,6 +75,7 @@ std::size_t find_invalid_utf8(std::string_view text) noexcept {
   while (p < end) {
     // 32 clean bytes at a time (the common case), then 8, then byte by byte.
     while (end - p >= 32 && clean_ascii_32(p)) p += 32;
+    if (p == end) break;  // text need not be NUL-terminated: never read *end
     if (end - p >= 8) {
       std::uint64_t w;
       std::memcpy(&w, p, 8);

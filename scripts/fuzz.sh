@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# libFuzzer run of the three fuzz targets (tests/fuzz; docs/hardening.md):
+#   fuzz_log_reader  read_log_from_memory, options from the first byte
+#   fuzz_params      parse_params_json (+ format/parse round trip)
+#   fuzz_c_api       the C API fed arbitrary sample streams (NaN, ±Inf, huge, denormal,
+#                    dropouts, resets, time going backwards)
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
+# Builds with Clang + -fsanitize=fuzzer,address,undefined in build/h-fuzz and runs each
+# target for that long, starting from the committed seeds (tests/fuzz/corpus/<target>);
+# new inputs go to build/h-fuzz/corpus/<target> (not committed). Exits non-zero on a
+# finding; the crashing input is left in build/h-fuzz/artifacts/.
+# Reproduce one: build/h-fuzz/bin/fuzz_log_reader build/h-fuzz/artifacts/crash-…
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+secs=${1:-60}
+shift || true
+targets=("$@")
+[[ ${#targets[@]} -eq 0 ]] && targets=(fuzz_log_reader fuzz_params fuzz_c_api)
+declare -A seeds=([fuzz_log_reader]=log_reader [fuzz_params]=params [fuzz_c_api]=c_api)
+declare -A maxlen=([fuzz_log_reader]=4096 [fuzz_params]=2048 [fuzz_c_api]=8192)
+build=build/h-fuzz
+jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
+
+if ! command -v clang++ >/dev/null; then
+  echo "fuzz.sh: clang++ not found (apt-get install -y clang)" >&2
+  exit 2
+fi
+san="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g"
+tc=(); [[ -f "$build/CMakeCache.txt" ]] || tc=(--toolchain toolchains/host-clang.cmake)
+cmake -S . -B "$build" "${tc[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DHSTMON_FUZZ=ON -DHSTMON_BUILD_TESTS=OFF -DHSTMON_BUILD_BENCH=OFF -DHSTMON_WERROR=OFF \
+  -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" >/dev/null
+cmake --build "$build" -j"$jobs" --target "${targets[@]}"
+
+mkdir -p "$build/artifacts"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+status=0
+for t in "${targets[@]}"; do
+  work="$build/corpus/$t"
+  mkdir -p "$work"
+  echo "== $t: ${secs} s"
+  if ! "$build/bin/$t" "$work" "tests/fuzz/corpus/${seeds[$t]}" \
+      -max_total_time="$secs" -max_len="${maxlen[$t]}" -timeout=10 -rss_limit_mb=2048 \
+      -artifact_prefix="$build/artifacts/$t-" -print_final_stats=1 >"$build/$t.log" 2>&1; then
+    echo "!! $t: finding (log: $build/$t.log, input: $build/artifacts/$t-*)"
+    grep -E "ERROR|invariant|runtime error|SUMMARY" "$build/$t.log" | head -n 5 || true
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|stat::new_units_added" "$build/$t.log" | tr '\n' ' '
+    echo
+  fi
+done
+exit $status
