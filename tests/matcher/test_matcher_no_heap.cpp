@@ -1,6 +1,6 @@
 // The matcher tick must not touch the heap: evaluator, sensor check and matcher run a
 // fault episode (detection, isolation, sensor flags, cleared) under the allocation trap of
-// tests/core/test_no_heap.cpp, in float and double, on a constexpr table.
+// tests/support/heap_trap.hpp, in float and double, on a constexpr table.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -10,70 +10,10 @@
 #include <new>
 
 #include "hstmon/hstmon.hpp"
+#include "../support/heap_trap.hpp"
 #include "test_table.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define HSTMON_HEAP_TRAP 0
-#else
-#define HSTMON_HEAP_TRAP 1
-#endif
-
-#if HSTMON_HEAP_TRAP
-extern "C" void* __libc_malloc(std::size_t);
-extern "C" void* __libc_calloc(std::size_t, std::size_t);
-extern "C" void* __libc_realloc(void*, std::size_t);
-extern "C" void __libc_free(void*);
-
 namespace {
-std::atomic<bool> g_armed{false};
-std::atomic<long> g_allocs{0};
-void note() {
-  if (g_armed.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
-}
-}  // namespace
-
-extern "C" void* malloc(std::size_t n) {
-  note();
-  return __libc_malloc(n);
-}
-extern "C" void* calloc(std::size_t a, std::size_t b) {
-  note();
-  return __libc_calloc(a, b);
-}
-extern "C" void* realloc(void* p, std::size_t n) {
-  note();
-  return __libc_realloc(p, n);
-}
-extern "C" void free(void* p) { __libc_free(p); }
-void* operator new(std::size_t n) {
-  note();
-  if (void* p = __libc_malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { __libc_free(p); }
-void operator delete[](void* p) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
-#else
-namespace {
-std::atomic<bool> g_armed{false};
-std::atomic<long> g_allocs{0};
-}  // namespace
-#endif
-
-namespace {
-
-#define SKIP_WITHOUT_TRAP() \
-  if (!HSTMON_HEAP_TRAP) GTEST_SKIP() << "heap trap not installed under ASan"
-
-struct Armed {
-  Armed() {
-    g_allocs = 0;
-    g_armed = true;
-  }
-  ~Armed() { g_armed = false; }
-};
 
 TEST(MatcherNoHeap, TrapWorks) {
   SKIP_WITHOUT_TRAP();
