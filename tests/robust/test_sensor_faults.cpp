@@ -312,7 +312,7 @@ TEST(SensorFaults, AbsurdInputTransientIsFlaggedAndRecovers) {
 // Monitor<double> refuses or recovers (test below). Either reset_steady refuses such a state
 // (kNoSteadyState when it is not state_plausible / not finite), or the observer's
 // recovery must not restore a state that itself cannot be stepped.
-TEST(SensorFaults, DISABLED_ResetSteadyWithTinyKpRefusesOrRecoversFloat) {
+TEST(SensorFaults, ResetSteadyWithTinyKpRefusesOrRecoversFloat) {
   using MonF = hstmon::Monitor<float>;
   MonF mon;
   MonF::Config c;

@@ -186,7 +186,7 @@ class ThesisReducedModel {
 
   /// Steady state under the current inputs, by bisection safeguarded secant on the
   /// monotone torque balance. kp = 0 (PRV shut) has no steady state with ωm ≠ 0 and is
-  /// refused.
+  /// refused, as is a result that is not finite or beyond the torque balance's pressure cap.
   /// @param x  out: (Ppp [Pa], ωm [rad/s])
   /// @return   true on convergence; false (x untouched) if the inputs admit none
   bool steady_state(State& x) const noexcept {
@@ -209,6 +209,10 @@ class ThesisReducedModel {
       if (f == T(0) || (hi - lo) <= T(4) * std::numeric_limits<T>::epsilon() * (std::fabs(w) + T(1))) break;
     }
     const T dPpp = signed_square(p_.Dp * w / u_.kp, p_.dp_t_prv);
+    // The torque balance caps the pump pressure rise at about (Dm/Dp)·|Psupl − Ps|; with a
+    // near-shut PRV (tiny kp) float rounding of Dp·ω/kp can land far beyond it, or at Inf.
+    const T dp_cap = T(2) * (p_.Dm / p_.Dp) * (std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv) + p_.dp_t_prv;
+    if (!(std::isfinite(dPpp) && std::isfinite(w) && std::fabs(dPpp) <= dp_cap)) return false;
     x = State(u_.Pbp + dPpp, w);
     return true;
   }
