@@ -91,9 +91,10 @@ const LogData& parsed_log() {
 
 /// Replays the parsed rows with the host port's replay loop (the one `hstmon replay`
 /// runs: inputs per row, observer tick per row, residual statistics); returns the health.
-std::uint32_t step_all(const LogData& log) {
+std::uint32_t step_all(const LogData& log, bool diagnose = true) {
   hstmon::host::ReplayOptions opt;
   opt.tick = 1e-3;
+  opt.diagnose = diagnose;
   const hstmon::host::ReplayResult r = hstmon::host::replay(log, {}, {}, opt);
   benchmark::DoNotOptimize(r.channels);
   return r.health;
@@ -156,6 +157,17 @@ void BM_ParseAndStep(benchmark::State& state) {
 BENCHMARK(BM_Parse)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Step)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ParseAndStep)->Unit(benchmark::kMillisecond);
+
+/// As ParseAndStep, residuals only (`hstmon replay --no-diagnosis`: no fault matcher).
+void BM_ParseAndStepResidualsOnly(benchmark::State& state) {
+  for (auto _ : state) {
+    LogData log = parse();
+    if (!check(state, log)) return;
+    benchmark::DoNotOptimize(step_all(log, false));
+  }
+  report(state);
+}
+BENCHMARK(BM_ParseAndStepResidualsOnly)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
