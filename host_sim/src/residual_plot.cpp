@@ -1,5 +1,7 @@
 #include "residual_plot.hpp"
 
+#include "hstmon_sim/gnuplot.hpp"
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -20,24 +22,12 @@ struct Panel {
 };
 const Panel kPanels[4] = {{"Pmi", "bar", 1e-5}, {"Pmo", "bar", 1e-5}, {"Ppp", "bar", 1e-5}, {"ωm", "rpm", 60.0 / (2.0 * M_PI)}};
 
-bool ends_with(const std::string& s, const char* suffix) {
-  const std::string x(suffix);
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
-
 }  // namespace
 
 std::string plot_trace(const host::ReplayResult& result, const std::string& title, const std::string& path) {
   std::string terminal;
-  if (ends_with(path, ".svg")) {
-    terminal = "svg size 1400,1100 dynamic font 'sans,11'";
-  } else if (ends_with(path, ".png")) {
-    terminal = "pngcairo size 1400,1100 font 'sans,10'";
-  } else {
-    return "plot file must end in .svg or .png: " + path;
-  }
+  if (std::string err = sim::gnuplot_terminal(path, 1400, 1100, terminal); !err.empty()) return err;
   if (result.trace.empty()) return "nothing to plot";
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return "gnuplot not found (apt-get install gnuplot-nox)";
 
   namespace fs = std::filesystem;
   const fs::path data = fs::temp_directory_path() / fmt::format("hstmon-plot-{}.dat", static_cast<long>(::getpid()));
@@ -73,14 +63,10 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
   }
   script += "unset multiplot\n";
 
-  FILE* gp = popen("gnuplot", "w");
-  if (gp == nullptr) return "could not start gnuplot";
-  std::fputs(script.c_str(), gp);
-  const int rc = pclose(gp);
+  const std::string err = sim::run_gnuplot(script);
   std::error_code ec;
   fs::remove(data, ec);
-  if (rc != 0) return "gnuplot failed writing " + path;
-  return {};
+  return err.empty() ? err : err + " writing " + path;
 }
 
 }  // namespace hstmon::cli

@@ -1,6 +1,8 @@
 /// @file plots.cpp
-/// gnuplot x–y plots via popen.
+/// gnuplot x–y plots (through hstmon_sim/gnuplot.hpp).
 #include "hstmon_ident/plots.hpp"
+
+#include "hstmon_sim/gnuplot.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -13,9 +15,6 @@
 namespace hstmon::ident {
 
 namespace {
-bool ends_with(const std::string& s, const std::string& x) {
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
 std::string quote(std::string s) {
   for (auto& c : s) {
     if (c == '\'') c = '"';
@@ -27,15 +26,8 @@ std::string quote(std::string s) {
 std::string plot_xy(const std::string& path, const std::string& title, const std::string& xlabel,
                     const std::string& ylabel, const std::vector<PlotSeries>& series) {
   std::string terminal;
-  if (ends_with(path, ".svg")) {
-    terminal = "svg size 1000,650 dynamic font 'sans,11'";
-  } else if (ends_with(path, ".png")) {
-    terminal = "pngcairo size 1000,650 font 'sans,10'";
-  } else {
-    return "plot file must end in .svg or .png: " + path;
-  }
+  if (std::string err = sim::gnuplot_terminal(path, 1000, 650, terminal); !err.empty()) return err;
   if (series.empty()) return "nothing to plot";
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return "gnuplot not found (apt-get install gnuplot-nox)";
   namespace fs = std::filesystem;
   const fs::path data =
       fs::temp_directory_path() / fmt::format("hstmon-ident-{}-{}.dat", static_cast<long>(::getpid()), fs::path(path).stem().string());
@@ -53,14 +45,10 @@ std::string plot_xy(const std::string& path, const std::string& title, const std
                           series[k].points ? "points pt 7 ps 0.6" : "lines lw 1.8", quote(series[k].label));
   }
   script += "\n";
-  FILE* gp = popen("gnuplot", "w");
-  if (gp == nullptr) return "could not start gnuplot";
-  std::fputs(script.c_str(), gp);
-  const int rc = pclose(gp);
+  const std::string err = sim::run_gnuplot(script);
   std::error_code ec;
   fs::remove(data, ec);
-  if (rc != 0) return "gnuplot failed on " + path;
-  return {};
+  return err.empty() ? err : err + " on " + path;
 }
 
 }  // namespace hstmon::ident

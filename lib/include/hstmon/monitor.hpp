@@ -7,7 +7,7 @@
 ///
 /// Each step(): observer tick → sensor checks on the raw sample → evaluator on the
 /// residuals → matcher. When the inputs change, the model bound (parameter-uncertainty
-/// part of the thresholds) is recomputed for the new operating point: about 20
+/// part of the thresholds) is recomputed for the operating point they lead to: about 20
 /// steady-state solves, so a few hundred microseconds on a Cortex-M4, once per change.
 /// step() never allocates or throws.
 
@@ -165,7 +165,7 @@ class Monitor {
     settle_until_ = -std::numeric_limits<T>::infinity();
   }
 
-  // Keeps the last good bound when the new operating point has no steady state.
+  // Keeps the last good bound when the changed operating point has no steady state.
   void update_bound() noexcept {
     T m[kFdiChannels];
     if (thesis_model_bound(obs_.model(), uncertainty_, m) == Status::kOk) {
