@@ -13,8 +13,10 @@
 ///
 /// Cost: two steady-state solves per uncertain parameter (≈ 20 solves of ≤ 200 torque
 /// evaluations): call it at configuration and when the logged inputs change, not per
-/// tick. Never allocates, never throws. Transients (J, K, sensor lags) are not covered:
-/// those are left to the CUSUM's drift and clip.
+/// tick. Stack: ≈ 350 B in float on Cortex-M4F (a copy of the parameters and inputs, three
+/// output vectors, the solve's coefficients; no model object). Never allocates, never
+/// throws. Transients (J, K, sensor lags) are not covered: those are left to the CUSUM's
+/// drift and clip.
 
 #include <cmath>
 
@@ -52,79 +54,80 @@ struct ThesisUncertainty {
 /// @return false if p is invalid or u admits no steady state (y untouched)
 template <typename T>
 HSTMON_BOUND_PATH bool steady_outputs(const ThesisParams<T>& p, const ThesisInputs<T>& u,
-                    typename ThesisReducedModel<T>::Output& y) noexcept {
+                                      typename ThesisReducedModel<T>::Output& y) noexcept {
   using Model = ThesisReducedModel<T>;
-  if (!Model::params_valid(p)) return false;
-  Model m(p);
-  m.set_inputs(u);
-  typename Model::State x;
-  if (!m.steady_state(x)) return false;
-  y = m.outputs(x);
+  T v[Model::kOutputs];
+  if (!Model::params_valid(p) || !Model::steady_outputs(p, u, v)) return false;
+  for (int i = 0; i < Model::kOutputs; ++i) y[i] = v[i];
   return true;
 }
+
+namespace detail {
+
+/// The uncertain quantities in the order the bound sums them: the parameters, then the
+/// logged inputs. Member pointers, so the tables are constants in flash.
+constexpr int kBoundParams = 7;
+constexpr int kBoundItems = 10;
+
+template <typename T>
+struct BoundItems {
+  static constexpr T ThesisParams<T>::*kParam[kBoundParams] = {
+      &ThesisParams<T>::Dm, &ThesisParams<T>::Dp, &ThesisParams<T>::Rlkg, &ThesisParams<T>::Ripl,
+      &ThesisParams<T>::Rf, &ThesisParams<T>::Rbl, &ThesisParams<T>::kf};
+  static constexpr T ThesisInputs<T>::*kInput[kBoundItems - kBoundParams] = {
+      &ThesisInputs<T>::Psupl, &ThesisInputs<T>::Pbp, &ThesisInputs<T>::kp};
+  static constexpr T ThesisUncertainty<T>::*kEps[kBoundItems] = {
+      &ThesisUncertainty<T>::Dm,   &ThesisUncertainty<T>::Dp,    &ThesisUncertainty<T>::Rlkg,
+      &ThesisUncertainty<T>::Ripl, &ThesisUncertainty<T>::Rf,    &ThesisUncertainty<T>::Rbl,
+      &ThesisUncertainty<T>::kf,   &ThesisUncertainty<T>::Psupl, &ThesisUncertainty<T>::Pbp,
+      &ThesisUncertainty<T>::kp};
+};
+
+}  // namespace detail
 
 /// Computes the model bound m (see the file comment) at the steady state of `model`'s
 /// parameters and current inputs.
 /// @param model  the observer's model (parameters and inputs set)
 /// @param eps    relative uncertainties, each finite, ≥ 0 and < 0.5
-/// @param m      out: bound per channel (Pmi, Pmo, Ppp [Pa], ωm [rad/s]); untouched on error
+/// @param m      out: bound per channel (Pmi, Pmo, Ppp [Pa], ωm [rad/s]); it is the sum's
+///               storage, so after kNoSteadyState it holds a partial sum (untouched after
+///               kInvalidParams)
 /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState (the nominal or a
 ///               perturbed model has no steady state)
 template <typename T>
 HSTMON_BOUND_PATH Status thesis_model_bound(const ThesisReducedModel<T>& model, const ThesisUncertainty<T>& eps,
-                          T (&m)[kFdiChannels]) noexcept {
+                                            T (&m)[kFdiChannels]) noexcept {
   using Model = ThesisReducedModel<T>;
-  using P = ThesisParams<T>;
-  using U = ThesisInputs<T>;
-  struct PItem {
-    T P::*field;
-    T eps;
-  };
-  struct UItem {
-    T U::*field;
-    T eps;
-  };
-  const PItem pitems[] = {{&P::Dm, eps.Dm}, {&P::Dp, eps.Dp}, {&P::Rlkg, eps.Rlkg}, {&P::Ripl, eps.Ripl},
-                          {&P::Rf, eps.Rf}, {&P::Rbl, eps.Rbl}, {&P::kf, eps.kf}};
-  const UItem uitems[] = {{&U::Psupl, eps.Psupl}, {&U::Pbp, eps.Pbp}, {&U::kp, eps.kp}};
-  for (const PItem& it : pitems) {
-    if (!(std::isfinite(it.eps) && it.eps >= T(0) && it.eps < T(0.5))) return Status::kInvalidParams;
+  using I = detail::BoundItems<T>;
+  for (int k = 0; k < detail::kBoundItems; ++k) {
+    const T e = eps.*(I::kEps[k]);
+    if (!(std::isfinite(e) && e >= T(0) && e < T(0.5))) return Status::kInvalidParams;
   }
-  for (const UItem& it : uitems) {
-    if (!(std::isfinite(it.eps) && it.eps >= T(0) && it.eps < T(0.5))) return Status::kInvalidParams;
-  }
-
-  const P p0 = model.params();
-  const U u0 = model.inputs();
-  typename Model::Output y0;
-  if (!steady_outputs(p0, u0, y0)) return Status::kNoSteadyState;
-  T acc[kFdiChannels] = {};
-  // Adds max(|y(+) − y0|, |y(−) − y0|) per channel for one perturbed pair.
-  auto add = [&](const P& pa, const U& ua, const P& pb, const U& ub) -> bool {
-    typename Model::Output ya, yb;
-    if (!steady_outputs(pa, ua, ya) || !steady_outputs(pb, ub, yb)) return false;
+  // Stack (a firmware monitor has 512 B for everything): one copy of the parameters and
+  // inputs, one quantity perturbed in place at a time and restored, the + and − sides
+  // solved one after the other, the sum in m, and no model object (Model::steady_outputs).
+  ThesisParams<T> p = model.params();
+  ThesisInputs<T> u = model.inputs();
+  T y0[kFdiChannels], plus[kFdiChannels], y[kFdiChannels];
+  if (!Model::params_valid(p) || !Model::steady_outputs(p, u, y0)) return Status::kNoSteadyState;
+  for (int i = 0; i < kFdiChannels; ++i) m[i] = T(0);
+  for (int k = 0; k < detail::kBoundItems; ++k) {
+    const T e = eps.*(I::kEps[k]);
+    if (e == T(0)) continue;
+    T& v = k < detail::kBoundParams ? p.*(I::kParam[k]) : u.*(I::kInput[k - detail::kBoundParams]);
+    const T v0 = v;
+    // m += max(|y(+) − y0|, |y(−) − y0|) per channel; plus holds y(+), then |y(+) − y0|.
+    v = v0 * (T(1) + e);
+    if (!Model::params_valid(p) || !Model::steady_outputs(p, u, plus)) return Status::kNoSteadyState;
+    for (int i = 0; i < kFdiChannels; ++i) plus[i] = std::fabs(plus[i] - y0[i]);
+    v = v0 * (T(1) - e);
+    if (!Model::params_valid(p) || !Model::steady_outputs(p, u, y)) return Status::kNoSteadyState;
     for (int i = 0; i < kFdiChannels; ++i) {
-      const T da = std::fabs(ya[i] - y0[i]);
-      const T db = std::fabs(yb[i] - y0[i]);
-      acc[i] += da > db ? da : db;
+      const T d = std::fabs(y[i] - y0[i]);
+      m[i] += plus[i] > d ? plus[i] : d;
     }
-    return true;
-  };
-  for (const PItem& it : pitems) {
-    if (it.eps == T(0)) continue;
-    P pa = p0, pb = p0;
-    pa.*(it.field) = p0.*(it.field) * (T(1) + it.eps);
-    pb.*(it.field) = p0.*(it.field) * (T(1) - it.eps);
-    if (!add(pa, u0, pb, u0)) return Status::kNoSteadyState;
+    v = v0;
   }
-  for (const UItem& it : uitems) {
-    if (it.eps == T(0)) continue;
-    U ua = u0, ub = u0;
-    ua.*(it.field) = u0.*(it.field) * (T(1) + it.eps);
-    ub.*(it.field) = u0.*(it.field) * (T(1) - it.eps);
-    if (!add(p0, ua, p0, ub)) return Status::kNoSteadyState;
-  }
-  for (int i = 0; i < kFdiChannels; ++i) m[i] = acc[i];
   return Status::kOk;
 }
 

@@ -175,13 +175,19 @@ class ThesisReducedModel {
   /// DCV alone drops the whole supply pressure difference, with a margin.
   T speed_bound() const noexcept { return T(2) * p_.kf * std::sqrt(speed_bound_dp()) / p_.Dm; }
 
+// The steady-state solve runs at configuration and on input changes, never per tick: its
+// parts are out of line (each frame small, stack) and size-optimised (flash).
+#if defined(__GNUC__)
+#define HSTMON_STEADY_PATH __attribute__((noinline, cold))
+#else
+#define HSTMON_STEADY_PATH
+#endif
+
   /// Net shaft torque per inertia at speed w_m with Ppp at its quasi-steady value [rad/s²].
-  /// Strictly decreasing in w_m; its root is the steady state.
+  /// Strictly decreasing in w_m; its root is the steady state (steady_state's arithmetic).
   T steady_torque(T w_m) const noexcept {
     T Pmi, Pmo;
-    dcv_pressures(w_m, Pmi, Pmo);
-    const T dPpp = (u_.kp > T(0)) ? signed_square(p_.Dp * w_m / u_.kp, p_.dp_t_prv) : T(0);
-    return Dm_J_ * (Pmi - Pmo) - R_J_ * w_m - Dp_J_ * dPpp;
+    return SteadySolve(p_, u_).torque(w_m, Pmi, Pmo);
   }
 
   /// Steady state under the current inputs, by bisection safeguarded secant on the
@@ -189,33 +195,118 @@ class ThesisReducedModel {
   /// refused, as is a result that is not finite or beyond the torque balance's pressure cap.
   /// @param x  out: (Ppp [Pa], ωm [rad/s])
   /// @return   true on convergence; false (x untouched) if the inputs admit none
-  bool steady_state(State& x) const noexcept {
-    if (!(u_.kp > T(0)) || !inputs_valid(u_)) return false;
-    T lo = -speed_bound();
-    T hi = speed_bound();
-    T f_lo = steady_torque(lo);
-    T f_hi = steady_torque(hi);
-    for (int i = 0; i < 60 && f_lo < T(0); ++i) { lo *= T(2); f_lo = steady_torque(lo); }
-    for (int i = 0; i < 60 && f_hi > T(0); ++i) { hi *= T(2); f_hi = steady_torque(hi); }
-    if (!(f_lo >= T(0) && f_hi <= T(0))) return false;
-    T w = T(0);
-    for (int i = 0; i < 200; ++i) {
-      // Secant (regula falsi, Illinois-free) step, bisection when it stalls or leaves the bracket.
-      T w_new = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-      if (!(w_new > lo && w_new < hi) || (i % 3 == 2)) w_new = T(0.5) * (lo + hi);
-      const T f = steady_torque(w_new);
-      if (f > T(0)) { lo = w_new; f_lo = f; } else { hi = w_new; f_hi = f; }
-      w = w_new;
-      if (f == T(0) || (hi - lo) <= T(4) * std::numeric_limits<T>::epsilon() * (std::fabs(w) + T(1))) break;
-    }
-    const T dPpp = signed_square(p_.Dp * w / u_.kp, p_.dp_t_prv);
-    // The torque balance caps the pump pressure rise at about (Dm/Dp)·|Psupl − Ps|; with a
-    // near-shut PRV (tiny kp) float rounding of Dp·ω/kp can land far beyond it, or at Inf.
-    const T dp_cap = T(2) * (p_.Dm / p_.Dp) * (std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv) + p_.dp_t_prv;
-    if (!(std::isfinite(dPpp) && std::isfinite(w) && std::fabs(dPpp) <= dp_cap)) return false;
-    x = State(u_.Pbp + dPpp, w);
-    return true;
+  bool steady_state(State& x) const noexcept { return SteadySolve(p_, u_).solve(&x, nullptr); }
+
+  /// steady_state() for parameters p and inputs u, without a model object: the model bound
+  /// (residual_bounds.hpp) solves ≈ 20 perturbed parameter sets, and a model for each
+  /// would be most of its stack.
+  /// @param p  parameters, params_valid(p)
+  /// @param u  inputs
+  /// @param x  out: (Ppp [Pa], ωm [rad/s])
+  /// @return   true on convergence; false (x untouched) if the inputs admit none
+  static bool steady_state(const Params& p, const Inputs& u, State& x) noexcept {
+    return SteadySolve(p, u).solve(&x, nullptr);
   }
+
+  /// Outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at the steady state for p and u, with the
+  /// solve's DCV arithmetic (outputs() of a model at that state agrees to rounding).
+  /// @param p  parameters, params_valid(p)
+  /// @param u  inputs
+  /// @param y  out: the kOutputs outputs
+  /// @return   true on convergence; false (y untouched) if the inputs admit none
+  static bool steady_outputs(const Params& p, const Inputs& u, T (&y)[kOutputs]) noexcept {
+    return SteadySolve(p, u).solve(nullptr, y);
+  }
+
+ private:
+  /// The steady-state solve for (p, u), referred to: the coefficients it needs, computed as
+  /// set_params() computes the model's (same values), the torque balance with the DCV
+  /// balances solved in their general form (the tick path's dcv code may take shortcuts
+  /// that agree to rounding), and the root search. 40 B in float, held by the caller.
+  class SteadySolve {
+   public:
+    HSTMON_STEADY_PATH SteadySolve(const Params& p, const Inputs& u) noexcept
+        : p_(p), u_(u), inv_kf_(T(1) / p.kf), root_dp_t_dcv_(std::sqrt(p.dp_t_dcv)), Dm_J_(p.Dm / p.J),
+          Dp_J_(p.Dp / p.J), R_J_((p.Rf + p.Rbl) / p.J) {
+      const T g_lkg = T(1) / p.Rlkg;
+      const T g_ipl = T(1) / p.Ripl;
+      g_lkg_kf_ = g_lkg * inv_kf_;
+      g_ipl_kf_ = g_ipl * inv_kf_;
+      const T kappa = inv_kf_ * (g_lkg + T(2) * g_ipl);
+      const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa);
+      one_refinement_y_ = (std::isfinite(y_max) && y_max >= std::sqrt(p.dp_t_dcv)) ? y_max : T(0);
+    }
+
+    /// The steady state (see steady_state()); fills x and/or y (kOutputs values) if given.
+    HSTMON_STEADY_PATH bool solve(State* x, T* y) const noexcept {
+      if (!(u_.kp > T(0)) || !inputs_valid(u_)) return false;
+      T Pmi, Pmo;
+      T lo = -speed_bound();
+      T hi = -lo;
+      T f_lo = torque(lo, Pmi, Pmo);
+      T f_hi = torque(hi, Pmi, Pmo);
+      for (int i = 0; i < 60 && f_lo < T(0); ++i) { lo *= T(2); f_lo = torque(lo, Pmi, Pmo); }
+      for (int i = 0; i < 60 && f_hi > T(0); ++i) { hi *= T(2); f_hi = torque(hi, Pmi, Pmo); }
+      if (!(f_lo >= T(0) && f_hi <= T(0))) return false;
+      T w = T(0);
+      for (int i = 0; i < 200; ++i) {
+        // Secant (regula falsi, Illinois-free) step, bisection when it stalls or leaves the bracket.
+        T w_new = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+        if (!(w_new > lo && w_new < hi) || (i % 3 == 2)) w_new = T(0.5) * (lo + hi);
+        const T f = torque(w_new, Pmi, Pmo);
+        if (f > T(0)) { lo = w_new; f_lo = f; } else { hi = w_new; f_hi = f; }
+        w = w_new;
+        if (f == T(0) || (hi - lo) <= T(4) * std::numeric_limits<T>::epsilon() * (std::fabs(w) + T(1))) break;
+      }
+      const T dPpp = signed_square(p_.Dp * w / u_.kp, p_.dp_t_prv);
+      // The torque balance caps the pump pressure rise at about (Dm/Dp)·|Psupl − Ps|; with a
+      // near-shut PRV (tiny kp) float rounding of Dp·ω/kp can land far beyond it, or at Inf.
+      const T dp_cap =
+          T(2) * (p_.Dm / p_.Dp) * (std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv) + p_.dp_t_prv;
+      if (!(std::isfinite(dPpp) && std::isfinite(w) && std::fabs(dPpp) <= dp_cap)) return false;
+      if (x != nullptr) *x = State(u_.Pbp + dPpp, w);
+      if (y != nullptr) {
+        (void)torque(w, y[kChPmi], y[kChPmo]);  // for the DCV pressures at w
+        y[kChPpp] = u_.Pbp + dPpp;
+        y[kChWm] = w;
+      }
+      return true;
+    }
+
+    /// ThesisReducedModel::speed_bound() for (p, u) [rad/s].
+    T speed_bound() const noexcept {
+      return T(2) * p_.kf * std::sqrt(std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv) / p_.Dm;
+    }
+
+    /// steady_torque(w_m) [rad/s²], and the DCV-side pressures Pmi, Pmo [Pa] at w_m: the
+    /// leakage-free closed form, then kDcvIterations fixed-point refinements with the
+    /// leakage flows (one when that is exact to rounding; NaN takes all).
+    HSTMON_STEADY_PATH T torque(T w_m, T& Pmi, T& Pmo) const noexcept {
+      const T y_m = p_.Dm * w_m * inv_kf_;
+      const T dp_m = signed_square(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
+      Pmi = u_.Psupl - dp_m;
+      Pmo = u_.Ps + dp_m;
+      const int n = std::fabs(y_m) <= one_refinement_y_ ? 1 : kDcvIterations;
+      for (int i = 0; i < n; ++i) {
+        // Flow balances in units of Q/kf [√Pa] (leakage conductances pre-divided by kf).
+        const T y_ipl = (Pmi - Pmo) * g_ipl_kf_;
+        const T y_in = y_m + Pmi * g_lkg_kf_ + y_ipl;
+        const T y_out = y_m + y_ipl - Pmo * g_lkg_kf_;
+        Pmi = u_.Psupl - signed_square(y_in, p_.dp_t_dcv, root_dp_t_dcv_);
+        Pmo = u_.Ps + signed_square(y_out, p_.dp_t_dcv, root_dp_t_dcv_);
+      }
+      const T dPpp = (u_.kp > T(0)) ? signed_square(p_.Dp * w_m / u_.kp, p_.dp_t_prv) : T(0);
+      return Dm_J_ * (Pmi - Pmo) - R_J_ * w_m - Dp_J_ * dPpp;
+    }
+
+   private:
+    const Params& p_;
+    const Inputs& u_;
+    T inv_kf_, root_dp_t_dcv_, Dm_J_, Dp_J_, R_J_;
+    T g_lkg_kf_{}, g_ipl_kf_{}, one_refinement_y_{};
+  };
+
+#undef HSTMON_STEADY_PATH
 
  private:
   /// dcv_pressures(); returns y_m = Dm·ωm/kf [√Pa] for the Jacobian.
