@@ -236,9 +236,11 @@ int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out);
 uint32_t hstmon_events_dropped(const hstmon_monitor* m);
 
 /** Lower-case name of a status or event kind ("nominal", "isolated", "cleared", …); "?"
- *  for an unknown value. */
-const char* hstmon_match_name(hstmon_match s);
-const char* hstmon_event_name(hstmon_event_kind k);
+ *  for any other value. They take an int (an hstmon_match / hstmon_event_kind converts to
+ *  it), so a value outside the enumeration — an uninitialised variable, a corrupted
+ *  message — is range-checked as a number and never loaded as the enum type. */
+const char* hstmon_match_name(int s);
+const char* hstmon_event_name(int k);
 
 #ifdef __cplusplus
 }

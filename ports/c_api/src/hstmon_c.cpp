@@ -231,14 +231,15 @@ uint32_t hstmon_events_dropped(const hstmon_monitor* m) {
   return m != nullptr ? m->mon.matcher().events_dropped() : 0u;
 }
 
-const char* hstmon_match_name(hstmon_match s) {
-  return static_cast<unsigned>(s) <= 4u ? hstmon::to_string(static_cast<hstmon::MatchStatus>(s))
-                                                               : "?";
+// The value is checked as an int before it becomes an enum: a C caller may pass any int.
+const char* hstmon_match_name(int s) {
+  return s >= HSTMON_MATCH_NOMINAL && s <= HSTMON_MATCH_UNEXPLAINED ? hstmon::to_string(static_cast<hstmon::MatchStatus>(s))
+                                                                     : "?";
 }
 
-const char* hstmon_event_name(hstmon_event_kind k) {
-  return static_cast<unsigned>(k) <= 4u ? hstmon::to_string(static_cast<hstmon::MatchEventKind>(k))
-                                                               : "?";
+const char* hstmon_event_name(int k) {
+  return k >= HSTMON_EVENT_DETECTED && k <= HSTMON_EVENT_CLEARED ? hstmon::to_string(static_cast<hstmon::MatchEventKind>(k))
+                                                                  : "?";
 }
 
 }  // extern "C"

@@ -3,6 +3,7 @@
  * residuals and a nominal diagnosis, bad inputs and NaN are flagged and never propagate,
  * a large Ppp deviation is detected and gets a candidate set, a NaN sensor is isolated as
  * that sensor). Exit status 0 = pass. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -44,7 +45,7 @@ static hstmon_sample sample_at_estimate(const hstmon_monitor* m, const hstmon_in
 }
 
 /* Sensor-like scatter around base: ±50 Pa, ±0.05 rad/s alternating (a constant value
- * would be flagged as a stuck sensor after 100 samples). */
+ * would be flagged as a stuck sensor after stuck_time = 0.1 s, 100 samples at 1 ms). */
 static const float kDither[HSTMON_CHANNELS] = {50.0f, -50.0f, 50.0f, 0.05f};
 static void dither(hstmon_sample* s, const float* base, int k) {
   int i;
@@ -242,8 +243,26 @@ static void test_nan_measurement_flagged(void) {
   CHECK(hstmon_pop_event(NULL, NULL) == 0);
 }
 
+/* Names of every status and event kind, and "?" for any other int — C lets a caller
+ * pass one (an uninitialised variable, a corrupted message); it must be range-checked as a
+ * number, not loaded as the enum type (UBSan: invalid enum load). */
+static void test_names_of_any_int(void) {
+  static const char* const kMatch[] = {"nominal", "detected", "isolated", "ambiguous", "unexplained"};
+  static const char* const kEvent[] = {"detected", "isolated", "ambiguous", "unexplained", "cleared"};
+  static const int kOutside[] = {-1, 5, 7, 8, 99, 255, 256, INT_MAX, INT_MIN};
+  int i;
+  for (i = HSTMON_MATCH_NOMINAL; i <= HSTMON_MATCH_UNEXPLAINED; ++i) CHECK(strcmp(hstmon_match_name(i), kMatch[i]) == 0);
+  for (i = HSTMON_EVENT_DETECTED; i <= HSTMON_EVENT_CLEARED; ++i) CHECK(strcmp(hstmon_event_name(i), kEvent[i]) == 0);
+  CHECK(strcmp(hstmon_match_name(HSTMON_MATCH_ISOLATED), "isolated") == 0); /* the enum converts */
+  for (i = 0; i < (int)(sizeof kOutside / sizeof kOutside[0]); ++i) {
+    CHECK(strcmp(hstmon_match_name(kOutside[i]), "?") == 0);
+    CHECK(strcmp(hstmon_event_name(kOutside[i]), "?") == 0);
+  }
+}
+
 int main(void) {
   test_create();
+  test_names_of_any_int();
   test_steady_state_zero_residuals();
   test_ppp_jump_detected();
   test_bad_inputs_flagged();
