@@ -75,7 +75,7 @@ RunResult run(const hstmon::sim::ThesisMeasurements& log, const hstmon::sim::Sen
       ++res.alarm_ticks;
       if (res.first_alarm < 0) res.first_alarm = s.t;
     }
-    m.update(static_cast<T>(s.t), ev, sc.update(y, 0xF));
+    m.update(static_cast<T>(s.t), ev, sc.update(static_cast<T>(s.t), y, 0xF));
     typename hstmon::FaultMatcher<T>::Event e;
     while (m.pop_event(e)) {
       hstmon::MatchEvent<double> d;

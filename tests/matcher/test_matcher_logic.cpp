@@ -3,6 +3,7 @@
 // cleared, events, configuration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -56,9 +57,13 @@ struct Rig {
       for (int i = 0; i < 4; ++i) {
         if (!std::isfinite(y[i])) valid = static_cast<std::uint8_t>(valid & ~(1u << i));  // the observer masks NaN
       }
+      // As Monitor: the sensor checks first; a saturated channel's residual only while > 0.
+      const std::uint8_t flags = sc.update(t, y, 0xF);
+      for (int i = 0; i < 4; ++i) {
+        if (((sc.saturated() >> i) & 1u) != 0 && !(r[i] > 0)) valid = static_cast<std::uint8_t>(valid & ~(1u << i));
+      }
       ev.update(r, valid);
-      const std::uint8_t flags = sc.update(y, 0xF);
-      m.update(t, ev, flags);
+      m.update(t, ev, flags, sc.saturated());
       Matcher::Event e;
       while (m.pop_event(e)) events.push_back(e);
     }
@@ -187,7 +192,7 @@ TEST(Matcher, StuckOutOfRangeNaNAreSensorFaultsNeverParameterFaults) {
         sc.range_lo[i] = 0;
         sc.range_hi[i] = 2e6;
       }
-      sc.stuck_samples = 100;
+      sc.stuck_time = 0.1;  // 100 samples at 1 kHz
       ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
       auto raw = [&](double t, double* y) {
         if (t < 1.0) return;
@@ -203,7 +208,7 @@ TEST(Matcher, StuckOutOfRangeNaNAreSensorFaultsNeverParameterFaults) {
       ASSERT_EQ(rig.m.candidate_count(), 1) << kind << " " << ch << " " << rig.names();
       EXPECT_STREQ(rig.m.candidate(0).name, want[ch]);
       EXPECT_EQ(rig.m.sensor_masked(), 1u << ch);
-      // A stuck sensor is only recognised after stuck_samples; until then its residual
+      // A stuck sensor is only recognised after stuck_time; until then its residual
       // is an ordinary deviation, so only the isolation needs to be sensor-only. NaN and
       // out of range are flagged on the first sample: every event is sensor-only.
       for (const auto& e : rig.events) {
@@ -212,6 +217,66 @@ TEST(Matcher, StuckOutOfRangeNaNAreSensorFaultsNeverParameterFaults) {
       }
     }
   }
+}
+
+// A transmitter driven to the top of its range by a real pressure rise reads exactly its
+// range end from then on: saturated, not a sensor fault. Its deviation is a lower bound —
+// the Rig, like Monitor, gives the evaluator its residual only while positive — so its
+// '+' slope and magnitude still count and kp− is isolated as without saturation. The same
+// channel pinned at the bottom of its range (a 4–20 mA loop break) is a sensor fault.
+TEST(Matcher, SaturatedChannelIsMaskedButSystemHypothesesStay) {
+  for (const bool high : {true, false}) {
+    Rig rig;
+    hstmon::SensorCheck<double>::Config sc;
+    for (int i = 0; i < 4; ++i) {
+      sc.range_lo[i] = 0;
+      sc.range_hi[i] = 5.5e6;
+    }
+    ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
+    // Ppp (raw 1e6 + residual) rises by 1114 σ = 5.6e6 with τ = 5 ms: a clamping input
+    // card reads the range end from ≈ 8 ms after the fault on. Or the loop breaks at 2.02 s.
+    auto raw = [high](double t, double* y) {
+      if (high) y[2] = std::min(y[2], 5.5e6);
+      if (!high && t >= 2.02) y[2] = 0.0;
+    };
+    rig.run(3.0, step(2.0, {24.9, -24.9, 1114.0, -1409.0}), raw);
+    rig.print();
+    EXPECT_EQ(rig.m.sensor_masked(), 0b0100) << high;
+    EXPECT_EQ(rig.m.status(), MatchStatus::kIsolated) << high;
+    ASSERT_GE(rig.m.candidate_count(), 1) << high;
+    if (high) {
+      EXPECT_EQ(rig.sc.saturated(), 0b0100);
+      EXPECT_EQ(rig.sc.latched(), 0) << "saturation is not a sensor problem";
+      EXPECT_EQ(rig.m.sensor_faults(), 0);
+      EXPECT_STREQ(rig.m.candidate(0).name, "kp-");
+      EXPECT_EQ(rig.m.symbol(2).slope, hstmon::kQualPlus);
+      EXPECT_EQ(rig.m.symbol(2).magnitude, hstmon::kQualPlus);
+      for (const auto& e : rig.events) {
+        for (int j = 0; j < e.count; ++j) EXPECT_FALSE(kTestTable[e.candidate[j].index].sensor) << e.candidate[j].name;
+      }
+    } else {
+      EXPECT_STREQ(rig.m.candidate(0).name, "sensor_p_pp");
+      EXPECT_EQ(rig.m.sensor_faults(), 0b0100);
+    }
+  }
+}
+
+// A saturated channel whose reading is below the model (the model itself is over range)
+// says nothing: no alarm, no episode, however long it lasts.
+TEST(Matcher, SaturatedBelowTheModelRaisesNothing) {
+  Rig rig;
+  hstmon::SensorCheck<double>::Config sc;
+  for (int i = 0; i < 4; ++i) {
+    sc.range_lo[i] = 0;
+    sc.range_hi[i] = 5.5e6;
+  }
+  ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
+  // Ppp reads its range end while the residual (measured − model) is −20 σ.
+  auto raw = [](double, double* y) { y[2] = 5.5e6; };
+  rig.run(5.0, step(0.0, {0.0, 0.0, -20.0, 0.0}, 1e-4), raw);
+  EXPECT_EQ(rig.sc.saturated(), 0b0100);
+  EXPECT_EQ(rig.m.status(), MatchStatus::kNominal);
+  EXPECT_TRUE(rig.events.empty());
 }
 
 TEST(Matcher, ClearedAfterHoldAndDetectsAgain) {

@@ -54,7 +54,7 @@ long allocations_in_episode(int& events) {
     }
     if (k >= 3500 && k < 3700) y[2] = T(NAN);  // a sensor episode
     ev.update(r, 0xF);
-    m.update(t, ev, sc.update(y, 0xF));
+    m.update(t, ev, sc.update(t, y, 0xF));
     while (m.pop_event(e)) {
       ++events;
       if (std::getenv("HSTMON_DEBUG_EVENTS")) std::printf("%d %s %.3f\n", static_cast<int>(sizeof(T)), hstmon::to_string(e.kind), static_cast<double>(e.time));

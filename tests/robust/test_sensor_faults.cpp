@@ -235,9 +235,11 @@ TEST(SensorFaults, StuckSpeedSensorIsSensorWmAndRecovers) {
 
 // ---- 4–20 mA loop break -------------------------------------------------------------
 
-// Loop break on p_pp (≈171 bar): the reading pinned exactly at a range end, 0 or 200 bar.
-// A pinned value is not out of range (a saturated transmitter reads its end), so the
-// checker calls it stuck after stuck_samples = 100 samples; the residual alarms at once.
+// Loop break on p_pp (≈171 bar): the reading pinned exactly at 0 or 200 bar, with no
+// sensor ranges configured (so no range end is known): the checker calls it stuck after
+// stuck_time = 0.1 s (100 samples at 1 kHz); the residual alarms at once. (With ranges,
+// 0 bar is at the live zero — out of range at once, LoopBreakInLog… below — and 200 bar
+// at the top is saturated, not a fault: test_saturated_transmitter.cpp.)
 void loop_break_pinned(double pinned, bool ranges) {
   Rig rig(ranges);
   rig.run(1000);
@@ -452,7 +454,8 @@ TEST(ReplayStreamFaults, DISABLED_RepeatedTimestampSkipsOnlyThatRow) {
 }
 
 void loop_break_in_log(double dt, double seconds_broken) {
-  // 1 s good, then p_pp pinned at 0 bar, then 2 s good.
+  // 1 s good, then p_pp pinned at 0 bar (its range start: a broken 4–20 mA loop on an
+  // input card that clamps), then 2 s good.
   const auto per_s = static_cast<std::size_t>(std::lround(1.0 / dt));
   const std::size_t k0 = per_s, k1 = k0 + static_cast<std::size_t>(seconds_broken * static_cast<double>(per_s));
   const std::size_t n = k1 + 2 * per_s;
@@ -475,6 +478,8 @@ void loop_break_in_log(double dt, double seconds_broken) {
   std::printf("loop break in a log at %g Hz, events:\n%s", 1.0 / dt, dump(r).c_str());
   EXPECT_TRUE(sensor) << dump(r);
   EXPECT_TRUE(bad.empty()) << dump(r);
+  ASSERT_FALSE(r.events.empty());
+  EXPECT_NEAR(r.events.front().t, 1.0, 0.5 * dt) << "flagged on the first bad sample";
   EXPECT_EQ(r.final_status, "nominal") << dump(r);
   // Residuals of the rows before the break are pure noise, kept in the trace.
   for (std::size_t k = 0; k < k0; ++k) ASSERT_LT(std::fabs(r.trace[k].r[2]), 10 * kSigmaP) << k;
@@ -484,11 +489,11 @@ void loop_break_in_log(double dt, double seconds_broken) {
 
 TEST(ReplayStreamFaults, LoopBreakInLogIsSensorPppAndKeepsEarlierRows) { loop_break_in_log(1e-3, 1.5); }
 
-// The same at 100 Hz (the rate of examples/prv_blockage.csv): the stuck check needs 100
-// samples = 1 s, the matcher's window closes 150 ms after detection. Today: detected
-// 1.02 s, "ambiguous Pbp- sensor_p_pp" at 1.18 s (a parameter fault ranked first for
-// 0.81 s), isolated sensor_p_pp at 1.99 s (stuck), cleared 4.49 s. stuck_samples counts
-// samples, not time, and replay sets no sensor ranges. Disabled until then.
-TEST(ReplayStreamFaults, DISABLED_LoopBreakIn100HzLogIsSensorPpp) { loop_break_in_log(1e-2, 3.0); }
+// The same at 100 Hz (the rate of examples/prv_blockage.csv). The stuck check alone would
+// need 50 samples = 0.5 s here (stuck_min_samples), longer than the matcher's window (150 ms
+// after detection): before replay had sensor ranges, "ambiguous Pbp- sensor_p_pp" came at
+// 1.18 s, a parameter fault ranked first. With the thesis rig's ranges (replay's default)
+// 0 bar is the transmitter's live zero: out of range on the first sample.
+TEST(ReplayStreamFaults, LoopBreakIn100HzLogIsSensorPpp) { loop_break_in_log(1e-2, 3.0); }
 
 }  // namespace

@@ -17,12 +17,17 @@
 ///    need not show on every channel).
 /// kQualAny matches everything. A channel with a sensor flag is masked, and while any
 /// channel is flagged only the sensor rows of flagged channels are candidates: a
-/// sensor problem is never reported as a parameter fault.
+/// sensor problem is never reported as a parameter fault. A saturated channel (over
+/// range, SensorCheck::saturated()) reads at most its range end, so its deviation is a
+/// lower bound: every hypothesis stays; the caller gives the evaluator its residual only
+/// while positive (Monitor does), so its alarm and slope can only be '+'; its magnitude
+/// is recorded only when '+'; it enters the ranking with the lower bound. The saturation
+/// flag alone never starts an episode. Masks hold until the episode ends.
 ///
 /// Ranking: score = cosine between the noise-normalised deviation vector v (window mean
 /// less baseline, divided by σ; before the window ends, the latest residual) and the
-/// row's `direction`, over unmasked channels; a sensor row scores |v_ch|/|v| on its
-/// channel. With several candidates left after the window, the status is kIsolated if
+/// row's `direction`, over the channels without a sensor flag; a sensor row scores
+/// |v_ch|/|v| on its channel. With several candidates left after the window, the status is kIsolated if
 /// the best leads the second by tie_margin in angle, else kAmbiguous. With none left it
 /// is kUnexplained (no single fault in the table fits). When no channel is in alarm and
 /// no sensor is flagged for clear_hold, the episode ends (event "cleared", kNominal).
@@ -90,6 +95,33 @@ constexpr const char* to_string(MatchEventKind k) noexcept {
   return "?";
 }
 
+namespace detail {
+
+/// cos m and sin m of a tie margin [rad] (cos = −2 for m beyond π or NaN: never a lead).
+template <typename T>
+struct MarginCosSin {
+  T c, s;
+};
+
+/// Taylor series of cos m and sin m for m in [0, π], every term kept until it is below
+/// rounding, so isolation needs no acos on the tick path; constexpr, so the default
+/// margin costs no code.
+template <typename T>
+constexpr MarginCosSin<T> margin_cos_sin(T m) noexcept {
+  const bool never = !(m <= T(3.14159265358979323846));  // a lead beyond π is impossible
+  const T x = never ? T(0) : m;
+  T c = T(1), s = x, tc = T(1), ts = x;
+  for (int k = 1; k <= 16; ++k) {  // x^(2k)/(2k)!, x^(2k+1)/(2k+1)!: π^34/34! < 1e-19
+    tc = -tc * x * x / static_cast<T>((2 * k - 1) * (2 * k));
+    ts = -ts * x * x / static_cast<T>((2 * k) * (2 * k + 1));
+    c += tc;
+    s += ts;
+  }
+  return {never ? T(-2) : c, s};  // −2: s0 < −cos m always
+}
+
+}  // namespace detail
+
 /// A ranked hypothesis.
 template <typename T>
 struct MatchCandidate {
@@ -124,6 +156,7 @@ class FaultMatcher {
   using Candidate = MatchCandidate<T>;
   using Event = MatchEvent<T, EventCandidates>;
   static constexpr int kQueueDepth = QueueDepth;  ///< events held until popped
+  static constexpr T kDefaultTieMargin = T(0.01);  ///< Config::tie_margin's default [rad]
 
   /// Configuration; validated by configure(). Times in seconds, k_* in units of σ.
   struct Config {
@@ -141,7 +174,7 @@ class FaultMatcher {
     T average_time = T(0.1);
     T k_zero = T(3);      ///< dead band of the magnitude symbol on the baseline-relative mean [σ], ≥ 0
     T k_expect = T(6);    ///< predicted deviation above which an observed 0 contradicts ± [σ], ≥ 0
-    T tie_margin = T(0.01);  ///< angle lead of the best candidate needed to isolate [rad], ≥ 0
+    T tie_margin = kDefaultTieMargin;  ///< angle lead of the best candidate needed to isolate [rad], ≥ 0
     T clear_hold = T(0.5);   ///< quiet time that ends an episode [s], ≥ 0
     /// Samples of the running mean that tracks each residual's pre-fault baseline while
     /// nominal (then an exponential average over this many samples) [-], ≥ 1.
@@ -155,15 +188,24 @@ class FaultMatcher {
   /// @param count  rows in the table, 0 … Capacity
   /// @return       kOk, or kInvalidConfig (matcher unchanged)
   Status configure(const FaultSignature* table, int count, const Config& c) noexcept {
-    const bool ok = count >= 0 && count <= Capacity && (table != nullptr || count == 0) &&
-                    nonneg(c.order_window) && nonneg(c.settle_time) && nonneg(c.average_time) &&
-                    c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) && nonneg(c.tie_margin) &&
-                    nonneg(c.clear_hold) && c.baseline_samples >= 1;
+    const bool ok = table_ok(table, count) && nonneg(c.order_window) && nonneg(c.settle_time) &&
+                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) &&
+                    nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
     if (!ok) return Status::kInvalidConfig;
+    cfg_ = c;
+    const detail::MarginCosSin<T> m = detail::margin_cos_sin(c.tie_margin);
+    cos_margin_ = m.c;
+    sin_margin_ = m.s;
+    return set_table(table, count);
+  }
+
+  /// Takes a table, keeps the configuration (on a default-constructed matcher: Config{}),
+  /// and resets.
+  /// @return kOk, or kInvalidConfig (matcher unchanged)
+  Status set_table(const FaultSignature* table, int count) noexcept {
+    if (!table_ok(table, count)) return Status::kInvalidConfig;
     table_ = table;
     count_ = count;
-    cfg_ = c;
-    set_margin(c.tie_margin);
     for (int k = 0; k < count; ++k) {
       const FaultSignature& f = table[k];
       int ch = -1;
@@ -192,9 +234,10 @@ class FaultMatcher {
   /// Advances one tick.
   /// @param t            time of the evaluated sample [s], non-decreasing
   /// @param ev           the evaluator, already updated with this tick's residuals
-  /// @param sensor_mask  bit i set: channel i failed a sensor check this tick (SensorCheck::mask())
-  /// @return             status() after the tick
-  MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0) noexcept {
+  /// @param sensor_mask     bit i set: channel i failed a sensor check this tick (SensorCheck::mask())
+  /// @param saturated_mask  bit i set: channel i is saturated this tick (SensorCheck::saturated())
+  /// @return                status() after the tick
+  MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0, std::uint8_t saturated_mask = 0) noexcept {
     const unsigned all = (1u << kChannels) - 1u;
     const unsigned sensors = sensor_mask & all;
     const unsigned alarm = ev.alarm() & all;
@@ -210,13 +253,16 @@ class FaultMatcher {
     if (active) t_active_ = t;
 
     bool changed = false;
-    // Sensor flags: mask the channels; only their sensor rows remain candidates.
-    if ((sensors & ~static_cast<unsigned>(masked_)) != 0) {
-      masked_ = static_cast<std::uint8_t>(masked_ | sensors);
+    // Sensor flags mask the channels and leave only their sensor rows; saturation is noted.
+    const unsigned masks = (sensors | saturated_mask) & all;
+    if ((masks & ~static_cast<unsigned>(masked_)) != 0 || (sensors & ~static_cast<unsigned>(faulty_)) != 0) {
+      masked_ = static_cast<std::uint8_t>(masked_ | masks);
+      faulty_ = static_cast<std::uint8_t>(faulty_ | sensors);
+      if (window_done_) set_vector(v_);  // the window's deviation, less the channels flagged since
       changed = true;
     }
     // Alarm onsets: slope symbol and rank (channels rising on the same tick share a rank).
-    unsigned rising = alarm & ~static_cast<unsigned>(masked_) & ~static_cast<unsigned>(seen_);
+    unsigned rising = alarm & ~static_cast<unsigned>(faulty_) & ~static_cast<unsigned>(seen_);
     if (rising != 0) {
       ++rank_;
       for (int i = 0; i < kChannels; ++i) {
@@ -273,8 +319,10 @@ class FaultMatcher {
   const ChannelSymbol& symbol(int i) const noexcept { return sym_[i]; }
   /// Bit i set: channel i deviated first (alarmed within order_window of detection).
   std::uint8_t first_channels() const noexcept { return first_; }
-  /// Bit i set: channel i is masked by a sensor flag in this episode.
+  /// Bit i set: channel i had a sensor flag or was saturated in this episode.
   std::uint8_t sensor_masked() const noexcept { return masked_; }
+  /// Bit i set: channel i had a sensor flag in this episode (its sensor row is a candidate).
+  std::uint8_t sensor_faults() const noexcept { return faulty_; }
   /// Time the episode was detected [s] (meaningful when status() ≠ kNominal).
   T detection_time() const noexcept { return t_det_; }
   /// True once the averaging window of this episode is complete.
@@ -304,6 +352,9 @@ class FaultMatcher {
  private:
   static constexpr int kQueue = QueueDepth;
   static bool nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
+  static bool table_ok(const FaultSignature* table, int count) noexcept {
+    return count >= 0 && count <= Capacity && (table != nullptr || count == 0);
+  }
   static bool responds(const ChannelSignature& s) noexcept {
     return s.magnitude != kQualZero || s.slope != kQualZero;
   }
@@ -318,7 +369,7 @@ class FaultMatcher {
     }
     v_norm_ = T(0);
     n_alive_ = 0;
-    masked_ = seen_ = first_ = 0;
+    masked_ = faulty_ = seen_ = first_ = 0;
     rank_ = 0;
     order_done_ = window_done_ = false;
     first_tick_ = false;
@@ -348,7 +399,7 @@ class FaultMatcher {
   void set_vector(const T* dev) noexcept {
     T s = T(0);
     for (int i = 0; i < kChannels; ++i) {
-      v_[i] = ((masked_ >> i) & 1u) ? T(0) : dev[i];
+      v_[i] = ((faulty_ >> i) & 1u) ? T(0) : dev[i];
       s += v_[i] * v_[i];
     }
     v_norm_ = std::sqrt(s);
@@ -368,22 +419,26 @@ class FaultMatcher {
     }
     set_vector(d);
     for (int i = 0; i < kChannels; ++i) {
-      if (n_[i] > 0 && ((masked_ >> i) & 1u) == 0) sym_[i].magnitude = qual_sign(d[i], cfg_.k_zero);
+      if (n_[i] == 0 || ((faulty_ >> i) & 1u) != 0) continue;
+      // Saturated: the window mean is below the truth (clipped samples, and the evaluator
+      // skips those below the model), so only '+' is known.
+      const std::int8_t q = qual_sign(d[i], cfg_.k_zero);
+      if (((masked_ >> i) & 1u) == 0 || q == kQualPlus) sym_[i].magnitude = q;
     }
   }
 
-  /// Norm of the row's direction over the unmasked channels [-].
+  /// Norm of the row's direction over the channels without a sensor flag [-].
   T dir_norm(const FaultSignature& f) const noexcept {
     T s = T(0);
     for (int i = 0; i < kChannels; ++i) {
-      if (((masked_ >> i) & 1u) == 0) s += static_cast<T>(f.direction[i]) * static_cast<T>(f.direction[i]);
+      if (((faulty_ >> i) & 1u) == 0) s += static_cast<T>(f.direction[i]) * static_cast<T>(f.direction[i]);
     }
     return std::sqrt(s);
   }
 
   bool consistent(int k) const noexcept {
     const FaultSignature& f = table_[k];
-    if (masked_ != 0) return sensor_ch_[k] >= 0 && ((masked_ >> sensor_ch_[k]) & 1u) != 0;
+    if (faulty_ != 0) return sensor_ch_[k] >= 0 && ((faulty_ >> sensor_ch_[k]) & 1u) != 0;
     const T dn = dir_norm(f);
     for (int i = 0; i < kChannels; ++i) {
       const ChannelSignature& p = f.channel[i];
@@ -419,13 +474,13 @@ class FaultMatcher {
   T score(int k) const noexcept {
     if (!(v_norm_ > T(0))) return T(0);
     const int s = sensor_ch_[k];
-    if (s >= 0) return ((masked_ >> s) & 1u) ? T(1) : std::fabs(v_[s]) / v_norm_;
+    if (s >= 0) return ((faulty_ >> s) & 1u) ? T(1) : std::fabs(v_[s]) / v_norm_;
     const FaultSignature& f = table_[k];
     const T dn = dir_norm(f);
     if (!(dn > T(0))) return T(0);
     T dot = T(0);
     for (int i = 0; i < kChannels; ++i) {
-      if (((masked_ >> i) & 1u) == 0) dot += static_cast<T>(f.direction[i]) * v_[i];
+      if (((faulty_ >> i) & 1u) == 0) dot += static_cast<T>(f.direction[i]) * v_[i];
     }
     return dot / (dn * v_norm_);
   }
@@ -433,7 +488,7 @@ class FaultMatcher {
   void eliminate() noexcept {
     int n = 0;
     for (int k = 0; k < count_; ++k) {
-      if (alive_[k] || masked_ != 0) alive_[k] = consistent(k);
+      if (alive_[k] || faulty_ != 0) alive_[k] = consistent(k);
       if (alive_[k]) order_[n++] = static_cast<std::int8_t>(k);
     }
     n_alive_ = n;
@@ -453,23 +508,6 @@ class FaultMatcher {
   }
 
   static T clamp_unit(T c) noexcept { return c > T(1) ? T(1) : (c < T(-1) ? T(-1) : c); }
-
-  /// cos and sin of the tie margin m (Taylor series; m in [0, π]: every term is kept
-  /// until it is below rounding), so isolation needs no acos on the tick path.
-  void set_margin(T m) noexcept {
-    constexpr T kPi = T(3.14159265358979323846);
-    const bool never = !(m <= kPi);  // a lead beyond π is impossible
-    const T x = never ? T(0) : m;
-    T c = T(1), s = x, tc = T(1), ts = x;
-    for (int k = 1; k <= 16; ++k) {  // x^(2k)/(2k)!, x^(2k+1)/(2k+1)!: π^34/34! < 1e-19
-      tc = -tc * x * x / static_cast<T>((2 * k - 1) * (2 * k));
-      ts = -ts * x * x / static_cast<T>((2 * k) * (2 * k + 1));
-      c += tc;
-      s += ts;
-    }
-    cos_margin_ = never ? T(-2) : c;  // −2: s0 < −cos m always, so never a lead
-    sin_margin_ = s;
-  }
 
   /// acos(s1) − acos(s0) ≥ tie_margin for the best two scores s0 ≥ s1 (clamped to
   /// [−1, 1]), without acos: with a0 = acos(s0) and m the margin, the lead holds iff
@@ -493,7 +531,7 @@ class FaultMatcher {
       s = MatchStatus::kUnexplained;
     } else if (n_alive_ == 1) {
       s = MatchStatus::kIsolated;
-    } else if (!window_done_ && masked_ == 0) {
+    } else if (!window_done_ && faulty_ == 0) {
       s = MatchStatus::kDetected;
     } else {
       s = leads_by_margin(score_[order_[0]], score_[order_[1]]) ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
@@ -539,9 +577,12 @@ class FaultMatcher {
   const FaultSignature* table_ = nullptr;
   int count_ = 0;
   Config cfg_{};
-  T cos_margin_ = T(1), sin_margin_ = T(0);  ///< of cfg_.tie_margin (set_margin; −2: > π)
+  static constexpr detail::MarginCosSin<T> kDefaultCosSin = detail::margin_cos_sin(kDefaultTieMargin);
+  T cos_margin_ = kDefaultCosSin.c;  ///< cos of cfg_.tie_margin (−2: beyond π) [-]
+  T sin_margin_ = kDefaultCosSin.s;  ///< sin of cfg_.tie_margin [-]
   MatchStatus status_ = MatchStatus::kNominal;
   bool alive_[kCap_] = {};
+  std::uint8_t faulty_ = 0;  ///< channels with a sensor flag in this episode (⊆ masked_); after alive_, in its padding
   T score_[kCap_] = {};
   std::int8_t order_[kCap_] = {};   ///< consistent rows, best first
   std::int8_t sensor_ch_[kCap_] = {};  ///< channel of a sensor row, −1 for others

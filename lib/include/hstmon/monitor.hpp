@@ -6,9 +6,10 @@
 /// host replay runs, so both go through the same code.
 ///
 /// Each step(): observer tick → sensor checks on the raw sample → evaluator on the
-/// residuals → matcher. When the inputs change, the model bound (parameter-uncertainty
-/// part of the thresholds) is recomputed for the operating point they lead to: about 20
-/// steady-state solves, so a few hundred microseconds on a Cortex-M4, once per change.
+/// residuals (a saturated channel's only while above the model) → matcher. When the
+/// inputs change, the model bound (parameter-uncertainty part of the thresholds) is
+/// recomputed for the operating point they lead to: about 20 steady-state solves, so a few
+/// hundred microseconds on a Cortex-M4, once per change.
 /// step() never allocates or throws.
 
 #include <cmath>
@@ -50,7 +51,7 @@ class Monitor {
   struct Config {
     typename Obs::Config observer{};          ///< tick, substeps, injection gain
     typename Evaluator::Config evaluator{};   ///< noise σ per channel, CUSUM factors
-    typename Sensors::Config sensors{};       ///< physical ranges, stuck detection
+    typename Sensors::Config sensors{};       ///< transmitter ranges, stuck window
     typename Matcher::Config matcher{};       ///< windows, tie margin, clear hold
     ThesisUncertainty<T> uncertainty{};       ///< relative parameter uncertainty behind the model bound
     /// After an input change the residuals are not accumulated for this long [s], ≥ 0.
@@ -93,10 +94,7 @@ class Monitor {
                      int count) noexcept {
     if (!Model::params_valid(params)) return Status::kInvalidParams;
     Status s = obs_.configure(Model(params), observer);
-    if (s == Status::kOk) {
-      const typename Matcher::Config mc = matcher_.config();  // a copy: configure() assigns it
-      s = matcher_.configure(table, count, mc);
-    }
+    if (s == Status::kOk) s = matcher_.set_table(table, count);
     if (s != Status::kOk) return s;
     reset_rest_of_chain();
     return Status::kOk;
@@ -125,17 +123,26 @@ class Monitor {
     // The observer holds the last good inputs when u is invalid, so a change is what it
     // actually took on, not what was offered.
     const ThesisInputs<T> before = obs_.model().inputs();
-    health_ = obs_.step(u, m);
+    observe(u, m);
     if (!bound_valid_ || !same_inputs(obs_.model().inputs(), before)) {
       // The first inputs after a reset are no change: the observer starts consistent.
       if (bound_valid_) settle_until_ = t + settle_time_;
       update_bound();
     }
-    const std::uint8_t sensor_mask = sensors_.update(m.y.data(), m.valid);
-    const bool settling = t < settle_until_;
-    ev_.update(obs_.residual().data(), settling ? std::uint8_t{0} : obs_.residual_valid());
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid);
+    // A saturated reading is clipped at the range end, so the true residual is at least r:
+    // r > 0 is evidence of a rise (a lower bound), r ≤ 0 none — the evaluator then holds
+    // that channel (statistics and alarm) as if it were not sampled.
+    const std::uint8_t saturated = sensors_.saturated();
+    unsigned used = t < settle_until_ ? 0u : obs_.residual_valid();
+    if (saturated != 0) {
+      for (int i = 0; i < kFdiChannels; ++i) {
+        if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
+      }
+    }
+    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used));
     if (m.valid == 0) return matcher_.status();
-    return matcher_.update(t, ev_, sensor_mask);
+    return matcher_.update(t, ev_, sensor_mask, saturated);
   }
 
   /// Oldest unread event; false when none.
@@ -145,8 +152,8 @@ class Monitor {
   const Evaluator& evaluator() const noexcept { return ev_; }
   const Sensors& sensors() const noexcept { return sensors_; }
   const Matcher& matcher() const noexcept { return matcher_; }
-  /// Observer HealthFlag bits of the last tick.
-  std::uint32_t health() const noexcept { return health_; }
+  /// Observer HealthFlag bits of the last tick (0 after a reset).
+  std::uint32_t health() const noexcept { return obs_.last_health(); }
   /// The model bound in use, per channel [channel unit].
   const T* model_bound() const noexcept { return bound_; }
 
@@ -165,6 +172,10 @@ class Monitor {
     settle_until_ = -std::numeric_limits<T>::infinity();
   }
 
+  // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
+  // update runs on a tick with new inputs (the deepest stack of a step on the M4F).
+  HSTMON_NOINLINE void observe(const ThesisInputs<T>& u, const Measurement& m) noexcept { (void)obs_.step(u, m); }
+
   // Keeps the last good bound when the changed operating point has no steady state.
   void update_bound() noexcept {
     T m[kFdiChannels];
@@ -181,7 +192,6 @@ class Monitor {
   Matcher matcher_{};
   ThesisUncertainty<T> uncertainty_{};
   T bound_[kFdiChannels] = {};
-  std::uint32_t health_ = 0;
   T settle_time_ = T(0.05);
   T settle_until_ = -std::numeric_limits<T>::infinity();  ///< residuals ignored before this time [s]
   bool bound_valid_ = false;

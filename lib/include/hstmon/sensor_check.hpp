@@ -1,11 +1,21 @@
 #pragma once
 /// @file sensor_check.hpp
 /// Plausibility checks on the raw measurements, independent of the model: a non-finite
-/// value, a value outside the channel's physical range, and a value frozen (exactly equal
-/// to the previous one) for a number of consecutive samples. A channel that fails one is
-/// a sensor problem, never evidence for a parameter fault (FaultMatcher masks it).
-/// State: a counter and the last value per channel; update() is O(N), never allocates,
-/// never throws.
+/// value, a value outside what the channel's transmitter can report, and a value frozen
+/// (bit-identical to the previous one) for a time. A channel that fails one is a sensor
+/// problem, never evidence for a parameter fault (FaultMatcher masks it and keeps only
+/// its sensor row). A channel reading at or just above the top of its range is
+/// saturated: over range, its true value is at least range_hi — the machine may well be
+/// there — so it is not a sensor problem; its reading is only a lower bound.
+///
+/// Ranges follow a live-zero (4–20 mA) transmitter: range_lo is the 4 mA value, and a
+/// broken loop reads at or below it (0 mA; or exactly range_lo where the input card
+/// clamps), so a reading ≤ range_lo is out of range. Above range_hi a transmitter
+/// saturates up to 20.5 mA (NAMUR NE 43), range_hi + span/32; a reading beyond that is
+/// out of range (NE 43's ≥ 21 mA failure signal, or a wrong value).
+///
+/// State: per channel the last value, the time its run of equal samples began (or the
+/// deadline of that run), and its flags; update() is O(N), never allocates, never throws.
 
 #include <cmath>
 #include <cstddef>
@@ -24,6 +34,13 @@
 #define HSTMON_NOINLINE
 #endif
 #endif
+/// Out of line and optimised for size (GCC, Clang): the checks that run only for a channel
+/// off the fast path — flagged, repeating or not sampled (flash on the Cortex-M4F).
+#if defined(__GNUC__)
+#define HSTMON_SENSOR_SLOW_PATH __attribute__((noinline, cold))
+#else
+#define HSTMON_SENSOR_SLOW_PATH
+#endif
 #ifndef HSTMON_UNROLL
 #if defined(__GNUC__) && !defined(__clang__)
 #define HSTMON_UNROLL _Pragma("GCC unroll 8")
@@ -37,9 +54,15 @@ namespace hstmon {
 /// Sensor flags of one channel, OR-ed into a bit set. Zero means plausible.
 enum SensorFlag : std::uint8_t {
   kSensorNonFinite = 1u << 0,   ///< the value is NaN or ±Inf
-  kSensorOutOfRange = 1u << 1,  ///< the value is strictly outside [range_lo, range_hi]
-  kSensorStuck = 1u << 2,       ///< the value has not changed for stuck_samples samples
+  /// At or below range_lo (a 4–20 mA loop break), or above range_hi + (range_hi − range_lo)/32.
+  kSensorOutOfRange = 1u << 1,
+  kSensorStuck = 1u << 2,       ///< bit-identical for stuck_time and stuck_min_samples samples
+  /// In [range_hi, range_hi + (range_hi − range_lo)/32]: over range, not a fault (masked only).
+  kSensorSaturated = 1u << 3,
 };
+
+/// The flags that make a channel a sensor problem (all but kSensorSaturated).
+constexpr std::uint8_t kSensorFaultFlags = kSensorNonFinite | kSensorOutOfRange | kSensorStuck;
 
 /// Raw-measurement checks over N channels (N ≤ 8).
 template <typename T, int N = 4>
@@ -47,18 +70,28 @@ class SensorCheck {
  public:
   static_assert(N >= 1 && N <= 8, "channel masks are 8 bits wide");
   static constexpr std::size_t kN_ = static_cast<std::size_t>(N);  ///< array extent
+  static constexpr T kDefaultStuckTime = T(0.1);                      ///< Config::stuck_time's default [s]
+  static constexpr std::uint8_t kDefaultStuckMinSamples = 50;          ///< Config::stuck_min_samples's default [-]
 
   /// Configuration; validated by configure(). Units are the channel's (Pa, rad/s).
   struct Config {
-    /// Lower end of the physically possible range [channel unit]; −∞ disables.
+    /// Lower end of the transmitter's range (its live zero, 4 mA) [channel unit]; a reading
+    /// at or below it is out of range. −∞ (the default) disables.
     T range_lo[kN_] = {};
-    /// Upper end [channel unit], > range_lo; +∞ disables. A transmitter that saturates
-    /// at its range end reads exactly the end, which is not out of range.
+    /// Upper end [channel unit], > range_lo; a reading from it up to the saturation band
+    /// above it is saturated, beyond the band out of range. +∞ (the default) disables.
     T range_hi[kN_] = {};
-    /// Consecutive bit-identical samples that make a channel stuck [-], ≥ 2; 0 disables.
-    /// Default 100 (0.1 s at 1 kHz): with σ = 0.05 bar noise and a 16-bit ADC two equal
-    /// successive codes have probability ≈ 0.02, with a 12-bit ADC ≈ 0.5 (0.5^99 ≈ 2e-30).
-    std::uint32_t stuck_samples = 100;
+    /// Time a channel must read one bit-identical value to be stuck [s], finite, ≥ 0.
+    /// n equal samples at interval Δt count as n·Δt. Default 0.1 s: 100 samples at 1 kHz.
+    T stuck_time = kDefaultStuckTime;
+    /// Least number of equal samples that make a channel stuck, whatever the time [-]:
+    /// 0 disables the stuck check, 1 is invalid. Equal successive samples are common on
+    /// a coarsely quantised channel — a speed counted to 1 rpm with 0.5 rpm noise repeats
+    /// its most likely code with probability ≈ 0.68, and examples/prv_blockage.csv (100 Hz)
+    /// holds a run of 22 equal speed samples — so the time alone (10 samples at 100 Hz,
+    /// 2 at a 4 s DAS) would call such a channel stuck. Default 50: 0.68^49 ≈ 6e-9 per
+    /// sample; 0.5 s at 100 Hz, 200 s at 4 s.
+    std::uint8_t stuck_min_samples = kDefaultStuckMinSamples;
 
     Config() noexcept {
       for (int i = 0; i < N; ++i) {
@@ -68,110 +101,154 @@ class SensorCheck {
     }
   };
 
-  /// The default configuration (valid), flags clear: the member initializers are reset()'s state.
-  SensorCheck() noexcept = default;
+  /// The default configuration (valid: no range ends), flags clear — reset()'s state.
+  SensorCheck() noexcept {
+    for (int i = 0; i < N; ++i) {
+      lo_[i] = -std::numeric_limits<T>::infinity();
+      hi_[i] = std::numeric_limits<T>::infinity();
+    }
+  }
 
   /// Takes a configuration and resets.
-  /// @return kOk, or kInvalidConfig (a range with NaN or lo ≥ hi, or stuck_samples = 1),
-  ///         checker unchanged
+  /// @return kOk, or kInvalidConfig (a range with NaN or lo ≥ hi, stuck_time not finite
+  ///         or < 0, or stuck_min_samples = 1), checker unchanged
   Status configure(const Config& c) noexcept {
-    if (c.stuck_samples == 1) return Status::kInvalidConfig;
+    if (c.stuck_min_samples == 1 || !(std::isfinite(c.stuck_time) && c.stuck_time >= T(0))) return Status::kInvalidConfig;
     for (int i = 0; i < N; ++i) {
       if (!(c.range_lo[i] < c.range_hi[i])) return Status::kInvalidConfig;
     }
-    cfg_ = c;
-    ranged_ = 0;
-    for (int i = 0; i < N; ++i) {
-      const T inf = std::numeric_limits<T>::infinity();
-      if (c.range_lo[i] != -inf || c.range_hi[i] != inf) ranged_ = static_cast<std::uint8_t>(ranged_ | (1u << i));
-    }
+    set(c);
     reset();
     return Status::kOk;
   }
 
-  /// Forgets the last values and clears the flags.
+  /// Forgets the last values (no kHave) and clears the flags.
   void reset() noexcept {
-    for (int i = 0; i < N; ++i) {
-      flags_[i] = 0;
-      same_[i] = 0;
-      last_[i] = T(0);
-    }
-    mask_ = 0;
+    for (int i = 0; i < N; ++i) flags_[i] = 0;
+    sat_ = 0;
     latched_ = 0;
-    have_last_ = 0;
   }
 
   /// Checks one sample.
+  /// @param t      sample time [s], non-decreasing (the stuck window is measured in it)
   /// @param y      N raw measurements [channel unit]
   /// @param valid  bit i set: channel i was sampled this tick (others keep their flags)
-  /// @return       mask(): bit i set if channel i has any flag
-  std::uint8_t update(const T* y, std::uint8_t valid) noexcept {
-    unsigned mask = 0;
-    // Fast path (the nominal sample): a finite value that differs from the channel's
-    // previous one, on a channel without a finite range end (ranged_): no flag, no repeat.
-    const unsigned fast = static_cast<unsigned>(have_last_) & ~static_cast<unsigned>(ranged_);
+  /// @return       mask(): bit i set if channel i is a sensor problem (kSensorFaultFlags)
+  std::uint8_t update(T t, const T* y, std::uint8_t valid) noexcept {
+    unsigned slow = 0;
     HSTMON_UNROLL
     for (int i = 0; i < N; ++i) {
       const unsigned bit = 1u << i;
-      if ((valid & bit) == 0) {
-        mask |= flags_[i] != 0 ? bit : 0u;
-        continue;
-      }
-      const T v = y[i];
-      if ((fast & bit) != 0 && std::fabs(v) <= std::numeric_limits<T>::max() && v != last_[i]) {
-        same_[i] = 0;
-        last_[i] = v;
-        flags_[i] = 0;
-      } else if (check_channel(i, v) != 0) {
-        mask |= bit;
+      // Fast path (the nominal sample): sampled, strictly inside the range (so finite) and
+      // not equal to the previous value — no flag, a run of one.
+      if ((valid & bit) != 0 && y[i] > lo_[i] && y[i] < hi_[i] && y[i] != last_[i]) {
+        last_[i] = y[i];
+        since_[i] = t;
+        flags_[i] = kHave;
+      } else {
+        slow |= bit;
       }
     }
-    mask_ = static_cast<std::uint8_t>(mask);
-    latched_ = static_cast<std::uint8_t>(latched_ | mask_);
-    return mask_;
+    if (slow == 0) {
+      sat_ = 0;
+      return 0;
+    }
+    return update_slow(t, y, valid & slow);
   }
 
   /// SensorFlag bits of channel i from its last sample.
-  std::uint8_t flags(int i) const noexcept { return flags_[i]; }
-  /// Bit i set: channel i has a flag now.
-  std::uint8_t mask() const noexcept { return mask_; }
-  /// Bit i set: channel i had a flag at some sample since reset.
+  std::uint8_t flags(int i) const noexcept { return static_cast<std::uint8_t>(flags_[i] & ~(kHave | kRun)); }
+  /// Bit i set: channel i is a sensor problem now (a kSensorFaultFlags flag).
+  std::uint8_t mask() const noexcept {
+    unsigned m = 0;
+    for (int i = 0; i < N; ++i) m |= (flags_[i] & kSensorFaultFlags) != 0 ? 1u << i : 0u;
+    return static_cast<std::uint8_t>(m);
+  }
+  /// Bit i set: channel i is saturated now (kSensorSaturated; not a sensor problem).
+  std::uint8_t saturated() const noexcept { return sat_; }
+  /// Bit i set: channel i was a sensor problem at some sample since reset.
   std::uint8_t latched() const noexcept { return latched_; }
-  const Config& config() const noexcept { return cfg_; }
-
- private:
-  /// The full check of sampled channel i with value v. @return its flags
-  HSTMON_NOINLINE std::uint8_t check_channel(int i, T v) noexcept {
-    const unsigned bit = 1u << i;
-    std::uint8_t f = 0;
-    if (!std::isfinite(v)) {
-      f |= kSensorNonFinite;
-      same_[i] = 0;
-      have_last_ = static_cast<std::uint8_t>(have_last_ & ~bit);
-    } else {
-      if (v < cfg_.range_lo[i] || v > cfg_.range_hi[i]) f |= kSensorOutOfRange;
-      if ((have_last_ & bit) != 0 && v == last_[i]) {
-        if (same_[i] < 0xFFFFFFFFu) ++same_[i];
-      } else {
-        same_[i] = 0;
-      }
-      last_[i] = v;
-      have_last_ = static_cast<std::uint8_t>(have_last_ | bit);
-      // same_ counts repeats, so stuck_samples equal samples are stuck_samples − 1 repeats.
-      if (cfg_.stuck_samples != 0 && same_[i] + 1u >= cfg_.stuck_samples) f |= kSensorStuck;
+  /// The configuration in use.
+  Config config() const noexcept {
+    Config c;
+    for (int i = 0; i < N; ++i) {
+      c.range_lo[i] = lo_[i];
+      c.range_hi[i] = hi_[i];
     }
-    flags_[i] = f;
-    return f;
+    c.stuck_time = stuck_time_;
+    c.stuck_min_samples = min_samples_;
+    return c;
   }
 
-  Config cfg_{};
-  T last_[kN_] = {};
-  std::uint32_t same_[kN_] = {};
-  std::uint8_t flags_[kN_] = {};
-  std::uint8_t mask_ = 0;
-  std::uint8_t latched_ = 0;
-  std::uint8_t have_last_ = 0;
-  std::uint8_t ranged_ = 0;  ///< bit i: channel i's range has a finite end (the default has none; update()'s fast path)
+ private:
+  /// Internal flags: last_ holds a finite sample; since_ holds the deadline of the run.
+  static constexpr std::uint8_t kHave = 1u << 6, kRun = 1u << 7;
+
+  void set(const Config& c) noexcept {
+    for (int i = 0; i < N; ++i) {
+      lo_[i] = c.range_lo[i];
+      hi_[i] = c.range_hi[i];
+    }
+    stuck_time_ = c.stuck_time;
+    min_samples_ = c.stuck_min_samples;
+  }
+
+  /// The channels off the fast path: full checks of the `sampled` ones, and the masks.
+  HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled) noexcept {
+    unsigned fault = 0, sat = 0;
+    for (int i = 0; i < N; ++i) {
+      if (((sampled >> i) & 1u) != 0) check_channel(i, y[i], t);
+      fault |= (flags_[i] & kSensorFaultFlags) != 0 ? 1u << i : 0u;
+      sat |= (flags_[i] & kSensorSaturated) != 0 ? 1u << i : 0u;
+    }
+    sat_ = static_cast<std::uint8_t>(sat);
+    latched_ = static_cast<std::uint8_t>(latched_ | fault);
+    return static_cast<std::uint8_t>(fault);
+  }
+
+  /// The full check of sampled channel i with value v at time t: sets flags_[i].
+  HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t) noexcept {
+    if (!std::isfinite(v)) {
+      flags_[i] = kSensorNonFinite;  // no kHave: the next finite sample starts a run
+      return;
+    }
+    const T lo = lo_[i], hi = hi_[i];
+    const unsigned before = flags_[i];
+    unsigned f = kHave;
+    if (v <= lo || v > hi + (hi - lo) * T(0.03125)) {
+      f |= kSensorOutOfRange;
+    } else if (v >= hi) {
+      f |= kSensorSaturated;  // a clamped reading repeats by nature: never stuck
+    }
+    if ((before & kHave) == 0 || v != last_[i]) {  // a new value starts a run
+      last_[i] = v;
+      since_[i] = t;
+    } else if (f == kHave && min_samples_ != 0) {
+      if ((before & kRun) == 0) {
+        // The run's second sample: Δt is this channel's sample interval, and n samples
+        // count as n·Δt, so the run is stuck once t ≥ start + max(stuck_time,
+        // min_samples·Δt) − Δt (less Δt/2 against rounding of the times).
+        const T dt = t - since_[i];
+        const T floor = static_cast<T>(min_samples_) * dt;
+        since_[i] += (stuck_time_ > floor ? stuck_time_ : floor) - T(1.5) * dt;
+      }
+      f |= kRun;
+      if (t >= since_[i]) f |= kSensorStuck;
+    }
+    flags_[i] = static_cast<std::uint8_t>(f);
+  }
+
+  T lo_[kN_] = {};      ///< Config::range_lo [channel unit]
+  T hi_[kN_] = {};      ///< Config::range_hi [channel unit]
+  T stuck_time_ = kDefaultStuckTime;  ///< Config::stuck_time [s]
+  T last_[kN_] = {};    ///< last finite sample (with kHave) [channel unit]
+  /// Time of the first sample of the current run of equal values; with kRun, the time the
+  /// run becomes stuck [s].
+  T since_[kN_] = {};
+  std::uint8_t flags_[kN_] = {};  ///< SensorFlag bits, kHave and kRun
+  std::uint8_t sat_ = 0;          ///< saturated() of the last update
+  std::uint8_t latched_ = 0;      ///< latched()
+  std::uint8_t min_samples_ = kDefaultStuckMinSamples;  ///< Config::stuck_min_samples [-]
 };
 
 }  // namespace hstmon

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <system_error>
@@ -90,9 +91,9 @@ class Reader {
       return;
     }
     for (const auto& [key, value] : j.items()) {
-      if (key != "model" && key != "description" && key != "params" && key != "inputs") {
-        fail_key("/" + detail::json_pointer_token(key),
-                 "unknown key '" + detail::printable(key) + "' (known: model, description, params, inputs)");
+      if (key != "model" && key != "description" && key != "params" && key != "inputs" && key != "sensors") {
+        fail_key("/" + detail::json_pointer_token(key), "unknown key '" + detail::printable(key) +
+                                                            "' (known: model, description, params, inputs) or 'sensors' (transmitter ranges)");
         return;
       }
     }
@@ -128,6 +129,11 @@ class Reader {
     if (!ThesisReducedModel<double>::inputs_valid(u)) {
       fail_value(j.contains("inputs") ? "/inputs" : "", "inputs refused by the model (inputs_valid)");
       return;
+    }
+    if (const auto it = j.find("sensors"); it != j.end()) {
+      SensorRanges r = thesis_sensor_ranges();
+      if (!read_sensors(*it, r)) return;
+      out_.sensors = r;
     }
     out_.params = p;
     out_.inputs = u;
@@ -217,6 +223,68 @@ class Reader {
     return true;
   }
 
+  /// "sensors": {"p_mi": [lo, hi], ...}; each end a number (SI), a string with a unit, or null.
+  bool read_sensors(const Json& obj, SensorRanges& r) {
+    static const char* const kChannels[] = {"p_mi", "p_mo", "p_pp", "w_m"};
+    if (!obj.is_object()) {
+      fail_value("/sensors", "'sensors' must be an object of channel: [low, high] pairs");
+      return false;
+    }
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      const std::string& key = it.key();
+      const std::string ptr = "/sensors/" + detail::json_pointer_token(key);
+      int ch = -1;
+      for (int c = 0; c < 4; ++c) {
+        if (key == kChannels[c]) ch = c;
+      }
+      if (ch < 0) {
+        fail_key(ptr, "unknown key '" + detail::printable(key) + "' in 'sensors' (known: p_mi, p_mo, p_pp, w_m)");
+        return false;
+      }
+      const Quantity q = ch == 3 ? Quantity::kSpeed : Quantity::kPressure;
+      const std::string label = "sensors." + key;
+      const Json& range = it.value();
+      if (!range.is_array() || range.size() != 2) {
+        fail_value(ptr, label + " must be a range [low, high] (numbers in " + si_unit(q) +
+                            ", strings with a unit, or null for no end)");
+        return false;
+      }
+      double end[2];
+      for (std::size_t e = 0; e < 2; ++e) {
+        const Json& v = range[e];
+        const char* which = e == 0 ? "low" : "high";
+        if (v.is_null()) {
+          end[e] = (e == 0 ? -1.0 : 1.0) * std::numeric_limits<double>::infinity();
+        } else if (v.is_number()) {
+          end[e] = v.get<double>();
+        } else if (v.is_string()) {
+          const ValueResult vr = parse_value_with_unit(q, v.get<std::string>());
+          if (!vr.ok()) {
+            fail_value(ptr, label + " " + which + " end: " + vr.error);
+            return false;
+          }
+          end[e] = vr.value;
+        } else {
+          fail_value(ptr, label + " " + which + " end must be a number [" + si_unit(q) +
+                              "], a string with a unit, or null, got " + v.type_name());
+          return false;
+        }
+        if (!v.is_null() && !std::isfinite(end[e])) {
+          fail_value(ptr, label + " " + which + " end must be finite (null for no end)");
+          return false;
+        }
+      }
+      if (!(end[0] < end[1])) {
+        fail_value(ptr, label + ": the low end must be below the high end, got [" + number_text(end[0]) + ", " +
+                            number_text(end[1]) + "] " + si_unit(q));
+        return false;
+      }
+      r.lo[static_cast<std::size_t>(ch)] = end[0];
+      r.hi[static_cast<std::size_t>(ch)] = end[1];
+    }
+    return true;
+  }
+
   static std::string where(const std::string& ptr) {
     const std::size_t slash = ptr.rfind('/');
     return slash == 0 || slash == std::string::npos ? "the top level" : "'" + ptr.substr(1, slash - 1) + "'";
@@ -258,6 +326,7 @@ ParamsFileResult parse_params_json(std::string_view text, std::string path_for_m
   if (out.error) {
     out.params.reset();
     out.inputs.reset();
+    out.sensors.reset();
   }
   return out;
 }

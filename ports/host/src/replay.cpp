@@ -115,6 +115,10 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   Mon mon;
   Mon::Config cfg;
   cfg.observer.tick = tick;
+  for (std::size_t c = 0; c < 4; ++c) {
+    cfg.sensors.range_lo[c] = options.sensors.lo[c];
+    cfg.sensors.range_hi[c] = options.sensors.hi[c];
+  }
   // Without diagnosis the matcher gets an empty table: it then never raises an event.
   const int table_rows = options.diagnose ? kThesisSignatureCount : 0;
   if (mon.configure(params, cfg, kThesisSignatures, table_rows) != Status::kOk) {

@@ -5,18 +5,25 @@
 ///     {"model": "thesis",
 ///      "description": "optional free text",
 ///      "params": {"Dm": 7.96e-6, "K": 1e14, ...},
-///      "inputs": {"Psupl": "35 bar", "Ps": 0, "Pbp": 1e6, "kp": 4.41e-8}}
+///      "inputs": {"Psupl": "35 bar", "Ps": 0, "Pbp": 1e6, "kp": 4.41e-8},
+///      "sensors": {"p_pp": ["0 bar", "400 bar"], "w_m": [null, "3000 rpm"]}}
 ///
 /// Keys are the field names of hstmon::ThesisParams / ThesisInputs. Values are SI
 /// numbers; pressure fields (Psupl, Ps, Pbp, dp_t_dcv, dp_t_prv) also take a string
 /// with a unit ("35 bar"), kf and kp a string with their SI unit. Missing keys keep the
 /// defaults (Table 2.2). "model" is required and must be "thesis".
+///
+/// "sensors" (optional) gives transmitter ranges [low end, high end] per measured
+/// channel (p_mi, p_mo, p_pp, w_m): SI numbers (Pa, rad/s), strings with a unit of the
+/// channel's quantity ("200 bar", "3000 rpm"), or null for no end; low < high. Channels
+/// not named keep thesis_sensor_ranges() (sensor_ranges.hpp says what a range end means).
 
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "hstmon/thesis_params.hpp"
+#include "hstmon_host/sensor_ranges.hpp"
 #include "hstmon_host/source_error.hpp"
 
 namespace hstmon::host {
@@ -25,6 +32,9 @@ namespace hstmon::host {
 struct ParamsFileResult {
   std::optional<ThesisParams<double>> params;  ///< physical parameters (SI)
   std::optional<ThesisInputs<double>> inputs;  ///< inputs (SI)
+  /// Transmitter ranges (SI) if the file has a "sensors" section, else unset (the caller
+  /// keeps its default); never set on error.
+  std::optional<SensorRanges> sensors;
   std::string description;                     ///< the file's "description", if any
   std::optional<SourceError> error;            ///< set on failure, with line:column
   /// True when the file was read and validated.

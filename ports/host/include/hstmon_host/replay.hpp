@@ -13,6 +13,7 @@
 
 #include "hstmon/thesis_params.hpp"
 #include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/sensor_ranges.hpp"
 
 namespace hstmon::host {
 
@@ -29,6 +30,9 @@ struct ReplayOptions {
   InitMode init = InitMode::kAuto;
   bool keep_trace = false;       ///< keep a TraceRow per log row (for residual CSV and plots)
   bool diagnose = true;          ///< run the fault matcher on the residuals (events, candidates)
+  /// Transmitter ranges for the sensor checks (a parameter file's "sensors" section);
+  /// default: the thesis rig's (thesis_sensor_ranges()).
+  SensorRanges sensors = thesis_sensor_ranges();
   /// Called with the fraction done (0…1) about every 1 % of rows; may be empty.
   std::function<void(double)> progress;
 };
