@@ -2,6 +2,8 @@
 //   Parse        hstmon::host::read_log_from_memory alone
 //   Step         hstmon::host::replay over the parsed rows (observer at 1 ms + statistics)
 //   ParseAndStep both, i.e. what replaying a log from memory costs
+//   ParseAndStepResidualsOnly  the same without the fault matcher (--no-diagnosis)
+//   ParseSimFormat  Parse on the same rows written as hstmon-sim writes them
 // Target: ≥ 3.6 M rows/s (an hour of 1 kHz data in a second). Counters rows_per_s and
 // x_target (rows/s over the target; ≥ 1 meets it). Rates use process CPU time, which on
 // an idle machine equals wall time for this single-threaded work and on the shared
@@ -45,40 +47,50 @@ void append(std::string& out, double v, int precision, std::chars_format fmt = s
 }
 
 /// The log: nominal operating point (steady outputs of the reduced model) with a few
-/// hundred Pa / a few rpm of deterministic noise. Columns as the rig writes them.
-const std::string& log_text() {
-  static const std::string text = [] {
-    const std::size_t n = row_count();
-    const auto y0 = hstmon_bench::make_observer<double>(1e-3).estimate();
-    const hstmon::ThesisInputs<double> u{};
-    constexpr double kBar = 1e5;
-    constexpr double kRpm = 60.0 / (2.0 * 3.14159265358979323846);
-    std::string s;
-    s.reserve(n * 72 + 64);
-    s += "t[s],p_sup[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
-    std::uint32_t lcg = 1u;
-    auto noise = [&lcg] {
-      lcg = lcg * 1664525u + 1013904223u;
-      return static_cast<double>(lcg >> 8) / 16777216.0 - 0.5;
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-      append(s, static_cast<double>(i) * 1e-3, 3);
-      s += ',';
-      append(s, u.Psupl / kBar, 3);
-      s += ',';
-      append(s, u.kp, 4, std::chars_format::scientific);
-      s += ',';
-      append(s, (y0[0] + 400.0 * noise()) / kBar, 5);
-      s += ',';
-      append(s, (y0[1] + 400.0 * noise()) / kBar, 5);
-      s += ',';
-      append(s, (y0[2] + 400.0 * noise()) / kBar, 4);
-      s += ',';
-      append(s, (y0[3] + 0.05 * noise()) * kRpm, 2);
-      s += '\n';
+/// hundred Pa / a few rpm of deterministic noise. Columns as the rig writes them; with
+/// `sim_format` numbers as hstmon-sim writes them instead (10 significant digits, "%.10g").
+std::string make_log(bool sim_format) {
+  const std::size_t n = row_count();
+  const auto y0 = hstmon_bench::make_observer<double>(1e-3).estimate();
+  const hstmon::ThesisInputs<double> u{};
+  constexpr double kBar = 1e5;
+  constexpr double kRpm = 60.0 / (2.0 * 3.14159265358979323846);
+  std::string s;
+  s.reserve(n * (sim_format ? 80 : 72) + 64);
+  s += "t[s],p_sup[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
+  std::uint32_t lcg = 1u;
+  auto noise = [&lcg] {
+    lcg = lcg * 1664525u + 1013904223u;
+    return static_cast<double>(lcg >> 8) / 16777216.0 - 0.5;
+  };
+  const auto put = [&s, sim_format](double v, int precision, std::chars_format fmt = std::chars_format::fixed) {
+    if (sim_format) {
+      append(s, v, 10, std::chars_format::general);
+    } else {
+      append(s, v, precision, fmt);
     }
-    return s;
-  }();
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    put(static_cast<double>(i) * 1e-3, 3);
+    s += ',';
+    put(u.Psupl / kBar, 3);
+    s += ',';
+    put(u.kp, 4, std::chars_format::scientific);
+    s += ',';
+    put((y0[0] + 400.0 * noise()) / kBar, 5);
+    s += ',';
+    put((y0[1] + 400.0 * noise()) / kBar, 5);
+    s += ',';
+    put((y0[2] + 400.0 * noise()) / kBar, 4);
+    s += ',';
+    put((y0[3] + 0.05 * noise()) * kRpm, 2);
+    s += '\n';
+  }
+  return s;
+}
+
+const std::string& log_text() {
+  static const std::string text = make_log(false);
   return text;
 }
 
@@ -168,6 +180,20 @@ void BM_ParseAndStepResidualsOnly(benchmark::State& state) {
   report(state);
 }
 BENCHMARK(BM_ParseAndStepResidualsOnly)->Unit(benchmark::kMillisecond);
+
+/// As Parse, on the same rows written as hstmon-sim writes them ("33.18532082",
+/// "4.41e-08": longer significands than the rig format above).
+void BM_ParseSimFormat(benchmark::State& state) {
+  static const std::string text = make_log(true);  // made before the timed loop
+  for (auto _ : state) {
+    LogData log = hstmon::host::read_log_from_memory(text, "bench_sim_1h_1kHz.csv");
+    if (!check(state, log)) return;
+    benchmark::DoNotOptimize(log.t.data());
+  }
+  report(state);
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
+}
+BENCHMARK(BM_ParseSimFormat)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);

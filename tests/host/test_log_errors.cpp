@@ -1,8 +1,10 @@
 // Log reader: every malformed input gives one error with the exact line and column, no
-// crash, and (strict mode) no rows; lenient mode keeps the rows before the bad one.
+// crash, and (strict mode) no rows; lenient mode keeps the rows before the bad one, and
+// skips rows whose time is not above the last kept row's with a note.
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "hstmon_host/log_reader.hpp"
 
@@ -164,7 +166,6 @@ TEST(LenientRead, KeepsTheValidPrefix) {
       {"bad number", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,x,4\n3,4,5\n", 2, 4, 3},
       {"bad number in the last column", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3,x\n3,4,5\n", 2, 4, 5},
       {"truncated last line", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3", 2, 4, 4},
-      {"time going back", "t,p_mi,p_mo\n0,1,2\n1,2,3\n0.5,3,4\n", 2, 4, 1},
       {"nan", "t,p_mi,p_mo\n0,1,2\n1,2,3\n2,nan,4\n", 2, 4, 3},
       {"binary tail", std::string("t,p_mi,p_mo\n0,1,2\n1,2,3\n2,3,4\xff\xfe\n", 31), 2, 4, 6},
       {"NUL tail", std::string("t,p_mi,p_mo\n0,1,2\n# c\n1,2,3\n\0\0\0\0", 33), 2, 5, 1},
@@ -183,6 +184,72 @@ TEST(LenientRead, KeepsTheValidPrefix) {
       EXPECT_EQ(d.column(Signal::kPMo)[1], 3.0) << c.what;
     }
   }
+}
+
+TEST(LenientRead, SkipsRowsWithTimeNotIncreasingWithANote) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const std::string text = "t,p_mi,p_mo\n0,1,2\n1,2,3\n1,9,9\n0.5,8,8\n2,3,4\n";
+  const auto d = read(text, opt);
+  ASSERT_TRUE(d.ok()) << d.error->to_string();
+  ASSERT_EQ(d.rows(), 3u);
+  EXPECT_EQ(d.t, (std::vector<double>{0, 1, 2}));
+  EXPECT_EQ(d.column(Signal::kPMi), (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(d.column(Signal::kPMo), (std::vector<double>{2, 3, 4}));
+  EXPECT_EQ(d.skipped_rows, 2u);
+  ASSERT_EQ(d.notes.size(), 2u);
+  EXPECT_EQ(d.notes[0], "mem.csv:4:1: note: time not strictly increasing: 1 s after 1 s; row skipped (lenient)");
+  EXPECT_EQ(d.notes[1], "mem.csv:5:1: note: time not strictly increasing: 0.5 s after 1 s; row skipped (lenient)");
+  // Strict: the same text fails at the first of them.
+  expect_error(text, 4, 1, "time not strictly increasing: 1 s after 1 s");
+}
+
+TEST(LenientRead, SkippedRowLeavesNoValueWhereTimeIsNotTheFirstColumn) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const auto d = read("p_mi;t[ms];p_mo\n1;0;1\n2;0;2\n3;1;3\n", opt);
+  ASSERT_TRUE(d.ok()) << d.error->to_string();
+  EXPECT_EQ(d.column(Signal::kPMi), (std::vector<double>{1, 3}));
+  EXPECT_EQ(d.column(Signal::kPMo), (std::vector<double>{1, 3}));
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_EQ(d.notes[0], "mem.csv:3:3: note: time not strictly increasing: 0 s after 0 s; row skipped (lenient)");
+}
+
+TEST(LenientRead, ASkippedRowMustStillBeWellFormed) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const auto d = read("t,p_mi\n0,1\n0,x\n1,2\n", opt);
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.rows(), 1u);
+  EXPECT_EQ(d.column(Signal::kPMi).size(), 1u);
+  EXPECT_EQ(d.error->line, 3u);
+  EXPECT_EQ(d.error->column, 3u);
+  const auto e = read("t,p_mi\n0,1\n0,2,3\n1,2\n", opt);
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(e.rows(), 1u);
+  EXPECT_EQ(e.error->line, 3u);
+}
+
+TEST(LenientRead, ClockResetSkipsUpToTheOldTimeWithCappedNotes) {
+  // 0..99 s, then the logger's clock restarts at 0: rows at 0..99 s again are skipped
+  // (not above the last kept time), 100..149 s are kept.
+  std::string text = "t,p_mi\n";
+  for (int k = 0; k < 100; ++k) text += std::to_string(k) + ",1\n";
+  for (int k = 0; k < 150; ++k) text += std::to_string(k) + ",2\n";
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  const auto d = read(text, opt);
+  ASSERT_TRUE(d.ok()) << d.error->to_string();
+  EXPECT_EQ(d.rows(), 150u);
+  EXPECT_EQ(d.skipped_rows, 100u);
+  EXPECT_EQ(d.t[99], 99.0);
+  EXPECT_EQ(d.t[100], 100.0);
+  EXPECT_EQ(d.column(Signal::kPMi)[100], 2.0);
+  ASSERT_EQ(d.notes.size(), 21u) << "20 notes of their own, then one with the count";
+  EXPECT_EQ(d.notes[0].rfind("mem.csv:102:1: note: time not strictly increasing: 0 s after 99 s", 0), 0u) << d.notes[0];
+  EXPECT_EQ(d.notes[20].rfind("mem.csv:201:1: note: 100 rows skipped in all", 0), 0u) << d.notes[20];
+  // Strict reads still refuse the log.
+  expect_error(text, 102, 1, "time not strictly increasing: 0 s after 99 s");
 }
 
 TEST(LenientRead, HeaderErrorsStillGiveNoRows) {

@@ -2,9 +2,13 @@
 // comments, column mapping, ignored and missing columns, reading from disk.
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "hstmon_host/log_reader.hpp"
 
@@ -242,6 +246,72 @@ TEST(LogReader, TextNeedNotBeNulTerminated) {
   EXPECT_LOG_OK(d);
   ASSERT_EQ(d.rows(), 2u);
   EXPECT_EQ(d.column(Signal::kPMi)[1], 25.0);
+}
+
+TEST(LogReader, FastRowsEqualTheGeneralPath) {
+  // Plain rows take the fast path; a blank before every field sends each row through the
+  // general one. Both must store the same bits, equal to std::from_chars.
+  std::mt19937_64 rng(5u);
+  const auto number = [&rng]() {
+    std::string s = (rng() % 4 == 0) ? "-" : "";
+    s += std::to_string(rng() % 100000);
+    if (rng() % 4 != 0) s += "." + std::to_string(rng() % 100000000);
+    if (rng() % 5 == 0) s += "e" + std::to_string(static_cast<int>(rng() % 30) - 15);
+    if (rng() % 50 == 0) s = std::to_string(rng());  // too long for the fast path
+    return s;
+  };
+  std::vector<std::vector<std::string>> rows;
+  for (int k = 0; k < 3000; ++k) {
+    rows.push_back({std::to_string(k) + "." + std::to_string(rng() % 1000), number(), "note " + std::to_string(k),
+                    number(), number()});
+  }
+  for (const char* eol : {"\n", "\r\n"}) {
+    // plain; a blank before every field; blanks in the first half only (the reader
+    // stops trying the fast path after a few misses and must pick it up again).
+    std::string plain = std::string("t[s],p_mi[bar],comment,kp,w_m[rpm]") + eol;
+    std::string blanks = plain;
+    std::string mixed = plain;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      for (std::size_t c = 0; c < rows[k].size(); ++c) {
+        plain += (c ? "," : "") + rows[k][c];
+        blanks += (c ? ", " : " ") + rows[k][c];
+        mixed += (k < rows.size() / 2 ? (c ? ", " : " ") : (c ? "," : "")) + rows[k][c];
+      }
+      plain += eol;
+      blanks += eol;
+      mixed += eol;
+      if (k % 100 == 7) plain += std::string("# comment") + eol;
+    }
+    const auto a = read(plain);
+    EXPECT_LOG_OK(a);
+    ASSERT_EQ(a.rows(), rows.size());
+    for (const std::string* other : {&blanks, &mixed}) {
+      const auto b = read(*other);
+      EXPECT_LOG_OK(b);
+      ASSERT_EQ(b.rows(), rows.size());
+      for (Signal s : {Signal::kT, Signal::kPMi, Signal::kKp, Signal::kWm}) {
+        ASSERT_EQ(std::memcmp(a.column(s).data(), b.column(s).data(), rows.size() * sizeof(double)), 0);
+      }
+    }
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      double kp = 0.0;
+      std::from_chars(rows[k][3].data(), rows[k][3].data() + rows[k][3].size(), kp);
+      ASSERT_EQ(std::memcmp(&a.column(Signal::kKp)[k], &kp, sizeof kp), 0) << rows[k][3];
+    }
+  }
+}
+
+TEST(LogReader, IgnoredColumnsAreCheckedForBinaryJunkInEveryRow) {
+  using namespace std::string_literals;
+  const auto ok = read("t,comment,p_mi\n0,ok,1\n1,\xC3\x96l,2\n2,ok,3\n");
+  EXPECT_LOG_OK(ok);
+  EXPECT_EQ(ok.rows(), 3u);
+  const auto bad = read("t,comment,p_mi\n0,ok,1\n1,ok,2\n2,a\xff,3\n");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error->to_string(), "mem.csv:4:4: error: invalid UTF-8 byte 0xFF (binary data, or text not in UTF-8)");
+  const auto nul = read("t,comment,p_mi\n0,ok,1\n1,ok,2\n2,a\0b,3\n"s);
+  ASSERT_FALSE(nul.ok());
+  EXPECT_EQ(nul.error->to_string(), "mem.csv:4:4: error: NUL byte (binary data, not a text log)");
 }
 
 TEST(LogReader, ReadsFromDisk) {

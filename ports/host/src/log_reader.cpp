@@ -11,6 +11,7 @@
 #include <memory>
 #include <system_error>
 
+#include "delimiter_scan.hpp"
 #include "fast_decimal.hpp"
 #include "text_util.hpp"
 #include "utf8_check.hpp"
@@ -111,8 +112,6 @@ class Parser {
     text_ = bom ? text.substr(3) : text;
     cur_ = text_.data();
     end_ = text_.data() + text_.size();
-    const std::size_t bad = detail::find_invalid_utf8(text_);
-    if (bad != std::string_view::npos) bad_ = text_.data() + bad;
   }
 
   void run() {
@@ -158,7 +157,9 @@ class Parser {
   // ---- lines ---------------------------------------------------------------------------
 
   /// Next line that is neither blank nor a '#' comment; false at end of text or when the
-  /// line holds binary junk (then error is set).
+  /// line holds binary junk (then error is set). Every line passed over is checked for
+  /// NUL and invalid UTF-8 here; fast_row checks its own lines (it takes ASCII only), so
+  /// the text is checked once, in order, and the first bad byte is the one reported.
   bool next_content_line(Line& line) {
     while (cur_ < end_) {
       const auto* nl = static_cast<const char*>(std::memchr(cur_, '\n', static_cast<std::size_t>(end_ - cur_)));
@@ -168,7 +169,10 @@ class Parser {
       line.number = ++line_no_;
       cur_ = line.next;
       if (line.end > line.begin && line.end[-1] == '\r') --line.end;
-      if (bad_ != nullptr && bad_ < line.next) {
+      const std::size_t bad =
+          detail::find_invalid_utf8(std::string_view(line.begin, static_cast<std::size_t>(line.next - line.begin)));
+      if (bad != std::string_view::npos) {
+        bad_ = line.begin + bad;
         fail_binary(line);
         return false;
       }
@@ -389,12 +393,20 @@ class Parser {
 
   // ---- data ----------------------------------------------------------------------------
 
-  /// Trims every column to `rows` values (lenient) or to none (strict).
-  void drop_rows_after_error(std::size_t rows) {
-    const std::size_t keep = opt_.lenient ? rows : 0;
+  /// What became of one data row.
+  enum class RowResult { kKept, kSkipped, kFailed };
+
+  /// Trims every column to the rows kept so far (drops a partly stored row).
+  void trim_to_kept_rows() {
     for (ColumnSpec& c : cols_) {
-      if (c.dst != nullptr) c.dst->resize(std::min(c.dst->size(), keep));
+      if (c.dst != nullptr && c.dst->size() > rows_) c.dst->resize(rows_);
     }
+  }
+
+  /// Trims every column to the rows kept (lenient) or to none (strict).
+  void drop_rows_after_error() {
+    if (!opt_.lenient) rows_ = 0;
+    trim_to_kept_rows();
   }
 
   /// True when [q, le) starts with "," or "-," (a decimal comma without integer digits).
@@ -411,127 +423,255 @@ class Parser {
     return printable(trim(std::string_view(f, static_cast<std::size_t>((s != nullptr ? s : le) - f))));
   }
 
-  void parse_rows(Line line) {
+  /// A line fast_row may take: not blank, not a comment (those need next_content_line).
+  static bool may_be_fast(char c) noexcept { return c != '#' && c != ' ' && c != '\t' && c != '\r' && c != '\n'; }
+
+  /// The common row, in two quick passes: the field boundaries first (16 bytes at a
+  /// time, delimiter_scan.hpp), then every field from its known start, so the fields'
+  /// parses do not wait for each other. Taken when every stored field is a number
+  /// fast_decimal takes whole, with no blanks or '+', finite after conversion, time above
+  /// the last kept time; ignored fields plain ASCII. Such a row is stored exactly as
+  /// parse_row would store it, and the first byte of the next line is returned.
+  /// Anything else returns null with nothing stored, and parse_row takes the row (errors
+  /// and notes included). Only ASCII other than NUL gets through here, so these lines
+  /// need no UTF-8 check.
+  const char* fast_row(const char* p) {
+    const char* const end = end_;
+    const char sep = sep_;
     const std::size_t ncols = cols_.size();
+    // delims[c]: the byte ending field c (a separator, or the line end for the last).
+    const char** const delims = delims_.data();
+    std::size_t found = 0;
+    const char* line_end = nullptr;
+    for (const char* q = p; line_end == nullptr; q += 16) {
+      const auto left = static_cast<std::size_t>(end - q);
+      detail::DelimiterMasks m =
+          left >= 16 ? detail::delimiter_masks16(q, sep) : detail::delimiter_masks_tail(q, left, sep);
+      if (m.newline != 0) {
+        const unsigned nl = static_cast<unsigned>(__builtin_ctz(m.newline));
+        m.sep &= (1u << nl) - 1;  // separators on this line only
+        line_end = nl < left ? q + nl : end;
+      }
+      for (; m.sep != 0; m.sep &= m.sep - 1) {
+        if (found + 1 == ncols) return nullptr;  // more fields than the header
+        delims[found++] = q + __builtin_ctz(m.sep);
+      }
+    }
+    if (found + 1 != ncols) return nullptr;  // fewer fields than the header
+    // As next_content_line: a '\r' before the line break is not part of the last field.
+    delims[found] = line_end[-1] == '\r' ? line_end - 1 : line_end;
+    const char* next = line_end < end ? line_end + 1 : end;
+
+    const bool comma_point = decimal_comma_;
+    const ColumnSpec* const cols = cols_.data();
+    double t = last_t_;
+    const char* f = p;
+    for (std::size_t c = 0; c < ncols; ++c) {
+      const ColumnSpec& col = cols[c];
+      const char* const fe = delims[c];
+      if (col.dst == nullptr) {
+        for (const char* x = f; x < fe; ++x) {
+          const auto u = static_cast<unsigned char>(*x);
+          if (u == 0 || u >= 0x80) return undo_fast_row();
+        }
+      } else {
+        double v;
+        const char* stop = f;
+        if (!detail::fast_decimal(f, end, v, stop, comma_point) || stop != fe) return undo_fast_row();
+        double si = v * col.factor;
+        if (col.offset != 0.0) si += col.offset;  // (adding +0 would turn -0 into +0)
+        if (!std::isfinite(si)) return undo_fast_row();
+        if (col.is_time) {
+          if (!(si > t)) return undo_fast_row();
+          t = si;
+        }
+        col.dst->push_back(si);
+      }
+      f = fe + 1;
+    }
+    last_t_ = t;
+    ++rows_;
+    ++line_no_;
+    return next;
+  }
+
+  const char* undo_fast_row() {
+    trim_to_kept_rows();
+    return nullptr;
+  }
+
+  /// Notes a row skipped by a lenient read for time not strictly increasing (the first
+  /// kMaxSkipNotes of them; the rest are counted in a closing note).
+  void skip_row(const Line& line, const char* pos, double t) {
+    trim_to_kept_rows();
+    ++skipped_;
+    last_skip_line_ = line.number;
+    last_skip_column_ = char_column(line.begin, pos);
+    if (skipped_ > kMaxSkipNotes) return;
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "time not strictly increasing: %.9g s after %.9g s; row skipped (lenient)", t,
+                  last_t_);
+    note(line, pos, msg);
+  }
+
+  /// Any content row: blanks, '+', decimal commas of every form, and every error with
+  /// its position. Time not above the last kept time fails the read, or with `lenient`
+  /// skips the row with a note once the rest of the row has been checked.
+  RowResult parse_row(const Line& line) {
+    const std::size_t ncols = cols_.size();
+    const char sep = sep_;
+    const char* const le = line.end;
+    const char* f = line.begin;
+    double row_t = last_t_;
+    const char* stale_pos = nullptr;  // time field of a row to skip (lenient)
+    double stale_t = 0.0;
+    for (std::size_t c = 0; c < ncols; ++c) {
+      if (c != 0) {
+        if (f == le) {
+          fail(line, le, "row has " + std::to_string(c) + " fields, header has " + std::to_string(ncols));
+          return RowResult::kFailed;
+        }
+        ++f;  // f was on the separator
+      }
+      const ColumnSpec& col = cols_[c];
+      if (col.dst == nullptr) {
+        const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(le - f)));
+        f = s != nullptr ? s : le;
+        continue;
+      }
+      const char* q = f;
+      while (q < le && blank_in_field(*q)) ++q;
+      if (q < le && *q == '+') ++q;
+      double v;
+      std::from_chars_result r{q, std::errc()};
+      if (!detail::fast_decimal(q, le, v, r.ptr, decimal_comma_)) r = std::from_chars(q, le, v);
+      const char* e = r.ptr;
+      // Decimal commas the fast path did not take (long significands, big exponents) stop
+      // from_chars at ',' (or, for ",5" / "-,5", make it refuse the field).
+      const bool comma = decimal_comma_ && ((r.ec == std::errc() && e < le && *e == ',') ||
+                                            (r.ec == std::errc::invalid_argument && starts_with_comma(q, le)));
+      if (comma) {
+        // Copy the field to a stack buffer with '.' and parse again.
+        const auto* s = static_cast<const char*>(std::memchr(q, sep, static_cast<std::size_t>(le - q)));
+        const char* fe = s != nullptr ? s : le;
+        while (fe > q && blank_in_field(fe[-1])) --fe;
+        const auto n = static_cast<std::size_t>(fe - q);
+        char buf[kMaxCommaField];
+        e = q;
+        r.ec = std::errc::invalid_argument;
+        if (n <= kMaxCommaField) {
+          std::memcpy(buf, q, n);
+          std::replace(buf, buf + n, ',', '.');
+          const char* stop = nullptr;
+          if (detail::fast_decimal(buf, buf + n, v, stop) && stop == buf + n) {
+            r = {stop, std::errc()};
+          } else {
+            r = std::from_chars(buf, buf + n, v);
+          }
+          if (r.ec == std::errc() && r.ptr == buf + n) {
+            e = fe;
+          } else if (r.ec == std::errc()) {
+            r.ec = std::errc::invalid_argument;  // only part of the field is a number
+          }
+        }
+      }
+      if (r.ec == std::errc()) {
+        while (e < le && blank_in_field(*e)) ++e;
+      }
+      if (r.ec != std::errc() || (e < le && *e != sep)) {
+        const std::string text = field_text(f, le);
+        std::string msg;
+        if (r.ec == std::errc::result_out_of_range) {
+          msg = "number out of range '" + text + "'";
+        } else if (text.empty()) {
+          msg = "empty field";
+        } else {
+          msg = "bad number '" + text + "'";
+        }
+        fail(line, f, msg + " in column '" + printable(col.name) + "'");
+        return RowResult::kFailed;
+      }
+      double si = v * col.factor;
+      if (col.offset != 0.0) si += col.offset;  // (adding +0 would turn -0 into +0)
+      if (!std::isfinite(si)) {
+        const std::string text = field_text(f, le);
+        fail(line, f, (std::isfinite(v) ? "value out of range after unit conversion '" : "non-finite value '") +
+                          text + "' in column '" + printable(col.name) + "'");
+        return RowResult::kFailed;
+      }
+      if (col.is_time) {
+        if (!(si > last_t_)) {
+          if (!opt_.lenient) {
+            char msg[128];
+            std::snprintf(msg, sizeof msg, "time not strictly increasing: %.9g s after %.9g s", si, last_t_);
+            fail(line, f, msg);
+            return RowResult::kFailed;
+          }
+          stale_pos = f;
+          stale_t = si;
+        }
+        row_t = si;
+      }
+      col.dst->push_back(si);
+      f = e;
+    }
+    if (f != le) {
+      std::string msg = "row has more than " + std::to_string(ncols) + " fields";
+      if (sep == ',') msg += " (a decimal comma needs ';' or tab as separator)";
+      fail(line, f + 1, msg);
+      return RowResult::kFailed;
+    }
+    if (stale_pos != nullptr) {
+      skip_row(line, stale_pos, stale_t);
+      return RowResult::kSkipped;
+    }
+    last_t_ = row_t;
+    ++rows_;
+    return RowResult::kKept;
+  }
+
+  void parse_rows(Line line) {
+    delims_.resize(cols_.size());
     const std::size_t max_rows = estimate_rows(line.begin, end_);
     for (ColumnSpec& c : cols_) {
       if (c.dst != nullptr) c.dst->reserve(max_rows);
     }
-    const char sep = sep_;
-    double last_t = -HUGE_VAL;
-    std::size_t rows = 0;
-    do {
-      const char* const lb = line.begin;
-      const char* const le = line.end;
-      const char* f = lb;
-      for (std::size_t c = 0; c < ncols; ++c) {
-        if (c != 0) {
-          if (f == le) {
-            fail(line, le, "row has " + std::to_string(c) + " fields, header has " + std::to_string(ncols));
-            drop_rows_after_error(rows);
-            return;
-          }
-          ++f;  // f was on the separator
+    std::size_t fast_misses = 0;  // consecutive rows fast_row refused
+    std::size_t general_rows = 0;
+    for (;;) {
+      if (parse_row(line) == RowResult::kFailed) break;
+      // A log fast_row never takes (blanks after separators, '+' signs) would pay for a
+      // failed attempt on every row: after 8 misses, try every 256th row only.
+      if (fast_misses < 8 || (++general_rows & 255u) == 0) {
+        ++fast_misses;
+        while (cur_ < end_ && may_be_fast(*cur_)) {
+          const char* next = fast_row(cur_);
+          if (next == nullptr) break;
+          fast_misses = 0;
+          cur_ = next;
         }
-        const ColumnSpec& col = cols_[c];
-        if (col.dst == nullptr) {
-          const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(le - f)));
-          f = s != nullptr ? s : le;
-          continue;
-        }
-        const char* q = f;
-        while (q < le && blank_in_field(*q)) ++q;
-        if (q < le && *q == '+') ++q;
-        double v;
-        std::from_chars_result r{q, std::errc()};
-        if (!detail::fast_decimal(q, le, v, r.ptr, decimal_comma_)) r = std::from_chars(q, le, v);
-        const char* e = r.ptr;
-        // Decimal commas the fast path did not take (exponents, long significands) stop
-        // from_chars at ',' (or, for ",5" / "-,5", make it refuse the field).
-        const bool comma = decimal_comma_ && ((r.ec == std::errc() && e < le && *e == ',') ||
-                                              (r.ec == std::errc::invalid_argument && starts_with_comma(q, le)));
-        if (comma) {
-          // Copy the field to a stack buffer with '.' and parse again.
-          const auto* s = static_cast<const char*>(std::memchr(q, sep, static_cast<std::size_t>(le - q)));
-          const char* fe = s != nullptr ? s : le;
-          while (fe > q && blank_in_field(fe[-1])) --fe;
-          const auto n = static_cast<std::size_t>(fe - q);
-          char buf[kMaxCommaField];
-          e = q;
-          r.ec = std::errc::invalid_argument;
-          if (n <= kMaxCommaField) {
-            std::memcpy(buf, q, n);
-            std::replace(buf, buf + n, ',', '.');
-            const char* stop = nullptr;
-            if (detail::fast_decimal(buf, buf + n, v, stop) && stop == buf + n) {
-              r = {stop, std::errc()};
-            } else {
-              r = std::from_chars(buf, buf + n, v);
-            }
-            if (r.ec == std::errc() && r.ptr == buf + n) {
-              e = fe;
-            } else if (r.ec == std::errc()) {
-              r.ec = std::errc::invalid_argument;  // only part of the field is a number
-            }
-          }
-        }
-        if (r.ec == std::errc()) {
-          while (e < le && blank_in_field(*e)) ++e;
-        }
-        if (r.ec != std::errc() || (e < le && *e != sep)) {
-          const std::string text = field_text(f, le);
-          std::string msg;
-          if (r.ec == std::errc::result_out_of_range) {
-            msg = "number out of range '" + text + "'";
-          } else if (text.empty()) {
-            msg = "empty field";
-          } else {
-            msg = "bad number '" + text + "'";
-          }
-          fail(line, f, msg + " in column '" + printable(col.name) + "'");
-          drop_rows_after_error(rows);
-          return;
-        }
-        double si = v * col.factor;
-        if (col.offset != 0.0) si += col.offset;  // (adding +0 would turn -0 into +0)
-        if (!std::isfinite(si)) {
-          const std::string text = field_text(f, le);
-          fail(line, f, (std::isfinite(v) ? "value out of range after unit conversion '" : "non-finite value '") +
-                            text + "' in column '" + printable(col.name) + "'");
-          drop_rows_after_error(rows);
-          return;
-        }
-        if (col.is_time) {
-          if (!(si > last_t)) {
-            char msg[128];
-            std::snprintf(msg, sizeof msg, "time not strictly increasing: %.9g s after %.9g s", si, last_t);
-            fail(line, f, msg);
-            drop_rows_after_error(rows);
-            return;
-          }
-          last_t = si;
-        }
-        col.dst->push_back(si);
-        f = e;
       }
-      if (f != le) {
-        std::string msg = "row has more than " + std::to_string(ncols) + " fields";
-        if (sep == ',') msg += " (a decimal comma needs ';' or tab as separator)";
-        fail(line, f + 1, msg);
-        drop_rows_after_error(rows);
-        return;
-      }
-      ++rows;
-    } while (next_content_line(line));
-    if (out_.error) drop_rows_after_error(rows);
+      if (!next_content_line(line)) break;
+    }
+    if (skipped_ > kMaxSkipNotes) {
+      out_.notes.push_back(out_.path + ':' + std::to_string(last_skip_line_) + ':' +
+                           std::to_string(last_skip_column_) + ": note: " + std::to_string(skipped_) +
+                           " rows skipped in all for time not strictly increasing (this is the last; only the first " +
+                           std::to_string(kMaxSkipNotes) + " have a note of their own)");
+    }
+    out_.skipped_rows = skipped_;
+    if (out_.error) drop_rows_after_error();
   }
+
+  /// Skipped rows that get a note of their own (a clock reset can skip thousands).
+  static constexpr std::size_t kMaxSkipNotes = 20;
 
   const ReadOptions& opt_;
   LogData& out_;
   std::string_view text_;
   const char* cur_ = nullptr;
   const char* end_ = nullptr;
-  const char* bad_ = nullptr;  ///< first NUL / invalid UTF-8 byte, or null
+  const char* bad_ = nullptr;  ///< NUL / invalid UTF-8 byte found by next_content_line
   std::size_t line_no_ = 0;
   char sep_ = ',';
   bool decimal_comma_ = false;
@@ -539,6 +679,12 @@ class Parser {
   std::vector<HeaderCell> cells_;
   std::map<std::size_t, Line> unit_line_;  ///< header cell → units row giving its unit
   std::vector<ColumnSpec> cols_;
+  std::vector<const char*> delims_;  ///< fast_row: where each field ends
+  std::size_t rows_ = 0;         ///< data rows kept
+  double last_t_ = -HUGE_VAL;    ///< time of the last kept row [s]
+  std::size_t skipped_ = 0;      ///< rows skipped (lenient, time not increasing)
+  std::size_t last_skip_line_ = 0;
+  std::size_t last_skip_column_ = 0;
 };
 
 }  // namespace

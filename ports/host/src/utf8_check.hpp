@@ -1,6 +1,7 @@
 #pragma once
 /// @file utf8_check.hpp
-/// Internal: finds binary junk (NUL bytes, invalid UTF-8) in text before parsing.
+/// Internal: finds binary junk (NUL bytes, invalid UTF-8) in text; the log reader runs
+/// it on each line it does not parse in its ASCII-only fast path.
 
 #include <cstddef>
 #include <string_view>

@@ -18,6 +18,19 @@
 /// Errors (bad number, ragged row, unknown unit, time not strictly increasing, nan/inf,
 /// empty file, no data rows, NUL bytes or invalid UTF-8, duplicated or missing columns)
 /// carry file:line:column; nothing throws.
+///
+/// Lenient reads (ReadOptions::lenient): a row whose time is not above the time of the
+/// last kept row — a repeated timestamp, or time going backwards — is skipped with a note
+/// (`file:line:column: note: time not strictly increasing: …; row skipped`) and reading
+/// goes on; the read stays ok. The row must be well-formed otherwise, and the time
+/// compared with is the last *kept* one, so after a clock reset every row up to the old
+/// time is skipped (the first 20 with a note each, then one closing note with the count;
+/// LogData::skipped_rows has it too). Any other bad row stops a lenient read there: the
+/// rows before it are kept and the error is set. Strict reads fail on all of these.
+///
+/// Numbers are bit-identical to std::from_chars. The common row (plain numbers, no
+/// blanks) takes a fast path — field boundaries 16 bytes at a time, then the numbers —
+/// with the same result as the general one.
 
 #include <array>
 #include <cstddef>
@@ -36,8 +49,9 @@ namespace hstmon::host {
 struct ReadOptions {
   /// Field separator: ',', ';' or '\t'; 0 = detect from the header line.
   char separator = 0;
-  /// false: any error leaves the result with no rows. true: reading stops at the first
-  /// bad data row and the rows before it are kept (error is still set).
+  /// false: any error leaves the result with no rows. true: a row with time not above
+  /// the last kept row's is skipped with a note; reading stops at any other bad data row
+  /// and the rows before it are kept (error is still set).
   bool lenient = false;
   /// Log column name → canonical signal name, e.g. {"Druck_A", "p_mi"}. Keys and
   /// targets match ignoring ASCII case. A target of "" drops the column without a note.
@@ -57,6 +71,7 @@ struct LogData {
   std::vector<std::string> notes;                          ///< "file:line:col: note: ..." lines
   std::optional<LogError> error;                           ///< set when reading failed
   std::size_t header_line = 0;                             ///< 1-based line of the header row
+  std::size_t skipped_rows = 0;  ///< rows a lenient read skipped (time not strictly increasing)
 
   /// Number of data rows kept.
   std::size_t rows() const noexcept { return t.size(); }
