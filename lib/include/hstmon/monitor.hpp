@@ -120,29 +120,10 @@ class Monitor {
   /// @param m  raw measurement at t (m.valid = 0: no sample this tick, the model just advances)
   /// @return   the matcher's status after the tick
   MatchStatus step(T t, const ThesisInputs<T>& u, const Measurement& m) noexcept {
-    // The observer holds the last good inputs when u is invalid, so a change is what it
-    // actually took on, not what was offered.
-    const ThesisInputs<T> before = obs_.model().inputs();
-    observe(u, m);
-    if (!bound_valid_ || !same_inputs(obs_.model().inputs(), before)) {
-      // The first inputs after a reset are no change: the observer starts consistent.
-      if (bound_valid_) settle_until_ = t + settle_time_;
-      update_bound();
-    }
-    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid);
-    // A saturated reading is clipped at the range end, so the true residual is at least r:
-    // r > 0 is evidence of a rise (a lower bound), r ≤ 0 none — the evaluator then holds
-    // that channel (statistics and alarm) as if it were not sampled.
-    const std::uint8_t saturated = sensors_.saturated();
-    unsigned used = t < settle_until_ ? 0u : obs_.residual_valid();
-    if (saturated != 0) {
-      for (int i = 0; i < kFdiChannels; ++i) {
-        if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
-      }
-    }
-    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used));
-    if (m.valid == 0) return matcher_.status();
-    return matcher_.update(t, ev_, sensor_mask, saturated);
+    // Three frames in turn, none nested in another: the observer tick, the bound update
+    // on a tick with new inputs (the deepest stack of a step on the M4F), the rest.
+    if (observe(t, u, m)) update_bound();
+    return evaluate(t, m);
   }
 
   /// Oldest unread event; false when none.
@@ -173,8 +154,37 @@ class Monitor {
   }
 
   // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
-  // update runs on a tick with new inputs (the deepest stack of a step on the M4F).
-  HSTMON_NOINLINE void observe(const ThesisInputs<T>& u, const Measurement& m) noexcept { (void)obs_.step(u, m); }
+  // update runs. Returns true when the bound must be recomputed: first tick after a
+  // reset, or the inputs the observer took on changed (then residuals settle first).
+  HSTMON_NOINLINE bool observe(T t, const ThesisInputs<T>& u, const Measurement& m) noexcept {
+    // The observer holds the last good inputs when u is invalid, so a change is what it
+    // actually took on, not what was offered.
+    const ThesisInputs<T> before = obs_.model().inputs();
+    (void)obs_.step(u, m);
+    if (bound_valid_ && same_inputs(obs_.model().inputs(), before)) return false;
+    // The first inputs after a reset are no change: the observer starts consistent.
+    if (bound_valid_) settle_until_ = t + settle_time_;
+    return true;
+  }
+
+  // Sensor checks, residual evaluation and matching of the tick's residuals, in its own
+  // frame (see step).
+  HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid);
+    // A saturated reading is clipped at the range end, so the true residual is at least r:
+    // r > 0 is evidence of a rise (a lower bound), r ≤ 0 none — the evaluator then holds
+    // that channel (statistics and alarm) as if it were not sampled.
+    const std::uint8_t saturated = sensors_.saturated();
+    unsigned used = t < settle_until_ ? 0u : obs_.residual_valid();
+    if (saturated != 0) {
+      for (int i = 0; i < kFdiChannels; ++i) {
+        if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
+      }
+    }
+    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used));
+    if (m.valid == 0) return matcher_.status();
+    return matcher_.update(t, ev_, sensor_mask, saturated);
+  }
 
   // Keeps the last good bound when the changed operating point has no steady state.
   void update_bound() noexcept {

@@ -14,15 +14,18 @@
 /// throws, and is O(n_sub).
 ///
 /// Model requirements (see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
-/// kOutputs, set_inputs(), static inputs_valid(), outputs(x), rest_state(),
-/// steady_state(x), derivative(x) (RK4 stages), state_plausible(x), and
+/// kOutputs, set_inputs(), inputs(), static inputs_valid(), outputs(x), rest_state(),
+/// steady_state(x), derivative(x) (RK4 stages), state_plausible(x) (false for any
+/// non-finite x), and
 ///   State tick_derivative(x, rho_max, Output& y, T& rho, bool& alg_ok):
 ///     derivative(x) with y = outputs(x), rho = spectral radius of ∂f/∂x [1/s] (or 0 if it
 ///     is ≤ rho_max, NaN if x is), alg_ok = the model's algebraic solve contracts at x.
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "hstmon/rk4.hpp"
 #include "hstmon/status.hpp"
@@ -68,7 +71,7 @@ class Observer {
     if (!ok) return Status::kInvalidConfig;
     model_ = model;
     cfg_ = cfg;
-    tick_per_lambda_h_ = cfg.tick / cfg.lambda_h_max;
+    one_step_ = Rk4Step<T>(cfg.tick);
     rho_one_ = cfg.lambda_h_max / cfg.tick;
     has_gain_ = !cfg.gain.isZero(T(0));
     reset(model_.rest_state());
@@ -78,7 +81,6 @@ class Observer {
   /// Restarts from state x0 at t = 0 with the latched health cleared.
   void reset(const State& x0) noexcept {
     s_.reset(x0);
-    last_good_ = x0;
     yhat_ = model_.outputs(x0);
     r_.setZero();
     r_valid_ = 0;
@@ -115,12 +117,18 @@ class Observer {
   /// @return   this tick's HealthFlag bits (also OR-ed into health())
   std::uint32_t step(const Inputs& u, const Measurement& m) noexcept {
     std::uint32_t flags = 0;
-    if (Model::inputs_valid(u)) {
-      model_.set_inputs(u);
-    } else {
-      flags |= kHealthInputNonFinite;
+    // Inputs are usually held for many ticks: when they are the bytes the model already
+    // has (only valid inputs are ever stored) neither the check nor the model's
+    // input-dependent coefficients need redoing.
+    if (!same_bytes(u, model_.inputs())) {
+      if (Model::inputs_valid(u)) {
+        model_.set_inputs(u);
+      } else {
+        flags |= kHealthInputNonFinite;
+      }
     }
 
+    const State x_before = s_.x;  // finite: every tick ends on a finite state
     T rho;
     bool alg_ok;
     State k1 = model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok);
@@ -148,40 +156,43 @@ class Observer {
       k1 = model_.tick_derivative(s_.x, rho_one_, y_injected, rho, alg_ok);
     }
 
+    if (!alg_ok) flags |= kHealthAlgebraicDiverged;
     // Substeps from the local stiffness: |λ|·h_sub ≤ lambda_h_max keeps RK4 both stable
     // and accurate (its stability limit on the negative real axis is ≈ 2.79).
-    // Common case first: ρ ≤ rho_one_ needs one substep; the model then reports ρ = 0
-    // without its square root, and here there is no ceil and no division.
-    // NaN compares false and also gets one substep (the state check below flags it).
-    const T want = rho * tick_per_lambda_h_;
+    // Common case first: ρ ≤ rho_one_ needs one substep and the model then reports ρ = 0
+    // (without computing it); this path is straight-line code. NaN compares false and
+    // also gets one substep (the state check below flags it).
     int n = 1;
-    T h = cfg_.tick;
-    if (want > T(1)) {
-      if (want <= static_cast<T>(cfg_.max_substeps)) {
+    Rk4Step<T> h = one_step_;
+    if (rho > T(0)) {
+      const T want = rho * cfg_.tick / cfg_.lambda_h_max;
+      n = cfg_.max_substeps;
+      if (want <= static_cast<T>(n)) {
         n = static_cast<int>(std::ceil(want));
       } else {
         flags |= kHealthSubstepsClipped;
-        n = cfg_.max_substeps;
       }
-      h = cfg_.tick / static_cast<T>(n);
+      h = Rk4Step<T>(cfg_.tick / static_cast<T>(n));
     }
-    if (!alg_ok) flags |= kHealthAlgebraicDiverged;
-
-    // One rk4_step call site, so it inlines; k1 is re-evaluated for each later substep.
+    // One rk4_step call site: one copy of the RK4 stages in the image (firmware flash).
     for (int i = 0;;) {
       rk4_step(model_, s_, h, k1);
       if (++i >= n) break;
-      k1 = model_.derivative(s_.x);
+      // Later substeps' k1 (stiff ticks only) from the same out-of-line evaluation as the
+      // first, rather than a further inlined copy of derivative().
+      Output y_sub;
+      k1 = model_.tick_derivative(s_.x, rho_one_, y_sub, rho, alg_ok);
     }
     substeps_ = static_cast<std::uint16_t>(n);
 
-    if (!all_finite(s_.x)) {
-      flags |= kHealthStateNonFinite;
-      s_.reset(last_good_);
-    } else {
-      last_good_ = s_.x;
+    // state_plausible is false for non-finite states too: one test in the usual case.
+    if (!model_.state_plausible(s_.x)) {
+      if (!all_finite(s_.x)) {
+        flags |= kHealthStateNonFinite;
+        s_.reset(x_before);
+      }
+      if (!model_.state_plausible(s_.x)) flags |= kHealthStateOutOfBounds;
     }
-    if (!model_.state_plausible(s_.x)) flags |= kHealthStateOutOfBounds;
 
     ++ticks_;
     last_health_ = flags;
@@ -211,6 +222,23 @@ class Observer {
   const Model& model() const noexcept { return model_; }
 
  private:
+  /// True when a and b hold the same bytes (compared a 32-bit word at a time; a padded
+  /// type may compare unequal, which only costs a redundant update).
+  template <typename S>
+  static bool same_bytes(const S& a, const S& b) noexcept {
+    static_assert(sizeof(S) % sizeof(std::uint32_t) == 0, "compared in 32-bit words");
+    const auto* pa = reinterpret_cast<const unsigned char*>(&a);
+    const auto* pb = reinterpret_cast<const unsigned char*>(&b);
+    std::uint32_t diff = 0;
+    for (std::size_t i = 0; i < sizeof(S); i += sizeof(std::uint32_t)) {
+      std::uint32_t wa, wb;
+      std::memcpy(&wa, pa + i, sizeof wa);
+      std::memcpy(&wb, pb + i, sizeof wb);
+      diff |= wa ^ wb;
+    }
+    return diff == 0;
+  }
+
   /// True when every element of v is finite, in one reduction: v·0 is ±0 for finite
   /// elements and NaN for ±Inf/NaN ones (IEEE; hence never -ffast-math).
   template <typename V>
@@ -221,10 +249,9 @@ class Observer {
   Model model_{};
   Config cfg_{};
   static constexpr unsigned kAllChannels = (1u << kOutputs) - 1u;
-  T tick_per_lambda_h_ = T(1e-3) / T(0.8);  ///< cfg_.tick / cfg_.lambda_h_max [s]
   T rho_one_ = T(0.8) / T(1e-3);            ///< largest ρ that one substep covers [1/s]
+  Rk4Step<T> one_step_{T(1e-3)};            ///< RK4 factors of one substep per tick
   CompensatedState<State> s_{};
-  State last_good_ = State::Zero();
   Output yhat_ = Output::Zero();
   Output r_ = Output::Zero();
   std::uint64_t ticks_ = 0;

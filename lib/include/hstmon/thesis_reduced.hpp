@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hstmon/code_size.hpp"
 #include "hstmon/signed_root.hpp"
 #include "hstmon/thesis_params.hpp"
 
@@ -63,31 +64,34 @@ class ThesisReducedModel {
   /// Replaces the parameters and recomputes the derived coefficients. O(1).
   void set_params(const Params& p) noexcept {
     p_ = p;
-    inv_kf_ = T(1) / p.kf;
-    g_lkg_ = T(1) / p.Rlkg;
-    g_ipl_ = T(1) / p.Ripl;
-    inv_J_ = T(1) / p.J;
+    const T inv_kf = T(1) / p.kf;
+    const T g_lkg = T(1) / p.Rlkg;
+    const T g_ipl = T(1) / p.Ripl;
     K_Dp_ = p.K * p.Dp;
     Dm_J_ = p.Dm / p.J;
     Dp_J_ = p.Dp / p.J;
     R_J_ = (p.Rf + p.Rbl) / p.J;
-    Dm_4kf_ = p.Dm / (T(4) * p.kf);
-    kappa_ = inv_kf_ * (g_lkg_ + T(2) * g_ipl_);
-    root_dp_t_dcv_ = std::sqrt(p.dp_t_dcv);
-    g_lkg_kf_ = g_lkg_ * inv_kf_;
-    g_ipl_kf_ = g_ipl_ * inv_kf_;
-    jac_dcv_ = T(2) * Dm_J_ * p.Dm * inv_kf_;
-    K_Dp_Dp_J_ = K_Dp_ * Dp_J_;
-    // Largest |Q/kf| at which one DCV refinement is exact to rounding: contraction
-    // c = 2·max(|y|, √ΔP_t)·κ ≤ √ε/2 (κ = (g_lkg + 2·g_ipl)/kf). 0 if never.
-    const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa_);
-    one_refinement_y_ = (std::isfinite(y_max) && y_max >= std::sqrt(p.dp_t_dcv)) ? y_max : T(0);
+    kappa_ = inv_kf * (g_lkg + T(2) * g_ipl);
+    dcv_ = DcvCoeffs(p);
+    Dm_kf_ = p.Dm * inv_kf;
+    jac_dcv_ = T(2) * Dm_J_ * p.Dm * inv_kf;
+    set_inputs(u_);  // the input-dependent coefficients use the parameters
   }
 
-  /// Sets the inputs held over the next evaluations (zero-order hold). O(1).
+  /// Sets the inputs held over the next evaluations (zero-order hold). O(1). Out of line:
+  /// the observer calls it only when the inputs change, and firmware flash is scarce.
+#if defined(__GNUC__)
+  __attribute__((noinline))
+#endif
   void set_inputs(const Inputs& u) noexcept {
     u_ = u;
     K_kp_ = p_.K * u.kp;
+    const T dP_sup = u.Psupl - u.Ps;
+    torque_sup_ = Dm_J_ * dP_sup;
+    c_in_ = u.Psupl * dcv_.g_lkg_kf + dP_sup * dcv_.g_ipl_kf;
+    c_out_ = dP_sup * dcv_.g_ipl_kf - u.Ps * dcv_.g_lkg_kf;
+    const T c_max = std::fabs(c_in_) > std::fabs(c_out_) ? std::fabs(c_in_) : std::fabs(c_out_);
+    fast_y_min_ = T(2) * (dcv_.root_dp_t + c_max);
   }
 
   const Params& params() const noexcept { return p_; }
@@ -97,17 +101,23 @@ class ThesisReducedModel {
   /// @param w_m  motor speed [rad/s]
   /// @param Pmi  out: motor inlet pressure [Pa]
   /// @param Pmo  out: motor outlet pressure [Pa]
-  void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept { (void)dcv_solve(w_m, Pmi, Pmo); }
+  void dcv_pressures(T w_m, T& Pmi, T& Pmo) const noexcept {
+    T dp_in, dp_out;
+    (void)dcv_drops(w_m, dp_in, dp_out);
+    Pmi = u_.Psupl - dp_in;
+    Pmo = u_.Ps + dp_out;
+  }
 
   /// Time derivative of (Ppp, ωm) and, if y is given, the outputs at x (shared work).
   /// @param x  state (Ppp [Pa], ωm [rad/s])
   /// @param y  optional out: (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
   /// @return   (dPpp/dt [Pa/s], dωm/dt [rad/s²])
   State derivative(const State& x, Output* y = nullptr) const noexcept {
-    T Pmi, Pmo;
-    (void)dcv_solve(x[1], Pmi, Pmo);
+    T dp_in, dp_out;
+    (void)dcv_drops(x[1], dp_in, dp_out);
     const T dPpp = x[0] - u_.Pbp;
-    return rates(x, Pmi, Pmo, dPpp, signed_root(dPpp, p_.dp_t_prv), y);
+    if (y != nullptr) *y = output_vector(x, dp_in, dp_out);
+    return rates(x, dp_in + dp_out, dPpp, signed_root(dPpp, p_.dp_t_prv));
   }
 
   /// derivative(x, &y) and the observer's per-tick checks at x in one evaluation: the
@@ -120,33 +130,43 @@ class ThesisReducedModel {
   /// @param alg_ok   out: algebraic_ok(x)
   /// @return         derivative(x) [Pa/s, rad/s²]
   State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
-    T Pmi, Pmo;
-    const T y_m = dcv_solve(x[1], Pmi, Pmo);
+    T dp_in, dp_out;
+    const T y_m = dcv_drops(x[1], dp_in, dp_out);
     const T dPpp = x[0] - u_.Pbp;
-    T s_prv;
-    const State d = rates(x, Pmi, Pmo, dPpp, signed_root(dPpp, p_.dp_t_prv, s_prv), &y);
-    const T s_dcv = signed_square_slope(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
-    rho = jacobian_radius(-K_kp_ * s_prv, s_dcv, rho_max);
-    alg_ok = s_dcv * kappa_ < T(0.5);
+    y = output_vector(x, dp_in, dp_out);
+    const State d = rates(x, dp_in + dp_out, dPpp, signed_root(dPpp, p_.dp_t_prv));
+    const T ay = std::fabs(y_m);
+    const T adp = std::fabs(dPpp);
+    if (ay >= fast_y_min_ && ay <= dcv_.one_refinement_y && adp >= p_.dp_t_prv) {
+      // The usual point: both orifices turbulent and the DCV solve contracting (so
+      // alg_ok). The Jacobian's diagonal is then J11 = −K·kp/(2√|ΔPpp|), J22 = −R/J −
+      // jac_dcv·2|y_m|, both ≤ 0, and ρ² ≤ max(J11², J22²) + K·Dp²/J (a real pair has
+      // ρ ≤ max(|J11|, |J22|), a complex one ρ² = det = J11·J22 + K·Dp²/J). So ρ ≤ rho_max
+      // when both pass the tests below, squared: no square root and no division.
+      const T lim = rho_max * rho_max - K_Dp_ * Dp_J_;
+      const T j22 = R_J_ + jac_dcv_ * (T(2) * ay);
+      const T j11_adp = T(0.5) * K_kp_;  // |J11|·√|ΔPpp|
+      if (j11_adp * j11_adp <= lim * adp && j22 * j22 <= lim) {
+        rho = T(0);
+        alg_ok = true;
+        return d;
+      }
+    }
+    exact_checks(y_m, dPpp, rho_max, rho, alg_ok);
     return d;
   }
 
   /// Outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at state x.
   Output outputs(const State& x) const noexcept {
-    Output y;
-    T Pmi, Pmo;
-    dcv_pressures(x[1], Pmi, Pmo);
-    y[kChPmi] = Pmi;
-    y[kChPmo] = Pmo;
-    y[kChPpp] = x[0];
-    y[kChWm] = x[1];
-    return y;
+    T dp_in, dp_out;
+    (void)dcv_drops(x[1], dp_in, dp_out);
+    return output_vector(x, dp_in, dp_out);
   }
 
   /// Spectral radius of ∂f/∂x at x [1/s]: exact for the 2×2 Jacobian, with the DCV
   /// pressures' sensitivity to ωm included. Sets the RK4 substep count.
   T spectral_radius(const State& x) const noexcept {
-    const T s_dcv = signed_square_slope(p_.Dm * x[1] * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_);
+    const T s_dcv = signed_square_slope(x[1] * Dm_kf_, p_.dp_t_dcv, dcv_.root_dp_t);
     return jacobian_radius(-K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv), s_dcv, T(0));
   }
 
@@ -154,18 +174,20 @@ class ThesisReducedModel {
   /// 0.01 the kDcvIterations refinements are exact to rounding; at 1 or more the
   /// quasi-steady solve does not converge and the reduced model is not valid.
   T dcv_contraction(T w_m) const noexcept {
-    return signed_square_slope(p_.Dm * w_m * inv_kf_, p_.dp_t_dcv, root_dp_t_dcv_) * kappa_;
+    return signed_square_slope(w_m * Dm_kf_, p_.dp_t_dcv, dcv_.root_dp_t) * kappa_;
   }
 
   /// True when the quasi-steady DCV solve contracts at x (see dcv_contraction).
   bool algebraic_ok(const State& x) const noexcept { return dcv_contraction(x[1]) < T(0.5); }
 
-  /// True when ωm is within twice speed_bound() and Ppp above −1 bar gauge less Pbp's
-  /// magnitude: anything else is not a state this rig can reach.
+  /// True when ωm is within twice speed_bound() and Ppp finite and above −1 bar gauge less
+  /// Pbp's magnitude: anything else, non-finite values included, is not a state this rig
+  /// can reach.
   bool state_plausible(const State& x) const noexcept {
-    // |ωm| ≤ 2·speed_bound() = 4·kf·√dp/Dm, squared: no square root or division per tick.
-    const T a = x[1] * Dm_4kf_;
-    return a * a <= speed_bound_dp() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5));
+    // |ωm| ≤ 2·speed_bound() = 4·kf·√dp/Dm as |Dm·ωm/kf|² ≤ 16·dp: no square root or division.
+    const T y = x[1] * Dm_kf_;
+    return y * y <= T(16) * speed_bound_dp() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5)) &&
+           x[0] <= std::numeric_limits<T>::max();
   }
 
   /// The state at rest: ωm = 0, Ppp = Pbp (no flow through the PRV).
@@ -219,6 +241,54 @@ class ThesisReducedModel {
   }
 
  private:
+  /// The DCV's flow balances: the coefficients they need and their general solve, shared
+  /// by the tick path (off the operating point) and the steady-state solve.
+  struct DcvCoeffs {
+    T g_lkg_kf{}, g_ipl_kf{};  ///< leakage conductances / kf, 1/(Rlkg·kf), 1/(Ripl·kf) [1/√Pa]
+    T dp_t{};                  ///< laminar transition ΔP of the orifices [Pa]
+    T root_dp_t{};             ///< √dp_t [√Pa]
+    T one_refinement_y{};      ///< largest |Q/kf| at which one refinement is exact to rounding, or 0 [√Pa]
+
+    DcvCoeffs() noexcept = default;
+    explicit DcvCoeffs(const Params& p) noexcept : dp_t(p.dp_t_dcv), root_dp_t(std::sqrt(p.dp_t_dcv)) {
+      const T inv_kf = T(1) / p.kf;
+      const T g_lkg = T(1) / p.Rlkg;
+      const T g_ipl = T(1) / p.Ripl;
+      g_lkg_kf = g_lkg * inv_kf;
+      g_ipl_kf = g_ipl * inv_kf;
+      // Contraction of a refinement: c = 2·max(|y|, √ΔP_t)·κ (κ = (g_lkg + 2·g_ipl)/kf);
+      // one is exact to rounding where c ≤ √ε/2.
+      const T kappa = inv_kf * (g_lkg + T(2) * g_ipl);
+      const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa);
+      one_refinement_y = (std::isfinite(y_max) && y_max >= root_dp_t) ? y_max : T(0);
+    }
+
+    /// Drops across the inlet and outlet orifices [Pa] for DCV flow y_m = Dm·ωm/kf [√Pa]
+    /// under supply and return pressures Psupl, Ps [Pa]: the leakage-free closed form, then
+    /// kDcvIterations fixed-point refinements of the balances with the leakage flows (one
+    /// when that is exact to rounding; NaN takes them all), each orifice through the
+    /// regularised law. Out of line and cold: the tick path takes it only off the
+    /// operating point.
+#if defined(__GNUC__)
+    __attribute__((noinline, cold))
+#endif
+    void drops(T y_m, T Psupl, T Ps, T& dp_in, T& dp_out) const noexcept {
+      dp_in = signed_square(y_m, dp_t, root_dp_t);
+      dp_out = dp_in;
+      const int n = std::fabs(y_m) <= one_refinement_y ? 1 : kDcvIterations;
+      for (int i = 0; i < n; ++i) {
+        // Flows in units of Q/kf [√Pa].
+        const T Pmi = Psupl - dp_in;
+        const T Pmo = Ps + dp_out;
+        const T y_ipl = (Pmi - Pmo) * g_ipl_kf;
+        const T y_in = y_m + Pmi * g_lkg_kf + y_ipl;
+        const T y_out = y_m + y_ipl - Pmo * g_lkg_kf;
+        dp_in = signed_square(y_in, dp_t, root_dp_t);
+        dp_out = signed_square(y_out, dp_t, root_dp_t);
+      }
+    }
+  };
+
   /// The steady-state solve for (p, u), referred to: the coefficients it needs, computed as
   /// set_params() computes the model's (same values), the torque balance with the DCV
   /// balances solved in their general form (the tick path's dcv code may take shortcuts
@@ -226,16 +296,8 @@ class ThesisReducedModel {
   class SteadySolve {
    public:
     HSTMON_STEADY_PATH SteadySolve(const Params& p, const Inputs& u) noexcept
-        : p_(p), u_(u), inv_kf_(T(1) / p.kf), root_dp_t_dcv_(std::sqrt(p.dp_t_dcv)), Dm_J_(p.Dm / p.J),
-          Dp_J_(p.Dp / p.J), R_J_((p.Rf + p.Rbl) / p.J) {
-      const T g_lkg = T(1) / p.Rlkg;
-      const T g_ipl = T(1) / p.Ripl;
-      g_lkg_kf_ = g_lkg * inv_kf_;
-      g_ipl_kf_ = g_ipl * inv_kf_;
-      const T kappa = inv_kf_ * (g_lkg + T(2) * g_ipl);
-      const T y_max = std::sqrt(std::numeric_limits<T>::epsilon()) / (T(4) * kappa);
-      one_refinement_y_ = (std::isfinite(y_max) && y_max >= std::sqrt(p.dp_t_dcv)) ? y_max : T(0);
-    }
+        : p_(p), u_(u), dcv_(p), Dm_kf_(p.Dm / p.kf), Dm_J_(p.Dm / p.J), Dp_J_(p.Dp / p.J),
+          R_J_((p.Rf + p.Rbl) / p.J) {}
 
     /// The steady state (see steady_state()); fills x and/or y (kOutputs values) if given.
     HSTMON_STEADY_PATH bool solve(State* x, T* y) const noexcept {
@@ -278,23 +340,13 @@ class ThesisReducedModel {
       return T(2) * p_.kf * std::sqrt(std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv) / p_.Dm;
     }
 
-    /// steady_torque(w_m) [rad/s²], and the DCV-side pressures Pmi, Pmo [Pa] at w_m: the
-    /// leakage-free closed form, then kDcvIterations fixed-point refinements with the
-    /// leakage flows (one when that is exact to rounding; NaN takes all).
+    /// steady_torque(w_m) [rad/s²], and the DCV-side pressures Pmi, Pmo [Pa] at w_m from
+    /// the DCV balances in their general form (DcvCoeffs::drops).
     HSTMON_STEADY_PATH T torque(T w_m, T& Pmi, T& Pmo) const noexcept {
-      const T y_m = p_.Dm * w_m * inv_kf_;
-      const T dp_m = signed_square(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
-      Pmi = u_.Psupl - dp_m;
-      Pmo = u_.Ps + dp_m;
-      const int n = std::fabs(y_m) <= one_refinement_y_ ? 1 : kDcvIterations;
-      for (int i = 0; i < n; ++i) {
-        // Flow balances in units of Q/kf [√Pa] (leakage conductances pre-divided by kf).
-        const T y_ipl = (Pmi - Pmo) * g_ipl_kf_;
-        const T y_in = y_m + Pmi * g_lkg_kf_ + y_ipl;
-        const T y_out = y_m + y_ipl - Pmo * g_lkg_kf_;
-        Pmi = u_.Psupl - signed_square(y_in, p_.dp_t_dcv, root_dp_t_dcv_);
-        Pmo = u_.Ps + signed_square(y_out, p_.dp_t_dcv, root_dp_t_dcv_);
-      }
+      T dp_in, dp_out;
+      dcv_.drops(w_m * Dm_kf_, u_.Psupl, u_.Ps, dp_in, dp_out);
+      Pmi = u_.Psupl - dp_in;
+      Pmo = u_.Ps + dp_out;
       const T dPpp = (u_.kp > T(0)) ? signed_square(p_.Dp * w_m / u_.kp, p_.dp_t_prv) : T(0);
       return Dm_J_ * (Pmi - Pmo) - R_J_ * w_m - Dp_J_ * dPpp;
     }
@@ -302,52 +354,62 @@ class ThesisReducedModel {
    private:
     const Params& p_;
     const Inputs& u_;
-    T inv_kf_, root_dp_t_dcv_, Dm_J_, Dp_J_, R_J_;
-    T g_lkg_kf_{}, g_ipl_kf_{}, one_refinement_y_{};
+    DcvCoeffs dcv_;
+    T Dm_kf_, Dm_J_, Dp_J_, R_J_;
   };
 
 #undef HSTMON_STEADY_PATH
 
  private:
-  /// dcv_pressures(); returns y_m = Dm·ωm/kf [√Pa] for the Jacobian.
-  T dcv_solve(T w_m, T& Pmi, T& Pmo) const noexcept {
-    const T q_m = p_.Dm * w_m;
-    const T y_m = q_m * inv_kf_;
-    const T dp_m = signed_square(y_m, p_.dp_t_dcv, root_dp_t_dcv_);
-    Pmi = u_.Psupl - dp_m;
-    Pmo = u_.Ps + dp_m;
-    // The refinement contracts by dcv_contraction(w_m) ≤ 2·max(|y_m|, √ΔP_t)·κ; its
-    // error after one step is about that squared (relative). Below
-    // one_refinement_y_ it is under half an ulp, and the later steps are skipped
-    // (NaN takes them all). Straight-line first step: no loop counter per evaluation.
-    dcv_refine(y_m, Pmi, Pmo);
-    if (!(std::fabs(y_m) <= one_refinement_y_)) {
-      for (int i = 1; i < kDcvIterations; ++i) dcv_refine(y_m, Pmi, Pmo);
+  /// Pressure drops across the DCV's inlet and outlet orifices at speed w_m [Pa]
+  /// (Pmi = Psupl − dp_in, Pmo = Ps + dp_out); returns y_m = Dm·ωm/kf [√Pa] for the Jacobian.
+  HSTMON_LEAN_NOINLINE T dcv_drops(T w_m, T& dp_in, T& dp_out) const noexcept {
+    const T y_m = w_m * Dm_kf_;
+    const T ay = std::fabs(y_m);
+    if (ay >= fast_y_min_ && ay <= dcv_.one_refinement_y) {
+      // The usual case: one refinement is exact to rounding (|y_m| ≤ dcv_.one_refinement_y)
+      // and both orifices stay turbulent with y_m's sign (|y_m| ≥ fast_y_min_, see
+      // set_inputs). The leakage flows at the closed-form pressures (Psupl − dp, Ps + dp)
+      // are then c_in, c_out − κ·dp: the refinement of dcv_drops_general in five operations.
+      const T z = y_m - kappa_ * (y_m * ay);
+      const T y_in = z + c_in_;
+      const T y_out = z + c_out_;
+      dp_in = y_in * std::fabs(y_in);
+      dp_out = y_out * std::fabs(y_out);
+    } else {
+      dcv_.drops(y_m, u_.Psupl, u_.Ps, dp_in, dp_out);
     }
     return y_m;
   }
 
-  /// One fixed-point step of the DCV flow balances with the leakage flows at (Pmi, Pmo),
-  /// in units of Q/kf [√Pa] (leakage conductances pre-divided by kf).
-  void dcv_refine(T y_m, T& Pmi, T& Pmo) const noexcept {
-    const T y_ipl = (Pmi - Pmo) * g_ipl_kf_;
-    const T y_in = y_m + Pmi * g_lkg_kf_ + y_ipl;
-    const T y_out = y_m + y_ipl - Pmo * g_lkg_kf_;
-    Pmi = u_.Psupl - signed_square(y_in, p_.dp_t_dcv, root_dp_t_dcv_);
-    Pmo = u_.Ps + signed_square(y_out, p_.dp_t_dcv, root_dp_t_dcv_);
+  /// tick_derivative's checks off the usual point (start from rest, laminar orifices, a
+  /// stiff operating point): ρ if above rho_max (else 0) and the DCV solve's contraction.
+  /// Out of line: rare, and it keeps firmware flash down.
+#if defined(__GNUC__)
+  __attribute__((noinline, cold))
+#endif
+  void exact_checks(T y_m, T dPpp, T rho_max, T& rho, bool& alg_ok) const noexcept {
+    const T s_dcv = signed_square_slope(y_m, p_.dp_t_dcv, dcv_.root_dp_t);
+    rho = jacobian_radius(-K_kp_ * signed_root_slope(dPpp, p_.dp_t_prv), s_dcv, rho_max);
+    alg_ok = s_dcv * kappa_ < T(0.5);
   }
 
-  /// (dPpp/dt, dωm/dt) from the DCV pressures and the PRV's signed_root(Ppp − Pbp); fills y if given.
-  State rates(const State& x, T Pmi, T Pmo, T dPpp, T root_prv, Output* y) const noexcept {
+  /// Outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) from the state and the DCV drops [Pa].
+  Output output_vector(const State& x, T dp_in, T dp_out) const noexcept {
+    Output y;
+    y[kChPmi] = u_.Psupl - dp_in;
+    y[kChPmo] = u_.Ps + dp_out;
+    y[kChPpp] = x[0];
+    y[kChWm] = x[1];
+    return y;
+  }
+
+  /// (dPpp/dt, dωm/dt) from the sum of the DCV drops [Pa] and the PRV's
+  /// signed_root(Ppp − Pbp) [√Pa]; Dm/J·(Pmi − Pmo) = torque_sup_ − Dm/J·(dp_in + dp_out).
+  State rates(const State& x, T dp_dcv, T dPpp, T root_prv) const noexcept {
     State d;
     d[0] = K_Dp_ * x[1] - K_kp_ * root_prv;
-    d[1] = Dm_J_ * (Pmi - Pmo) - R_J_ * x[1] - Dp_J_ * dPpp;
-    if (y != nullptr) {
-      (*y)[kChPmi] = Pmi;
-      (*y)[kChPmo] = Pmo;
-      (*y)[kChPpp] = x[0];
-      (*y)[kChWm] = x[1];
-    }
+    d[1] = torque_sup_ - Dm_J_ * dp_dcv - R_J_ * x[1] - Dp_J_ * dPpp;
     return d;
   }
 
@@ -360,7 +422,7 @@ class ThesisReducedModel {
   T jacobian_radius(T a, T s_dcv, T rho_max) const noexcept {
     const T d = -R_J_ - jac_dcv_ * s_dcv;
     const T tr = a + d;
-    const T det = a * d + K_Dp_Dp_J_;
+    const T det = a * d + K_Dp_ * Dp_J_;  // K·Dp²/J = −J12·J21
     const T disc = T(0.25) * tr * tr - det;
     const T half_tr = T(0.5) * std::fabs(tr);
     if (disc >= T(0)) {
@@ -375,12 +437,15 @@ class ThesisReducedModel {
 
   Params p_{};
   Inputs u_{};
-  T inv_kf_{}, g_lkg_{}, g_ipl_{}, inv_J_{}, K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{}, Dm_4kf_{}, one_refinement_y_{};
+  T K_Dp_{}, Dm_J_{}, Dp_J_{}, R_J_{}, K_kp_{};
+  DcvCoeffs dcv_{};  ///< DCV balance coefficients (leakage, laminar transition)
   T kappa_{};      ///< DCV contraction per unit slope, (g_lkg + 2·g_ipl)/kf [1/√Pa]
-  T root_dp_t_dcv_{};  ///< √dp_t_dcv [√Pa]
-  T g_lkg_kf_{}, g_ipl_kf_{};  ///< leakage conductances / kf [1/√Pa]
   T jac_dcv_{};    ///< 2·Dm²/(J·kf): ∂(dωm/dt)/∂ωm per unit DCV slope [1/(s·√Pa)]
-  T K_Dp_Dp_J_{};  ///< K·Dp²/J = −J12·J21 of the Jacobian [1/s²]
+  T Dm_kf_{};      ///< Dm/kf: DCV flow Q/kf per unit speed [√Pa·s/rad]
+  // Input-dependent, set by set_inputs:
+  T torque_sup_{};  ///< Dm/J·(Psupl − Ps) [rad/s²]
+  T c_in_{}, c_out_{};  ///< leakage flows / kf at the supply pressures, inlet and outlet [√Pa]
+  T fast_y_min_{};  ///< smallest |Q/kf| of dcv_drops' one-refinement path [√Pa]
 };
 
 }  // namespace hstmon

@@ -168,14 +168,18 @@ HSTMON_C_RARE hstmon_status hstmon_reset_rest(hstmon_monitor* m, const hstmon_in
 
 uint32_t hstmon_step(hstmon_monitor* m, const hstmon_sample* s) {
   if (m == nullptr) return 0;
-  if (s == nullptr) {  // no sample: advance the model with the inputs held (the matcher does not run)
-    (void)m->mon.step(0.0f, m->mon.observer().model().inputs(), Obs::Measurement{});
-    return m->mon.health();
-  }
+  // No sample: advance the model with the inputs held (nothing valid, the matcher does not
+  // run). One call site, so one copy of the step in the image and one frame under it.
   Obs::Measurement meas;
-  meas.y << s->y[0], s->y[1], s->y[2], s->y[3];
-  meas.valid = s->valid;
-  (void)m->mon.step(s->t_s, to_core(s->u), meas);
+  hstmon::ThesisInputs<float> u = m->mon.observer().model().inputs();
+  float t = 0.0f;
+  if (s != nullptr) {
+    meas.y << s->y[0], s->y[1], s->y[2], s->y[3];
+    meas.valid = s->valid;
+    u = to_core(s->u);
+    t = s->t_s;
+  }
+  (void)m->mon.step(t, u, meas);
   return m->mon.health();
 }
 
