@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -223,6 +224,7 @@ int run_replay(const ReplayArgs& a) {
 
   ThesisParams<double> params;
   ThesisInputs<double> inputs;
+  std::optional<host::SensorRanges> sensors;
   if (!a.params.empty()) {
     const auto pf = host::read_params_file(a.params);
     if (pf.error) {
@@ -231,6 +233,7 @@ int run_replay(const ReplayArgs& a) {
     }
     if (pf.params) params = *pf.params;
     if (pf.inputs) inputs = *pf.inputs;
+    sensors = pf.sensors;
   }
 
   const host::LogData log = host::read_log(a.log, ro);
@@ -246,6 +249,7 @@ int run_replay(const ReplayArgs& a) {
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
   opt.diagnose = !a.no_diagnosis;
+  if (sensors) opt.sensors = *sensors;
   Progress progress;
   progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
   if (progress.on) opt.progress = [&progress](double f) { progress(f); };

@@ -96,4 +96,17 @@ TEST(CliErrors, UsageErrorExitsOne) {
   EXPECT_EQ(run("replay x.csv --init sideways").exit_code, 1);
 }
 
+// A parameter file's "sensors" section reaches the replay: with Ppp's transmitter ranged
+// to 150 bar, the shipped log's 171 bar reads over range from the first row, and the
+// diagnosis is the sensor, not the PRV.
+TEST(CliParams, SensorsSectionSetsTheTransmitterRanges) {
+  const std::string params = write_file("ranges.json", R"({"model": "thesis", "sensors": {"p_pp": ["0 bar", "150 bar"]}})");
+  const CliRun narrow = run(std::string("replay ") + HSTMON_EXAMPLE_LOG + " --params " + params);
+  EXPECT_EQ(narrow.exit_code, 0) << narrow.output;
+  EXPECT_NE(narrow.output.find("isolated: sensor_p_pp"), std::string::npos) << narrow.output;
+  const CliRun rig = run(std::string("replay ") + HSTMON_EXAMPLE_LOG);
+  EXPECT_EQ(rig.exit_code, 0) << rig.output;
+  EXPECT_NE(rig.output.find("isolated: kp-"), std::string::npos) << rig.output;
+}
+
 }  // namespace
