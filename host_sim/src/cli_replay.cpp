@@ -299,7 +299,8 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"auto", "rest", "steady"}));
   cmd->add_option("--map", args->maps, "Map a log column to a signal: LOG_COLUMN=SIGNAL (repeatable)");
   cmd->add_option("--separator", args->separator, "Field separator: , ; or tab (default: detected)");
-  cmd->add_flag("--lenient", args->lenient, "On a bad row, report it and replay the valid rows before it");
+  cmd->add_flag("--lenient", args->lenient,
+                "Skip rows whose time does not increase (noted); on any other bad row, report it and replay the rows before it");
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->callback([args, &exit_code]() { exit_code = run_replay(*args); });

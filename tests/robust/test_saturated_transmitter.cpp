@@ -146,15 +146,26 @@ TEST(SaturatedTransmitter, PppPinnedHighByTheThesisBlockageKeepsKpMinus) { expec
 TEST(SaturatedTransmitter, PppPinnedHighAtHeavyLoadKeepsKpMinus) { expect_kp_minus_with_ppp_masked(kHeavy250); }
 
 // The same run with Ppp's loop broken 1 s after the blockage: from then on Ppp reads the
-// bottom of its range — a sensor fault, and only sensor_p_pp is left. (The status stays
-// "isolated", now on sensor_p_pp; the matcher raises no event for a change of the
-// isolated candidate — docs/hardening.md.)
+// bottom of its range — a sensor fault, and only sensor_p_pp is left. The status stays
+// "isolated"; the change of the isolated candidate is a further "isolated" event.
 TEST(SaturatedTransmitter, LoopBreakAfterwardsIsSensorPpp) {
   const MonitorRun r = monitor(kNominal200, blockage(kNominal200, kFaultTime + 1.0));
   std::printf("then the loop breaks: events\n%s", r.dump().c_str());
   EXPECT_EQ(r.faults, 0b0100);
   EXPECT_EQ(r.status, MatchStatus::kIsolated);
   EXPECT_EQ(r.names, "sensor_p_pp");
+  ASSERT_GE(r.events.size(), 3u) << r.dump();
+  const auto& last = r.events.back();
+  EXPECT_EQ(last.kind, hstmon::MatchEventKind::kIsolated) << r.dump();
+  EXPECT_GE(last.time, kFaultTime + 1.0) << r.dump();
+  ASSERT_GE(last.count, 1);
+  EXPECT_STREQ(last.candidate[0].name, "sensor_p_pp") << r.dump();
+  bool kp_isolated_before = false;
+  for (const auto& e : r.events) {
+    if (e.kind == hstmon::MatchEventKind::kIsolated && e.time < kFaultTime + 1.0 && e.count >= 1)
+      kp_isolated_before = kp_isolated_before || std::string(e.candidate[0].name) == "kp-";
+  }
+  EXPECT_TRUE(kp_isolated_before) << r.dump();
 }
 
 // Through the host replay with the rig's ranges given (what a parameter file's "sensors"

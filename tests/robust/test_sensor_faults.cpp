@@ -424,8 +424,8 @@ TEST(ReplayStreamFaults, MissingTimestampsTickThroughTheGap) {
     for (double v : row.y_hat) ASSERT_TRUE(std::isfinite(v));
 }
 
-// A repeated timestamp is a malformed log: a strict read refuses it with its position,
-// a lenient read keeps the rows before it and the replay of those rows is complete.
+// A repeated timestamp is a malformed log: a strict read refuses it with its position;
+// a lenient read skips that row with a note and replays all the others.
 TEST(ReplayStreamFaults, RepeatedTimestampKeepsTheRowsBefore) {
   std::vector<double> t = times(2000);
   t[1200] = t[1199];
@@ -437,14 +437,16 @@ TEST(ReplayStreamFaults, RepeatedTimestampKeepsTheRowsBefore) {
   EXPECT_GE(log.error->column, 1u);
   EXPECT_EQ(strict.rows, 0u);
   const auto r = replay_text(text, true, &log);
-  EXPECT_EQ(r.rows, 1200u);
-  EXPECT_EQ(r.trace.size(), 1200u);
+  EXPECT_FALSE(log.error.has_value());
+  EXPECT_EQ(log.skipped_rows, 1u);
+  EXPECT_EQ(r.rows, 1999u);
+  EXPECT_EQ(r.trace.size(), 1999u);
   EXPECT_TRUE(r.events.empty()) << dump(r);
 }
 
 // What a monitor running for days would want: one bad time stamp costs one row, not
-// the rest of the log. The reader stops at the first bad row even when lenient
-// (documented in log_reader.hpp), so 800 of the 2000 rows are lost.
+// the rest of the log (log_reader.hpp: lenient reads skip rows whose time does not
+// increase, with a note each).
 TEST(ReplayStreamFaults, RepeatedTimestampSkipsOnlyThatRow) {
   std::vector<double> t = times(2000);
   t[1200] = t[1199];

@@ -361,6 +361,7 @@ class FaultMatcher {
 
   void end_episode() noexcept {
     status_ = MatchStatus::kNominal;
+    isolated_ = -1;
     for (int i = 0; i < kChannels; ++i) {
       sym_[i] = ChannelSymbol{};
       sum_[i] = T(0);
@@ -536,8 +537,12 @@ class FaultMatcher {
     } else {
       s = leads_by_margin(score_[order_[0]], score_[order_[1]]) ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
     }
-    if (s != status_) {
+    // A change of the isolated candidate is news too (a loop break during an isolated
+    // blockage leaves only sensor_p_pp): it raises a further "isolated" event.
+    const std::int8_t best = s == MatchStatus::kIsolated ? order_[0] : std::int8_t{-1};
+    if (s != status_ || best != isolated_) {
       status_ = s;
+      isolated_ = best;
       if (s == MatchStatus::kIsolated) push_event(MatchEventKind::kIsolated, t, true);
       if (s == MatchStatus::kAmbiguous) push_event(MatchEventKind::kAmbiguous, t, true);
       if (s == MatchStatus::kUnexplained) push_event(MatchEventKind::kUnexplained, t, true);
@@ -583,6 +588,7 @@ class FaultMatcher {
   MatchStatus status_ = MatchStatus::kNominal;
   bool alive_[kCap_] = {};
   std::uint8_t faulty_ = 0;  ///< channels with a sensor flag in this episode (⊆ masked_); after alive_, in its padding
+  std::int8_t isolated_ = -1;  ///< row of the isolated candidate, −1 when not isolated; in the same padding
   T score_[kCap_] = {};
   std::int8_t order_[kCap_] = {};   ///< consistent rows, best first
   std::int8_t sensor_ch_[kCap_] = {};  ///< channel of a sensor row, −1 for others

@@ -92,8 +92,7 @@ class Monitor {
   /// @return kOk, kInvalidParams, or kInvalidConfig
   Status reconfigure(const ThesisParams<T>& params, const typename Obs::Config& observer, const FaultSignature* table,
                      int count) noexcept {
-    if (!Model::params_valid(params)) return Status::kInvalidParams;
-    Status s = obs_.configure(Model(params), observer);
+    Status s = obs_.configure(params, observer);
     if (s == Status::kOk) s = matcher_.set_table(table, count);
     if (s != Status::kOk) return s;
     reset_rest_of_chain();

@@ -65,16 +65,24 @@ class Observer {
   /// rest state. O(1).
   /// @return kOk, or kInvalidConfig with the observer left unchanged
   Status configure(const Model& model, const Config& cfg) noexcept {
-    const bool ok = std::isfinite(cfg.tick) && cfg.tick > T(0) && std::isfinite(cfg.lambda_h_max) &&
-                    cfg.lambda_h_max > T(0) && cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 &&
-                    cfg.gain.allFinite();
-    if (!ok) return Status::kInvalidConfig;
+    if (!config_ok(cfg)) return Status::kInvalidConfig;
     model_ = model;
-    cfg_ = cfg;
-    one_step_ = Rk4Step<T>(cfg.tick);
-    rho_one_ = cfg.lambda_h_max / cfg.tick;
-    has_gain_ = !cfg.gain.isZero(T(0));
-    reset(model_.rest_state());
+    apply(cfg);
+    return Status::kOk;
+  }
+
+  /// configure(Model(p), cfg) without building and copying a model: the observer's own
+  /// model takes the parameters in place and default inputs (firmware: no block copy).
+  /// Needs Model::set_params and Model::params_valid (a template, so only models that
+  /// have them are asked for them).
+  /// @return kOk, kInvalidParams or kInvalidConfig, with the observer left unchanged
+  template <typename M = Model>
+  Status configure(const typename M::Params& p, const Config& cfg) noexcept {
+    if (!M::params_valid(p)) return Status::kInvalidParams;
+    if (!config_ok(cfg)) return Status::kInvalidConfig;
+    model_.set_params(p);
+    model_.set_inputs(Inputs{});
+    apply(cfg);
     return Status::kOk;
   }
 
@@ -94,11 +102,15 @@ class Observer {
   /// @return kOk, kInvalidInputs, or kNoSteadyState (observer unchanged)
   Status reset_steady(const Inputs& u) noexcept {
     if (!Model::inputs_valid(u)) return Status::kInvalidInputs;
-    Model m = model_;
-    m.set_inputs(u);
+    // The model's inputs are restored on failure rather than the model copied (132 B):
+    // set_inputs is a function of the inputs alone.
+    const Inputs held = model_.inputs();
+    model_.set_inputs(u);
     State x;
-    if (!m.steady_state(x)) return Status::kNoSteadyState;
-    model_ = m;
+    if (!model_.steady_state(x)) {
+      model_.set_inputs(held);
+      return Status::kNoSteadyState;
+    }
     reset(x);
     return Status::kOk;
   }
@@ -222,6 +234,20 @@ class Observer {
   const Model& model() const noexcept { return model_; }
 
  private:
+  static bool config_ok(const Config& cfg) noexcept {
+    return std::isfinite(cfg.tick) && cfg.tick > T(0) && std::isfinite(cfg.lambda_h_max) && cfg.lambda_h_max > T(0) &&
+           cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite();
+  }
+
+  /// Takes a valid configuration and resets to the model's rest state.
+  void apply(const Config& cfg) noexcept {
+    cfg_ = cfg;
+    one_step_ = Rk4Step<T>(cfg.tick);
+    rho_one_ = cfg.lambda_h_max / cfg.tick;
+    has_gain_ = !cfg.gain.isZero(T(0));
+    reset(model_.rest_state());
+  }
+
   /// True when a and b hold the same bytes (compared a 32-bit word at a time; a padded
   /// type may compare unequal, which only costs a redundant update).
   template <typename S>
