@@ -18,6 +18,7 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # Cortex-M4F firmware
   qemu-system-arm             # runs the firmware (mps2-an386) in tests/firmware and footprint.sh
   g++-aarch64-linux-gnu qemu-user googletest  # aarch64 cross build; lib tests under qemu-aarch64
+  clang libclang-rt-14-dev    # libFuzzer + ASan/UBSan runtimes for scripts/fuzz.sh
 )
 
 missing=()

@@ -4,7 +4,11 @@
 #   2. the firmware footprint and cost budgets on Cortex-M4F under qemu (fails on a
 #      budget overrun as on a build or run failure);
 #   3. the host debug build (warnings are errors) and the whole host suite with CTest,
-#      which includes the firmware image under qemu-system-arm compared with the host.
+#      which includes the firmware image under qemu-system-arm compared with the host;
+#   4. the whole host suite again under AddressSanitizer + UndefinedBehaviorSanitizer
+#      (scripts/sanitizers.sh);
+#   5. a short libFuzzer run of each fuzz target from the committed corpora
+#      (scripts/fuzz.sh, HSTMON_FUZZ_SECONDS per target, default 60).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -23,3 +27,9 @@ echo "== host: build and full suite"
 cmake --preset host-debug >/dev/null
 cmake --build --preset host-debug -j"$jobs"
 ctest --preset host-debug -j"$jobs" -LE budget
+
+echo "== host: whole suite under ASan + UBSan"
+bash scripts/sanitizers.sh
+
+echo "== fuzzing: ${HSTMON_FUZZ_SECONDS:-60} s per target"
+bash scripts/fuzz.sh "${HSTMON_FUZZ_SECONDS:-60}"

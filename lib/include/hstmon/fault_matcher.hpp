@@ -45,6 +45,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "hstmon/fault_signature.hpp"
 #include "hstmon/residual_evaluator.hpp"
@@ -403,7 +404,22 @@ class FaultMatcher {
       v_[i] = ((faulty_ >> i) & 1u) ? T(0) : dev[i];
       s += v_[i] * v_[i];
     }
+    if (!(s <= std::numeric_limits<T>::max())) s = clamp_vector();  // Inf or NaN
     v_norm_ = std::sqrt(s);
+  }
+
+  // Deviations are in noise units: beyond 1e15 they are absurd readings, not a shape to
+  // rank. Clamping them keeps |v|² finite in float (a finite 4e37 reading once gave NaN
+  // scores, Inf/Inf); NaN (Inf − Inf upstream) counts as no deviation. Returns |v|².
+  HSTMON_NOINLINE T clamp_vector() noexcept {
+    constexpr T kMax = T(1e15);
+    T s = T(0);
+    for (int i = 0; i < kChannels; ++i) {
+      const T d = v_[i] == v_[i] ? v_[i] : T(0);
+      v_[i] = d > kMax ? kMax : (d < -kMax ? -kMax : d);
+      s += v_[i] * v_[i];
+    }
+    return s;
   }
 
   void live_vector(const Evaluator& ev) noexcept {
