@@ -10,6 +10,8 @@
 # new inputs go to build/h-fuzz/corpus/<target> (not committed). Exits non-zero on a
 # finding; the crashing input is left in build/h-fuzz/artifacts/.
 # Reproduce one: build/h-fuzz/bin/fuzz_log_reader build/h-fuzz/artifacts/crash-…
+# HSTMON_FUZZ_SEED=N fixes libFuzzer's random seed (CI uses 1, so a CI run explores the
+# same first mutations every time; 0, the default, lets libFuzzer pick one).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -42,7 +44,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$work"
   echo "== $t: ${secs} s"
   if ! "$build/bin/$t" "$work" "tests/fuzz/corpus/${seeds[$t]}" \
-      -max_total_time="$secs" -max_len="${maxlen[$t]}" -timeout=10 -rss_limit_mb=2048 \
+      -max_total_time="$secs" -seed="${HSTMON_FUZZ_SEED:-0}" -max_len="${maxlen[$t]}" -timeout=10 -rss_limit_mb=2048 \
       -artifact_prefix="$build/artifacts/$t-" -print_final_stats=1 >"$build/$t.log" 2>&1; then
     echo "!! $t: finding (log: $build/$t.log, input: $build/artifacts/$t-*)"
     grep -E "ERROR|invariant|runtime error|SUMMARY" "$build/$t.log" | head -n 5 || true

@@ -32,4 +32,4 @@ echo "== host: whole suite under ASan + UBSan"
 bash scripts/sanitizers.sh
 
 echo "== fuzzing: ${HSTMON_FUZZ_SECONDS:-60} s per target"
-bash scripts/fuzz.sh "${HSTMON_FUZZ_SECONDS:-60}"
+HSTMON_FUZZ_SEED=${HSTMON_FUZZ_SEED:-1} bash scripts/fuzz.sh "${HSTMON_FUZZ_SECONDS:-60}"
