@@ -212,9 +212,10 @@ class ThesisReducedModel {
     return SteadySolve(p_, u_).torque(w_m, Pmi, Pmo);
   }
 
-  /// Steady state under the current inputs, by bisection safeguarded secant on the
-  /// monotone torque balance. kp = 0 (PRV shut) has no steady state with ωm ≠ 0 and is
-  /// refused, as is a result that is not finite or beyond the torque balance's pressure cap.
+  /// Steady state under the current inputs, by regula falsi (Illinois rule, bisection as
+  /// a safeguard) on the monotone torque balance. kp = 0 (PRV shut) has no steady state
+  /// with ωm ≠ 0 and is refused, as is a result that is not finite or beyond the torque
+  /// balance's pressure cap.
   /// @param x  out: (Ppp [Pa], ωm [rad/s])
   /// @return   true on convergence; false (x untouched) if the inputs admit none
   bool steady_state(State& x) const noexcept { return SteadySolve(p_, u_).solve(&x, nullptr); }
@@ -311,12 +312,26 @@ class ThesisReducedModel {
       for (int i = 0; i < 60 && f_hi > T(0); ++i) { hi *= T(2); f_hi = torque(hi, Pmi, Pmo); }
       if (!(f_lo >= T(0) && f_hi <= T(0))) return false;
       T w = T(0);
+      int kept = 0;  // +1: lo was moved last (hi kept), −1: hi was moved last
       for (int i = 0; i < 200; ++i) {
-        // Secant (regula falsi, Illinois-free) step, bisection when it stalls or leaves the bracket.
+        // Regula falsi with the Illinois rule: an end kept twice in a row has its torque
+        // halved, so both ends close in (superlinearly; ≈ 10 torque evaluations from the
+        // speed bound to a few ulps instead of ≈ 30 with a bisection every third step).
+        // Bisection when the step leaves the bracket (or is NaN).
         T w_new = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-        if (!(w_new > lo && w_new < hi) || (i % 3 == 2)) w_new = T(0.5) * (lo + hi);
+        if (!(w_new > lo && w_new < hi)) w_new = T(0.5) * (lo + hi);
         const T f = torque(w_new, Pmi, Pmo);
-        if (f > T(0)) { lo = w_new; f_lo = f; } else { hi = w_new; f_hi = f; }
+        if (f > T(0)) {
+          lo = w_new;
+          f_lo = f;
+          if (kept == 1) f_hi *= T(0.5);
+          kept = 1;
+        } else {
+          hi = w_new;
+          f_hi = f;
+          if (kept == -1) f_lo *= T(0.5);
+          kept = -1;
+        }
         w = w_new;
         if (f == T(0) || (hi - lo) <= T(4) * std::numeric_limits<T>::epsilon() * (std::fabs(w) + T(1))) break;
       }
