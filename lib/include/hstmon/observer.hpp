@@ -172,7 +172,7 @@ class Observer {
     // Substeps from the local stiffness: |λ|·h_sub ≤ lambda_h_max keeps RK4 both stable
     // and accurate (its stability limit on the negative real axis is ≈ 2.79).
     // Common case first: ρ ≤ rho_one_ needs one substep and the model then reports ρ = 0
-    // (without computing it); this path is straight-line code. NaN compares false and
+    // (without computing it), so there is no ceil and no division. NaN compares false and
     // also gets one substep (the state check below flags it).
     int n = 1;
     Rk4Step<T> h = one_step_;
