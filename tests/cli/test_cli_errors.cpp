@@ -109,4 +109,14 @@ TEST(CliParams, SensorsSectionSetsTheTransmitterRanges) {
   EXPECT_NE(rig.output.find("isolated: kp-"), std::string::npos) << rig.output;
 }
 
+// The thesis DAS samples every 4 s: the matcher's 100 ms averaging window after detection
+// holds no sample, so it stays open until one arrives (before, every row scored 0 and the
+// episode ended "ambiguous").
+TEST(CliReplay, DasRateLogIsolatesTheBlockage) {
+  const CliRun r = run(std::string("replay ") + HSTMON_EXAMPLE_DAS_LOG);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("isolated: kp- (0.99"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("status at the end of the log: isolated"), std::string::npos) << r.output;
+}
+
 }  // namespace

@@ -280,19 +280,23 @@ class FaultMatcher {
       order_done_ = true;
       changed = true;
     }
-    // Window: mean residual per channel over [t_det + settle, t_det + settle + average).
+    // Window: mean residual per channel over [t_det + settle, t_det + settle + average),
+    // held open until it has a sample: a slow logger (the thesis DAS samples every 4 s)
+    // may have none in it, and an empty window would rank every row at 0.
     const T w0 = t_det_ + cfg_.settle_time;
-    if (!window_done_) {
-      if (t >= w0 + cfg_.average_time) {
-        finish_window(ev);
-        changed = true;
-      } else if (t >= w0) {
+    if (!window_done_ && t >= w0) {
+      const bool open = t < w0 + cfg_.average_time;
+      if (open || !window_sampled()) {
         for (int i = 0; i < kChannels; ++i) {
           if ((ev.valid() >> i) & 1u) {
             sum_[i] += ev.residual(i);
             ++n_[i];
           }
         }
+      }
+      if (!open && window_sampled()) {
+        finish_window(ev);
+        changed = true;
       }
     }
     if (!window_done_ && (changed || first_tick_)) live_vector(ev);
@@ -426,6 +430,12 @@ class FaultMatcher {
     T d[kChannels];
     for (int i = 0; i < kChannels; ++i) d[i] = (ev.residual(i) - base_[i]) / ev.sigma(i);
     set_vector(d);
+  }
+
+  bool window_sampled() const noexcept {
+    std::uint32_t n = 0;
+    for (int i = 0; i < kChannels; ++i) n |= n_[i];
+    return n != 0;
   }
 
   void finish_window(const Evaluator& ev) noexcept {
