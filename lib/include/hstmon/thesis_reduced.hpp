@@ -293,7 +293,7 @@ class ThesisReducedModel {
   /// The steady-state solve for (p, u), referred to: the coefficients it needs, computed as
   /// set_params() computes the model's (same values), the torque balance with the DCV
   /// balances solved in their general form (the tick path's dcv code may take shortcuts
-  /// that agree to rounding), and the root search. 40 B in float, held by the caller.
+  /// that agree to rounding), and the root search. 44 B in float, held by the caller.
   class SteadySolve {
    public:
     HSTMON_STEADY_PATH SteadySolve(const Params& p, const Inputs& u) noexcept
@@ -385,7 +385,7 @@ class ThesisReducedModel {
       // The usual case: one refinement is exact to rounding (|y_m| ≤ dcv_.one_refinement_y)
       // and both orifices stay turbulent with y_m's sign (|y_m| ≥ fast_y_min_, see
       // set_inputs). The leakage flows at the closed-form pressures (Psupl − dp, Ps + dp)
-      // are then c_in, c_out − κ·dp: the refinement of dcv_drops_general in five operations.
+      // are then c_in, c_out − κ·dp: DcvCoeffs::drops' refinement in five operations.
       const T z = y_m - kappa_ * (y_m * ay);
       const T y_in = z + c_in_;
       const T y_out = z + c_out_;
