@@ -2,6 +2,11 @@
 // Sub-commands of the `hstmon` CLI. Each registers itself on the CLI11 app and returns
 // the callback's exit code through `exit_code`.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <string>
+
+#include "hstmon_host/params_file.hpp"
 
 namespace hstmon::cli {
 
@@ -11,6 +16,17 @@ enum ExitCode : int {
   kExitUsage = 1,      ///< bad command line
   kExitBadInput = 2,   ///< a log or parameter file could not be used (message names file:line:column)
 };
+
+/// Reads a command's parameter file option into pf. An empty path reads nothing (pf stays
+/// empty, the caller keeps its defaults). On an error prints it (file:line:column) and
+/// returns false: the command then exits with kExitBadInput.
+inline bool read_params_option(const std::string& path, host::ParamsFileResult& pf) {
+  if (path.empty()) return true;
+  pf = host::read_params_file(path);
+  if (!pf.error) return true;
+  fmt::print(stderr, "{}\n", pf.error->to_string());
+  return false;
+}
 
 /// `hstmon replay LOG ...`
 void add_replay_command(CLI::App& app, int& exit_code);

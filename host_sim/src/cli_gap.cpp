@@ -26,17 +26,10 @@ struct GapArgs {
 };
 
 int run_gap_command(const GapArgs& a) {
-  ThesisParams<double> params;
-  ThesisInputs<double> inputs;
-  if (!a.params.empty()) {
-    const auto pf = host::read_params_file(a.params);
-    if (pf.error) {
-      fmt::print(stderr, "{}\n", pf.error->to_string());
-      return kExitBadInput;
-    }
-    if (pf.params) params = *pf.params;
-    if (pf.inputs) inputs = *pf.inputs;
-  }
+  host::ParamsFileResult pf;
+  if (!read_params_option(a.params, pf)) return kExitBadInput;
+  const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
+  const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
   gap::GapOptions o;
   o.refit_nominal = a.refit;
   o.sim.max_step = a.max_step;

@@ -71,17 +71,10 @@ void plot_or_warn(const std::string& err) {
 }
 
 int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
-  ThesisParams<double> prior;
-  ThesisInputs<double> defaults;
-  if (!a.prior.empty()) {
-    const auto pf = host::read_params_file(a.prior);
-    if (pf.error) {
-      fmt::print(stderr, "{}\n", pf.error->to_string());
-      return kExitBadInput;
-    }
-    prior = *pf.params;
-    defaults = *pf.inputs;
-  }
+  host::ParamsFileResult pf;
+  if (!read_params_option(a.prior, pf)) return kExitBadInput;
+  const ThesisParams<double> prior = pf.params.value_or(ThesisParams<double>{});
+  const ThesisInputs<double> defaults = pf.inputs.value_or(ThesisInputs<double>{});
   id::SteadyWindowOptions wo;
   wo.min_duration = a.min_duration;
   wo.min_samples = a.min_samples;

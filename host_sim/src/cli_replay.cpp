@@ -222,19 +222,10 @@ int run_replay(const ReplayArgs& a) {
     ro.column_map[m.substr(0, eq)] = m.substr(eq + 1);
   }
 
-  ThesisParams<double> params;
-  ThesisInputs<double> inputs;
-  std::optional<host::SensorRanges> sensors;
-  if (!a.params.empty()) {
-    const auto pf = host::read_params_file(a.params);
-    if (pf.error) {
-      fmt::print(stderr, "{}\n", pf.error->to_string());
-      return kExitBadInput;
-    }
-    if (pf.params) params = *pf.params;
-    if (pf.inputs) inputs = *pf.inputs;
-    sensors = pf.sensors;
-  }
+  host::ParamsFileResult pf;
+  if (!read_params_option(a.params, pf)) return kExitBadInput;
+  const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
+  const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
 
   const host::LogData log = host::read_log(a.log, ro);
   for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
@@ -249,7 +240,7 @@ int run_replay(const ReplayArgs& a) {
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
   opt.diagnose = !a.no_diagnosis;
-  if (sensors) opt.sensors = *sensors;
+  if (pf.sensors) opt.sensors = *pf.sensors;
   Progress progress;
   progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
   if (progress.on) opt.progress = [&progress](double f) { progress(f); };

@@ -120,7 +120,7 @@ class Monitor {
   /// @return   the matcher's status after the tick
   MatchStatus step(T t, const ThesisInputs<T>& u, const Measurement& m) noexcept {
     // Three frames in turn, none nested in another: the observer tick, the bound update
-    // on a tick with new inputs (the deepest stack of a step on the M4F), the rest.
+    // on a tick whose inputs changed (the deepest stack of a step on the M4F), the rest.
     if (observe(t, u, m)) update_bound();
     return evaluate(t, m);
   }

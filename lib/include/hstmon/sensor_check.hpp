@@ -220,7 +220,7 @@ class SensorCheck {
     } else if (v >= hi) {
       f |= kSensorSaturated;  // a clamped reading repeats by nature: never stuck
     }
-    if ((before & kHave) == 0 || v != last_[i]) {  // a new value starts a run
+    if ((before & kHave) == 0 || v != last_[i]) {  // a different value starts a run
       last_[i] = v;
       since_[i] = t;
     } else if (f == kHave && min_samples_ != 0) {
