@@ -13,6 +13,13 @@
 /// All state lives in the object (a few hundred bytes); step() never allocates, never
 /// throws, and is O(n_sub).
 ///
+/// Usual tick: a model may offer a fused form of steps 1 and 4 for its usual operating
+/// region, where one substep is known to suffice (Model::kHasUsualTick, usual_tick_coeffs,
+/// usual_tick, usual_plausible; ThesisReducedModel off Arm M-profile). step() tries it
+/// first when every input is unchanged and there is no injection gain, and takes the
+/// general path above when the state or a stage is outside that region. The same model
+/// and RK4, to rounding; Config::usual_tick = false keeps every tick on the general path.
+///
 /// Model requirements (see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
 /// kOutputs, set_inputs(), inputs(), static inputs_valid(), outputs(x), rest_state(),
 /// steady_state(x), derivative(x) (RK4 stages), state_plausible(x) (false for any
@@ -26,11 +33,50 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
+#include "hstmon/code_size.hpp"
 #include "hstmon/rk4.hpp"
 #include "hstmon/status.hpp"
 
+/// The general tick and the rare implausible-state handling: out of line where the usual
+/// tick is in front of them (hosts: the usual tick's frame stays small), inline where the
+/// general tick is step()'s only path (firmware: flash and stack).
+#if defined(__GNUC__) && !HSTMON_FLASH_LEAN
+#define HSTMON_OFF_USUAL_PATH __attribute__((noinline))
+#elif defined(__GNUC__)
+#define HSTMON_OFF_USUAL_PATH inline __attribute__((always_inline))
+#else
+#define HSTMON_OFF_USUAL_PATH
+#endif
+/// The residuals, shared by both paths: inline on firmware (one call site, where a call
+/// would cost flash and cycles); the compiler's choice on hosts (it keeps them out of line,
+/// which leaves the usual tick's registers to the RK4 stages).
+#if defined(__GNUC__) && HSTMON_FLASH_LEAN
+#define HSTMON_TICK_PART inline __attribute__((always_inline))
+#else
+#define HSTMON_TICK_PART inline
+#endif
+
 namespace hstmon {
+
+namespace observer_detail {
+/// Model::kHasUsualTick, false for models without it.
+template <typename M, typename = void>
+struct HasUsualTick : std::false_type {};
+template <typename M>
+struct HasUsualTick<M, std::void_t<decltype(M::kHasUsualTick)>> : std::bool_constant<M::kHasUsualTick> {};
+
+/// The observer's usual-tick coefficients, and nothing for models without a usual tick.
+template <typename M, bool = HasUsualTick<M>::value>
+struct UsualTickState {
+  typename M::UsualTick c{};  ///< Model::usual_tick_coeffs for the current inputs and tick
+  std::uint64_t ticks = 0;    ///< ticks since the last reset that took the usual tick
+  bool on = false;            ///< Config::usual_tick and no injection gain
+};
+template <typename M>
+struct UsualTickState<M, false> {};
+}  // namespace observer_detail
 
 template <typename Model>
 class Observer {
@@ -41,6 +87,8 @@ class Observer {
   using Inputs = typename Model::Inputs;
   static constexpr int kStates = Model::kStates;
   static constexpr int kOutputs = Model::kOutputs;
+  /// True when the model offers a fused usual tick (see the file comment).
+  static constexpr bool kUsualTick = observer_detail::HasUsualTick<Model>::value;
   static_assert(kOutputs <= 8, "channel masks are 8 bits wide");
   /// Output-injection gain L [state unit per channel unit], applied once per tick.
   using Gain = Eigen::Matrix<T, kStates, kOutputs>;
@@ -50,6 +98,9 @@ class Observer {
     T tick = T(1e-3);                   ///< tick h [s], > 0
     T lambda_h_max = T(0.8);            ///< largest |λ|·h_sub per RK4 substep [-], in (0, 2.5]
     std::uint16_t max_substeps = 256;   ///< substep cap per tick [-], ≥ 1
+    /// Take the model's fused usual tick where it has one (see the file comment); false:
+    /// every tick on the general path (the C API: the same bits on every target).
+    bool usual_tick = true;
     Gain gain = Gain::Zero();           ///< output injection L; zero = pure parallel model
   };
 
@@ -93,6 +144,7 @@ class Observer {
     r_.setZero();
     r_valid_ = 0;
     ticks_ = 0;
+    if constexpr (kUsualTick) usual_.ticks = 0;
     substeps_ = 0;
     health_ = 0;
     last_health_ = 0;
@@ -111,6 +163,7 @@ class Observer {
       model_.set_inputs(held);
       return Status::kNoSteadyState;
     }
+    inputs_changed();
     reset(x);
     return Status::kOk;
   }
@@ -119,6 +172,7 @@ class Observer {
   Status reset_rest(const Inputs& u) noexcept {
     if (!Model::inputs_valid(u)) return Status::kInvalidInputs;
     model_.set_inputs(u);
+    inputs_changed();
     reset(model_.rest_state());
     return Status::kOk;
   }
@@ -128,13 +182,64 @@ class Observer {
   /// @param m  measurement at the start of the tick; m.valid = 0 just advances the model
   /// @return   this tick's HealthFlag bits (also OR-ed into health())
   std::uint32_t step(const Inputs& u, const Measurement& m) noexcept {
+    if constexpr (kUsualTick) {
+      // Inputs are usually held for many ticks: when they are the bytes the model already
+      // has (only valid inputs are ever stored), neither their check nor the model's
+      // input-dependent coefficients need redoing.
+      if (usual_.on && same_bytes(u, model_.inputs())) {
+        State dx;
+        if (model_.usual_tick(usual_.c, s_.x, yhat_, dx)) {
+          std::uint32_t flags = take_residuals(m);
+          const State x_before = s_.x;
+          s_.add(dx);
+          substeps_ = 1;
+          ++usual_.ticks;
+          if (!Model::usual_plausible(usual_.c, s_.x)) flags |= check_state(x_before);
+          return finish(flags);
+        }
+      }
+    }
+    return general_step(u, m);
+  }
+
+  /// Residuals r = y − ŷ of the last tick, in output units; 0 where not valid.
+  const Output& residual() const noexcept { return r_; }
+  /// Bit i set: residual i was computed in the last tick.
+  std::uint8_t residual_valid() const noexcept { return r_valid_; }
+  /// Model outputs ŷ at the start of the last tick (before injection), output units.
+  const Output& estimate() const noexcept { return yhat_; }
+  /// Current model state (after the last tick), state units.
+  const State& state() const noexcept { return s_.x; }
+  /// Time since the last reset [s] (ticks × h, so it does not accumulate rounding).
+  T time() const noexcept { return static_cast<T>(ticks_) * cfg_.tick; }
+  /// Ticks since the last reset.
+  std::uint64_t ticks() const noexcept { return ticks_; }
+  /// Ticks since the last reset that took the model's fused usual tick (0 without one).
+  std::uint64_t usual_ticks() const noexcept {
+    if constexpr (kUsualTick) {
+      return usual_.ticks;
+    } else {
+      return 0;
+    }
+  }
+  /// RK4 substeps used by the last tick.
+  std::uint16_t substeps() const noexcept { return substeps_; }
+  /// HealthFlag bits of the last tick.
+  std::uint32_t last_health() const noexcept { return last_health_; }
+  /// HealthFlag bits OR-ed over all ticks since reset (latched).
+  std::uint32_t health() const noexcept { return health_; }
+  const Config& config() const noexcept { return cfg_; }
+  const Model& model() const noexcept { return model_; }
+
+ private:
+  /// step() on the general path: any state, inputs, measurement mask and gain.
+  HSTMON_OFF_USUAL_PATH std::uint32_t general_step(const Inputs& u, const Measurement& m) noexcept {
     std::uint32_t flags = 0;
-    // Inputs are usually held for many ticks: when they are the bytes the model already
-    // has (only valid inputs are ever stored) neither the check nor the model's
-    // input-dependent coefficients need redoing.
+    // As in step(): inputs are only checked and set when their bytes change.
     if (!same_bytes(u, model_.inputs())) {
       if (Model::inputs_valid(u)) {
         model_.set_inputs(u);
+        inputs_changed();
       } else {
         flags |= kHealthInputNonFinite;
       }
@@ -144,26 +249,9 @@ class Observer {
     T rho;
     bool alg_ok;
     State k1 = model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok);
-    const unsigned wanted = m.valid & kAllChannels;
-    unsigned used = wanted;
-    Output r;
-    if (wanted == kAllChannels && all_finite(m.y)) {
-      r = m.y - yhat_;  // the usual tick: every channel, no per-channel branches
-    } else {
-      // Locals, not members, inside the loop: r_valid_ is a char type and may alias
-      // anything, so updating it per channel would force reloads of m and yhat_.
-      used = 0;
-      for (int i = 0; i < kOutputs; ++i) {
-        const bool use = (((wanted >> i) & 1u) != 0) & std::isfinite(m.y[i]);
-        r[i] = use ? m.y[i] - yhat_[i] : T(0);
-        used |= static_cast<unsigned>(use) << i;
-      }
-      if (used != wanted) flags |= kHealthMeasNonFinite;
-    }
-    r_ = r;
-    r_valid_ = static_cast<std::uint8_t>(used);
-    if (has_gain_ && used != 0) {
-      s_.add(cfg_.gain * r);  // masked channels carry r = 0
+    flags |= take_residuals(m);
+    if (has_gain_ && r_valid_ != 0) {
+      s_.add(cfg_.gain * r_);  // masked channels carry r = 0
       Output y_injected;      // ŷ stays the pre-injection estimate
       k1 = model_.tick_derivative(s_.x, rho_one_, y_injected, rho, alg_ok);
     }
@@ -198,45 +286,64 @@ class Observer {
     substeps_ = static_cast<std::uint16_t>(n);
 
     // state_plausible is false for non-finite states too: one test in the usual case.
-    if (!model_.state_plausible(s_.x)) {
-      if (!all_finite(s_.x)) {
-        flags |= kHealthStateNonFinite;
-        s_.reset(x_before);
-      }
-      if (!model_.state_plausible(s_.x)) flags |= kHealthStateOutOfBounds;
-    }
+    if (!model_.state_plausible(s_.x)) flags |= check_state(x_before);
+    return finish(flags);
+  }
 
+  /// r_ = m.y − ŷ and r_valid_ on the channels marked valid and finite; r = 0 elsewhere.
+  /// @return kHealthMeasNonFinite if a channel marked valid was not finite, else 0
+  HSTMON_TICK_PART std::uint32_t take_residuals(const Measurement& m) noexcept {
+    const unsigned wanted = m.valid & kAllChannels;
+    unsigned used = wanted;
+    std::uint32_t flags = 0;
+    Output r;
+    if (wanted == kAllChannels && all_finite(m.y)) {
+      r = m.y - yhat_;  // the usual tick: every channel, no per-channel branches
+    } else {
+      // Locals, not members, inside the loop: r_valid_ is a char type and may alias
+      // anything, so updating it per channel would force reloads of m and yhat_.
+      used = 0;
+      for (int i = 0; i < kOutputs; ++i) {
+        const bool use = (((wanted >> i) & 1u) != 0) & std::isfinite(m.y[i]);
+        r[i] = use ? m.y[i] - yhat_[i] : T(0);
+        used |= static_cast<unsigned>(use) << i;
+      }
+      if (used != wanted) flags |= kHealthMeasNonFinite;
+    }
+    r_ = r;
+    r_valid_ = static_cast<std::uint8_t>(used);
+    return flags;
+  }
+
+  /// For a tick that ended on a state that is not plausible: back to x_before (finite)
+  /// if the state is not finite.
+  /// @return kHealthStateNonFinite and/or kHealthStateOutOfBounds
+  std::uint32_t check_state(const State& x_before) noexcept {
+    std::uint32_t flags = 0;
+    if (!all_finite(s_.x)) {
+      flags |= kHealthStateNonFinite;
+      s_.reset(x_before);
+    }
+    if (!model_.state_plausible(s_.x)) flags |= kHealthStateOutOfBounds;
+    return flags;
+  }
+
+  /// Ends a tick with its HealthFlags.
+  std::uint32_t finish(std::uint32_t flags) noexcept {
     ++ticks_;
     last_health_ = flags;
     health_ |= flags;
     return flags;
   }
 
-  /// Residuals r = y − ŷ of the last tick, in output units; 0 where not valid.
-  const Output& residual() const noexcept { return r_; }
-  /// Bit i set: residual i was computed in the last tick.
-  std::uint8_t residual_valid() const noexcept { return r_valid_; }
-  /// Model outputs ŷ at the start of the last tick (before injection), output units.
-  const Output& estimate() const noexcept { return yhat_; }
-  /// Current model state (after the last tick), state units.
-  const State& state() const noexcept { return s_.x; }
-  /// Time since the last reset [s] (ticks × h, so it does not accumulate rounding).
-  T time() const noexcept { return static_cast<T>(ticks_) * cfg_.tick; }
-  /// Ticks since the last reset.
-  std::uint64_t ticks() const noexcept { return ticks_; }
-  /// RK4 substeps used by the last tick.
-  std::uint16_t substeps() const noexcept { return substeps_; }
-  /// HealthFlag bits of the last tick.
-  std::uint32_t last_health() const noexcept { return last_health_; }
-  /// HealthFlag bits OR-ed over all ticks since reset (latched).
-  std::uint32_t health() const noexcept { return health_; }
-  const Config& config() const noexcept { return cfg_; }
-  const Model& model() const noexcept { return model_; }
-
- private:
   static bool config_ok(const Config& cfg) noexcept {
     return std::isfinite(cfg.tick) && cfg.tick > T(0) && std::isfinite(cfg.lambda_h_max) && cfg.lambda_h_max > T(0) &&
            cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite();
+  }
+
+  /// Brings what depends on the model's inputs up to date: the usual tick's coefficients.
+  void inputs_changed() noexcept {
+    if constexpr (kUsualTick) usual_.c = model_.usual_tick_coeffs(cfg_.tick, rho_one_);
   }
 
   /// Takes a valid configuration and resets to the model's rest state.
@@ -245,19 +352,22 @@ class Observer {
     one_step_ = Rk4Step<T>(cfg.tick);
     rho_one_ = cfg.lambda_h_max / cfg.tick;
     has_gain_ = !cfg.gain.isZero(T(0));
+    if constexpr (kUsualTick) usual_.on = cfg.usual_tick && !has_gain_;
+    inputs_changed();
     reset(model_.rest_state());
   }
 
-  /// True when a and b hold the same bytes (compared a 32-bit word at a time; a padded
-  /// type may compare unequal, which only costs a redundant update).
+  /// True when a and b hold the same bytes (compared a machine word at a time, 64 or 32
+  /// bits; a padded type may compare unequal, which only costs a redundant update).
   template <typename S>
   static bool same_bytes(const S& a, const S& b) noexcept {
-    static_assert(sizeof(S) % sizeof(std::uint32_t) == 0, "compared in 32-bit words");
+    using Word = std::conditional_t<sizeof(void*) >= 8 && sizeof(S) % 8 == 0, std::uint64_t, std::uint32_t>;
+    static_assert(sizeof(S) % sizeof(Word) == 0, "compared in whole words");
     const auto* pa = reinterpret_cast<const unsigned char*>(&a);
     const auto* pb = reinterpret_cast<const unsigned char*>(&b);
-    std::uint32_t diff = 0;
-    for (std::size_t i = 0; i < sizeof(S); i += sizeof(std::uint32_t)) {
-      std::uint32_t wa, wb;
+    Word diff = 0;
+    for (std::size_t i = 0; i < sizeof(S); i += sizeof(Word)) {
+      Word wa, wb;
       std::memcpy(&wa, pa + i, sizeof wa);
       std::memcpy(&wb, pb + i, sizeof wb);
       diff |= wa ^ wb;
@@ -286,6 +396,10 @@ class Observer {
   std::uint16_t substeps_ = 0;
   std::uint8_t r_valid_ = 0;
   bool has_gain_ = false;
+  observer_detail::UsualTickState<Model> usual_{};
 };
 
 }  // namespace hstmon
+
+#undef HSTMON_OFF_USUAL_PATH
+#undef HSTMON_TICK_PART

@@ -156,6 +156,119 @@ class ThesisReducedModel {
     return d;
   }
 
+  /// True where this build has the fused usual tick (usual_tick): everywhere but Arm
+  /// M-profile, where flash is scarce and the observer's general tick serves (code_size.hpp).
+  static constexpr bool kHasUsualTick = !HSTMON_FLASH_LEAN;
+
+  /// Coefficients of usual_tick for one RK4 step of h under the current inputs; from
+  /// usual_tick_coeffs(), stale once the inputs change.
+  ///
+  /// In the usual region the rates, times h/2, are (ΔPpp = Ppp − Pbp)
+  ///   gP = a·ωm − b·√ΔPpp,   gω = c − d·z·(z + c1) − e·ωm − f·ΔPpp,   z = ωm·(m1 − m2·ωm):
+  /// dcv_drops' fast path is dp_in = (z + c_in)², dp_out = (z + c_out)² with z = y − κ·y²,
+  /// y = Dm/kf·ωm, so dp_in + dp_out = 2·z·(z + c1) + c_in² + c_out² (c1 = c_in + c_out).
+  struct UsualTick {
+    T a{};   ///< h/2·K·Dp [Pa·s/rad]
+    T b{};   ///< h/2·K·kp [√Pa]
+    T c{};   ///< h/2·Dm/J·(Psupl − Ps − c_in² − c_out²) [rad/s]
+    T d{};   ///< h·Dm/J (twice h/2·Dm/J) [rad/(s·Pa)]
+    T e{};   ///< h/2·R/J [-]
+    T f{};   ///< h/2·Dp/J [rad/(s·Pa)]
+    T c1{};              ///< c_in + c_out [√Pa]
+    T m1{}, m2{};        ///< Dm/kf [√Pa·s/rad], κ·(Dm/kf)² [√Pa·s²/rad²]
+    T c_in{}, c_out{};   ///< leakage flows / kf at the supply pressures, inlet and outlet [√Pa]
+    T Psupl{}, Ps{}, Pbp{};  ///< the inputs' pressures [Pa]
+    /// The usual region: ωm in [w_lo, w_hi] [rad/s] (forward flow, both DCV orifices
+    /// turbulent, one DCV refinement exact, ρ·h ≤ λh_max) and ΔPpp ≥ dp_lo [Pa] (PRV
+    /// turbulent, ρ·h ≤ λh_max). Empty (w_lo > w_hi) where no such point exists.
+    T w_lo{}, w_hi{}, dp_lo{};
+    T w_max{}, P_min{};  ///< state_plausible's bounds: |ωm| ≤ w_max [rad/s], Ppp ≥ P_min [Pa]
+  };
+
+  /// usual_tick's coefficients for one RK4 step of h under the current inputs. O(1), two
+  /// square roots; the observer recomputes them when the inputs or its tick change.
+  /// @param h        RK4 step [s], > 0
+  /// @param rho_max  largest spectral radius of ∂f/∂x one step may meet, λh_max/h [1/s]
+  UsualTick usual_tick_coeffs(T h, T rho_max) const noexcept {
+    UsualTick c;
+    const T half = T(0.5) * h;
+    c.a = half * K_Dp_;
+    c.b = half * K_kp_;
+    c.c = half * (torque_sup_ - Dm_J_ * (c_in_ * c_in_ + c_out_ * c_out_));
+    c.d = h * Dm_J_;
+    c.e = half * R_J_;
+    c.f = half * Dp_J_;
+    c.c1 = c_in_ + c_out_;
+    c.m1 = Dm_kf_;
+    c.m2 = kappa_ * Dm_kf_ * Dm_kf_;
+    c.c_in = c_in_;
+    c.c_out = c_out_;
+    c.Psupl = u_.Psupl;
+    c.Ps = u_.Ps;
+    c.Pbp = u_.Pbp;
+    // tick_derivative's stiffness test solved for the state: ρ ≤ rho_max where
+    // J22 = R/J + jac_dcv·2y ≤ √lim and J11² = (K·kp/2)²/ΔPpp ≤ lim, lim = rho_max² − K·Dp²/J.
+    c.w_lo = T(1);
+    c.w_hi = T(0);
+    c.dp_lo = std::numeric_limits<T>::infinity();
+    const T lim = rho_max * rho_max - K_Dp_ * Dp_J_;
+    if (lim > T(0)) {
+      const T y_stiff = (std::sqrt(lim) - R_J_) / (T(2) * jac_dcv_);
+      const T y_hi = y_stiff < dcv_.one_refinement_y ? y_stiff : dcv_.one_refinement_y;
+      const T j11_root = T(0.5) * K_kp_;  // |J11|·√ΔPpp
+      const T dp_stiff = j11_root * j11_root / lim;
+      c.w_lo = fast_y_min_ / Dm_kf_;
+      c.w_hi = y_hi / Dm_kf_;
+      c.dp_lo = dp_stiff > p_.dp_t_prv ? dp_stiff : p_.dp_t_prv;
+    }
+    c.w_max = T(2) * speed_bound();
+    c.P_min = -(std::fabs(u_.Pbp) + T(1e5));
+    return c;
+  }
+
+  /// One RK4 step of h from x in the usual region, fused: the outputs at x and the four
+  /// stages from usual_tick_coeffs(h, ·) in scalar code, each stage checked to lie in the
+  /// region. Same model and RK4 as tick_derivative + rk4_step (the results agree to
+  /// rounding), in about a third fewer instructions: no general-case branches, h folded
+  /// into the coefficients, the stiffness test a range check.
+  /// @param c   usual_tick_coeffs(h, rho_max) under the current inputs
+  /// @param x   state (Ppp [Pa], ωm [rad/s])
+  /// @param y   out: outputs at x (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
+  /// @param dx  out: the RK4 increment of x over h [Pa, rad/s]
+  /// @return    false if x or a stage leaves the usual region: y and dx are then
+  ///            unspecified and the step must be taken the general way
+  bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
+    const T P = x[0];
+    const T w = x[1];
+    const T q = P - c.Pbp;
+    if (!(w >= c.w_lo && w <= c.w_hi && q >= c.dp_lo)) return false;
+    const T z = w * (c.m1 - c.m2 * w);
+    const T y_in = z + c.c_in;
+    const T y_out = z + c.c_out;
+    const T Pmi = c.Psupl - y_in * y_in;
+    const T Pmo = c.Ps + y_out * y_out;
+    const T g1q = c.a * w - c.b * std::sqrt(q);
+    const T g1w = c.c - c.d * (z * (z + c.c1)) - c.e * w - c.f * q;
+    T g2q, g2w, g3q, g3w, g4q, g4w;
+    if (!usual_stage(c, q + g1q, w + g1w, g2q, g2w)) return false;
+    if (!usual_stage(c, q + g2q, w + g2w, g3q, g3w)) return false;
+    if (!usual_stage(c, q + T(2) * g3q, w + T(2) * g3w, g4q, g4w)) return false;
+    const T third = T(1) / T(3);
+    // Stored last: y and dx may alias c for all the compiler knows, and stores before the
+    // stages would have it keep every coefficient in registers or on the stack.
+    y[kChPmi] = Pmi;
+    y[kChPmo] = Pmo;
+    y[kChPpp] = P;
+    y[kChWm] = w;
+    dx = State(third * (g1q + T(2) * (g2q + g3q) + g4q), third * (g1w + T(2) * (g2w + g3w) + g4w));
+    return true;
+  }
+
+  /// state_plausible(x) with usual_tick_coeffs' bounds (no square root, no inputs read).
+  static bool usual_plausible(const UsualTick& c, const State& x) noexcept {
+    return std::fabs(x[1]) <= c.w_max && x[0] >= c.P_min && x[0] <= std::numeric_limits<T>::max();
+  }
+
   /// Outputs (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at state x.
   Output outputs(const State& x) const noexcept {
     T dp_in, dp_out;
@@ -395,6 +508,16 @@ class ThesisReducedModel {
       dcv_.drops(y_m, u_.Psupl, u_.Ps, dp_in, dp_out);
     }
     return y_m;
+  }
+
+  /// usual_tick's rates times h/2 at (ΔPpp = q [Pa], ωm = w [rad/s]); false outside the
+  /// usual region.
+  static bool usual_stage(const UsualTick& c, T q, T w, T& gq, T& gw) noexcept {
+    if (!(w >= c.w_lo && w <= c.w_hi && q >= c.dp_lo)) return false;
+    const T z = w * (c.m1 - c.m2 * w);
+    gq = c.a * w - c.b * std::sqrt(q);
+    gw = c.c - c.d * (z * (z + c.c1)) - c.e * w - c.f * q;
+    return true;
   }
 
   /// tick_derivative's checks off the usual point (start from rest, laminar orifices, a

@@ -112,6 +112,9 @@ __attribute__((noinline)) HSTMON_C_RARE hstmon::Status configure(hstmon_monitor&
   oc.tick = c.tick_s;
   oc.lambda_h_max = c.lambda_h_max;
   oc.max_substeps = c.max_substeps;
+  // Every tick on the observer's general path, as on the Cortex-M4F (which has no fused
+  // usual tick): a C API monitor computes the same bits on every target (qemu_bitexact).
+  if constexpr (Obs::kUsualTick) oc.usual_tick = false;
   return m.mon.reconfigure(p, oc, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
 }
 
