@@ -20,7 +20,7 @@
 # operating point with all 4 channels measured, against two Boost.Odeint observers on the
 # same model (outputs() + 4 residuals + runge_kutta4, no health checks):
 #   naive  one RK4 step per tick, no stiffness control (unstable from rest, see
-#          docs/numerics.md): the lower bound of what any observer on this model costs
+#          docs/numerics.md): the least a generic-integrator observer on this model costs
 #   safe   the one fixed substep count stable over the whole envelope including start
 #          from rest, ⌈ρ_rest·h/0.8⌉ = 22: what a non-adaptive observer must pay every tick
 # Each tick is one out-of-line call. Only the N ticks are counted

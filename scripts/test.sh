@@ -2,7 +2,8 @@
 # Installs dependencies, then runs every test:
 #   1. aarch64 cross build of the core's unit tests, run under qemu user mode;
 #   2. the firmware footprint and cost budgets on Cortex-M4F under qemu (fails on a
-#      budget overrun as on a build or run failure);
+#      budget overrun as on a build or run failure), and the host observer tick's
+#      instructions against Boost.Odeint's (callgrind; fails above 0.8x the naive one);
 #   3. the host debug build (warnings are errors) and the whole host suite with CTest,
 #      which includes the firmware image under qemu-system-arm compared with the host;
 #   4. the whole host suite again under AddressSanitizer + UndefinedBehaviorSanitizer
@@ -22,6 +23,9 @@ ctest --test-dir build/aarch64 -j"$jobs" --output-on-failure | tail -n 3
 
 echo "== Cortex-M4F: footprint and cost budgets"
 bash scripts/footprint.sh
+
+echo "== host: observer tick instructions vs Boost.Odeint (callgrind)"
+bash scripts/count_instructions.sh --strict -n 2000
 
 echo "== host: build and full suite"
 cmake --preset host-debug >/dev/null

@@ -39,9 +39,9 @@
 #include "hstmon/rk4.hpp"
 #include "hstmon/status.hpp"
 
-/// The general tick and the rare implausible-state handling: out of line where the usual
-/// tick is in front of them (hosts: the usual tick's frame stays small), inline where the
-/// general tick is step()'s only path (firmware: flash and stack).
+/// The general tick: out of line where the usual tick is in front of it (hosts: the usual
+/// tick's frame stays small), inline where it is step()'s only path (firmware: flash and
+/// stack).
 #if defined(__GNUC__) && !HSTMON_FLASH_LEAN
 #define HSTMON_OFF_USUAL_PATH __attribute__((noinline))
 #elif defined(__GNUC__)

@@ -235,8 +235,8 @@ class ThesisReducedModel {
   /// @param x   state (Ppp [Pa], ωm [rad/s])
   /// @param y   out: outputs at x (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
   /// @param dx  out: the RK4 increment of x over h [Pa, rad/s]
-  /// @return    false if x or a stage leaves the usual region: y and dx are then
-  ///            unspecified and the step must be taken the general way
+  /// @return    false (y and dx untouched) if x or a stage leaves the usual region: the
+  ///            step must then be taken the general way
   bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
     const T P = x[0];
     const T w = x[1];
