@@ -7,6 +7,8 @@
 //   variants: ours_double ours_float odeint_double odeint_float (naive: 1 RK4 step/tick)
 //             odeint_safe_double odeint_safe_float (safe fixed: safe_substeps() RK4 steps/tick)
 //             odeint_full
+//             ours_{double,float}_10ms odeint_{double,float}_10ms (a 10 ms PLC scan; odeint with
+//             ours' nominal substep count, 5)
 //   diagnostics (one model call per "tick"): derivative_{double,float},
 //   derivative_y_{double,float} (with outputs), outputs_{double,float}
 //
@@ -60,23 +62,26 @@ void measure(Sim& sim, const MeasurementTable<T>& table, long n) {
 
 bool plausible(double w) { return std::isfinite(w) && w > 100.0 && w < 250.0; }
 
+/// tick: 1 ms (one RK4 step at the nominal point) or 10 ms (a PLC scan: nominal_substeps).
 template <typename T>
-int ours(long n) {
-  auto sim = hstmon_bench::make_observer<T>(T(1e-3));
+int ours(long n, T tick = T(1e-3)) {
+  auto sim = hstmon_bench::make_observer<T>(tick);
   const MeasurementTable<T> table(sim.estimate());
   measure(sim, table, n);
-  const bool ok = sim.health() == 0 && sim.substeps() == 1 && plausible(static_cast<double>(sim.state()[1]));
+  const bool ok = sim.health() == 0 && sim.substeps() == hstmon_bench::nominal_substeps<T>(tick) &&
+                  plausible(static_cast<double>(sim.state()[1]));
   std::printf("ticks=%ld substeps=%d health=0x%x w_m=%.6g\n", n, sim.substeps(), sim.health(),
               static_cast<double>(sim.state()[1]));
   return ok ? 0 : 3;
 }
 
-/// n_sub = 0: safe_substeps(1 ms).
+/// n_sub = 0: safe_substeps(tick); −1: nominal_substeps(tick), ours at the nominal point.
 template <typename T>
-int odeint(long n, int n_sub) {
-  if (n_sub == 0) n_sub = hstmon_bench::safe_substeps<T>(T(1e-3));
-  hstmon_bench::OdeintReduced<T> sim(T(1e-3), n_sub);
-  const MeasurementTable<T> table(hstmon_bench::make_observer<T>(T(1e-3)).estimate());
+int odeint(long n, int n_sub, T tick = T(1e-3)) {
+  if (n_sub == 0) n_sub = hstmon_bench::safe_substeps<T>(tick);
+  if (n_sub < 0) n_sub = hstmon_bench::nominal_substeps<T>(tick);
+  hstmon_bench::OdeintReduced<T> sim(tick, n_sub);
+  const MeasurementTable<T> table(hstmon_bench::make_observer<T>(tick).estimate());
   measure(sim, table, n);
   const double w = static_cast<double>(sim.state()[1]);
   std::printf("ticks=%ld rk4_steps=%d w_m=%.6g\n", n, sim.steps_per_tick(), w);
@@ -144,6 +149,10 @@ int main(int argc, char** argv) {
   if (std::strcmp(v, "odeint_safe_double") == 0) return odeint<double>(n, 0);
   if (std::strcmp(v, "odeint_safe_float") == 0) return odeint<float>(n, 0);
   if (std::strcmp(v, "odeint_float") == 0) return odeint<float>(n, 1);
+  if (std::strcmp(v, "ours_double_10ms") == 0) return ours<double>(n, 10e-3);
+  if (std::strcmp(v, "ours_float_10ms") == 0) return ours<float>(n, 10e-3f);
+  if (std::strcmp(v, "odeint_double_10ms") == 0) return odeint<double>(n, -1, 10e-3);
+  if (std::strcmp(v, "odeint_float_10ms") == 0) return odeint<float>(n, -1, 10e-3f);
   if (std::strcmp(v, "odeint_full") == 0) return odeint_full(n);
   if (std::strcmp(v, "derivative_double") == 0) return model_call<double>(0, n);
   if (std::strcmp(v, "derivative_y_double") == 0) return model_call<double>(1, n);

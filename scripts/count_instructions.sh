@@ -23,6 +23,8 @@
 #          docs/numerics.md): the least a generic-integrator observer on this model costs
 #   safe   the one fixed substep count stable over the whole envelope including start
 #          from rest, ⌈ρ_rest·h/0.8⌉ = 22: what a non-adaptive observer must pay every tick
+# Also, informational: a 10 ms tick (PLC scan), ours against odeint's runge_kutta4 with the
+# same number of steps per tick (5 at the nominal point; one step would be unstable there).
 # Each tick is one out-of-line call. Only the N ticks are counted
 # (CALLGRIND_START/STOP_INSTRUMENTATION, --instr-atstart=no).
 #
@@ -91,7 +93,8 @@ count() {
 }
 
 declare -A per
-variants=(ours_double ours_float odeint_double odeint_float odeint_safe_double odeint_safe_float)
+variants=(ours_double ours_float odeint_double odeint_float odeint_safe_double odeint_safe_float
+          ours_double_10ms ours_float_10ms odeint_double_10ms odeint_float_10ms)
 for v in "${variants[@]}"; do
   total=$(count "$v" "$ticks") || exit 2
   per[$v]=$(awk -v t="$total" -v n="$ticks" 'BEGIN {printf "%.1f", t / n}')
@@ -116,6 +119,11 @@ for T in double float; do
   printf "$fmt" "Observer<Reduced<$T>>::step" "$o" "$r_naive" "$r_safe" "<= ${target}x" "$ok"
   printf "$fmt" "odeint rk4 reduced<$T>, naive" "$b" "" "" "" ""
   printf "$fmt" "odeint rk4 reduced<$T>, safe fixed" "$s" "" "" "" ""
+done
+for T in double float; do
+  o=${per[ours_${T}_10ms]} b=${per[odeint_${T}_10ms]}
+  printf "$fmt" "10 ms tick: ours <$T>" "$o" "$(awk -v o="$o" -v b="$b" 'BEGIN {printf "%.3f", o / b}')" "" "" "(info)"
+  printf "$fmt" "10 ms tick: odeint rk4 <$T>, 5 steps" "$b" "" "" "" ""
 done
 if [[ $full -eq 1 ]]; then
   printf '%-38s %11s %11s\n' "odeint rk4 full stiff, 286 steps" "${per[odeint_full]}" \

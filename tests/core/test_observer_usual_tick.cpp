@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <type_traits>
 
 #include "hstmon/hstmon.hpp"
 
@@ -15,20 +16,21 @@ namespace {
 
 template <typename T>
 using Model = hstmon::ThesisReducedModel<T>;
-template <typename T>
-using Obs = hstmon::Observer<Model<T>>;
+template <typename T, bool Usual = true>
+using Obs = hstmon::Observer<Model<T>, Usual>;
 
 static_assert(Model<double>::kHasUsualTick, "host builds have the usual tick");
 
-template <typename T>
-Obs<T> make_observer(T tick, bool usual) {
-  Obs<T> o;
-  typename Obs<T>::Config c;
+template <typename T, bool Usual>
+Obs<T, Usual> make_observer(T tick) {
+  Obs<T, Usual> o;
+  typename Obs<T, Usual>::Config c;
   c.tick = tick;
-  c.usual_tick = usual;
   EXPECT_EQ(o.configure(Model<T>{}, c), hstmon::Status::kOk);
   return o;
 }
+
+static_assert(std::is_same_v<Obs<double>, hstmon::Observer<Model<double>>>, "on by default");
 
 double rel(double a, double b) { return std::fabs(a - b) / std::fmax(std::fabs(b), 1e-300); }
 
@@ -95,8 +97,8 @@ TEST(UsualTick, DeclinesOutsideTheUsualRegion) {
 // PRV blockage and its release (usual through the transient where the region holds).
 template <typename T>
 void compare_runs(T tick, double tol) {
-  Obs<T> on = make_observer<T>(tick, true);
-  Obs<T> off = make_observer<T>(tick, false);
+  auto on = make_observer<T, true>(tick);
+  auto off = make_observer<T, false>(tick);
   hstmon::ThesisInputs<T> u;
   ASSERT_EQ(on.reset_rest(u), hstmon::Status::kOk);
   ASSERT_EQ(off.reset_rest(u), hstmon::Status::kOk);
@@ -106,7 +108,7 @@ void compare_runs(T tick, double tol) {
   for (long k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) * static_cast<double>(tick);
     u.kp = (t >= 2.0 && t < 4.0) ? kp0 * T(0.5) : kp0;
-    typename Obs<T>::Measurement m;
+    typename Obs<T>::Measurement m;  // the same type for both observers
     m.y = off.estimate();
     m.y[0] += T(3e3);
     m.y[3] += T(0.1);
@@ -134,12 +136,15 @@ void compare_runs(T tick, double tol) {
 
 TEST(UsualTick, ObserverRunsAgreeWithTheGeneralPathDouble) { compare_runs<double>(1e-3, 1e-13); }
 TEST(UsualTick, ObserverRunsAgreeWithTheGeneralPathFloat) { compare_runs<float>(1e-3f, 5e-6); }
+// A PLC scan: every tick needs ≥ 4 substeps, so the usual tick runs in n substeps.
+TEST(UsualTick, ObserverRunsAgreeWithTheGeneralPathDouble10ms) { compare_runs<double>(10e-3, 1e-13); }
+TEST(UsualTick, ObserverRunsAgreeWithTheGeneralPathFloat10ms) { compare_runs<float>(10e-3f, 5e-6); }
 
 // The usual tick keeps the general path's residual bookkeeping: masked and non-finite
 // channels, and their flags.
 TEST(UsualTick, MasksAndNonFiniteChannelsAsTheGeneralPath) {
-  Obs<double> on = make_observer<double>(1e-3, true);
-  Obs<double> off = make_observer<double>(1e-3, false);
+  auto on = make_observer<double, true>(1e-3);
+  auto off = make_observer<double, false>(1e-3);
   const hstmon::ThesisInputs<double> u;
   ASSERT_EQ(on.reset_steady(u), hstmon::Status::kOk);
   ASSERT_EQ(off.reset_steady(u), hstmon::Status::kOk);

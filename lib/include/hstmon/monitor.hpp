@@ -36,11 +36,14 @@ namespace hstmon {
 /// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
 ///   (table rows, queued events, candidates per event); firmware shrinks them (the C API
 ///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
-template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8>
+/// @tparam UsualTick  the observer's usual tick (Observer); the C API turns it off so that
+///   it computes the firmware's bits on every target
+template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
+          bool UsualTick = ThesisReducedModel<T>::kHasUsualTick>
 class Monitor {
  public:
   using Model = ThesisReducedModel<T>;
-  using Obs = Observer<Model>;
+  using Obs = Observer<Model, UsualTick>;
   using Evaluator = ResidualEvaluator<T>;
   using Sensors = SensorCheck<T>;
   using Matcher = FaultMatcher<T, Capacity, QueueDepth, EventCandidates>;

@@ -14,11 +14,14 @@
 /// throws, and is O(n_sub).
 ///
 /// Usual tick: a model may offer a fused form of steps 1 and 4 for its usual operating
-/// region, where one substep is known to suffice (Model::kHasUsualTick, usual_tick_coeffs,
-/// usual_tick, usual_plausible; ThesisReducedModel off Arm M-profile). step() tries it
-/// first when every input is unchanged and there is no injection gain, and takes the
-/// general path above when the state or a stage is outside that region. The same model
-/// and RK4, to rounding; Config::usual_tick = false keeps every tick on the general path.
+/// region (Model::kHasUsualTick, usual_tick_coeffs, usual_tick, usual_plausible,
+/// tick_radius; ThesisReducedModel off Arm M-profile). step() tries it first when every
+/// input is unchanged and there is no injection gain: one fused step where one substep is
+/// known to suffice, else n fused substeps with n from the general path's own ρ; and it
+/// takes the general path above when the state or a stage is outside the region. The same
+/// model, RK4 and substep count, to rounding. Observer<Model, false> has no usual tick
+/// (every tick on the general path, and no storage for it: the C API, and any build that
+/// must compute the firmware's bits).
 ///
 /// Model requirements (see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
 /// kOutputs, set_inputs(), inputs(), static inputs_valid(), outputs(x), rest_state(),
@@ -33,6 +36,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "hstmon/code_size.hpp"
@@ -67,18 +71,29 @@ struct HasUsualTick : std::false_type {};
 template <typename M>
 struct HasUsualTick<M, std::void_t<decltype(M::kHasUsualTick)>> : std::bool_constant<M::kHasUsualTick> {};
 
-/// The observer's usual-tick coefficients, and nothing for models without a usual tick.
-template <typename M, bool = HasUsualTick<M>::value>
+/// The observer's usual-tick coefficients, and nothing for an observer without a usual tick.
+template <typename M, bool>
 struct UsualTickState {
-  typename M::UsualTick c{};  ///< Model::usual_tick_coeffs for the current inputs and tick
-  std::uint64_t ticks = 0;    ///< ticks since the last reset that took the usual tick
-  bool on = false;            ///< Config::usual_tick and no injection gain
+  typename M::UsualTick c{};   ///< Model::usual_tick_coeffs for one step of the tick (stiffness box)
+  typename M::UsualTick cn{};  ///< the same for a substep of tick/n, validity box only (n ≥ 2)
+  std::uint64_t ticks = 0;     ///< ticks since the last reset that took the usual tick
+  int n = 0;                   ///< the substep count cn is for; 0: none yet (inputs changed)
+  bool on = false;             ///< no injection gain
 };
 template <typename M>
 struct UsualTickState<M, false> {};
 }  // namespace observer_detail
 
-template <typename Model>
+/// One sample of a model's measured channels, for Observer::step.
+template <typename Output>
+struct ChannelSample {
+  Output y = Output::Zero();  ///< values in the model's output units (SI)
+  std::uint8_t valid = 0;     ///< bit i set: channel i was measured this tick
+};
+
+/// @tparam UsualTick  take the model's usual tick (see the file comment); by default
+///   wherever the model has one
+template <typename Model, bool UsualTick = observer_detail::HasUsualTick<Model>::value>
 class Observer {
  public:
   using T = typename Model::Scalar;
@@ -88,7 +103,8 @@ class Observer {
   static constexpr int kStates = Model::kStates;
   static constexpr int kOutputs = Model::kOutputs;
   /// True when the model offers a fused usual tick (see the file comment).
-  static constexpr bool kUsualTick = observer_detail::HasUsualTick<Model>::value;
+  static constexpr bool kUsualTick = UsualTick;
+  static_assert(!UsualTick || observer_detail::HasUsualTick<Model>::value, "the model has no usual tick");
   static_assert(kOutputs <= 8, "channel masks are 8 bits wide");
   /// Output-injection gain L [state unit per channel unit], applied once per tick.
   using Gain = Eigen::Matrix<T, kStates, kOutputs>;
@@ -98,17 +114,11 @@ class Observer {
     T tick = T(1e-3);                   ///< tick h [s], > 0
     T lambda_h_max = T(0.8);            ///< largest |λ|·h_sub per RK4 substep [-], in (0, 2.5]
     std::uint16_t max_substeps = 256;   ///< substep cap per tick [-], ≥ 1
-    /// Take the model's fused usual tick where it has one (see the file comment); false:
-    /// every tick on the general path (the C API: the same bits on every target).
-    bool usual_tick = true;
     Gain gain = Gain::Zero();           ///< output injection L; zero = pure parallel model
   };
 
-  /// One sample of the measured channels.
-  struct Measurement {
-    Output y = Output::Zero();          ///< values in the model's output units (SI)
-    std::uint8_t valid = 0;             ///< bit i set: channel i was measured this tick
-  };
+  /// One sample of the measured channels (the same type with and without the usual tick).
+  using Measurement = ChannelSample<Output>;
 
   Observer() noexcept = default;
 
@@ -197,6 +207,7 @@ class Observer {
           if (!Model::usual_plausible(usual_.c, s_.x)) flags |= check_state(x_before);
           return finish(flags);
         }
+        return usual_substeps(u, m);
       }
     }
     return general_step(u, m);
@@ -232,6 +243,46 @@ class Observer {
   const Model& model() const noexcept { return model_; }
 
  private:
+  /// The usual tick in n ≥ 2 substeps (a PLC scan, a stiffer point): n from the general
+  /// tick's own ρ at x (Model::tick_radius, bit for bit), then n fused steps of tick/n, each
+  /// stage checked against the model's validity box; the general tick if n = 1 here, n is
+  /// over the cap, or a stage leaves the box (the state is only committed at the end).
+  HSTMON_OFF_USUAL_PATH std::uint32_t usual_substeps(const Inputs& u, const Measurement& m) noexcept {
+    if constexpr (kUsualTick) {
+      const T rho = model_.tick_radius(s_.x, rho_one_);
+      if (rho > T(0)) {
+        const T want = rho * cfg_.tick / cfg_.lambda_h_max;  // as general_step
+        if (want <= static_cast<T>(cfg_.max_substeps)) {
+          const int n = static_cast<int>(std::ceil(want));
+          if (n != usual_.n) {
+            usual_.cn = model_.usual_tick_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
+            usual_.n = n;
+          }
+          CompensatedState<State> s = s_;
+          Output y;
+          Output y_sub;
+          int i = 0;
+          for (; i < n; ++i) {
+            State dx;
+            if (!model_.usual_tick(usual_.cn, s.x, i == 0 ? y : y_sub, dx)) break;
+            s.add(dx);
+          }
+          if (i == n) {
+            yhat_ = y;
+            std::uint32_t flags = take_residuals(m);
+            const State x_before = s_.x;
+            s_ = s;
+            substeps_ = static_cast<std::uint16_t>(n);
+            ++usual_.ticks;
+            if (!Model::usual_plausible(usual_.cn, s_.x)) flags |= check_state(x_before);
+            return finish(flags);
+          }
+        }
+      }
+    }
+    return general_step(u, m);
+  }
+
   /// step() on the general path: any state, inputs, measurement mask and gain.
   HSTMON_OFF_USUAL_PATH std::uint32_t general_step(const Inputs& u, const Measurement& m) noexcept {
     std::uint32_t flags = 0;
@@ -343,7 +394,10 @@ class Observer {
 
   /// Brings what depends on the model's inputs up to date: the usual tick's coefficients.
   void inputs_changed() noexcept {
-    if constexpr (kUsualTick) usual_.c = model_.usual_tick_coeffs(cfg_.tick, rho_one_);
+    if constexpr (kUsualTick) {
+      usual_.c = model_.usual_tick_coeffs(cfg_.tick, rho_one_);
+      usual_.n = 0;
+    }
   }
 
   /// Takes a valid configuration and resets to the model's rest state.
@@ -352,7 +406,7 @@ class Observer {
     one_step_ = Rk4Step<T>(cfg.tick);
     rho_one_ = cfg.lambda_h_max / cfg.tick;
     has_gain_ = !cfg.gain.isZero(T(0));
-    if constexpr (kUsualTick) usual_.on = cfg.usual_tick && !has_gain_;
+    if constexpr (kUsualTick) usual_.on = !has_gain_;
     inputs_changed();
     reset(model_.rest_state());
   }
@@ -396,7 +450,7 @@ class Observer {
   std::uint16_t substeps_ = 0;
   std::uint8_t r_valid_ = 0;
   bool has_gain_ = false;
-  observer_detail::UsualTickState<Model> usual_{};
+  observer_detail::UsualTickState<Model, UsualTick> usual_{};
 };
 
 }  // namespace hstmon

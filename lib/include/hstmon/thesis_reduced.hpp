@@ -188,7 +188,8 @@ class ThesisReducedModel {
   /// usual_tick's coefficients for one RK4 step of h under the current inputs. O(1), two
   /// square roots; the observer recomputes them when the inputs or its tick change.
   /// @param h        RK4 step [s], > 0
-  /// @param rho_max  largest spectral radius of ∂f/∂x one step may meet, λh_max/h [1/s]
+  /// @param rho_max  largest spectral radius of ∂f/∂x one step may meet, λh_max/h [1/s];
+  ///                 ∞: no stiffness bound, the region is where the fused form is valid
   UsualTick usual_tick_coeffs(T h, T rho_max) const noexcept {
     UsualTick c;
     const T half = T(0.5) * h;
@@ -262,6 +263,16 @@ class ThesisReducedModel {
     y[kChWm] = w;
     dx = State(third * (g1q + T(2) * (g2q + g3q) + g4q), third * (g1w + T(2) * (g2w + g3w) + g4w));
     return true;
+  }
+
+  /// The general tick's ρ at x where its quick test does not settle it: the spectral
+  /// radius of ∂f/∂x [1/s], or 0 if at most rho_max — tick_derivative's rho off its usual
+  /// point, bit for bit (the same arithmetic), so a caller picks the same substep count.
+  T tick_radius(const State& x, T rho_max) const noexcept {
+    T rho;
+    bool alg_ok;
+    exact_checks(x[1] * Dm_kf_, x[0] - u_.Pbp, rho_max, rho, alg_ok);
+    return rho;
   }
 
   /// state_plausible(x) with usual_tick_coeffs' bounds (no square root, no inputs read).

@@ -28,14 +28,12 @@ extern "C" {
 #endif
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
- *  (checked at compile time in hstmon_c.cpp): 1008 on Arm M-profile (the monitor is 1008
- *  bytes on the Cortex-M4F), 1152 elsewhere (8-byte pointers, padding, and the observer's
- *  usual-tick coefficients, which builds off M-profile carry though the C API does not
- *  use them). */
-#if defined(__ARM_ARCH_PROFILE) && (__ARM_ARCH_PROFILE == 'M')
-#define HSTMON_MONITOR_STORAGE_BYTES 1008u
+ *  (checked at compile time in hstmon_c.cpp): 1008 on 32-bit targets (the monitor is
+ *  1008 bytes on the Cortex-M4F), 1040 on 64-bit hosts (8-byte pointers, padding). */
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define HSTMON_MONITOR_STORAGE_BYTES 1040u
 #else
-#define HSTMON_MONITOR_STORAGE_BYTES 1152u
+#define HSTMON_MONITOR_STORAGE_BYTES 1008u
 #endif
 /** Alignment the monitor buffer needs [bytes]: 16 for Eigen's vectorised fixed-size types
  *  on SSE/NEON hosts (4 would do on Cortex-M4, which has no SIMD unit Eigen uses). */

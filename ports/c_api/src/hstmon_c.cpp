@@ -16,7 +16,9 @@ namespace {
 
 // Firmware sizes: every row of the table, 2 queued events of 1 candidate each (the full
 // ranking is read live with hstmon_candidates()), so one monitor fits in 1 KiB on the M4F.
-using Mon = hstmon::Monitor<float, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE, HSTMON_EVENT_CANDIDATES>;
+// No usual tick: every tick on the observer's general path, as on the Cortex-M4F (which
+// has none), so a C API monitor computes the same bits on every target (qemu_bitexact).
+using Mon = hstmon::Monitor<float, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE, HSTMON_EVENT_CANDIDATES, false>;
 using Model = Mon::Model;
 using Obs = Mon::Obs;
 
@@ -112,9 +114,6 @@ __attribute__((noinline)) HSTMON_C_RARE hstmon::Status configure(hstmon_monitor&
   oc.tick = c.tick_s;
   oc.lambda_h_max = c.lambda_h_max;
   oc.max_substeps = c.max_substeps;
-  // Every tick on the observer's general path, as on the Cortex-M4F (which has no fused
-  // usual tick): a C API monitor computes the same bits on every target (qemu_bitexact).
-  if constexpr (Obs::kUsualTick) oc.usual_tick = false;
   return m.mon.reconfigure(p, oc, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
 }
 
