@@ -199,13 +199,9 @@ class Observer {
       if (usual_.on && same_bytes(u, model_.inputs())) {
         State dx;
         if (model_.usual_tick(usual_.c, s_.x, yhat_, dx)) {
-          std::uint32_t flags = take_residuals(m);
           const State x_before = s_.x;
           s_.add(dx);
-          substeps_ = 1;
-          ++usual_.ticks;
-          if (!Model::usual_plausible(usual_.c, s_.x)) flags |= check_state(x_before);
-          return finish(flags);
+          return finish_usual(m, x_before, 1, usual_.c);
         }
         return usual_substeps(u, m);
       }
@@ -250,33 +246,26 @@ class Observer {
   HSTMON_OFF_USUAL_PATH std::uint32_t usual_substeps(const Inputs& u, const Measurement& m) noexcept {
     if constexpr (kUsualTick) {
       const T rho = model_.tick_radius(s_.x, rho_one_);
-      if (rho > T(0)) {
-        const T want = rho * cfg_.tick / cfg_.lambda_h_max;  // as general_step
-        if (want <= static_cast<T>(cfg_.max_substeps)) {
-          const int n = static_cast<int>(std::ceil(want));
-          if (n != usual_.n) {
-            usual_.cn = model_.usual_tick_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
-            usual_.n = n;
-          }
-          CompensatedState<State> s = s_;
-          Output y;
-          Output y_sub;
-          int i = 0;
-          for (; i < n; ++i) {
-            State dx;
-            if (!model_.usual_tick(usual_.cn, s.x, i == 0 ? y : y_sub, dx)) break;
-            s.add(dx);
-          }
-          if (i == n) {
-            yhat_ = y;
-            std::uint32_t flags = take_residuals(m);
-            const State x_before = s_.x;
-            s_ = s;
-            substeps_ = static_cast<std::uint16_t>(n);
-            ++usual_.ticks;
-            if (!Model::usual_plausible(usual_.cn, s_.x)) flags |= check_state(x_before);
-            return finish(flags);
-          }
+      const int n = rho > T(0) ? substep_count(rho) : 0;
+      if (n > 0) {
+        if (n != usual_.n) {
+          usual_.cn = model_.usual_tick_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
+          usual_.n = n;
+        }
+        CompensatedState<State> s = s_;
+        Output y;
+        Output y_sub;
+        int i = 0;
+        for (; i < n; ++i) {
+          State dx;
+          if (!model_.usual_tick(usual_.cn, s.x, i == 0 ? y : y_sub, dx)) break;
+          s.add(dx);
+        }
+        if (i == n) {
+          yhat_ = y;
+          const State x_before = s_.x;
+          s_ = s;
+          return finish_usual(m, x_before, n, usual_.cn);
         }
       }
     }
@@ -316,11 +305,9 @@ class Observer {
     int n = 1;
     Rk4Step<T> h = one_step_;
     if (rho > T(0)) {
-      const T want = rho * cfg_.tick / cfg_.lambda_h_max;
-      n = cfg_.max_substeps;
-      if (want <= static_cast<T>(n)) {
-        n = static_cast<int>(std::ceil(want));
-      } else {
+      n = substep_count(rho);
+      if (n == 0) {
+        n = cfg_.max_substeps;
         flags |= kHealthSubstepsClipped;
       }
       h = Rk4Step<T>(cfg_.tick / static_cast<T>(n));
@@ -377,6 +364,23 @@ class Observer {
     }
     if (!model_.state_plausible(s_.x)) flags |= kHealthStateOutOfBounds;
     return flags;
+  }
+
+  /// Substeps for spectral radius rho [1/s] > 0: ⌈ρ·h/λh_max⌉, or 0 beyond max_substeps.
+  int substep_count(T rho) const noexcept {
+    const T want = rho * cfg_.tick / cfg_.lambda_h_max;
+    return want <= static_cast<T>(cfg_.max_substeps) ? static_cast<int>(std::ceil(want)) : 0;
+  }
+
+  /// Ends a usual tick whose state update is done (x_before: the state before it): the
+  /// residuals against yhat_, n substeps, the state check with c's bounds.
+  template <typename C>
+  std::uint32_t finish_usual(const Measurement& m, const State& x_before, int n, const C& c) noexcept {
+    std::uint32_t flags = take_residuals(m);
+    substeps_ = static_cast<std::uint16_t>(n);
+    ++usual_.ticks;
+    if (!Model::usual_plausible(c, s_.x)) flags |= check_state(x_before);
+    return finish(flags);
   }
 
   /// Ends a tick with its HealthFlags.

@@ -223,7 +223,7 @@ class ThesisReducedModel {
       c.dp_lo = dp_stiff > p_.dp_t_prv ? dp_stiff : p_.dp_t_prv;
     }
     c.w_max = T(2) * speed_bound();
-    c.P_min = -(std::fabs(u_.Pbp) + T(1e5));
+    c.P_min = plausible_Ppp_min();
     return c;
   }
 
@@ -242,18 +242,15 @@ class ThesisReducedModel {
     const T P = x[0];
     const T w = x[1];
     const T q = P - c.Pbp;
-    if (!(w >= c.w_lo && w <= c.w_hi && q >= c.dp_lo)) return false;
-    const T z = w * (c.m1 - c.m2 * w);
+    T z, g1q, g1w, g2q, g2w, g3q, g3w, g4q, g4w;
+    if (!usual_stage(c, q, w, g1q, g1w, z)) return false;
     const T y_in = z + c.c_in;
     const T y_out = z + c.c_out;
     const T Pmi = c.Psupl - y_in * y_in;
     const T Pmo = c.Ps + y_out * y_out;
-    const T g1q = c.a * w - c.b * std::sqrt(q);
-    const T g1w = c.c - c.d * (z * (z + c.c1)) - c.e * w - c.f * q;
-    T g2q, g2w, g3q, g3w, g4q, g4w;
-    if (!usual_stage(c, q + g1q, w + g1w, g2q, g2w)) return false;
-    if (!usual_stage(c, q + g2q, w + g2w, g3q, g3w)) return false;
-    if (!usual_stage(c, q + T(2) * g3q, w + T(2) * g3w, g4q, g4w)) return false;
+    if (!usual_stage(c, q + g1q, w + g1w, g2q, g2w, z)) return false;
+    if (!usual_stage(c, q + g2q, w + g2w, g3q, g3w, z)) return false;
+    if (!usual_stage(c, q + T(2) * g3q, w + T(2) * g3w, g4q, g4w, z)) return false;
     const T third = T(1) / T(3);
     // Stored last: y and dx may alias c for all the compiler knows, and stores before the
     // stages would have it keep every coefficient in registers or on the stack.
@@ -310,8 +307,7 @@ class ThesisReducedModel {
   bool state_plausible(const State& x) const noexcept {
     // |ωm| ≤ 2·speed_bound() = 4·kf·√dp/Dm as |Dm·ωm/kf|² ≤ 16·dp: no square root or division.
     const T y = x[1] * Dm_kf_;
-    return y * y <= T(16) * speed_bound_dp() && x[0] >= -(std::fabs(u_.Pbp) + T(1e5)) &&
-           x[0] <= std::numeric_limits<T>::max();
+    return y * y <= T(16) * speed_bound_dp() && x[0] >= plausible_Ppp_min() && x[0] <= std::numeric_limits<T>::max();
   }
 
   /// The state at rest: ωm = 0, Ppp = Pbp (no flow through the PRV).
@@ -521,11 +517,11 @@ class ThesisReducedModel {
     return y_m;
   }
 
-  /// usual_tick's rates times h/2 at (ΔPpp = q [Pa], ωm = w [rad/s]); false outside the
-  /// usual region.
-  static bool usual_stage(const UsualTick& c, T q, T w, T& gq, T& gw) noexcept {
+  /// usual_tick's rates times h/2 at (ΔPpp = q [Pa], ωm = w [rad/s]), and z [√Pa] for the
+  /// DCV drops; false outside the usual region.
+  static bool usual_stage(const UsualTick& c, T q, T w, T& gq, T& gw, T& z) noexcept {
     if (!(w >= c.w_lo && w <= c.w_hi && q >= c.dp_lo)) return false;
-    const T z = w * (c.m1 - c.m2 * w);
+    z = w * (c.m1 - c.m2 * w);
     gq = c.a * w - c.b * std::sqrt(q);
     gw = c.c - c.d * (z * (z + c.c1)) - c.e * w - c.f * q;
     return true;
@@ -580,6 +576,9 @@ class ThesisReducedModel {
     }
     return det <= rho_max * rho_max ? T(0) : std::sqrt(det);  // NaN: sqrt(NaN)
   }
+
+  /// Lowest plausible Ppp [Pa]: −1 bar gauge less Pbp's magnitude (state_plausible).
+  T plausible_Ppp_min() const noexcept { return -(std::fabs(u_.Pbp) + T(1e5)); }
 
   /// Pressure difference behind speed_bound() [Pa].
   T speed_bound_dp() const noexcept { return std::fabs(u_.Psupl - u_.Ps) + std::fabs(u_.Pbp) + p_.dp_t_dcv; }
