@@ -17,6 +17,13 @@ hh::LogData read(std::string_view text, const hh::ReadOptions& opt = {}) {
   return hh::read_log_from_memory(text, "mem.csv", opt);
 }
 
+// read() with lenient = true: the valid part of a bad log is kept.
+hh::LogData read_lenient(std::string_view text) {
+  hh::ReadOptions opt;
+  opt.lenient = true;
+  return read(text, opt);
+}
+
 /// Reads `text` strictly and checks the error position and that the message contains
 /// `part`; also checks that no rows are left.
 void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part,
@@ -155,8 +162,6 @@ TEST(LogErrors, StrictModeKeepsNoRows) {
 }
 
 TEST(LenientRead, KeepsTheValidPrefix) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
   struct Case {
     const char* what;
     std::string text;
@@ -172,7 +177,7 @@ TEST(LenientRead, KeepsTheValidPrefix) {
       {"first row bad", "t,p_mi,p_mo\n0,1\n", 0, 2, 4},
   };
   for (const Case& c : cases) {
-    const auto d = read(c.text, opt);
+    const auto d = read_lenient(c.text);
     ASSERT_FALSE(d.ok()) << c.what;
     EXPECT_EQ(d.rows(), c.rows) << c.what;
     EXPECT_EQ(d.column(Signal::kPMi).size(), c.rows) << c.what;
@@ -187,10 +192,8 @@ TEST(LenientRead, KeepsTheValidPrefix) {
 }
 
 TEST(LenientRead, SkipsRowsWithTimeNotIncreasingWithANote) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
   const std::string text = "t,p_mi,p_mo\n0,1,2\n1,2,3\n1,9,9\n0.5,8,8\n2,3,4\n";
-  const auto d = read(text, opt);
+  const auto d = read_lenient(text);
   ASSERT_TRUE(d.ok()) << d.error->to_string();
   ASSERT_EQ(d.rows(), 3u);
   EXPECT_EQ(d.t, (std::vector<double>{0, 1, 2}));
@@ -205,9 +208,7 @@ TEST(LenientRead, SkipsRowsWithTimeNotIncreasingWithANote) {
 }
 
 TEST(LenientRead, SkippedRowLeavesNoValueWhereTimeIsNotTheFirstColumn) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
-  const auto d = read("p_mi;t[ms];p_mo\n1;0;1\n2;0;2\n3;1;3\n", opt);
+  const auto d = read_lenient("p_mi;t[ms];p_mo\n1;0;1\n2;0;2\n3;1;3\n");
   ASSERT_TRUE(d.ok()) << d.error->to_string();
   EXPECT_EQ(d.column(Signal::kPMi), (std::vector<double>{1, 3}));
   EXPECT_EQ(d.column(Signal::kPMo), (std::vector<double>{1, 3}));
@@ -216,15 +217,13 @@ TEST(LenientRead, SkippedRowLeavesNoValueWhereTimeIsNotTheFirstColumn) {
 }
 
 TEST(LenientRead, ASkippedRowMustStillBeWellFormed) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
-  const auto d = read("t,p_mi\n0,1\n0,x\n1,2\n", opt);
+  const auto d = read_lenient("t,p_mi\n0,1\n0,x\n1,2\n");
   ASSERT_FALSE(d.ok());
   EXPECT_EQ(d.rows(), 1u);
   EXPECT_EQ(d.column(Signal::kPMi).size(), 1u);
   EXPECT_EQ(d.error->line, 3u);
   EXPECT_EQ(d.error->column, 3u);
-  const auto e = read("t,p_mi\n0,1\n0,2,3\n1,2\n", opt);
+  const auto e = read_lenient("t,p_mi\n0,1\n0,2,3\n1,2\n");
   ASSERT_FALSE(e.ok());
   EXPECT_EQ(e.rows(), 1u);
   EXPECT_EQ(e.error->line, 3u);
@@ -236,9 +235,7 @@ TEST(LenientRead, ClockResetSkipsUpToTheOldTimeWithCappedNotes) {
   std::string text = "t,p_mi\n";
   for (int k = 0; k < 100; ++k) text += std::to_string(k) + ",1\n";
   for (int k = 0; k < 150; ++k) text += std::to_string(k) + ",2\n";
-  hh::ReadOptions opt;
-  opt.lenient = true;
-  const auto d = read(text, opt);
+  const auto d = read_lenient(text);
   ASSERT_TRUE(d.ok()) << d.error->to_string();
   EXPECT_EQ(d.rows(), 150u);
   EXPECT_EQ(d.skipped_rows, 100u);
@@ -253,17 +250,13 @@ TEST(LenientRead, ClockResetSkipsUpToTheOldTimeWithCappedNotes) {
 }
 
 TEST(LenientRead, HeaderErrorsStillGiveNoRows) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
-  const auto d = read("t,p_mi[bars]\n0,1\n", opt);
+  const auto d = read_lenient("t,p_mi[bars]\n0,1\n");
   ASSERT_FALSE(d.ok());
   EXPECT_EQ(d.rows(), 0u);
 }
 
 TEST(LenientRead, CleanFileIsUnaffected) {
-  hh::ReadOptions opt;
-  opt.lenient = true;
-  const auto d = read("t,p_mi\n0,1\n1,2\n", opt);
+  const auto d = read_lenient("t,p_mi\n0,1\n1,2\n");
   ASSERT_TRUE(d.ok());
   EXPECT_EQ(d.rows(), 2u);
 }

@@ -42,6 +42,16 @@ struct Rig {
     EXPECT_EQ(m.configure(table, count, c), hstmon::Status::kOk);
   }
 
+  /// Configures the sensor checks with every channel's transmitter range [lo, hi] and the
+  /// other settings of c.
+  hstmon::Status set_ranges(double lo, double hi, hstmon::SensorCheck<double>::Config c = {}) {
+    for (int i = 0; i < 4; ++i) {
+      c.range_lo[i] = lo;
+      c.range_hi[i] = hi;
+    }
+    return sc.configure(c);
+  }
+
   void run(double t_end, const std::function<void(double, double*)>& pattern,
            const std::function<void(double, double*)>& raw = nullptr) {
     for (; t < t_end - 1e-9; t += kTick) {
@@ -188,12 +198,8 @@ TEST(Matcher, StuckOutOfRangeNaNAreSensorFaultsNeverParameterFaults) {
     for (int ch = 0; ch < 4; ++ch) {
       Rig rig;
       hstmon::SensorCheck<double>::Config sc;
-      for (int i = 0; i < 4; ++i) {
-        sc.range_lo[i] = 0;
-        sc.range_hi[i] = 2e6;
-      }
       sc.stuck_time = 0.1;  // 100 samples at 1 kHz
-      ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
+      ASSERT_EQ(rig.set_ranges(0, 2e6, sc), hstmon::Status::kOk);
       auto raw = [&](double t, double* y) {
         if (t < 1.0) return;
         if (kind == 0) y[ch] = 123.0;   // stuck
@@ -227,12 +233,7 @@ TEST(Matcher, StuckOutOfRangeNaNAreSensorFaultsNeverParameterFaults) {
 TEST(Matcher, SaturatedChannelIsMaskedButSystemHypothesesStay) {
   for (const bool high : {true, false}) {
     Rig rig;
-    hstmon::SensorCheck<double>::Config sc;
-    for (int i = 0; i < 4; ++i) {
-      sc.range_lo[i] = 0;
-      sc.range_hi[i] = 5.5e6;
-    }
-    ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
+    ASSERT_EQ(rig.set_ranges(0, 5.5e6), hstmon::Status::kOk);
     // Ppp (raw 1e6 + residual) rises by 1114 σ = 5.6e6 with τ = 5 ms: a clamping input
     // card reads the range end from ≈ 8 ms after the fault on. Or the loop breaks at 2.02 s.
     auto raw = [high](double t, double* y) {
@@ -265,12 +266,7 @@ TEST(Matcher, SaturatedChannelIsMaskedButSystemHypothesesStay) {
 // says nothing: no alarm, no episode, however long it lasts.
 TEST(Matcher, SaturatedBelowTheModelRaisesNothing) {
   Rig rig;
-  hstmon::SensorCheck<double>::Config sc;
-  for (int i = 0; i < 4; ++i) {
-    sc.range_lo[i] = 0;
-    sc.range_hi[i] = 5.5e6;
-  }
-  ASSERT_EQ(rig.sc.configure(sc), hstmon::Status::kOk);
+  ASSERT_EQ(rig.set_ranges(0, 5.5e6), hstmon::Status::kOk);
   // Ppp reads its range end while the residual (measured − model) is −20 σ.
   auto raw = [](double, double* y) { y[2] = 5.5e6; };
   rig.run(5.0, step(0.0, {0.0, 0.0, -20.0, 0.0}, 1e-4), raw);
