@@ -122,6 +122,27 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
   return out;
 }
 
+ThesisScenario with_input_fault(const ThesisScenario& sc, double ThesisInputs<double>::*field, double factor,
+                                double t_fault) {
+  validate(sc);
+  ThesisScenario out = sc;
+  if (out.logged.empty()) out.logged = sc.schedule;
+  out.schedule.clear();
+  for (std::size_t k = 0; k < sc.schedule.size(); ++k) {
+    const double a = sc.schedule[k].t_start;
+    const double b = segment_end(sc, k);
+    InputStep<ThesisInputs<double>> e = sc.schedule[k];
+    if (a < t_fault && t_fault < b) {
+      out.schedule.push_back(e);
+      e.t_start = t_fault;
+    }
+    if (e.t_start >= t_fault) e.u.*field *= factor;
+    out.schedule.push_back(e);
+  }
+  validate(out);
+  return out;
+}
+
 void inject_sensor_fault(ThesisMeasurements& ms, const SensorConfig& cfg, const SensorFault& f) {
   if (f.channel < 0 || f.channel > 3) throw std::invalid_argument("inject_sensor_fault: channel must be 0..3");
   if (cfg.channels.size() != 4) throw std::invalid_argument("inject_sensor_fault: need 4 channels");
@@ -138,6 +159,7 @@ void inject_sensor_fault(ThesisMeasurements& ms, const SensorConfig& cfg, const 
     switch (f.kind) {
       case SensorFaultKind::kBias: r.y[ch] = clip_and_quantise(r.y[ch] + f.value, spec); break;
       case SensorFaultKind::kDrift: r.y[ch] = clip_and_quantise(r.y[ch] + f.value * (r.t - f.t_start), spec); break;
+      case SensorFaultKind::kLoopBreak: r.y[ch] = spec.range_lo - kNe43LoopBreak * (spec.range_hi - spec.range_lo); break;
       case SensorFaultKind::kStuck:
         if (!have_held) {
           held = r.y[ch];

@@ -26,12 +26,16 @@ double lag_update(double y, double x0, double x1, double h, double tau) {
 
 double clip_and_quantise(double v, const ChannelSpec& c) {
   if (std::isnan(v)) return v;
-  double out = std::fmin(std::fmax(v, c.range_lo), c.range_hi);
+  const double span = c.range_hi - c.range_lo;
+  // Band ends; an infinite range has no band (inf·0 would be NaN).
+  const double lo = c.under_range > 0.0 ? c.range_lo - c.under_range * span : c.range_lo;
+  const double hi = c.over_range > 0.0 ? c.range_hi + c.over_range * span : c.range_hi;
+  double out = std::fmin(std::fmax(v, lo), hi);
   if (c.quant_step > 0.0) {
     const double origin = std::isfinite(c.range_lo) ? c.range_lo : 0.0;
     out = origin + std::nearbyint((out - origin) / c.quant_step) * c.quant_step;
-    // Rounding to the grid never leaves the range (the range ends are codes or clip again).
-    out = std::fmin(std::fmax(out, c.range_lo), c.range_hi);
+    // Rounding to the grid never leaves the band (its ends are codes or clip again).
+    out = std::fmin(std::fmax(out, lo), hi);
   }
   return out;
 }
@@ -41,6 +45,8 @@ SensorChain::SensorChain(std::vector<ChannelSpec> channels, std::uint64_t seed)
   for (const ChannelSpec& c : ch_) {
     const bool ok = std::isfinite(c.tau) && c.tau >= 0.0 && std::isfinite(c.noise_std) && c.noise_std >= 0.0 &&
                     std::isfinite(c.quant_step) && c.quant_step >= 0.0 && !std::isnan(c.range_lo) &&
+                    std::isfinite(c.under_range) && c.under_range >= 0.0 && std::isfinite(c.over_range) &&
+                    c.over_range >= 0.0 &&
                     !std::isnan(c.range_hi) && c.range_lo < c.range_hi;
     if (!ok) throw std::invalid_argument("SensorChain: invalid specification of channel " + c.name);
   }

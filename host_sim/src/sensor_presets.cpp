@@ -55,6 +55,48 @@ SensorConfig thesis_das_sensors() { return thesis_sensors(12, 4.0); }
 
 SensorConfig thesis_fast_sensors(double rate_hz) { return thesis_sensors(16, period_of(rate_hz)); }
 
+SensorConfig rig_fast_sensors(double rate_hz) {
+  SensorConfig c = thesis_sensors(16, period_of(rate_hz));
+  for (ChannelSpec& ch : c.channels) {
+    ch.tau = 0.0;
+    ch.noise_std = 0.04 * kPaPerBar;
+    ch.quant_step = 0.01 * kPaPerBar;
+    ch.under_range = kNe43Under;
+    ch.over_range = kNe43Over;
+  }
+  c.channels[2].range_hi = 400.0 * kPaPerBar;  // Ppp overshoots a load step by 100–180 bar
+  ChannelSpec& w = c.channels[3];
+  w.noise_std = kSpeedNoise;
+  w.quant_step = 0.01 * kRadPerSecPerRpm;
+  w.range_lo = -w.range_hi;
+  return c;
+}
+
+SensorConfig with_rate(SensorConfig c, double rate_hz) {
+  c.sample_period = period_of(rate_hz);
+  return c;
+}
+
+SensorConfig with_lag(SensorConfig c, double tau) {
+  if (!(std::isfinite(tau) && tau >= 0.0)) throw std::invalid_argument("transducer lag must be >= 0");
+  for (ChannelSpec& ch : c.channels) ch.tau = tau;
+  return c;
+}
+
+SensorConfig with_pressure_step(SensorConfig c, double step) {
+  if (!(std::isfinite(step) && step >= 0.0)) throw std::invalid_argument("ADC step must be >= 0");
+  // Pressures are every channel but the last (speed), in both rigs' channel orders.
+  for (std::size_t i = 0; i + 1 < c.channels.size(); ++i) c.channels[i].quant_step = step;
+  return c;
+}
+
+SensorConfig with_pressure_adc_bits(SensorConfig c, int bits) {
+  for (std::size_t i = 0; i + 1 < c.channels.size(); ++i) {
+    c.channels[i].quant_step = adc_step(c.channels[i].range_lo, c.channels[i].range_hi, bits);
+  }
+  return c;
+}
+
 SensorConfig paper_logger_sensors(double rate_hz) {
   SensorConfig c;
   c.channels = {pressure("p_pump", 250.0, 12), pressure("p_mi", 250.0, 12), pressure("p_pp", 250.0, 12),
@@ -75,15 +117,18 @@ SensorConfig ideal_sensors(SensorConfig c) {
     ch.quant_step = 0.0;
     ch.range_lo = -std::numeric_limits<double>::infinity();
     ch.range_hi = std::numeric_limits<double>::infinity();
+    ch.under_range = 0.0;
+    ch.over_range = 0.0;
   }
   return c;
 }
 
-std::vector<std::string> sensor_preset_names() { return {"thesis_das", "fast", "paper_logger"}; }
+std::vector<std::string> sensor_preset_names() { return {"thesis_das", "fast", "rig_fast", "paper_logger"}; }
 
 std::optional<SensorConfig> sensor_preset(std::string_view name) {
   if (name == "thesis_das") return thesis_das_sensors();
   if (name == "fast") return thesis_fast_sensors();
+  if (name == "rig_fast") return rig_fast_sensors();
   if (name == "paper_logger") return paper_logger_sensors();
   return std::nullopt;
 }

@@ -3,6 +3,11 @@
 ///   hstmon-sim --scenario prv_blockage --rate 100 --seed 1 --out FILE.csv
 ///              [--no-noise] [--ideal] [--model thesis|paper] [--preset NAME]
 ///              [--duration S] [--units bar|Pa] [--rpm] [--list]
+///   rig conditions, each switchable alone (thesis model):
+///              [--lag MS] [--quant BAR | --adc-bits N] [--param-error F --machine-seed N]
+///              --scenario rig [--start rest|steady] [--supply-on S] [--cycle ON,OFF]
+///              [--load constant|steps|ramp|sine] [--load-period S] [--load-range LO,HI]
+///              [--load-seed N] [--blockage T]
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -11,7 +16,9 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/sim.hpp"
 
 namespace {
@@ -31,6 +38,20 @@ struct Options {
   std::string units = "bar";
   bool rpm = false;
   bool list = false;
+  // Rig conditions (thesis model).
+  double lag_ms = -1.0;       // < 0: the preset's
+  double quant_bar = -1.0;    // < 0: the preset's; 0: none
+  int adc_bits = 0;           // 0: the preset's
+  double param_error = 0.0;   // machine parameters off by uniform ±F
+  std::uint64_t machine_seed = 1;
+  std::string start = "rest";
+  double supply_on = 0.0;
+  std::vector<double> cycle;  // ON,OFF [s]
+  std::string load = "constant";
+  double load_period = 2.0;
+  std::vector<double> load_range = {0.65, 1.6};
+  std::uint64_t load_seed = 1;
+  double blockage = -1.0;     // ≥ 0: true kp halved from then on, logged kp unchanged
 };
 
 void list_all() {
@@ -38,6 +59,7 @@ void list_all() {
   for (const std::string& n : thesis_scenario_names()) {
     std::cout << "  " << n << "  -  " << thesis_scenario(n)->description << '\n';
   }
+  std::cout << "  rig  -  thesis rig as run (--start, --supply-on, --cycle, --load, --blockage; default 30 s)\n";
   std::cout << "paper scenarios:\n";
   for (const std::string& n : paper_scenario_names()) {
     std::cout << "  " << n << "  -  " << paper_scenario(n)->description << '\n';
@@ -55,6 +77,9 @@ SensorConfig sensors_for(const Options& o, bool paper) {
     throw CLI::ValidationError("--preset", name + " does not match the " + (paper ? "paper" : "thesis") + " model");
   }
   if (o.rate > 0.0) cfg->sample_period = 1.0 / o.rate;
+  if (o.lag_ms >= 0.0) cfg = with_lag(*cfg, o.lag_ms * 1e-3);
+  if (o.quant_bar >= 0.0) cfg = with_pressure_step(*cfg, o.quant_bar * kPaPerBar);
+  if (o.adc_bits > 0) cfg = with_pressure_adc_bits(*cfg, o.adc_bits);
   if (o.no_noise) cfg = without_noise(*cfg);
   if (o.ideal) cfg = ideal_sensors(*cfg);
   return *cfg;
@@ -68,6 +93,25 @@ void apply_duration(Scen& sc, double duration) {
   }
 }
 
+ThesisScenario rig_scenario(const Options& o) {
+  RigRun r;
+  r.duration = o.duration > 0.0 ? o.duration : 30.0;
+  r.from_rest = o.start == "rest";
+  r.supply_on = o.supply_on;
+  if (o.cycle.size() == 2) {
+    r.run_time = o.cycle[0];
+    r.stop_time = o.cycle[1];
+  }
+  r.load.shape = *load_shape_from(o.load);
+  r.load.period = o.load_period;
+  r.load.lo = o.load_range.at(0);
+  r.load.hi = o.load_range.at(1);
+  r.load.seed = o.load_seed;
+  ThesisScenario sc = thesis_rig_run(r);
+  if (o.blockage >= 0.0) sc = with_input_fault(sc, &hstmon::ThesisInputs<double>::kp, 0.5, o.blockage);
+  return sc;
+}
+
 int run(const Options& o) {
   LogUnits units;
   units.pressure = (o.units == "Pa") ? PressureUnit::kPa : PressureUnit::kBar;
@@ -78,6 +122,9 @@ int run(const Options& o) {
   const bool paper_wanted = (o.model == "paper");
   if (o.scenario.empty()) {
     if (paper_wanted) ps = paper_start(); else ts = thesis_prv_blockage();
+  } else if (o.scenario == "rig") {
+    if (paper_wanted) throw CLI::ValidationError("--model", "scenario rig belongs to the thesis model");
+    ts = rig_scenario(o);
   } else {
     ps = paper_scenario(o.scenario);
     if (!ps) {
@@ -102,8 +149,9 @@ int run(const Options& o) {
     apply_duration(*ps, o.duration);
     write_log(*os, measure(*ps, sensors_for(o, true), o.seed), units);
   } else {
-    apply_duration(*ts, o.duration);
-    write_log(*os, measure(*ts, sensors_for(o, false), o.seed), units);
+    if (o.scenario != "rig") apply_duration(*ts, o.duration);
+    const hstmon::ThesisParams<double> machine = perturbed_params(o.machine_seed, o.param_error);
+    write_log(*os, measure(*ts, sensors_for(o, false), o.seed, machine), units);
   }
   os->flush();
   if (!*os) throw std::runtime_error("write failed");
@@ -116,11 +164,12 @@ int main(int argc, char** argv) {
   CLI::App app{"hstmon-sim: synthetic HST measurement logs from the reference simulator"};
   Options o;
   app.add_option("--scenario", o.scenario,
-                 "start_from_rest | prv_staircase | prv_blockage | paper_start (default: prv_blockage, "
-                 "or paper_start with --model paper)");
+                 "start_from_rest | prv_staircase | prv_blockage | rig | paper_start (default: prv_blockage, "
+                 "or paper_start with --model paper); rig: the run set by --start, --supply-on, --cycle, --load*");
   app.add_option("--model", o.model, "thesis | paper (checked against the scenario)")
       ->check(CLI::IsMember({"thesis", "paper"}));
-  app.add_option("--preset", o.preset, "sensor preset: thesis_das | fast | paper_logger (default: fast / paper_logger)");
+  app.add_option("--preset", o.preset,
+                 "sensor preset: thesis_das | fast | rig_fast | paper_logger (default: fast / paper_logger)");
   app.add_option("--rate", o.rate, "sample rate [Hz] (default: the preset's)")->check(CLI::PositiveNumber);
   app.add_option("--duration", o.duration, "run length [s] (default: the scenario's)")->check(CLI::PositiveNumber);
   app.add_option("--seed", o.seed, "noise seed (std::mt19937_64)");
@@ -130,6 +179,34 @@ int main(int argc, char** argv) {
   app.add_option("--units", o.units, "pressure unit: bar | Pa")->check(CLI::IsMember({"bar", "Pa"}));
   app.add_flag("--rpm", o.rpm, "speed in rpm (default rad/s)");
   app.add_flag("--list", o.list, "list scenarios and presets, then exit");
+  app.add_option("--lag", o.lag_ms, "transducer time constant of every channel [ms], 0 = none (default: the preset's)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--quant", o.quant_bar, "pressure ADC step [bar], 0 = none (default: the preset's)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--adc-bits", o.adc_bits, "pressure ADC bits over the transmitter range (instead of --quant)")
+      ->check(CLI::Range(4, 24))
+      ->excludes("--quant");
+  app.add_option("--param-error", o.param_error,
+                 "machine parameters (Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K) off Table 2.2 by uniform ±F, e.g. 0.02")
+      ->check(CLI::Range(0.0, 0.5));
+  app.add_option("--machine-seed", o.machine_seed, "seed of the parameter error");
+  app.add_option("--start", o.start, "rig: rest (logger runs before the supply) | steady")
+      ->check(CLI::IsMember({"rest", "steady"}));
+  app.add_option("--supply-on", o.supply_on, "rig: time the supply steps on [s] (default 0: at the first sample)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--cycle", o.cycle, "rig: start/stop cycles ON,OFF [s]: supply on for ON, off for OFF, repeated")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--load", o.load, "rig: PRV setting over time: constant | steps | ramp | sine")
+      ->check(CLI::IsMember({"constant", "steps", "ramp", "sine"}));
+  app.add_option("--load-period", o.load_period, "rig: steps' hold, a ramp's leg or the sine's period [s] (default 2)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--load-range", o.load_range, "rig: kp range LO,HI as multiples of 4.41e-8 (default 0.65,1.6)")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--load-seed", o.load_seed, "rig: seed of the step levels");
+  app.add_option("--blockage", o.blockage, "rig: 50 % PRV blockage (true kp halved, logged kp kept) from T [s]")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   try {
     if (o.list) {

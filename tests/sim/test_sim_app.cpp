@@ -48,6 +48,21 @@ TEST(SimApp, SameSeedSameFileAndPaperModel) {
   for (const auto& f : {a, b, p}) std::remove(f.c_str());
 }
 
+TEST(SimApp, RigRunWithEveryConditionSwitched) {
+  const std::string out = tmp_path("rig.csv");
+  ASSERT_EQ(run("--scenario rig --preset rig_fast --rate 100 --lag 2 --quant 0.01 --param-error 0.02 "
+                "--start rest --supply-on 0.2 --cycle 1,0.5 --load sine --load-period 1 --blockage 2.5 "
+                "--duration 3 --rpm --out " + out),
+            0);
+  const auto lines = lines_of(out);
+  ASSERT_EQ(lines.size(), 302u);  // header + 0..3 s at 100 Hz
+  EXPECT_EQ(lines[1].rfind("0,0,0,10,", 0), 0u) << "supply still off at the first sample";
+  EXPECT_EQ(lines[21].rfind("0.2,35,0,10,", 0), 0u) << lines[21];
+  EXPECT_NE(run("--scenario rig --quant 0.01 --adc-bits 12 --out /dev/null 2>/dev/null"), 0);
+  EXPECT_NE(run("--scenario rig --load square --out /dev/null 2>/dev/null"), 0);
+  std::remove(out.c_str());
+}
+
 TEST(SimApp, RejectsMismatchedModelAndUnknownScenario) {
   EXPECT_NE(run("--model paper --scenario prv_blockage --out /dev/null 2>/dev/null"), 0);
   EXPECT_NE(run("--scenario no_such --out /dev/null 2>/dev/null"), 0);

@@ -13,7 +13,8 @@
 /// Sensor faults act on the sampled values: bias (constant offset), drift (offset growing
 /// linearly from the fault time) and stuck (the last value before the fault, held). Bias
 /// and drift are added before the ADC (the value is clipped to the transmitter's range and
-/// re-quantised), as in a transducer whose zero has moved.
+/// re-quantised), as in a transducer whose zero has moved. A loop break reads the NE 43
+/// failure level (3.6 mA: range_lo − kNe43LoopBreak·span) from the fault on.
 
 #include <cstdint>
 
@@ -35,6 +36,7 @@ enum class SensorFaultKind {
   kBias,   ///< y + value from t_start on
   kDrift,  ///< y + value·(t − t_start) from t_start on
   kStuck,  ///< the last sample before t_start, held (value unused)
+  kLoopBreak,  ///< the 4–20 mA loop's failure level (value unused)
 };
 
 /// One sensor fault on one channel of a thesis log.
@@ -44,6 +46,12 @@ struct SensorFault {
   double t_start = 0.0;                     ///< onset [s]
   double value = 0.0;                       ///< bias [SI] or drift rate [SI/s]
 };
+
+/// Scenario sc with an input fault: from t_fault on, the true `field` of every schedule
+/// entry is multiplied by factor (an entry is added at t_fault); the logged inputs stay
+/// sc's (a blockage or a supply fault is not a setting the logger sees).
+ThesisScenario with_input_fault(const ThesisScenario& sc, double ThesisInputs<double>::*field, double factor,
+                                double t_fault);
 
 /// Applies f to the samples of ms in place (bias/drift clipped to the channel's range and
 /// re-quantised with cfg's channel spec).

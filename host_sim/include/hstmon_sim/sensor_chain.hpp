@@ -10,7 +10,10 @@
 /// so the only error is the linear interpolation of x (≤ h²·max|x''|/8), whatever h/τ.
 /// Noise: one independent N(0, σ²) draw per channel and per measure() — white noise sampled
 /// at the logger rate (its bandwidth is taken to exceed the sample rate).
-/// Clip: to [range_lo, range_hi], as a 4–20 mA transmitter saturates at its range ends.
+/// Clip: to [range_lo − under·span, range_hi + over·span] (span = range_hi − range_lo): a
+/// 4–20 mA transmitter's output band; 0 by default (clipped at the range ends), NAMUR
+/// NE 43's 3.8–20.5 mA band with under = 0.2/16, over = 0.5/16, so noise around 0 bar
+/// reads slightly negative, as on a real rig.
 /// Quantisation: to range_lo + k·quant_step, k integer (rounding to nearest).
 
 #include <cstdint>
@@ -30,7 +33,15 @@ struct ChannelSpec {
   double range_lo = -std::numeric_limits<double>::infinity();  ///< lower range end [SI]
   double range_hi = std::numeric_limits<double>::infinity();   ///< upper range end [SI]
   double quant_step = 0.0;  ///< quantisation step [SI]; 0 = none
+  double under_range = 0.0; ///< output band below range_lo, fraction of the span [-]
+  double over_range = 0.0;  ///< output band above range_hi, fraction of the span [-]
 };
+
+/// NAMUR NE 43 output band of a 4–20 mA transmitter (3.8–20.5 mA), fractions of the span.
+inline constexpr double kNe43Under = 0.2 / 16.0;
+inline constexpr double kNe43Over = 0.5 / 16.0;
+/// NE 43 failure level of a broken loop (≤ 3.6 mA) below range_lo, fraction of the span.
+inline constexpr double kNe43LoopBreak = 0.4 / 16.0;
 
 /// Step of an ADC with `bits` bits spanning [lo, hi] (2^bits codes, the ends included):
 /// (hi − lo) / (2^bits − 1) [unit of lo, hi].
@@ -41,7 +52,7 @@ double adc_step(double lo, double hi, int bits);
 /// @param tau  time constant [s]; tau ≤ 0 returns x1
 double lag_update(double y, double x0, double x1, double h, double tau);
 
-/// Clips v to the channel range and rounds it to the channel's quantisation grid [SI].
+/// Clips v to the channel's output band and rounds it to its quantisation grid [SI].
 double clip_and_quantise(double v, const ChannelSpec& c);
 
 /// The sensor chain of several channels, seeded for reproducibility.

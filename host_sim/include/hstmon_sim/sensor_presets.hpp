@@ -13,6 +13,13 @@
 ///  - Noise σ = 0.05 bar for pressures, 0.5 rpm for speed (assumed).
 ///  - ADC: 12 bits over the range for thesis_das (0.0488 bar steps over 200 bar),
 ///    16 bits for fast (0.00305 bar); speed counted to 1 rpm, range 0–3000 rpm.
+/// Rig with fast transducers (as a modern logger on the thesis rig, and the independent
+/// simulator's logs of ../shared/validation): no transducer lag, σ = 0.04 bar / 0.5 rpm,
+/// ADC step 0.01 bar, speed resolved to 0.01 rpm, ranges as the thesis rig but Ppp 0–400 bar
+/// (with no lag, Ppp overshoots a PRV step by 100–180 bar for a few ms: an installation
+/// with fast transducers sizes the transmitter for it) and ωm ±3000 rpm (a standing motor
+/// reads ±noise), outputs in NAMUR NE 43's band (noise at 0 bar reads
+/// slightly negative, not clipped to the range end).
 /// Paper rig: Hydac HMG 3010 logger every 2 ms (§5.4); sensors assumed 0–250 bar, 12 bits,
 /// same lag and noise as above; speed 1 rpm, 0–5000 rpm.
 
@@ -44,6 +51,22 @@ SensorConfig thesis_das_sensors();
 /// Thesis rig with a fast logger: rate_hz [Hz] (default 1 kHz), 16-bit ADC.
 SensorConfig thesis_fast_sensors(double rate_hz = 1000.0);
 
+/// Thesis rig with fast transducers (see file note): rate_hz [Hz] (default 1 kHz).
+SensorConfig rig_fast_sensors(double rate_hz = 1000.0);
+
+/// The same set-up sampled at rate_hz [Hz] (> 0).
+SensorConfig with_rate(SensorConfig c, double rate_hz);
+
+/// The same set-up with every channel's transducer lag τ = tau [s] (0 = no lag).
+SensorConfig with_lag(SensorConfig c, double tau);
+
+/// The same set-up with the pressure channels' ADC step set to step [Pa] (0 = none);
+/// speed kept.
+SensorConfig with_pressure_step(SensorConfig c, double step);
+
+/// The same set-up with a `bits`-bit ADC over each pressure transmitter's range.
+SensorConfig with_pressure_adc_bits(SensorConfig c, int bits);
+
 /// Paper rig with its HMG 3010 logger: rate_hz [Hz] (default 500 Hz = every 2 ms).
 SensorConfig paper_logger_sensors(double rate_hz = 500.0);
 
@@ -54,7 +77,7 @@ SensorConfig without_noise(SensorConfig c);
 /// then holds the reference solution at the sample times).
 SensorConfig ideal_sensors(SensorConfig c);
 
-/// Names of the presets: "thesis_das", "fast", "paper_logger".
+/// Names of the presets: "thesis_das", "fast", "rig_fast", "paper_logger".
 std::vector<std::string> sensor_preset_names();
 
 /// Preset by name at its default rate; std::nullopt for an unknown name.

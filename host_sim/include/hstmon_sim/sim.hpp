@@ -2,12 +2,15 @@
 /// @file sim.hpp
 /// Umbrella header of the host reference simulator (namespace hstmon::sim).
 #include "hstmon_sim/gaussian.hpp"
+#include "hstmon_sim/load_profile.hpp"
 #include "hstmon_sim/log_layout.hpp"
+#include "hstmon_sim/machine_error.hpp"
 #include "hstmon_sim/measure.hpp"
 #include "hstmon_sim/paper_jacobian.hpp"
 #include "hstmon_sim/paper_reference.hpp"
 #include "hstmon_sim/paper_scenarios.hpp"
 #include "hstmon_sim/reference_tolerances.hpp"
+#include "hstmon_sim/rig_run.hpp"
 #include "hstmon_sim/scenario.hpp"
 #include "hstmon_sim/sensor_chain.hpp"
 #include "hstmon_sim/sensor_presets.hpp"
