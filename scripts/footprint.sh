@@ -29,8 +29,9 @@ while [ $# -gt 0 ]; do
     *) echo "footprint.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
-# Budgets (issue 4).
-max_flash=16384 max_ram=1024 max_stack=512 max_instr=1000
+# Budgets (issue 4; flash and RAM raised to issue 14's 24 KiB and 1.5 KiB when the monitor
+# learned start-ups and transients, issue 12).
+max_flash=24576 max_ram=1536 max_stack=512 max_instr=1000
 
 fw() { "$root/scripts/firmware.sh" "$@" --build-dir "$build"; }
 with_json="$(fw footprint "${no_build[@]}")" || { echo "footprint.sh: footprint image failed" >&2; exit 2; }

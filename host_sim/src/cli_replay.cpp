@@ -76,7 +76,8 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
                          {"t_last", r.t_last},
                          {"tick_s", r.tick},
                          {"ticks", r.ticks},
-                         {"start", r.started_steady ? "steady" : "rest"},
+                         {"start", to_string(r.start)},
+                         {"startup_hold_s", r.startup_hold},
                          {"health", host::health_names(r.health)},
                          {"unhealthy_rows", r.unhealthy_rows},
                          {"max_substeps", r.max_substeps},
@@ -98,6 +99,15 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
   }
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", r.final_status}, {"events", r.events.size()}}.dump());
+}
+
+const char* start_words(InitialState k) {
+  switch (k) {
+    case InitialState::kMeasured: return "from the measured state";
+    case InitialState::kSteady: return "at steady state";
+    case InitialState::kRest: return "at rest";
+  }
+  return "?";
 }
 
 // Candidates in words: "kp- (0.998), Pbp+ (0.71) and 3 more".
@@ -134,7 +144,8 @@ void print_events(const host::ReplayResult& r) {
 void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   fmt::print("hstmon replay {}\n", a.log);
   fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
-             r.t_last, r.tick * 1e3, r.ticks, r.started_steady ? "at steady state" : "at rest");
+             r.t_last, r.tick * 1e3, r.ticks, start_words(r.start));
+  fmt::print("  start-up hold-off {:.3g} ms (the model's transient from its initial state)\n", r.startup_hold * 1e3);
   for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
   fmt::print("\n  residual = measured − model; noise = scatter estimated from successive samples\n");
   fmt::print("  {:<12} {:>11} {:>11} {:>11} {:>11} {:>10}\n", "channel", "mean", "RMS", "noise", "peak", "at t [s]");
@@ -286,7 +297,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
   cmd->add_option("--tick", args->tick, "Observer tick [s] (default: the log's sample period, at most 0.01)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--init", args->init, "Initial state: auto, rest or steady")
+  cmd->add_option("--init", args->init, "Initial state: auto (from the first row's measurements), rest or steady")
       ->check(CLI::IsMember({"auto", "rest", "steady"}));
   cmd->add_option("--map", args->maps, "Map a log column to a signal: LOG_COLUMN=SIGNAL (repeatable)");
   cmd->add_option("--separator", args->separator, "Field separator: , ; or tab (default: detected)");

@@ -29,8 +29,10 @@
 /// row's `direction`, over the channels without a sensor flag; a sensor row scores
 /// |v_ch|/|v| on its channel. With several candidates left after the window, the status is kIsolated if
 /// the best leads the second by tie_margin in angle, else kAmbiguous. With none left it
-/// is kUnexplained (no single fault in the table fits). When no channel is in alarm and
-/// no sensor is flagged for clear_hold, the episode ends (event "cleared", kNominal).
+/// is kUnexplained (no single fault in the table fits). Unless a sensor is flagged, none
+/// of these is decided before both the order window and the averaging window are over
+/// (status kDetected until then). When no channel is in alarm and no sensor is flagged
+/// for clear_hold, the episode ends (event "cleared", kNominal).
 ///
 /// Storage: Capacity hypotheses in the object (7 bytes each in float) plus a queue of
 /// QueueDepth events of EventCandidates candidates each (defaults 4 and 8: ≈ 200 bytes per
@@ -554,12 +556,14 @@ class FaultMatcher {
       push_event(MatchEventKind::kDetected, t, true);
     }
     MatchStatus s;
-    if (n_alive_ == 0) {
+    if (faulty_ == 0 && !(order_done_ && window_done_)) {
+      // Without a sensor flag, nothing is decided before the channels' order and the
+      // window's directions are known: a transient's first symbols can mislead.
+      s = MatchStatus::kDetected;
+    } else if (n_alive_ == 0) {
       s = MatchStatus::kUnexplained;
     } else if (n_alive_ == 1) {
       s = MatchStatus::kIsolated;
-    } else if (!window_done_ && faulty_ == 0) {
-      s = MatchStatus::kDetected;
     } else {
       s = leads_by_margin(score_[order_[0]], score_[order_[1]]) ? MatchStatus::kIsolated : MatchStatus::kAmbiguous;
     }

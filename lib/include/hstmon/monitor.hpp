@@ -18,6 +18,7 @@
 
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/fault_signature.hpp"
+#include "hstmon/initial_state.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon/residual_bounds.hpp"
 #include "hstmon/residual_evaluator.hpp"
@@ -57,12 +58,19 @@ class Monitor {
     typename Sensors::Config sensors{};       ///< transmitter ranges, stuck window
     typename Matcher::Config matcher{};       ///< windows, tie margin, clear hold
     ThesisUncertainty<T> uncertainty{};       ///< relative parameter uncertainty behind the model bound
-    /// After an input change the residuals are not accumulated for this long [s], ≥ 0.
-    /// The bounds cover steady-state parameter error only; the transducer lags (10 ms on
-    /// speed) and the ±2 % parameter error in the transient are not in the model, and a
-    /// load step would otherwise read as a fault. 50 ms = 5 speed-sensor lags; a fault
-    /// coinciding with a setting change is detected that much later.
-    T input_settle_time = T(0.05);
+    /// Slowest transducer response the monitor must tolerate: first-order time constant
+    /// [s], ≥ 0. The transient allowance decays with it, and the start-up hold-off adds
+    /// it to the model's own time constant. 10 ms covers ordinary pressure transmitters
+    /// and speed pick-ups; 0 assumes perfect sensors.
+    T transducer_response = T(0.01);
+    /// Factor on the model's recent output variation that the residual may reach in a
+    /// transient [-], ≥ 1: 1 covers a first-order transducer lag exactly; the rest covers
+    /// the transient's share of the parameter error (±2 % moves an overshoot's size and
+    /// timing by a few per cent of the excursion) and the tick's input timing.
+    T transient_factor = T(1.5);
+    /// Upper limit of the start-up hold-off [s], > 0 (only reached when the model has
+    /// no stable operating point at the logged inputs).
+    T startup_hold_max = T(2);
   };
 
   Monitor() noexcept = default;
@@ -73,15 +81,22 @@ class Monitor {
   Status configure(const ThesisParams<T>& params, const Config& c, const FaultSignature* table,
                    int count) noexcept {
     if (!Model::params_valid(params)) return Status::kInvalidParams;
-    if (!(std::isfinite(c.input_settle_time) && c.input_settle_time >= T(0))) return Status::kInvalidConfig;
+    if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
+          std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
+          c.startup_hold_max > T(0))) {
+      return Status::kInvalidConfig;
+    }
     Status s = obs_.configure(Model(params), c.observer);
     if (s == Status::kOk) s = ev_.configure(c.evaluator);
     if (s == Status::kOk) s = sensors_.configure(c.sensors);
     if (s == Status::kOk) s = matcher_.configure(table, count, c.matcher);
     if (s != Status::kOk) return s;
     uncertainty_ = c.uncertainty;
-    settle_time_ = c.input_settle_time;
-    bound_valid_ = false;
+    transducer_tau_ = c.transducer_response;
+    transient_factor_ = c.transient_factor;
+    hold_max_ = c.startup_hold_max;
+    set_decay();
+    reset_rest_of_chain();
     return Status::kOk;
   }
 
@@ -98,18 +113,29 @@ class Monitor {
     Status s = obs_.configure(params, observer);
     if (s == Status::kOk) s = matcher_.set_table(table, count);
     if (s != Status::kOk) return s;
+    set_decay();
     reset_rest_of_chain();
     return Status::kOk;
   }
 
-  /// Restarts at the steady state for inputs u (a log that begins in operation).
+  /// Restarts from the first sample m under inputs u: the observer starts where the
+  /// measurements say (initial_state.hpp), and detection holds off while the model's own
+  /// start-up transient from there lasts (startup_hold()). The usual way to start.
+  /// @param how  out, optional: how the initial state was chosen
+  Status reset_measured(const ThesisInputs<T>& u, const Measurement& m, InitialState* how = nullptr) noexcept {
+    const Status s = obs_.reset_measured(u, m, how);
+    if (s == Status::kOk) reset_rest_of_chain();
+    return s;
+  }
+
+  /// Restarts at the steady state for inputs u (a log known to begin in operation).
   Status reset_steady(const ThesisInputs<T>& u) noexcept {
     const Status s = obs_.reset_steady(u);
     if (s == Status::kOk) reset_rest_of_chain();
     return s;
   }
 
-  /// Restarts at rest for inputs u.
+  /// Restarts at rest for inputs u (a machine known to be at rest).
   Status reset_rest(const ThesisInputs<T>& u) noexcept {
     const Status s = obs_.reset_rest(u);
     if (s == Status::kOk) reset_rest_of_chain();
@@ -139,52 +165,136 @@ class Monitor {
   std::uint32_t health() const noexcept { return obs_.last_health(); }
   /// The model bound in use, per channel [channel unit].
   const T* model_bound() const noexcept { return bound_; }
+  /// The transient allowance of the last sample, per channel [channel unit]: the model's
+  /// own recent output variation times transient_factor (see the file comment).
+  const T* transient_allowance() const noexcept { return allow_; }
+  /// Start-up hold-off after the last reset [s]: no detection for this long after the
+  /// first step (see plan_startup).
+  T startup_hold() const noexcept { return hold_; }
 
  private:
   static bool same_inputs(const ThesisInputs<T>& a, const ThesisInputs<T>& b) noexcept {
     return a.Psupl == b.Psupl && a.Ps == b.Ps && a.Pbp == b.Pbp && a.kp == b.kp;
   }
 
-  // Out of line and cold (size-optimised): one copy for reconfigure, reset_steady and
-  // reset_rest (flash); it runs once per reset.
+  // Out of line and cold (size-optimised): one copy for reconfigure, reset_measured,
+  // reset_steady and reset_rest (flash); it runs once per reset.
   HSTMON_RESET_PATH void reset_rest_of_chain() noexcept {
     ev_.reset();
     sensors_.reset();
     matcher_.reset();
     bound_valid_ = false;
-    settle_until_ = -std::numeric_limits<T>::infinity();
+    for (int i = 0; i < kFdiChannels; ++i) {
+      yprev_[i] = obs_.estimate()[i];
+      var_[i] = T(0);
+      gap_[i] = T(0);
+      allow_[i] = T(0);
+    }
+    plan_startup();
+    hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
+  }
+
+  // Start-up hold-off: the time the model needs to come from its initial state to the
+  // steady state at the inputs to within noise. Linearised at that steady state, an
+  // initial distance of D noise units decays below one in τ·ln D, τ = 1/(slowest rate);
+  // a transducer of time constant τ_s behind it adds τ_s·ln D. Nothing measured can be
+  // judged before: the first sample of a start from rest reads the machine before the
+  // supply came on. When the inputs admit no steady state the cap applies.
+  HSTMON_RESET_PATH void plan_startup() noexcept {
+    const Model& model = obs_.model();
+    typename Model::State xs;
+    T hold = hold_max_;
+    if (model.steady_state(xs)) {
+      const T rate = model.slowest_rate(xs);
+      T d = T(1);
+      for (int i = 0; i < Model::kStates; ++i) {
+        const T di = std::fabs(xs[i] - obs_.state()[i]) / ev_.sigma(Model::state_channel(i));
+        d = di > d ? di : d;
+      }
+      if (rate > T(0)) {
+        const T h = (T(1) / rate + transducer_tau_) * std::log(d);
+        hold = h < hold_max_ ? h : hold_max_;
+      }
+    }
+    hold_ = hold;
+  }
+
+  // The transient allowance's per-tick decay e^(−h/τ_s) (0 for perfect sensors).
+  HSTMON_RESET_PATH void set_decay() noexcept {
+    decay_ = transducer_tau_ > T(0) ? std::exp(-obs_.config().tick / transducer_tau_) : T(0);
   }
 
   // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
   // update runs. Returns true when the bound must be recomputed: first tick after a
-  // reset, or the inputs the observer took on changed (then residuals settle first).
+  // reset, or the inputs the observer took on changed.
   HSTMON_NOINLINE bool observe(T t, const ThesisInputs<T>& u, const Measurement& m) noexcept {
     // The observer holds the last good inputs when u is invalid, so a change is what it
     // actually took on, not what was offered.
     const ThesisInputs<T> before = obs_.model().inputs();
     (void)obs_.step(u, m);
+    track_variation();
+    if (!(hold_until_ == hold_until_)) hold_until_ = t + hold_;
     if (bound_valid_ && same_inputs(obs_.model().inputs(), before)) return false;
-    // The first inputs after a reset are no change: the observer starts consistent.
-    if (bound_valid_) settle_until_ = t + settle_time_;
+    if (bound_valid_) look_ahead();
     return true;
+  }
+
+  // The model's own output variation: per channel a leaky total variation Σ|Δŷ| with the
+  // transducer's time constant (var_), and the undecayed sum since the last sample
+  // (gap_). A first-order transducer of time constant ≤ τ_s reads y_s − y =
+  // −∫ y'(t−s)·e^(−s/τ_s) ds, whose size var_ bounds; a sample taken after ticks without
+  // one may show the machine anywhere in between, which gap_ bounds.
+  void track_variation() noexcept {
+    const auto& y = obs_.estimate();
+    for (int i = 0; i < kFdiChannels; ++i) {
+      const T d = std::fabs(y[i] - yprev_[i]);
+      yprev_[i] = y[i];
+      var_[i] = var_[i] * decay_ + d;
+      gap_[i] += d;
+    }
+  }
+
+  // On an input change the logged change happened somewhere within the last sample
+  // interval, while the model takes it on from this tick: the machine may be one tick
+  // ahead, so the model's next-tick change counts now.
+  HSTMON_NOINLINE void look_ahead() noexcept {
+    const auto y = obs_.model().outputs(obs_.state());
+    for (int i = 0; i < kFdiChannels; ++i) {
+      const T d = std::fabs(y[i] - yprev_[i]);
+      var_[i] += d;
+      gap_[i] += d;
+    }
   }
 
   // Sensor checks, residual evaluation and matching of the tick's residuals, in its own
   // frame (see step).
   HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
-    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid);
+    if (m.valid == 0) return matcher_.status();
+    for (int i = 0; i < kFdiChannels; ++i) {
+      const T v = var_[i] > gap_[i] ? var_[i] : gap_[i];
+      allow_[i] = transient_factor_ * v;
+      gap_[i] = T(0);
+    }
+    // A reading at a transmitter's live zero is a loop break only where the model,
+    // allowed its error, says the channel cannot be there.
+    T slack[kFdiChannels];
+    for (int i = 0; i < kFdiChannels; ++i) slack[i] = ev_.bound(i) + allow_[i] + ev_.threshold(i);
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, obs_.estimate().data(), slack);
+    // Start-up: the model's transient from its initial state is still running, so
+    // nothing is judged; flags that persist (a loop break, a stuck channel) are reported
+    // once it is over.
+    if (t < hold_until_) return matcher_.status();  // a hold of 0 judges the first sample
     // A saturated reading is clipped at the range end, so the true residual is at least r:
     // r > 0 is evidence of a rise (a lower bound), r ≤ 0 none — the evaluator then holds
     // that channel (statistics and alarm) as if it were not sampled.
     const std::uint8_t saturated = sensors_.saturated();
-    unsigned used = t < settle_until_ ? 0u : obs_.residual_valid();
+    unsigned used = obs_.residual_valid();
     if (saturated != 0) {
       for (int i = 0; i < kFdiChannels; ++i) {
         if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
       }
     }
-    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used));
-    if (m.valid == 0) return matcher_.status();
+    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used), allow_);
     return matcher_.update(t, ev_, sensor_mask, saturated);
   }
 
@@ -204,8 +314,16 @@ class Monitor {
   Matcher matcher_{};
   ThesisUncertainty<T> uncertainty_{};
   T bound_[kFdiChannels] = {};
-  T settle_time_ = T(0.05);
-  T settle_until_ = -std::numeric_limits<T>::infinity();  ///< residuals ignored before this time [s]
+  T yprev_[kFdiChannels] = {};  ///< ŷ of the previous tick [channel unit]
+  T var_[kFdiChannels] = {};    ///< leaky total variation of ŷ [channel unit]
+  T gap_[kFdiChannels] = {};    ///< total variation of ŷ since the last sample [channel unit]
+  T allow_[kFdiChannels] = {};  ///< transient allowance of the last sample [channel unit]
+  T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
+  T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
+  T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
+  T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
+  T hold_ = T(0);               ///< start-up hold-off [s]
+  T hold_until_ = T(0);         ///< no judgement before this time [s]; NaN until the first step
   bool bound_valid_ = false;
 };
 

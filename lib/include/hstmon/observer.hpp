@@ -40,6 +40,7 @@
 #include <type_traits>
 
 #include "hstmon/code_size.hpp"
+#include "hstmon/initial_state.hpp"
 #include "hstmon/rk4.hpp"
 #include "hstmon/status.hpp"
 
@@ -184,6 +185,22 @@ class Observer {
     model_.set_inputs(u);
     inputs_changed();
     reset(model_.rest_state());
+    return Status::kOk;
+  }
+
+  /// Restarts from the first sample m under inputs u, by choose_initial_state
+  /// (initial_state.hpp): from the measured states when all are measured, else at rest or
+  /// at the steady state, whichever the measurements say.
+  /// @param how  out, optional: how the state was chosen
+  /// @return kOk or kInvalidInputs (observer unchanged)
+  Status reset_measured(const Inputs& u, const Measurement& m, InitialState* how = nullptr) noexcept {
+    if (!Model::inputs_valid(u)) return Status::kInvalidInputs;
+    model_.set_inputs(u);
+    inputs_changed();
+    State x;
+    const InitialState k = choose_initial_state(model_, m.y, m.valid, x);
+    if (how != nullptr) *how = k;
+    reset(x);
     return Status::kOk;
   }
 

@@ -108,6 +108,9 @@ class PaperModel {
 
   Output outputs(const State& x) const noexcept { return x; }
 
+  /// Output channel that measures state i: every state is an output (Ps, Pmi, Ppp, ωm).
+  static constexpr int state_channel(int i) noexcept { return i; }
+
   /// Bound on the spectral radius of ∂f/∂x [1/s]: Gershgorin on the diagonally scaled
   /// chain Ps–Pmi–ωm–Ppp (each coupling replaced by √|Jij·Jji|).
   T spectral_radius(const State& x) const noexcept {

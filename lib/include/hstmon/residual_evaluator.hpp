@@ -126,8 +126,11 @@ class ResidualEvaluator {
   /// @param r      N residuals [channel unit] (e.g. Observer::residual().data())
   /// @param valid  bit i set: r[i] was computed this tick; other channels (and non-finite
   ///               r[i]) keep their statistics and alarm unchanged
+  /// @param allow  optional, N extra allowances a_i ≥ 0 for this tick [channel unit]: the
+  ///               bound is b_i + a_i (Monitor passes the model's transient allowance);
+  ///               null means none
   /// @return       alarm() after the update
-  std::uint8_t update(const T* r, std::uint8_t valid) noexcept {
+  std::uint8_t update(const T* r, std::uint8_t valid, const T* allow = nullptr) noexcept {
     unsigned alarm = alarm_;
     unsigned used = 0;
     // Fast path (the nominal tick): a quiet channel (quiet_: not in alarm, both statistics
@@ -139,10 +142,11 @@ class ResidualEvaluator {
     for (int i = 0; i < N; ++i) {
       const unsigned bit = 1u << i;
       if ((valid & bit) == 0) continue;
-      if ((quiet & bit) != 0 && std::fabs(r[i]) <= drift_[i]) {
+      const T b = allow != nullptr ? drift_[i] + allow[i] : drift_[i];
+      if ((quiet & bit) != 0 && std::fabs(r[i]) <= b) {
         used |= bit;
         r_[i] = r[i];
-      } else if (update_channel(i, r[i], alarm)) {
+      } else if (update_channel(i, r[i], b, alarm)) {
         used |= bit;
       }
     }
@@ -175,13 +179,13 @@ class ResidualEvaluator {
  private:
   static bool finite_nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
 
-  /// The full update of channel i (alarm: the alarm bits being built).
+  /// The full update of channel i against bound b (alarm: the alarm bits being built).
   /// @return false if r is not finite (channel unchanged)
-  HSTMON_NOINLINE bool update_channel(int i, T r, unsigned& alarm) noexcept {
+  HSTMON_NOINLINE bool update_channel(int i, T r, T b, unsigned& alarm) noexcept {
     if (!std::isfinite(r)) return false;
     const unsigned bit = 1u << i;
     r_[i] = r;
-    cusum_[i].update(r, drift_[i], clip_[i], cap_[i]);
+    cusum_[i].update(r, b, clip_[i], cap_[i]);
     const T up = cusum_[i].upper();
     const T down = cusum_[i].lower();
     if (up >= thresh_[i] || down >= thresh_[i]) {

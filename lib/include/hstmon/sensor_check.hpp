@@ -59,6 +59,9 @@ enum SensorFlag : std::uint8_t {
   kSensorStuck = 1u << 2,       ///< bit-identical for stuck_time and stuck_min_samples samples
   /// In [range_hi, range_hi + (range_hi − range_lo)/32]: over range, not a fault (masked only).
   kSensorSaturated = 1u << 3,
+  /// At or just below range_lo where the model says the channel may be there (update's
+  /// expect): a machine at rest, not a loop break; never stuck (a clamped value repeats).
+  kSensorUnderRange = 1u << 4,
 };
 
 /// The flags that make a channel a sensor problem (all but kSensorSaturated).
@@ -133,8 +136,16 @@ class SensorCheck {
   /// @param t      sample time [s], non-decreasing (the stuck window is measured in it)
   /// @param y      N raw measurements [channel unit]
   /// @param valid  bit i set: channel i was sampled this tick (others keep their flags)
+  /// @param expect  optional, N model estimates [channel unit]; with slack, a reading at or
+  ///                below range_lo (but within the band below it, when range_hi is finite)
+  ///                is a loop break only where expect[i] − range_lo > slack[i] — the physics
+  ///                says the channel cannot be at its live zero; elsewhere it is under
+  ///                range (kSensorUnderRange), a plausible reading of a machine at rest.
+  ///                Null: every reading at or below range_lo is a loop break.
+  /// @param slack   N model-error allowances ≥ 0 [channel unit], with expect
   /// @return       mask(): bit i set if channel i is a sensor problem (kSensorFaultFlags)
-  std::uint8_t update(T t, const T* y, std::uint8_t valid) noexcept {
+  std::uint8_t update(T t, const T* y, std::uint8_t valid, const T* expect = nullptr,
+                      const T* slack = nullptr) noexcept {
     unsigned slow = 0;
     HSTMON_UNROLL
     for (int i = 0; i < N; ++i) {
@@ -153,7 +164,7 @@ class SensorCheck {
       sat_ = 0;
       return 0;
     }
-    return update_slow(t, y, valid & slow);
+    return update_slow(t, y, valid & slow, expect, slack);
   }
 
   /// SensorFlag bits of channel i from its last sample.
@@ -194,10 +205,14 @@ class SensorCheck {
   }
 
   /// The channels off the fast path: full checks of the `sampled` ones, and the masks.
-  HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled) noexcept {
+  HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled, const T* expect,
+                                                   const T* slack) noexcept {
     unsigned fault = 0, sat = 0;
     for (int i = 0; i < N; ++i) {
-      if (((sampled >> i) & 1u) != 0) check_channel(i, y[i], t);
+      if (((sampled >> i) & 1u) != 0) {
+        const bool may_be_low = expect != nullptr && slack != nullptr && !(expect[i] - lo_[i] > slack[i]);
+        check_channel(i, y[i], t, may_be_low);
+      }
       fault |= (flags_[i] & kSensorFaultFlags) != 0 ? 1u << i : 0u;
       sat |= (flags_[i] & kSensorSaturated) != 0 ? 1u << i : 0u;
     }
@@ -207,18 +222,22 @@ class SensorCheck {
   }
 
   /// The full check of sampled channel i with value v at time t: sets flags_[i].
-  HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t) noexcept {
+  /// may_be_low: the model allows channel i at its live zero (see update's expect).
+  HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t, bool may_be_low) noexcept {
     if (!std::isfinite(v)) {
       flags_[i] = kSensorNonFinite;  // no kHave: the next finite sample starts a run
       return;
     }
     const T lo = lo_[i], hi = hi_[i];
+    const T band = (hi - lo) * T(0.03125);  // NE 43's 0.5 mA of 16 mA; +∞ without a high end
     const unsigned before = flags_[i];
     unsigned f = kHave;
-    if (v <= lo || v > hi + (hi - lo) * T(0.03125)) {
+    if (v > hi + band || (v <= lo && !(may_be_low && v >= lo - band))) {
       f |= kSensorOutOfRange;
     } else if (v >= hi) {
       f |= kSensorSaturated;  // a clamped reading repeats by nature: never stuck
+    } else if (v <= lo) {
+      f |= kSensorUnderRange;  // clamped at the live zero, as a machine at rest reads
     }
     if ((before & kHave) == 0 || v != last_[i]) {  // a different value starts a run
       last_[i] = v;

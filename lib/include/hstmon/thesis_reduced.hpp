@@ -291,6 +291,24 @@ class ThesisReducedModel {
     return jacobian_radius(-K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv), s_dcv, T(0));
   }
 
+  /// Slowest decay rate of the linearised model at x: the smallest |Re λ| of the 2×2
+  /// Jacobian ∂f/∂x [1/s] (its reciprocal is the model's slowest time constant there).
+  /// 0 when the Jacobian is singular or unstable at x; NaN for a non-finite x.
+  T slowest_rate(const State& x) const noexcept {
+    const T s_dcv = signed_square_slope(x[1] * Dm_kf_, p_.dp_t_dcv, dcv_.root_dp_t);
+    const T a = -K_kp_ * signed_root_slope(x[0] - u_.Pbp, p_.dp_t_prv);
+    const T d = -R_J_ - jac_dcv_ * s_dcv;
+    const T half_tr = T(-0.5) * (a + d);          // > 0 for a stable point
+    const T det = a * d + K_Dp_ * Dp_J_;
+    const T disc = half_tr * half_tr - det;
+    const T rate = disc > T(0) ? half_tr - std::sqrt(disc) : half_tr;  // real pair: the slower one
+    return rate > T(0) ? rate : (rate == rate ? T(0) : rate);
+  }
+
+  /// Output channel that measures state i (Ppp → kChPpp, ωm → kChWm): both states are
+  /// measured on the thesis rig, which lets the observer start from the measurement.
+  static constexpr int state_channel(int i) noexcept { return i == 0 ? kChPpp : kChWm; }
+
   /// Contraction factor of the DCV fixed-point iteration at speed w_m [-]. Below about
   /// 0.01 the kDcvIterations refinements are exact to rounding; at 1 or more the
   /// quasi-steady solve does not converge and the reduced model is not valid.

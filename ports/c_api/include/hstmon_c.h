@@ -28,12 +28,12 @@ extern "C" {
 #endif
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
- *  (checked at compile time in hstmon_c.cpp): 1008 on 32-bit targets (the monitor is
- *  1008 bytes on the Cortex-M4F), 1040 on 64-bit hosts (8-byte pointers, padding). */
+ *  (checked at compile time in hstmon_c.cpp): 1088 on 32-bit targets (the monitor's
+ *  size on the Cortex-M4F), 1120 on 64-bit hosts (8-byte pointers, padding). */
 #if UINTPTR_MAX > 0xFFFFFFFFu
-#define HSTMON_MONITOR_STORAGE_BYTES 1040u
+#define HSTMON_MONITOR_STORAGE_BYTES 1120u
 #else
-#define HSTMON_MONITOR_STORAGE_BYTES 1008u
+#define HSTMON_MONITOR_STORAGE_BYTES 1088u
 #endif
 /** Alignment the monitor buffer needs [bytes]: 16 for Eigen's vectorised fixed-size types
  *  on SSE/NEON hosts (4 would do on Cortex-M4, which has no SIMD unit Eigen uses). */
@@ -90,6 +90,13 @@ typedef struct hstmon_inputs {
   float p_bp;   /**< booster pressure downstream of the PRV [Pa] */
   float kp;     /**< PRV orifice coefficient [m³/(s·√Pa)], ≥ 0 */
 } hstmon_inputs;
+
+/** How hstmon_reset_measured() chose the initial state (hstmon::InitialState). */
+typedef enum hstmon_start {
+  HSTMON_START_MEASURED = 0,  /**< both states from their measurements */
+  HSTMON_START_REST = 1,      /**< at rest (measured states set to their readings) */
+  HSTMON_START_STEADY = 2     /**< at the steady state (measured states set to their readings) */
+} hstmon_start;
 
 /** Monitor configuration. */
 typedef struct hstmon_config {
@@ -193,6 +200,16 @@ void hstmon_default_inputs(hstmon_inputs* u);
  *  @return HSTMON_OK; HSTMON_INVALID_CONFIG for a NULL/small/misaligned buffer or a bad
  *          tick/substep setting; HSTMON_INVALID_PARAMS for bad parameters */
 hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hstmon_monitor** out);
+
+/** Restarts from the first sample s (the usual start): the model starts from the measured
+ *  states (Ppp = y[2], ωm = y[3]) when both are valid and plausible, else at rest or at
+ *  the steady state for s->u, whichever the valid channels say; detection then holds off
+ *  while the model's own start-up transient lasts (derived from its time constants at
+ *  s->u, so a log that begins at rest, in a start-up or running is met alike). s is not
+ *  evaluated: pass it to hstmon_step() as the first tick's sample.
+ *  @param start  out, may be NULL: how the state was chosen (hstmon_start)
+ *  @return HSTMON_OK or HSTMON_INVALID_INPUTS (monitor unchanged) */
+hstmon_status hstmon_reset_measured(hstmon_monitor* m, const hstmon_sample* s, uint8_t* start);
 
 /** Restarts at the steady state for inputs u (logs or machines already running).
  *  @return HSTMON_OK, HSTMON_INVALID_INPUTS or HSTMON_NO_STEADY_STATE (monitor unchanged) */

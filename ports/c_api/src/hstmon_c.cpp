@@ -158,6 +158,17 @@ HSTMON_C_RARE hstmon_status hstmon_create(void* buf, size_t size, const hstmon_c
   return HSTMON_OK;
 }
 
+HSTMON_C_RARE hstmon_status hstmon_reset_measured(hstmon_monitor* m, const hstmon_sample* s, uint8_t* start) {
+  if (m == nullptr || s == nullptr) return HSTMON_INVALID_INPUTS;
+  Obs::Measurement meas;
+  meas.y << s->y[0], s->y[1], s->y[2], s->y[3];
+  meas.valid = s->valid;
+  hstmon::InitialState how = hstmon::InitialState::kRest;
+  const hstmon::Status st = m->mon.reset_measured(to_core(s->u), meas, &how);
+  if (st == hstmon::Status::kOk && start != nullptr) *start = static_cast<uint8_t>(how);
+  return to_c(st);
+}
+
 HSTMON_C_RARE hstmon_status hstmon_reset_steady(hstmon_monitor* m, const hstmon_inputs* u) {
   if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
   return to_c(m->mon.reset_steady(to_core(*u)));

@@ -13,8 +13,6 @@ namespace hstmon::fw {
 
 namespace {
 
-using Model = ThesisReducedModel<float>;
-
 // The monitor is the C API's (hstmon_c.h: observer, sensor checks, evaluator, matcher,
 // the 26-row table), in static storage: its size is the monitor's RAM, and it keeps the
 // replay's stack use small and independent of the model.
@@ -247,7 +245,7 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
   hstmon_monitor* mon = nullptr;
   if (hstmon_create(&g_storage, sizeof g_storage, &cfg, &mon) != HSTMON_OK) return ~0u;
   hstmon_report rep{};
-  bool started_steady = false;
+  std::uint8_t start = HSTMON_START_REST;
   std::uint32_t health = 0, max_substeps = 0;
   std::uint64_t unhealthy = 0, digest = 0xcbf29ce484222325ull, n_events = 0, event_mismatch = 0;
   Stats st[4];
@@ -286,16 +284,14 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
 
   if (rows > 0) {
     const hstmon_inputs u0 = inputs_at(0);
-    bool steady = false;
-    if (col[kSigWm] >= 0) {  // init auto: steady when the first speed shows the machine running
-      Model m{ThesisParams<float>{}};
-      m.set_inputs(ThesisInputs<float>{u0.p_sup, u0.p_s, u0.p_bp, u0.kp});
-      steady = std::fabs(at(0, kSigWm)) > 0.05 * static_cast<double>(m.speed_bound());
-    }
-    if (steady && hstmon_reset_steady(mon, &u0) == HSTMON_OK) {
-      started_steady = true;
-    } else {
+    // As `hstmon replay --init auto`: from the first row's measurements.
+    hstmon_sample first{};
+    first.u = u0;
+    for (int c = 0; c < 4; ++c) first.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(0, kSigPMi + c)) : 0.0f;
+    first.valid = mask;
+    if (hstmon_reset_measured(mon, &first, &start) != HSTMON_OK) {
       (void)hstmon_reset_rest(mon, &u0);
+      start = HSTMON_START_REST;
     }
 
     hstmon_sample s{};
@@ -363,7 +359,7 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
 
   // Header line: the fields of `hstmon replay --json`.
   line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
-      .num("t_last", t_last).num("tick_s", tick).uint("ticks", rep.ticks).str("start", started_steady ? "steady" : "rest");
+      .num("t_last", t_last).num("tick_s", tick).uint("ticks", rep.ticks).str("start", start == HSTMON_START_MEASURED ? "measured" : (start == HSTMON_START_STEADY ? "steady" : "rest"));
   line.key("health").raw("[");
   static const char* const kHealthNames[] = {"input_non_finite", "measurement_non_finite", "substeps_clipped",
                                              "state_non_finite", "state_out_of_bounds", "algebraic_diverged"};

@@ -128,18 +128,22 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   const Obs& obs = mon.observer();
 
   const ThesisInputs<double> u0 = in.at(0);
-  bool steady = options.init == InitMode::kSteady;
-  if (options.init == InitMode::kAuto && meas[kChWm] != nullptr) {
-    Model m(params);
-    m.set_inputs(u0);
-    steady = std::fabs(meas[kChWm][0]) > 0.05 * m.speed_bound();
+  Obs::Measurement first;
+  for (int c = 0; c < 4; ++c) first.y[c] = meas[c] ? meas[c][0] : 0.0;
+  first.valid = mask;
+  Status started = Status::kInvalidInputs;
+  if (options.init == InitMode::kAuto) {
+    started = mon.reset_measured(u0, first, &res.start);
+  } else if (options.init == InitMode::kSteady) {
+    started = mon.reset_steady(u0);
+    res.start = InitialState::kSteady;
+    if (started != Status::kOk) res.notes.push_back("no steady state for the first row's inputs: started at rest");
   }
-  if (steady && mon.reset_steady(u0) == Status::kOk) {
-    res.started_steady = true;
-  } else {
-    if (steady) res.notes.push_back("no steady state for the first row's inputs: started at rest");
+  if (started != Status::kOk) {
     mon.reset_rest(u0);
+    res.start = InitialState::kRest;
   }
+  res.startup_hold = mon.startup_hold();
 
   if (options.keep_trace) res.trace.reserve(rows);
   const std::size_t progress_every = std::max<std::size_t>(1, rows / 100);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hstmon/thesis_params.hpp"
+#include "hstmon/initial_state.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/sensor_ranges.hpp"
 
@@ -19,7 +20,7 @@ namespace hstmon::host {
 
 /// How the observer state is initialised at the first row.
 enum class InitMode {
-  kAuto,    ///< steady state if the first measured speed is above 5 % of the speed bound, else rest
+  kAuto,    ///< from the first row's measurements (hstmon::choose_initial_state: measured states, else rest or steady)
   kRest,    ///< at rest: ωm = 0, Ppp = Pbp
   kSteady,  ///< the steady state for the first row's inputs
 };
@@ -31,8 +32,8 @@ struct ReplayOptions {
   bool keep_trace = false;       ///< keep a TraceRow per log row (for residual CSV and plots)
   bool diagnose = true;          ///< run the fault matcher on the residuals (events, candidates)
   /// Transmitter ranges for the sensor checks (a parameter file's "sensors" section);
-  /// default: the thesis rig's (thesis_sensor_ranges()).
-  SensorRanges sensors = thesis_sensor_ranges();
+  /// default: live zeros only (log_default_sensor_ranges()).
+  SensorRanges sensors = log_default_sensor_ranges();
   /// Called with the fraction done (0…1) about every 1 % of rows; may be empty.
   std::function<void(double)> progress;
 };
@@ -93,7 +94,8 @@ struct ReplayResult {
   std::uint32_t health = 0;                   ///< HealthFlag bits OR-ed over all ticks
   std::size_t unhealthy_rows = 0;             ///< rows whose tick raised any flag
   std::uint32_t max_substeps = 0;             ///< largest RK4 substep count of a tick
-  bool started_steady = false;                ///< initialised at steady state (else at rest)
+  InitialState start = InitialState::kRest;   ///< how the observer's initial state was chosen
+  double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
   std::vector<TraceRow> trace;                ///< per row, if ReplayOptions::keep_trace
   std::vector<ReplayEvent> events;            ///< matcher events in time order (if diagnose)
   std::string final_status = "nominal";       ///< matcher status after the last row

@@ -35,6 +35,18 @@ inline SensorRanges thesis_sensor_ranges() noexcept {
   return r;
 }
 
+/// What `hstmon replay` assumes of a log that declares no ranges (no "sensors" section in
+/// the parameter file): the thesis rig's live zeros — a reading there is a loop break
+/// only where the model says the channel cannot be at zero (Monitor) — and no high ends.
+/// A log's transmitters are unknown, and a reading above an assumed high end is not
+/// evidence of a fault: a fast transducer shows Ppp overshooting by 100–180 bar at a PRV
+/// step, physically, far past the 250 bar assumed above.
+inline SensorRanges log_default_sensor_ranges() noexcept {
+  SensorRanges r = thesis_sensor_ranges();
+  r.hi.fill(std::numeric_limits<double>::infinity());
+  return r;
+}
+
 /// No range ends (±∞): only the non-finite and stuck checks apply.
 inline SensorRanges unbounded_sensor_ranges() noexcept {
   SensorRanges r;
