@@ -27,6 +27,7 @@ SensorCheck<double>::Config ranged() {
   for (int i = 0; i < 4; ++i) {
     c.range_lo[i] = kLo;
     c.range_hi[i] = kHi;
+    c.noise[i] = 5e3;  // Noisy's σ on every channel: its 305 Pa ADC step is finer
   }
   return c;
 }
@@ -200,3 +201,24 @@ TEST(SensorCheck, RejectsInvalidConfig) {
 }
 
 }  // namespace
+
+// A coarse ADC (step ≥ σ) repeats its code on a steady signal: a long run is not stuck
+// unless the model moved by more than two steps (and its allowance) meanwhile.
+TEST(SensorCheck, CoarseAdcIsStuckOnlyWhenTheModelMoved) {
+  SensorCheck<double> sc;
+  ASSERT_EQ(sc.configure(ranged()), hstmon::Status::kOk);
+  double y[4] = {100e5, 100e5, 100e5, 100e5};
+  double e[4] = {100e5, 100e5, 100e5, 100e5};
+  const double slack[4] = {0.5e5, 0.5e5, 0.5e5, 0.5e5};
+  double t = 0;
+  ASSERT_EQ(sc.update(t, y, 0x1, e, slack), 0);
+  y[0] += 1e5;  // one 1 bar step (20 σ): the ADC's resolution
+  ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, e, slack), 0);
+  for (int k = 0; k < 1000; ++k) ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, e, slack), 0) << "steady, k = " << k;
+  for (int k = 0; k < 200; ++k) {
+    e[0] += 0.05e5;  // the model rises by 10 bar while the reading stands still
+    sc.update(t += 1e-3, y, 0x1, e, slack);
+  }
+  EXPECT_EQ(sc.mask(), 0b0001);
+  EXPECT_EQ(sc.flags(0), kSensorStuck);
+}

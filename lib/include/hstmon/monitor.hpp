@@ -270,9 +270,10 @@ class Monitor {
   // frame (see step).
   HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
     if (m.valid == 0) return matcher_.status();
+    // Half an ADC step is the reading's rounding, whatever the noise σ configured says.
     for (int i = 0; i < kFdiChannels; ++i) {
       const T v = var_[i] > gap_[i] ? var_[i] : gap_[i];
-      allow_[i] = transient_factor_ * v;
+      allow_[i] = transient_factor_ * v + T(0.5) * sensors_.step(i);
       gap_[i] = T(0);
     }
     // A reading at a transmitter's live zero is a loop break only where the model,

@@ -1,8 +1,11 @@
 #pragma once
 /// @file sensor_check.hpp
-/// Plausibility checks on the raw measurements, independent of the model: a non-finite
-/// value, a value outside what the channel's transmitter can report, and a value frozen
-/// (bit-identical to the previous one) for a time. A channel that fails one is a sensor
+/// Plausibility checks on the raw measurements: a non-finite value, a value outside what
+/// the channel's transmitter can report (a reading at the live zero only where the model,
+/// if given, says the channel cannot be there), and a value frozen (bit-identical to the
+/// previous one) for a time — where the channel's ADC step is below its noise, so that a
+/// working sensor cannot repeat itself that long; with a coarser step only if the model
+/// moved by more than two steps meanwhile. A channel that fails one is a sensor
 /// problem, never evidence for a parameter fault (FaultMatcher masks it and keeps only
 /// its sensor row). A channel reading at or just above the top of its range is
 /// saturated: over range, its true value is at least range_hi — the machine may well be
@@ -56,7 +59,9 @@ enum SensorFlag : std::uint8_t {
   kSensorNonFinite = 1u << 0,   ///< the value is NaN or ±Inf
   /// At or below range_lo (a 4–20 mA loop break), or above range_hi + (range_hi − range_lo)/32.
   kSensorOutOfRange = 1u << 1,
-  kSensorStuck = 1u << 2,       ///< bit-identical for stuck_time and stuck_min_samples samples
+  /// Bit-identical for stuck_time and stuck_min_samples samples, on a channel whose ADC
+  /// step is below its noise or while the model moved (Config::noise).
+  kSensorStuck = 1u << 2,
   /// In [range_hi, range_hi + (range_hi − range_lo)/32]: over range, not a fault (masked only).
   kSensorSaturated = 1u << 3,
   /// At or just below range_lo where the model says the channel may be there (update's
@@ -95,22 +100,24 @@ class SensorCheck {
     /// 2 at a 4 s DAS) would call such a channel stuck. Default 50: 0.68^49 ≈ 6e-9 per
     /// sample; 0.5 s at 100 Hz, 200 s at 4 s.
     std::uint8_t stuck_min_samples = kDefaultStuckMinSamples;
+    /// Sensor noise σ [channel unit], ≥ 0: a channel whose ADC step (learned: the smallest
+    /// change between successive readings) is at least σ repeats its code nominally on a
+    /// steady signal, so it is stuck only if the model moved meanwhile. Default as
+    /// ResidualEvaluator's: 0.05 bar on pressures, 0.5 rpm on the fourth channel.
+    T noise[kN_] = {};
 
     Config() noexcept {
       for (int i = 0; i < N; ++i) {
         range_lo[i] = -std::numeric_limits<T>::infinity();
         range_hi[i] = std::numeric_limits<T>::infinity();
+        noise[i] = T(5e3);
       }
+      if (N == 4) noise[N - 1] = T(0.5) * T(3.14159265358979323846) / T(30);
     }
   };
 
   /// The default configuration (valid: no range ends), flags clear — reset()'s state.
-  SensorCheck() noexcept {
-    for (int i = 0; i < N; ++i) {
-      lo_[i] = -std::numeric_limits<T>::infinity();
-      hi_[i] = std::numeric_limits<T>::infinity();
-    }
-  }
+  SensorCheck() noexcept { set(Config{}); }
 
   /// Takes a configuration and resets.
   /// @return kOk, or kInvalidConfig (a range with NaN or lo ≥ hi, stuck_time not finite
@@ -118,14 +125,17 @@ class SensorCheck {
   Status configure(const Config& c) noexcept {
     if (c.stuck_min_samples == 1 || !(std::isfinite(c.stuck_time) && c.stuck_time >= T(0))) return Status::kInvalidConfig;
     for (int i = 0; i < N; ++i) {
-      if (!(c.range_lo[i] < c.range_hi[i])) return Status::kInvalidConfig;
+      if (!(c.range_lo[i] < c.range_hi[i]) || !(std::isfinite(c.noise[i]) && c.noise[i] >= T(0))) {
+        return Status::kInvalidConfig;
+      }
     }
     set(c);
     reset();
     return Status::kOk;
   }
 
-  /// Forgets the last values (no kHave) and clears the flags.
+  /// Forgets the last values (no kHave) and clears the flags; keeps the learned ADC steps
+  /// (a property of the channel, not of the run).
   void reset() noexcept {
     for (int i = 0; i < N; ++i) flags_[i] = 0;
     sat_ = 0;
@@ -153,6 +163,7 @@ class SensorCheck {
       // Fast path (the nominal sample): sampled, strictly inside the range (so finite) and
       // not equal to the previous value — no flag, a run of one.
       if ((valid & bit) != 0 && y[i] > lo_[i] && y[i] < hi_[i] && y[i] != last_[i]) {
+        learn_step(i, y[i]);
         last_[i] = y[i];
         since_[i] = t;
         flags_[i] = kHave;
@@ -177,6 +188,9 @@ class SensorCheck {
   }
   /// Bit i set: channel i is saturated now (kSensorSaturated; not a sensor problem).
   std::uint8_t saturated() const noexcept { return sat_; }
+  /// Learned ADC step of channel i: the smallest change between successive readings seen
+  /// (a multiple of the true step at worst) [channel unit]; 0 before any change.
+  T step(int i) const noexcept { return step_[i]; }
   /// Bit i set: channel i was a sensor problem at some sample since reset.
   std::uint8_t latched() const noexcept { return latched_; }
   /// The configuration in use.
@@ -188,6 +202,7 @@ class SensorCheck {
     }
     c.stuck_time = stuck_time_;
     c.stuck_min_samples = min_samples_;
+    for (int i = 0; i < N; ++i) c.noise[i] = noise_[i];
     return c;
   }
 
@@ -202,6 +217,18 @@ class SensorCheck {
     }
     stuck_time_ = c.stuck_time;
     min_samples_ = c.stuck_min_samples;
+    for (int i = 0; i < N; ++i) {
+      noise_[i] = c.noise[i];
+      step_[i] = T(0);
+    }
+  }
+
+  /// The smallest change between successive readings of channel i seen: its ADC step
+  /// (or a multiple of it) [channel unit]; 0 until one is seen.
+  void learn_step(int i, T v) noexcept {
+    if ((flags_[i] & kHave) == 0) return;
+    const T d = std::fabs(v - last_[i]);
+    if (step_[i] == T(0) || d < step_[i]) step_[i] = d;
   }
 
   /// The channels off the fast path: full checks of the `sampled` ones, and the masks.
@@ -211,7 +238,8 @@ class SensorCheck {
     for (int i = 0; i < N; ++i) {
       if (((sampled >> i) & 1u) != 0) {
         const bool may_be_low = expect != nullptr && slack != nullptr && !(expect[i] - lo_[i] > slack[i]);
-        check_channel(i, y[i], t, may_be_low);
+        check_channel(i, y[i], t, may_be_low, expect != nullptr ? expect[i] : T(0), slack != nullptr ? slack[i] : T(0),
+                      expect != nullptr && slack != nullptr);
       }
       fault |= (flags_[i] & kSensorFaultFlags) != 0 ? 1u << i : 0u;
       sat |= (flags_[i] & kSensorSaturated) != 0 ? 1u << i : 0u;
@@ -223,7 +251,8 @@ class SensorCheck {
 
   /// The full check of sampled channel i with value v at time t: sets flags_[i].
   /// may_be_low: the model allows channel i at its live zero (see update's expect).
-  HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t, bool may_be_low) noexcept {
+  /// With a model (have_model), e and s are its estimate and allowance for channel i.
+  HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t, bool may_be_low, T e, T s, bool have_model) noexcept {
     if (!std::isfinite(v)) {
       flags_[i] = kSensorNonFinite;  // no kHave: the next finite sample starts a run
       return;
@@ -240,6 +269,7 @@ class SensorCheck {
       f |= kSensorUnderRange;  // clamped at the live zero, as a machine at rest reads
     }
     if ((before & kHave) == 0 || v != last_[i]) {  // a different value starts a run
+      if ((before & kHave) != 0) learn_step(i, v);
       last_[i] = v;
       since_[i] = t;
     } else if (f == kHave && min_samples_ != 0) {
@@ -250,14 +280,26 @@ class SensorCheck {
         const T dt = t - since_[i];
         const T floor = static_cast<T>(min_samples_) * dt;
         since_[i] += (stuck_time_ > floor ? stuck_time_ : floor) - T(1.5) * dt;
+        emin_[i] = emax_[i] = e;
       }
+      emin_[i] = e < emin_[i] ? e : emin_[i];
+      emax_[i] = e > emax_[i] ? e : emax_[i];
       f |= kRun;
-      if (t >= since_[i]) f |= kSensorStuck;
+      // A step below the noise dithers: a long run is impossible for a working sensor. A
+      // coarser one repeats on a steady signal: stuck only if the model moved by more
+      // than two steps and its allowance while the reading stood still.
+      const bool fine = !(step_[i] >= noise_[i]);
+      const bool moved = have_model && emax_[i] - emin_[i] > T(2) * step_[i] + s;
+      if (t >= since_[i] && (fine || moved)) f |= kSensorStuck;
     }
     flags_[i] = static_cast<std::uint8_t>(f);
   }
 
   T lo_[kN_] = {};      ///< Config::range_lo [channel unit]
+  T noise_[kN_] = {};   ///< Config::noise [channel unit]
+  T step_[kN_] = {};    ///< learned ADC step (learn_step) [channel unit]; 0: none seen
+  T emin_[kN_] = {};    ///< smallest model estimate during the current run [channel unit]
+  T emax_[kN_] = {};    ///< largest model estimate during the current run [channel unit]
   T hi_[kN_] = {};      ///< Config::range_hi [channel unit]
   T stuck_time_ = kDefaultStuckTime;  ///< Config::stuck_time [s]
   T last_[kN_] = {};    ///< last finite sample (with kHave) [channel unit]
