@@ -2,68 +2,110 @@
 #include "campaign_runs.hpp"
 
 #include <cmath>
-#include <random>
+#include <cstdio>
 
-#include "hstmon/generated/thesis_signatures.hpp"
-#include "hstmon/residual_bounds.hpp"
+#include "hstmon_host/signals.hpp"
 
 namespace hstmon_campaign {
 
-using hstmon::MatchEventKind;
+using hstmon::sim::LoadShape;
 using hstmon::sim::SensorFaultKind;
+namespace sim = hstmon::sim;
+
+std::vector<Condition> campaign_conditions() {
+  const Condition base{"baseline", "base"};
+  std::vector<Condition> out = {base};
+  auto vary = [&](const char* name, const char* factor, auto set) {
+    Condition c = base;
+    c.name = name;
+    c.factor = factor;
+    set(c);
+    out.push_back(c);
+  };
+  vary("lag 1 ms", "lag", [](Condition& c) { c.lag = 1e-3; });
+  vary("lag 3 ms", "lag", [](Condition& c) { c.lag = 3e-3; });
+  vary("lag 10 ms", "lag", [](Condition& c) { c.lag = 10e-3; });
+  vary("rate 500 Hz", "rate", [](Condition& c) { c.rate = 500.0; });
+  vary("rate 100 Hz", "rate", [](Condition& c) { c.rate = 100.0; });
+  vary("rate 0.25 Hz (DAS)", "rate", [](Condition& c) { c.rate = 0.25; });
+  vary("supply on at 0.5 s", "start", [](Condition& c) { c.supply_on = 0.5; });
+  vary("start steady", "start", [](Condition& c) { c.from_rest = false; });
+  vary("load constant", "load", [](Condition& c) { c.load = LoadShape::kConstant; });
+  vary("load ramp", "load", [](Condition& c) { c.load = LoadShape::kRamp; });
+  vary("load sine", "load", [](Condition& c) { c.load = LoadShape::kSine; });
+  vary("ADC none", "quant", [](Condition& c) { c.quant = 0.0; });
+  vary("ADC 12 bit/range", "quant", [](Condition& c) { c.adc_bits = 12; });
+  vary("param error 0", "param", [](Condition& c) { c.spread = 0.0; });
+  // A 0–250 bar Ppp transmitter (the thesis rig's assumed one) clips the overshoot of a PRV
+  // step; the installation declares its ranges, so a reading at the top is saturated.
+  vary("Ppp 250 bar, ranges", "range", [](Condition& c) {
+    c.ppp_range = 250e5;
+    c.declare_ranges = true;
+  });
+  return out;
+}
+
+double time_scale(const Condition& c) { return 1.0 / c.rate >= 0.1 ? 20.0 : 1.0; }
+
+sim::SensorConfig sensors_of(const Condition& c) {
+  sim::SensorConfig s = sim::with_lag(sim::rig_fast_sensors(c.rate), c.lag);
+  s.channels[2].range_hi = c.ppp_range;
+  return c.adc_bits > 0 ? sim::with_pressure_adc_bits(s, c.adc_bits) : sim::with_pressure_step(s, c.quant);
+}
+
+sim::RigRun run_of(const Condition& c, double duration, double level, std::uint64_t load_seed, bool with_cycles) {
+  const double k = time_scale(c);
+  sim::RigRun r;
+  r.duration = duration;
+  r.from_rest = c.from_rest;
+  r.supply_on = c.from_rest ? c.supply_on * k : 0.0;
+  if (with_cycles && c.from_rest) {
+    r.run_time = 0.6 * duration - r.supply_on;
+    r.stop_time = 0.1 * duration;
+  }
+  r.load.shape = c.load;
+  r.load.level = level;
+  r.load.seed = load_seed;
+  // Steps every 2 s (the validation logs' pace), first at 1 s; ramp legs 10 s; sine 20 s.
+  r.load.period = (c.load == LoadShape::kSteps ? 2.0 : c.load == LoadShape::kRamp ? 10.0 : 20.0) * k;
+  r.load.first = c.load == LoadShape::kSteps ? 1.0 * k : -1.0;
+  r.load.update = 0.1;
+  return r;
+}
 
 namespace {
 
-FaultCase param_case(const char* row, double Params::*field, double sign, double mag) {
+FaultCase param_case(const char* row, double Params::*param, double Inputs::*input, double factor, const char* label,
+                     const char* group) {
   FaultCase f;
   f.row = row;
-  f.target = Target::kParam;
-  f.param = field;
-  f.factor = 1.0 + sign * mag;
-  f.magnitude = mag;
+  f.label = label;
+  f.group = group;
+  f.target = param ? Target::kParam : Target::kInput;
+  f.param = param;
+  f.input = input;
+  f.factor = factor;
   return f;
-}
-
-FaultCase input_case(const char* row, double Inputs::*field, double sign, double mag) {
-  FaultCase f = param_case(row, nullptr, sign, mag);
-  f.target = Target::kInput;
-  f.input = field;
-  return f;
-}
-
-std::string percent(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g%%", v * 100.0);
-  return b;
 }
 
 }  // namespace
 
 std::vector<FaultCase> parameter_faults() {
   struct Spec {
-    const char* name;  // without sign
+    const char* name;
     double Params::*param;
     double Inputs::*input;
     double mag[2];
     bool minus_only;
   };
-  // Magnitudes: 10 % / 30 % by default; kp 30 / 50 % (the thesis's blockage is 50 %);
-  // Pbp 30 / 60 % (Pbp moves Ppp alone, whose threshold is ≈ 5 bar; 10 % = 1 bar is far
-  // below it); Rf 30 / 90 % (Rf is 3 % of the shaft's viscous friction Rbl + Rf); leakage
-  // resistances −50 / −90 % (leak flows grow 2× and 10×). docs/fault_campaign.md.
+  // Magnitudes as in the first campaign (docs/fault_campaign.md): 10/30 % by default, kp
+  // 30/50 %, Pbp 30/60 %, Rf 30/90 %, leakage resistances −50/−90 %.
   const Spec specs[] = {
-      {"kp", nullptr, &Inputs::kp, {0.3, 0.5}, false},
-      {"kf", &Params::kf, nullptr, {0.1, 0.3}, false},
-      {"Psupl", nullptr, &Inputs::Psupl, {0.1, 0.3}, false},
-      {"Pbp", nullptr, &Inputs::Pbp, {0.3, 0.6}, false},
-      {"Rbl", &Params::Rbl, nullptr, {0.1, 0.3}, false},
-      {"Rf", &Params::Rf, nullptr, {0.3, 0.9}, false},
-      {"Dp", &Params::Dp, nullptr, {0.1, 0.3}, false},
-      {"Dm", &Params::Dm, nullptr, {0.1, 0.3}, false},
-      {"Rlkg", &Params::Rlkg, nullptr, {0.5, 0.9}, true},
-      {"Ripl", &Params::Ripl, nullptr, {0.5, 0.9}, true},
-      {"J", &Params::J, nullptr, {0.1, 0.3}, false},
-      {"K", &Params::K, nullptr, {0.1, 0.3}, false},
+      {"kp", nullptr, &Inputs::kp, {0.3, 0.5}, false},      {"kf", &Params::kf, nullptr, {0.1, 0.3}, false},
+      {"Psupl", nullptr, &Inputs::Psupl, {0.1, 0.3}, false}, {"Pbp", nullptr, &Inputs::Pbp, {0.3, 0.6}, false},
+      {"Rbl", &Params::Rbl, nullptr, {0.1, 0.3}, false},    {"Rf", &Params::Rf, nullptr, {0.3, 0.9}, false},
+      {"Dp", &Params::Dp, nullptr, {0.1, 0.3}, false},      {"Dm", &Params::Dm, nullptr, {0.1, 0.3}, false},
+      {"Rlkg", &Params::Rlkg, nullptr, {0.5, 0.9}, true},   {"Ripl", &Params::Ripl, nullptr, {0.5, 0.9}, true},
   };
   std::vector<FaultCase> out;
   for (const Spec& s : specs) {
@@ -71,239 +113,148 @@ std::vector<FaultCase> parameter_faults() {
       const double sign = sg == 0 ? -1.0 : 1.0;
       const std::string row = std::string(s.name) + (sg == 0 ? "-" : "+");
       for (double m : s.mag) {
-        FaultCase f = s.param ? param_case(row.c_str(), s.param, sign, m) : input_case(row.c_str(), s.input, sign, m);
-        f.label = row + " " + percent(m);
-        out.push_back(f);
+        char label[48];
+        std::snprintf(label, sizeof label, "%s %g%%", row.c_str(), m * 100.0);
+        const bool blockage = row == "kp-" && m == 0.5;
+        out.push_back(param_case(row.c_str(), s.param, s.input, 1.0 + sign * m, label, blockage ? "kp- 50%" : "param"));
       }
     }
   }
   return out;
 }
 
-std::vector<FaultCase> sensor_faults(const hstmon::sim::SensorConfig& sensors) {
-  static const char* rows[] = {"sensor_p_mi", "sensor_p_mo", "sensor_p_pp", "sensor_w_m"};
+std::vector<FaultCase> sensor_faults(const sim::SensorConfig& sensors) {
   static const char* chans[] = {"p_mi", "p_mo", "p_pp", "w_m"};
   struct Kind {
     SensorFaultKind kind;
-    double fs;  // bias [fraction of full scale] or drift [fraction of full scale per s]
+    double fs;
     const char* label;
+    const char* group;
   };
-  const Kind kinds[] = {{SensorFaultKind::kBias, 0.02, "bias +2%FS"},  {SensorFaultKind::kBias, -0.02, "bias -2%FS"},
-                        {SensorFaultKind::kBias, 0.05, "bias +5%FS"},  {SensorFaultKind::kBias, -0.05, "bias -5%FS"},
-                        {SensorFaultKind::kDrift, 0.02, "drift +2%FS/s"}, {SensorFaultKind::kDrift, -0.02, "drift -2%FS/s"},
-                        {SensorFaultKind::kStuck, 0.0, "stuck"}};
+  const Kind kinds[] = {{SensorFaultKind::kLoopBreak, 0.0, "loop break", "loop break"},
+                        {SensorFaultKind::kStuck, 0.0, "stuck", "stuck"},
+                        {SensorFaultKind::kBias, 0.02, "bias +2%FS", "bias 2%FS"},
+                        {SensorFaultKind::kBias, -0.02, "bias -2%FS", "bias 2%FS"},
+                        {SensorFaultKind::kBias, 0.05, "bias +5%FS", "bias 5%FS"},
+                        {SensorFaultKind::kBias, -0.05, "bias -5%FS", "bias 5%FS"}};
   std::vector<FaultCase> out;
   for (int ch = 0; ch < 4; ++ch) {
     const auto& spec = sensors.channels.at(static_cast<std::size_t>(ch));
-    const double fs = spec.range_hi - spec.range_lo;
+    // Full scale: the transmitter's span (ωm: 0–3000 rpm, its magnitude range).
+    const double fs = ch == 3 ? spec.range_hi : spec.range_hi - spec.range_lo;
     for (const Kind& k : kinds) {
       FaultCase f;
-      f.row = rows[ch];
+      f.row = std::string("sensor_") + chans[ch];
       f.label = std::string(chans[ch]) + " " + k.label;
+      f.group = k.group;
       f.target = Target::kSensor;
       f.sensor.channel = ch;
       f.sensor.kind = k.kind;
       f.sensor.value = k.fs * fs;
-      f.sensor_value_fs = k.fs * 100.0;
       out.push_back(f);
     }
   }
   return out;
 }
 
-Params perturbed_machine(std::uint64_t seed, double spread) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uni(-spread, spread);
-  Params p;
-  double* fields[] = {&p.Dm, &p.Dp, &p.Rlkg, &p.Ripl, &p.Rf, &p.Rbl, &p.kf, &p.J, &p.K};
-  for (double* f : fields) *f *= 1.0 + uni(rng);
-  return p;
-}
-
-Mon::Config monitor_config(const hstmon::sim::SensorConfig& sensors) {
-  Mon::Config c;
-  c.observer.tick = sensors.sample_period;
-  for (int i = 0; i < 4; ++i) {
-    const auto& ch = sensors.channels.at(static_cast<std::size_t>(i));
-    c.evaluator.noise_sigma[i] = ch.noise_std;
-    c.sensors.range_lo[i] = ch.range_lo;
-    c.sensors.range_hi[i] = ch.range_hi;
+hstmon::host::ReplayResult replay_log(const sim::ThesisMeasurements& log, const sim::SensorConfig& sensors,
+                                      bool declare_ranges) {
+  using hstmon::host::Signal;
+  hstmon::host::LogData d;
+  d.path = "campaign";
+  const std::size_t n = log.size();
+  d.t.resize(n);
+  const Signal sig[8] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp,
+                         Signal::kPMi,  Signal::kPMo, Signal::kPPp, Signal::kWm};
+  for (Signal s : sig) {
+    d.present[hstmon::host::index(s)] = true;
+    d.values[hstmon::host::index(s)].resize(n);
   }
-  return c;
+  d.present[hstmon::host::index(Signal::kT)] = true;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto& m = log[k];
+    d.t[k] = m.t;
+    const double v[8] = {m.u.Psupl, m.u.Ps, m.u.Pbp, m.u.kp, m.y[0], m.y[1], m.y[2], m.y[3]};
+    for (int i = 0; i < 8; ++i) d.values[hstmon::host::index(sig[i])][k] = v[i];
+  }
+  hstmon::host::ReplayOptions o;
+  for (std::size_t c = 0; declare_ranges && c < 4; ++c) {
+    o.sensors.lo[c] = sensors.channels[c].range_lo;
+    o.sensors.hi[c] = sensors.channels[c].range_hi;
+  }
+  return hstmon::host::replay(d, Params{}, Inputs{}, o);
 }
 
 namespace {
 
-Mon make_monitor(const hstmon::sim::ThesisMeasurements& log, const Mon::Config& cfg) {
-  Mon mon;
-  if (mon.configure(Params{}, cfg, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount) != hstmon::Status::kOk ||
-      mon.reset_steady(log.front().u) != hstmon::Status::kOk) {
-    std::fprintf(stderr, "fault_campaign: monitor configuration failed\n");
-    std::exit(3);
-  }
-  return mon;
-}
-
-bool is_decision(MatchEventKind k) {
-  return k == MatchEventKind::kIsolated || k == MatchEventKind::kAmbiguous || k == MatchEventKind::kUnexplained;
-}
+bool is_decision(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "unexplained"; }
 
 }  // namespace
 
-RunResult monitor_log(const hstmon::sim::ThesisMeasurements& log, const Mon::Config& cfg, double fault_time) {
-  Mon mon = make_monitor(log, cfg);
-  RunResult r;
-  Mon::Measurement m;
-  m.valid = 0xF;
-  Mon::Event e;
-  for (const auto& s : log) {
-    for (int i = 0; i < 4; ++i) m.y[i] = s.y[static_cast<std::size_t>(i)];
-    mon.step(s.t, s.u, m);
-    r.health |= mon.health();
-    const bool before = s.t < fault_time - 1e-9;
-    if (before && mon.evaluator().alarm() != 0) ++r.alarm_ticks_before;
-    while (mon.pop_event(e)) {
-      if (e.time < fault_time - 1e-9) {
-        if (e.kind == MatchEventKind::kDetected) ++r.false_events;
-        continue;
-      }
-      if (e.kind == MatchEventKind::kDetected && !r.detected) {
-        r.detected = true;
-        r.t_detect = e.time;
-      }
-      if (is_decision(e.kind)) {
-        if (!r.decided) {
-          r.t_decide = e.time;
-          r.first_decision = e;
-        }
-        r.decided = true;
-        r.last_decision = e;
-        r.first_channels = mon.matcher().first_channels();
-        for (int i = 0; i < 4; ++i) {
-          r.magnitude[i] = mon.matcher().symbol(i).magnitude;
-          r.slope[i] = mon.matcher().symbol(i).slope;
-        }
+Scored score(const hstmon::host::ReplayResult& r, const std::string& truth, double t_fault, double tie_margin) {
+  Scored s;
+  const double eps = 1e-9;
+  const hstmon::host::ReplayEvent* last_decision = nullptr;
+  const hstmon::host::ReplayEvent* last_with_cands = nullptr;
+  for (const auto& e : r.events) {
+    if (e.t < t_fault - eps) {
+      if (e.event == "detected") ++s.false_events;
+      continue;
+    }
+    if (e.event == "detected" && !s.detected) {
+      s.detected = true;
+      s.delay = e.t - t_fault;
+    }
+    if (is_decision(e.event)) {
+      last_decision = &e;
+      if (!e.candidates.empty() && e.candidates[0].fault.rfind("sensor_", 0) == 0 && truth.rfind("sensor_", 0) != 0) {
+        s.called_sensor = true;
       }
     }
+    if ((e.event == "isolated" || e.event == "detected" || e.event == "ambiguous") && !e.candidates.empty()) {
+      last_with_cands = &e;
+    }
   }
-  r.final_status = mon.matcher().status();
-  return r;
+  if (last_with_cands) {
+    for (const auto& c : last_with_cands->candidates) s.in_last = s.in_last || c.fault == truth;
+  }
+  if (!last_decision) return s;
+  s.decided = true;
+  const auto& e = *last_decision;
+  if (e.candidates.empty() || e.event == "unexplained") return s;
+  s.best = e.candidates[0].fault;
+  auto ang = [](double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); };
+  const double a0 = ang(e.candidates[0].score);
+  for (std::size_t j = 0; j < e.candidates.size(); ++j) {
+    if (j > 0 && !(ang(e.candidates[j].score) - a0 < tie_margin)) continue;
+    ++s.set_size;
+    s.in_set = s.in_set || e.candidates[j].fault == truth;
+  }
+  s.isolated_as_truth = e.event == "isolated" && s.best == truth;
+  return s;
 }
 
-NominalStats monitor_nominal(const hstmon::sim::ThesisMeasurements& log, const Mon::Config& cfg) {
-  Mon mon = make_monitor(log, cfg);
+NominalStats score_nominal(const hstmon::host::ReplayResult& r) {
   NominalStats st;
-  Mon::Measurement m;
-  m.valid = 0xF;
-  Mon::Event e;
-  bool want_decision = false;
-  for (const auto& s : log) {
-    for (int i = 0; i < 4; ++i) m.y[i] = s.y[static_cast<std::size_t>(i)];
-    mon.step(s.t, s.u, m);
-    ++st.ticks;
-    st.health |= mon.health();
-    if (mon.evaluator().alarm() != 0) ++st.alarm_ticks;
-    while (mon.pop_event(e)) {
-      if (e.kind == MatchEventKind::kDetected) {
-        ++st.detections;
-        st.detection_times.push_back(e.time);
-        st.alarm_channels.push_back(mon.evaluator().alarm());
-        want_decision = true;
-      } else if (want_decision && is_decision(e.kind)) {
-        st.first_candidates.emplace_back(e.count ? e.candidate[0].name : "(none)");
-        want_decision = false;
-      }
+  st.seconds = r.t_last - r.t_first;
+  st.rows = static_cast<long>(r.rows);
+  st.health = r.health;
+  for (const auto& c : r.channels) {
+    if (!std::isfinite(c.sum) || !std::isfinite(c.sumsq)) ++st.nonfinite;
+  }
+  bool want = false;
+  for (const auto& e : r.events) {
+    if (e.event == "detected") {
+      ++st.detections;
+      st.times.push_back(e.t);
+      want = true;
+    } else if (want && is_decision(e.event)) {
+      st.calls.push_back(e.candidates.empty() ? "(" + e.event + ")" : e.candidates[0].fault);
+      want = false;
     }
   }
+  if (want) st.calls.emplace_back("(undecided)");
   return st;
-}
-
-hstmon::sim::ThesisScenario nominal_segment(std::uint64_t seed, double duration, bool load_changes) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> kp_draw(0.65, 1.6);
-  std::uniform_int_distribution<int> op_draw(0, 2);
-  hstmon::sim::ThesisScenario sc;
-  sc.name = load_changes ? "nominal_load_changes" : "nominal_constant";
-  sc.duration = duration;
-  sc.initial = hstmon::sim::InitialCondition::kSteady;
-  Inputs u;
-  if (!load_changes) {
-    u.kp = hstmon::sim::kThesisKpNominal * kOperatingPoints[op_draw(rng)].kp_factor;
-    sc.schedule = {{0.0, u}};
-    return sc;
-  }
-  double f = kp_draw(rng);
-  u.kp = hstmon::sim::kThesisKpNominal * f;
-  sc.schedule = {{0.0, u}};
-  constexpr double kEvery = 10.0, kRamp = 4.0, kStep = 0.1;
-  for (double t0 = kEvery; t0 + kRamp < duration; t0 += kEvery) {
-    const double target = kp_draw(rng);
-    const int n = static_cast<int>(std::lround(kRamp / kStep));
-    for (int k = 1; k <= n; ++k) {
-      const double fk = f + (target - f) * static_cast<double>(k) / static_cast<double>(n);
-      u.kp = hstmon::sim::kThesisKpNominal * fk;
-      sc.schedule.push_back({t0 + static_cast<double>(k - 1) * kStep, u});
-    }
-    f = target;
-  }
-  return sc;
-}
-
-std::vector<std::vector<int>> isolable_classes(const hstmon::FaultSignature* table, int count, double tie_margin) {
-  auto compatible = [](int a, int b) { return a == hstmon::kQualAny || b == hstmon::kQualAny || a == b; };
-  auto same = [&](const hstmon::FaultSignature& a, const hstmon::FaultSignature& b) {
-    if (a.sensor != b.sensor) return false;
-    for (int i = 0; i < hstmon::kFdiChannels; ++i) {
-      if (!compatible(a.channel[i].magnitude, b.channel[i].magnitude) ||
-          !compatible(a.channel[i].slope, b.channel[i].slope) || a.channel[i].order != b.channel[i].order) {
-        return false;
-      }
-    }
-    double na = 0, nb = 0, dot = 0;
-    for (int i = 0; i < hstmon::kFdiChannels; ++i) {
-      na += static_cast<double>(a.direction[i]) * a.direction[i];
-      nb += static_cast<double>(b.direction[i]) * b.direction[i];
-      dot += static_cast<double>(a.direction[i]) * b.direction[i];
-    }
-    if (na == 0.0 || nb == 0.0) return na == nb;
-    const double c = dot / std::sqrt(na * nb);
-    return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) < tie_margin;
-  };
-  std::vector<std::vector<int>> cls(static_cast<std::size_t>(count));
-  for (int k = 0; k < count; ++k) {
-    for (int j = 0; j < count; ++j) {
-      if (same(table[k], table[j])) cls[static_cast<std::size_t>(k)].push_back(j);
-    }
-  }
-  return cls;
-}
-
-int row_index(const std::string& name) {
-  for (int k = 0; k < hstmon::kThesisSignatureCount; ++k) {
-    if (name == hstmon::kThesisSignatures[k].name) return k;
-  }
-  return -1;
-}
-
-double predicted_visibility(const FaultCase& f, const Inputs& u, const Mon::Config& cfg) {
-  if (f.target == Target::kSensor) return -1.0;
-  using Model = hstmon::ThesisReducedModel<double>;
-  Model model{Params{}};
-  model.set_inputs(u);
-  double bound[hstmon::kFdiChannels];
-  if (hstmon::thesis_model_bound(model, cfg.uncertainty, bound) != hstmon::Status::kOk) return -1.0;
-  Params p;
-  Inputs v = u;
-  if (f.target == Target::kParam) p.*(f.param) *= f.factor;
-  if (f.target == Target::kInput) v.*(f.input) *= f.factor;
-  Model::Output y0, y1;
-  if (!hstmon::steady_outputs(Params{}, u, y0) || !hstmon::steady_outputs(p, v, y1)) return -1.0;
-  double r = 0.0;
-  for (int i = 0; i < hstmon::kFdiChannels; ++i) {
-    const double thr = bound[i] + cfg.evaluator.k_drift * cfg.evaluator.noise_sigma[i];
-    r = std::fmax(r, std::fabs(y1[i] - y0[i]) / thr);
-  }
-  return r;
 }
 
 }  // namespace hstmon_campaign

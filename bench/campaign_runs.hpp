@@ -1,110 +1,107 @@
 #pragma once
 /// @file campaign_runs.hpp
 /// Building blocks of the fault campaign (bench/fault_campaign.cpp, docs/fault_campaign.md):
-/// the fault list, one monitored run (synthetic log → Monitor<double>), the nominal
-/// long-replay segments, and the isolable classes of the signature table.
+/// the rig conditions, the fault list, one monitored log (synthetic log → hstmon::host::replay,
+/// exactly what `hstmon replay` runs) and its scoring.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "hstmon/monitor.hpp"
+#include "hstmon_host/replay.hpp"
+#include "hstmon_sim/load_profile.hpp"
 #include "hstmon_sim/param_fault.hpp"
+#include "hstmon_sim/rig_run.hpp"
 
 namespace hstmon_campaign {
 
 using Inputs = hstmon::ThesisInputs<double>;
 using Params = hstmon::ThesisParams<double>;
-using Mon = hstmon::Monitor<double>;
 
-/// Operating points: PRV setting as a multiple of Table 2.2's kp.
-struct OperatingPoint {
-  const char* name;
-  double kp_factor;
+/// One rig condition: the baseline with one factor changed (docs/fault_campaign.md).
+struct Condition {
+  std::string name;                 ///< e.g. "lag 10 ms"
+  std::string factor;               ///< what it varies: base, lag, rate, start, load, quant, param
+  double rate = 1000.0;             ///< [Hz]
+  double lag = 0.0;                 ///< transducer time constant, every channel [s]
+  double quant = 0.01e5;            ///< pressure ADC step [Pa]; 0 none
+  int adc_bits = 0;                 ///< > 0: pressure ADC of that many bits over the range (instead of quant)
+  double spread = 0.02;             ///< machine parameter error, uniform ± [-]
+  bool from_rest = true;            ///< logger runs before the supply
+  double supply_on = 0.0;           ///< [s] from the first sample (from rest)
+  hstmon::sim::LoadShape load = hstmon::sim::LoadShape::kSteps;
+  double ppp_range = 400e5;         ///< Ppp transmitter's high end [Pa] (output clipped in NE 43's band)
+  bool declare_ranges = false;      ///< replay told the transmitter ranges (a parameter file's "sensors")
 };
-inline constexpr OperatingPoint kOperatingPoints[] = {{"light", 1.6}, {"nominal", 1.0}, {"heavy", 0.65}};
+
+/// Baseline (a rig like ../shared/validation's: rig_fast sensors at 1 kHz, no lag, 0.01 bar
+/// ADC, ±2 % machine, start from rest, PRV steps every 2 s) and one-factor variations.
+std::vector<Condition> campaign_conditions();
+
+/// Time scale of a condition: 1, or 20 for sample periods ≥ 0.1 s (the 4 s DAS), so a
+/// run holds enough samples (load periods, fault time and run length scale with it).
+double time_scale(const Condition& c);
+
+/// Sensors of a condition (rig_fast_sensors with rate, lag and ADC set).
+hstmon::sim::SensorConfig sensors_of(const Condition& c);
+
+/// A run of the condition: `duration` [s], load from kp factor `level`, load seed;
+/// with_cycles: one stop/start (supply off at 60 %, on again at 70 % of the duration).
+hstmon::sim::RigRun run_of(const Condition& c, double duration, double level, std::uint64_t load_seed,
+                           bool with_cycles);
 
 /// What a fault changes.
 enum class Target { kParam, kInput, kSensor };
 
-/// One fault of the campaign at one magnitude.
+/// One fault at one magnitude.
 struct FaultCase {
-  std::string row;          ///< table row that is the truth ("kp-", "sensor_p_mi")
-  std::string label;        ///< row plus magnitude / kind, for the report
+  std::string row;          ///< truth ("kp-", "sensor_p_mi")
+  std::string label;        ///< row plus magnitude / kind
+  std::string group;        ///< report group: "kp- 50%", "param", "loop break", "stuck", "bias 2%FS", "bias 5%FS"
   Target target = Target::kParam;
   double Params::*param = nullptr;  ///< for kParam
   double Inputs::*input = nullptr;  ///< for kInput
-  double factor = 1.0;      ///< multiplies the parameter / input (1 ± magnitude)
-  double magnitude = 0.0;   ///< relative size (parameter faults) [-]
+  double factor = 1.0;      ///< multiplies the parameter / input
   hstmon::sim::SensorFault sensor{};  ///< for kSensor (t_start set by the run)
-  double sensor_value_fs = 0.0;       ///< sensor fault size in % of full scale (or %FS/s)
 };
 
-/// The campaign's fault list. Parameter faults: every row of the thesis table at two
-/// magnitudes each (see docs/fault_campaign.md for the choice). Sensor faults: bias ±,
-/// drift ±, stuck on each channel.
+/// Parameter faults: every row of the thesis table except J±, K± (zero steady-state
+/// signature by design) at two magnitudes; the kp- 50 % blockage is its own group.
 std::vector<FaultCase> parameter_faults();
+/// Sensor faults per channel: loop break, stuck, bias ±2 % and ±5 % of full scale.
 std::vector<FaultCase> sensor_faults(const hstmon::sim::SensorConfig& sensors);
 
-/// Machine parameters off by a uniform random factor in [1 − spread, 1 + spread] on each of
-/// Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K (the monitor keeps Table 2.2).
-Params perturbed_machine(std::uint64_t seed, double spread);
+/// A synthetic log replayed as `hstmon replay` does (default options, init auto); with
+/// declare_ranges, told the transmitter ranges of the sensor set-up (as an installation's
+/// parameter file would), else the replay's default assumption.
+hstmon::host::ReplayResult replay_log(const hstmon::sim::ThesisMeasurements& log,
+                                      const hstmon::sim::SensorConfig& sensors, bool declare_ranges);
 
-/// The monitor as the campaign runs it: Table 2.2 parameters, generated table, default
-/// evaluator/matcher configuration, sensor ranges and noise from the sensor set-up.
-Mon::Config monitor_config(const hstmon::sim::SensorConfig& sensors);
-
-/// Result of one monitored log.
-struct RunResult {
-  bool detected = false;          ///< an episode started at or after the fault time
-  double t_detect = -1.0;         ///< first detection at or after the fault time [s]
-  int false_events = 0;           ///< detections before the fault time
-  long alarm_ticks_before = 0;    ///< ticks with a channel alarm before the fault
-  bool decided = false;           ///< a decision event (isolated/ambiguous/unexplained) after the fault
-  double t_decide = -1.0;         ///< first decision after the fault [s]
-  hstmon::MatchEvent<double> first_decision{};  ///< first decision event after the fault
-  hstmon::MatchEvent<double> last_decision{};   ///< last decision event after the fault (the standing diagnosis)
-  /// Matcher evidence at the last decision: first-deviating channels (bit per channel),
-  /// magnitude and slope symbols per channel (QualSign; slope kQualAny = channel never alarmed).
-  std::uint8_t first_channels = 0;
-  std::int8_t magnitude[4] = {}, slope[4] = {};
-  hstmon::MatchStatus final_status = hstmon::MatchStatus::kNominal;
-  std::uint32_t health = 0;       ///< OR of the observer's health flags
+/// Scoring of one fault run.
+struct Scored {
+  int false_events = 0;      ///< detections before the fault
+  bool detected = false;     ///< a detection at or after the fault
+  double delay = 0.0;        ///< first detection − fault [s]
+  bool decided = false;      ///< isolated/ambiguous/unexplained after the fault
+  bool in_set = false;       ///< truth in the last decision's set (candidates within the tie margin of the best)
+  bool in_last = false;      ///< truth among the last event's candidates (score_monitor.py's rule)
+  bool isolated_as_truth = false;  ///< last decision isolated with the truth best
+  bool called_sensor = false;      ///< a decision after the fault named a sensor fault best (parameter faults)
+  int set_size = 0;
+  std::string best;          ///< best candidate of the last decision ("" if none)
 };
+Scored score(const hstmon::host::ReplayResult& r, const std::string& truth, double t_fault, double tie_margin);
 
-/// Feeds a log through a fresh monitor started at the steady state of the first row's
-/// logged inputs. Events before fault_time count as false alarms.
-RunResult monitor_log(const hstmon::sim::ThesisMeasurements& log, const Mon::Config& cfg, double fault_time);
-
-/// Nominal replay: statistics over a log with no fault.
+/// False alarms of a nominal log: detected events.
 struct NominalStats {
-  long ticks = 0;
-  long alarm_ticks = 0;
-  long detections = 0;             ///< episodes started (false alarms)
+  double seconds = 0.0;
+  long rows = 0;
+  long detections = 0;
+  long nonfinite = 0;      ///< rows whose residual statistics turned non-finite
   std::uint32_t health = 0;
-  std::vector<std::string> first_candidates;  ///< best candidate of each false alarm's decision
-  std::vector<double> detection_times;        ///< [s] into the segment
-  std::vector<std::uint8_t> alarm_channels;   ///< evaluator alarm bits at each detection
+  std::vector<double> times;         ///< [s] of each false detection
+  std::vector<std::string> calls;    ///< best candidate of the decision that followed
 };
-NominalStats monitor_nominal(const hstmon::sim::ThesisMeasurements& log, const Mon::Config& cfg);
-
-/// A nominal segment of the long replay: `duration` [s] on a machine off by ±spread.
-/// Constant load: steady at one operating point. Slow load changes: every 10 s a new PRV
-/// setting drawn in [0.65, 1.6]·kp0, reached by a ramp of 100 ms steps over 4 s.
-hstmon::sim::ThesisScenario nominal_segment(std::uint64_t seed, double duration, bool load_changes);
-
-/// Isolable classes of the table: rows k, j share a class when their qualitative
-/// signatures are compatible on every channel (magnitude and slope equal or one of them
-/// kQualAny, equal order) and their directions lie within tie_margin of each other (both
-/// zero counts as equal). class_of[k] lists the rows of k's class, k included.
-std::vector<std::vector<int>> isolable_classes(const hstmon::FaultSignature* table, int count, double tie_margin);
-
-/// Row index of a name in the thesis table; −1 if absent.
-int row_index(const std::string& name);
-
-/// Largest steady-state deviation of the fault over the detection threshold (model bound +
-/// k_drift·σ) at the operating point, for the monitor's nominal parameters [-]: ≥ 1 means
-/// the steady effect alone clears the threshold.
-double predicted_visibility(const FaultCase& f, const Inputs& u, const Mon::Config& cfg);
+NominalStats score_nominal(const hstmon::host::ReplayResult& r);
 
 }  // namespace hstmon_campaign

@@ -1,12 +1,14 @@
 /// @file fault_campaign.cpp
-/// Issue 3's fault campaign: every fault of the thesis signature table at two magnitudes ×
-/// three operating points × N noise seeds, sensor bias / drift / stuck faults, and hours of
-/// nominal replay with ±2 % parameter error, all through hstmon::Monitor<double> as the
-/// host replay runs it. Prints a table (or --json). docs/fault_campaign.md explains the set-up
-/// and holds the measured figures; scripts/fault_campaign.sh builds and runs it.
+/// The fault campaign over rig conditions (issue 12, docs/fault_campaign.md): for each
+/// condition — the baseline rig and one factor changed at a time (transducer lag, sample
+/// rate, start-up, load shape, ADC, parameter error) — the 50 % PRV blockage, every
+/// parameter fault of the thesis table, sensor faults (loop break, stuck, bias) and hours
+/// of nominal replay with start-ups, a stop/start and load changes, each log replayed
+/// exactly as `hstmon replay` does. A benchmark program, not a test.
 ///
-///   hstmon_fault_campaign [--quick] [--json] [--seeds N] [--hours H] [--jobs N]
-///                         [--t-fault S] [--after S] [--spread F] [--verbose]
+///   hstmon_fault_campaign [--quick] [--json] [--hours H] [--seeds N] [--param-seeds N]
+///                         [--sensor-seeds N] [--jobs N] [--condition TEXT] [--t-fault S]
+///                         [--after S] [--verbose]
 
 #include <algorithm>
 #include <atomic>
@@ -14,85 +16,80 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <map>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "campaign_runs.hpp"
-#include "hstmon/generated/thesis_signatures.hpp"
+#include "hstmon/monitor.hpp"
+#include "hstmon_sim/machine_error.hpp"
+#include "hstmon_sim/measure.hpp"
 
 namespace {
 
 using namespace hstmon_campaign;
-using hstmon::MatchEventKind;
 namespace sim = hstmon::sim;
 
 struct Options {
-  int seeds = 5;
-  double hours = 10.0;
+  double hours = 10.0;     // nominal replay, total over the conditions
+  int seeds = 20;          // blockage runs per condition
+  int param_seeds = 3;     // runs per parameter fault and condition
+  int sensor_seeds = 2;    // runs per sensor fault and condition
   int jobs = 1;
-  double t_fault = 2.0;   // [s]
-  double after = 3.0;     // [s] after the fault
-  double spread = 0.02;   // machine parameter error [-]
+  double t_fault = 2.0;    // [s] (× the condition's time scale)
+  double after = 3.0;      // [s]
+  std::string only;        // conditions whose name contains this
   bool json = false;
-  bool quick = false;
   bool verbose = false;
 };
 
 void usage() {
   std::fprintf(stderr,
-               "usage: hstmon_fault_campaign [--quick] [--json] [--seeds N] [--hours H] [--jobs N]\n"
-               "                             [--t-fault S] [--after S] [--spread F] [--verbose]\n"
-               "  --verbose one line per fault run on stderr\n"
-               "  --quick   2 seeds, 0.5 h of nominal replay (unless given)\n");
+               "usage: hstmon_fault_campaign [--quick] [--json] [--hours H] [--seeds N] [--param-seeds N]\n"
+               "         [--sensor-seeds N] [--jobs N] [--condition TEXT] [--t-fault S] [--after S] [--verbose]\n"
+               "  --hours    nominal replay in total, split evenly over the conditions (default 10)\n"
+               "  --seeds    50 %% blockage runs per condition (default 20)\n"
+               "  --quick    0.5 h, 5 blockage seeds, 1 seed per parameter/sensor fault\n"
+               "  --verbose  the events of every miss on stderr\n");
 }
 
 bool parse(int argc, char** argv, Options& o) {
-  bool seeds_set = false, hours_set = false;
+  bool quick = false, hours = false, seeds = false, ps = false, ss = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto next = [&](double& v) {
-      if (i + 1 >= argc) return false;
+    auto num = [&](double lo) {
+      if (i + 1 >= argc) return std::nan("");
       char* end = nullptr;
-      v = std::strtod(argv[++i], &end);
-      return end && *end == '\0' && std::isfinite(v);
+      const double v = std::strtod(argv[++i], &end);
+      return (end && *end == '\0' && v >= lo) ? v : std::nan("");
     };
     double v = 0;
-    if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--json") {
-      o.json = true;
-    } else if (a == "--verbose") {
-      o.verbose = true;
-    } else if (a == "--seeds" && next(v) && v >= 1) {
-      o.seeds = static_cast<int>(v);
-      seeds_set = true;
-    } else if (a == "--hours" && next(v) && v >= 0) {
-      o.hours = v;
-      hours_set = true;
-    } else if (a == "--jobs" && next(v) && v >= 1) {
-      o.jobs = static_cast<int>(v);
-    } else if (a == "--t-fault" && next(v) && v >= 1.5) {
-      o.t_fault = v;
-    } else if (a == "--after" && next(v) && v > 0.5) {
-      o.after = v;
-    } else if (a == "--spread" && next(v) && v >= 0 && v < 0.5) {
-      o.spread = v;
-    } else {
+    if (a == "--quick") quick = true;
+    else if (a == "--json") o.json = true;
+    else if (a == "--verbose") o.verbose = true;
+    else if (a == "--hours" && !std::isnan(v = num(0))) o.hours = v, hours = true;
+    else if (a == "--seeds" && !std::isnan(v = num(1))) o.seeds = static_cast<int>(v), seeds = true;
+    else if (a == "--param-seeds" && !std::isnan(v = num(0))) o.param_seeds = static_cast<int>(v), ps = true;
+    else if (a == "--sensor-seeds" && !std::isnan(v = num(0))) o.sensor_seeds = static_cast<int>(v), ss = true;
+    else if (a == "--jobs" && !std::isnan(v = num(1))) o.jobs = static_cast<int>(v);
+    else if (a == "--t-fault" && !std::isnan(v = num(1.0))) o.t_fault = v;
+    else if (a == "--after" && !std::isnan(v = num(0.5))) o.after = v;
+    else if (a == "--condition" && i + 1 < argc) o.only = argv[++i];
+    else {
       usage();
       return false;
     }
   }
-  if (o.quick) {
-    if (!seeds_set) o.seeds = 2;
-    if (!hours_set) o.hours = 0.5;
+  if (quick) {
+    if (!hours) o.hours = 0.5;
+    if (!seeds) o.seeds = 5;
+    if (!ps) o.param_seeds = 1;
+    if (!ss) o.sensor_seeds = 1;
   }
   return true;
 }
 
-/// Runs fn(i) for i in [0, n) on `jobs` threads.
 template <class Fn>
 void parallel_for(int n, int jobs, Fn fn) {
   std::atomic<int> next{0};
@@ -109,191 +106,81 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// ---------------------------------------------------------------------------------------
-// One fault run and its scoring.
+enum class Kind { kFault, kNominal };
 
 struct Job {
-  int fault = 0;  // index into the case list
-  int op = 0;
+  int cond = 0;
+  Kind kind = Kind::kFault;
+  const FaultCase* fault = nullptr;
   int seed = 0;
 };
 
-struct Scored {
-  RunResult r;
-  bool in_set = false;      // truth in the reported set
-  bool first = false;       // truth ranked first
-  bool consistent = false;  // truth among the consistent candidates carried by the event
-  bool within_class = false;  // truth in the set and the set inside the truth's class
-  int set_size = 0;
-  std::string best;         // best candidate of the last decision
-  std::string decision;     // kind of the last decision
-  double visibility = -1;
+struct Outcome {
+  Scored s;
+  NominalStats n;
+  double cpu_s = 0;
+  std::string trace;  // events of a miss (--verbose)
 };
 
-Scored score_run(const RunResult& r, const std::string& truth, const std::vector<std::vector<int>>& classes,
-                 double tie_margin) {
-  Scored s;
-  s.r = r;
-  if (!r.detected || !r.decided) return s;
-  const auto& e = r.last_decision;
-  s.decision = hstmon::to_string(e.kind);
-  if (e.count > 0) s.best = e.candidate[0].name;
-  for (int j = 0; j < e.count; ++j) s.consistent = s.consistent || truth == e.candidate[j].name;
-  if (e.kind == MatchEventKind::kUnexplained || e.count == 0) return s;
-  auto ang = [](double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); };
-  const double a0 = ang(e.candidate[0].score);
-  std::vector<int> set;
-  for (int j = 0; j < e.count; ++j) {
-    if (j == 0 || ang(e.candidate[j].score) - a0 < tie_margin) set.push_back(e.candidate[j].index);
-  }
-  s.set_size = static_cast<int>(set.size());
-  const int t = row_index(truth);
-  s.first = e.candidate[0].index == t;
-  s.in_set = std::find(set.begin(), set.end(), t) != set.end();
-  if (s.in_set && t >= 0) {
-    const auto& cls = classes[static_cast<std::size_t>(t)];
-    s.within_class = std::all_of(set.begin(), set.end(),
-                                 [&](int k) { return std::find(cls.begin(), cls.end(), k) != cls.end(); });
-  }
-  return s;
-}
-
-// Aggregate over a set of scored runs.
+// Aggregate of fault runs of one group in one condition.
 struct Agg {
-  int runs = 0, detected = 0, decided = 0, in_set = 0, first = 0, consistent = 0, within_class = 0, unexplained = 0;
-  int false_events = 0;
-  long set_size_sum = 0;
-  long class_size_sum = 0;
-  std::vector<double> delays;  // [s]
-  std::vector<double> iso_delays;
-  double vis_min = 1e300, vis_max = -1e300;
-  std::map<std::string, int> confused;  // best candidate when truth is not first
-
-  void add(const Scored& s, const std::string& /*truth*/, int class_size, double t_fault) {
+  int runs = 0, detected = 0, decided = 0, in_set = 0, in_last = 0, iso_truth = 0, called_sensor = 0, false_events = 0;
+  int within_50ms_and_iso = 0;
+  long set_sum = 0;
+  std::vector<double> delays;
+  std::map<std::string, int> best_when_wrong;
+  void add(const Scored& s) {
     ++runs;
-    false_events += s.r.false_events;
-    if (s.visibility >= 0) {
-      vis_min = std::min(vis_min, s.visibility);
-      vis_max = std::max(vis_max, s.visibility);
-    }
-    if (!s.r.detected) return;
+    false_events += s.false_events;
+    called_sensor += s.called_sensor;
+    if (!s.detected) return;
     ++detected;
-    delays.push_back(s.r.t_detect - t_fault);
-    if (s.r.decided) {
-      ++decided;
-      iso_delays.push_back(s.r.t_decide - t_fault);
-    }
+    delays.push_back(s.delay);
+    decided += s.decided;
     in_set += s.in_set;
-    first += s.first;
-    consistent += s.consistent;
-    within_class += s.within_class;
-    unexplained += s.decision == "unexplained";
-    set_size_sum += s.set_size;
-    class_size_sum += class_size;
-    if (!s.first) ++confused[s.best.empty() ? (s.decision.empty() ? "(undecided)" : "(" + s.decision + ")") : s.best];
+    in_last += s.in_last;
+    iso_truth += s.isolated_as_truth;
+    within_50ms_and_iso += s.isolated_as_truth && s.delay <= 0.050 + 1e-9;
+    set_sum += s.set_size;
+    if (!s.in_set) ++best_when_wrong[s.best.empty() ? "(none)" : s.best];
   }
-  static double pct(int a, int b) { return b ? 100.0 * a / b : 0.0; }
-  double det_rate() const { return pct(detected, runs); }
-  static double median(std::vector<double> v) {
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  static double pct(int a, int b) { return b ? 100.0 * a / b : NAN; }
+  double median_ms() const {
+    if (delays.empty()) return NAN;
+    std::vector<double> d = delays;
+    std::sort(d.begin(), d.end());
+    return 1e3 * (d.size() % 2 ? d[d.size() / 2] : 0.5 * (d[d.size() / 2 - 1] + d[d.size() / 2]));
   }
-  double med_ms() const { return median(delays) * 1e3; }
-  double worst_ms() const { return delays.empty() ? NAN : *std::max_element(delays.begin(), delays.end()) * 1e3; }
-  double med_iso_ms() const { return median(iso_delays) * 1e3; }
-  double mean_set() const { return detected ? static_cast<double>(set_size_sum) / detected : NAN; }
-  double mean_class() const { return detected ? static_cast<double>(class_size_sum) / detected : NAN; }
-  std::string confusions() const {
+  double worst_ms() const { return delays.empty() ? NAN : 1e3 * *std::max_element(delays.begin(), delays.end()); }
+  double mean_set() const { return detected ? static_cast<double>(set_sum) / detected : NAN; }
+  std::string wrong() const {
     std::vector<std::pair<int, std::string>> v;
-    for (const auto& [k, n] : confused) v.push_back({n, k});
+    for (const auto& [k, n] : best_when_wrong) v.push_back({n, k});
     std::sort(v.rbegin(), v.rend());
     std::string out;
-    for (const auto& [n, k] : v) out += (out.empty() ? "" : " ") + k + "×" + std::to_string(n);
+    for (std::size_t i = 0; i < v.size() && i < 4; ++i) out += (i ? " " : "") + v[i].second + "×" + std::to_string(v[i].first);
     return out;
   }
 };
 
-std::string fmt_ms(double v) {
+struct NomAgg {
+  double seconds = 0;
+  long rows = 0, detections = 0, nonfinite = 0, segments = 0;
+  std::uint32_t health = 0;
+  std::map<std::string, int> calls;
+  std::vector<std::pair<int, double>> first_times;  // (segment, t)
+};
+
+std::string f1(double v, const char* fmt = "%.1f") {
   if (std::isnan(v)) return "-";
   char b[32];
-  std::snprintf(b, sizeof b, "%.0f", v);
+  std::snprintf(b, sizeof b, fmt, v);
   return b;
 }
 
-std::string class_name(const std::vector<int>& cls) {
-  std::string s;
-  for (int k : cls) s += (s.empty() ? "" : ",") + std::string(hstmon::kThesisSignatures[k].name);
-  return "{" + s + "}";
-}
+std::string jnum(double v, const char* fmt = "%.1f") { return std::isnan(v) ? "null" : f1(v, fmt); }
 
-void print_row(const char* label, const Agg& a, bool with_vis) {
-  char vis[32] = "";
-  if (with_vis) std::snprintf(vis, sizeof vis, "%.2f–%.2f", a.vis_min, a.vis_max);
-  std::printf("%-20s %-11s %4d %6.1f %6s %6s %6s %6.1f %6.1f %6.1f %5.2f/%-4.2f %4d  %s\n", label, vis, a.runs,
-              a.det_rate(), fmt_ms(a.med_ms()).c_str(), fmt_ms(a.worst_ms()).c_str(), fmt_ms(a.med_iso_ms()).c_str(),
-              Agg::pct(a.in_set, a.detected), Agg::pct(a.first, a.detected), Agg::pct(a.within_class, a.detected),
-              a.mean_set(), a.mean_class(), a.unexplained, a.confusions().c_str());
-}
-
-void print_header(const char* first) {
-  std::printf("%-20s %-11s %4s %6s %6s %6s %6s %6s %6s %6s %-10s %4s  %s\n", first, "visibility", "runs", "det%",
-              "med", "worst", "iso", "inSet%", "first%", "class%", "set/class", "unex", "best when truth not first");
-  std::printf("%-20s %-11s %4s %6s %6s %6s %6s %6s %6s %6s %-10s %4s\n", "", "(ss/thr)", "", "", "[ms]", "[ms]",
-              "[ms]", "", "", "", "", "");
-}
-
-void json_agg(const char* key, const std::string& name, const Agg& a, bool last) {
-  auto num = [](double v) {
-    char b[40];
-    if (std::isnan(v)) return std::string("null");
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return std::string(b);
-  };
-  std::printf(
-      "{\"%s\":\"%s\",\"runs\":%d,\"detected\":%d,\"detection_rate\":%s,\"median_delay_ms\":%s,"
-      "\"worst_delay_ms\":%s,\"median_decision_delay_ms\":%s,\"truth_in_set\":%d,\"truth_first\":%d,"
-      "\"set_within_class\":%d,\"mean_set_size\":%s,\"mean_class_size\":%s,\"unexplained\":%d,"
-      "\"false_events_before_fault\":%d,\"visibility_min\":%s,\"visibility_max\":%s,\"confusions\":\"%s\"}%s\n",
-      key, name.c_str(), a.runs, a.detected, num(a.det_rate() / 100).c_str(), num(a.med_ms()).c_str(),
-      num(a.worst_ms()).c_str(), num(a.med_iso_ms()).c_str(), a.in_set, a.first, a.within_class,
-      num(a.mean_set()).c_str(), num(a.mean_class()).c_str(), a.unexplained, a.false_events,
-      num(a.runs && a.vis_max >= 0 ? a.vis_min : NAN).c_str(), num(a.runs && a.vis_max >= 0 ? a.vis_max : NAN).c_str(),
-      a.confusions().c_str(), last ? "" : ",");
-}
-
-std::string event_text(const hstmon::MatchEvent<double>& e, double t_fault) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%s@%.0fms[", hstmon::to_string(e.kind), (e.time - t_fault) * 1e3);
-  std::string s = b;
-  for (int j = 0; j < e.count; ++j) {
-    std::snprintf(b, sizeof b, "%s%s:%.4f", j ? " " : "", e.candidate[j].name, e.candidate[j].score);
-    s += b;
-  }
-  return s + "]";
-}
-
-void print_verbose(const std::string& label, const char* op, int seed, const Scored& s, double t_fault) {
-  std::fprintf(stderr, "%-18s %-7s seed %d vis %6.2f  %s", label.c_str(), op, seed, s.visibility,
-               s.r.detected ? "" : "not detected");
-  if (s.r.detected) std::fprintf(stderr, "det %+.0fms", (s.r.t_detect - t_fault) * 1e3);
-  if (s.r.false_events) std::fprintf(stderr, " FALSE x%d", s.r.false_events);
-  if (s.r.decided) {
-    std::fprintf(stderr, "  first %s", event_text(s.r.first_decision, t_fault).c_str());
-    std::fprintf(stderr, "  last %s", event_text(s.r.last_decision, t_fault).c_str());
-    auto q = [](int v) { return v == 1 ? '+' : v == -1 ? '-' : v == 0 ? '0' : '?'; };
-    char sym[40];
-    std::snprintf(sym, sizeof sym, " mag %c%c%c%c slope %c%c%c%c first %c%c%c%c", q(s.r.magnitude[0]), q(s.r.magnitude[1]),
-                  q(s.r.magnitude[2]), q(s.r.magnitude[3]), q(s.r.slope[0]), q(s.r.slope[1]), q(s.r.slope[2]),
-                  q(s.r.slope[3]), (s.r.first_channels & 1) ? 'i' : '.', (s.r.first_channels & 2) ? 'o' : '.',
-                  (s.r.first_channels & 4) ? 'p' : '.', (s.r.first_channels & 8) ? 'w' : '.');
-    std::fprintf(stderr, "%s", sym);
-  }
-  std::fprintf(stderr, "  final %s%s\n", hstmon::to_string(s.r.final_status), (s.in_set || !s.r.detected) ? "" : "  <-- truth not in set");
-}
-
-bool by_design(const std::string& row) { return row == "J-" || row == "J+" || row == "K-" || row == "K+"; }
+const char* kGroups[] = {"kp- 50%", "param", "loop break", "stuck", "bias 2%FS", "bias 5%FS"};
 
 }  // namespace
 
@@ -301,300 +188,228 @@ int main(int argc, char** argv) {
   Options o;
   if (!parse(argc, argv, o)) return 1;
   const auto t_start = std::chrono::steady_clock::now();
-  const sim::SensorConfig sensors = sim::thesis_fast_sensors(1000.0);
-  const Mon::Config cfg = monitor_config(sensors);
-  const double tie = cfg.matcher.tie_margin;
-  const auto classes = isolable_classes(hstmon::kThesisSignatures, hstmon::kThesisSignatureCount, tie);
-  const double duration = o.t_fault + o.after;
-
+  std::vector<Condition> conds;
+  for (const Condition& c : campaign_conditions()) {
+    if (o.only.empty() || c.name.find(o.only) != std::string::npos) conds.push_back(c);
+  }
+  if (conds.empty()) {
+    std::fprintf(stderr, "no condition matches %s\n", o.only.c_str());
+    return 1;
+  }
+  const double tie = hstmon::Monitor<double>::Config{}.matcher.tie_margin;
   const std::vector<FaultCase> pfaults = parameter_faults();
-  const std::vector<FaultCase> sfaults = sensor_faults(sensors);
-  constexpr int kOps = 3;
+  std::vector<std::vector<FaultCase>> sfaults;
+  for (const Condition& c : conds) sfaults.push_back(sensor_faults(sensors_of(c)));
+  constexpr double kLevels[] = {1.6, 1.0, 0.65};  // initial PRV setting: light, nominal, heavy
 
-  auto op_inputs = [](int op) {
-    Inputs u;
-    u.kp = sim::kThesisKpNominal * kOperatingPoints[op].kp_factor;
-    return u;
-  };
-  auto machine_seed = [](int op, int seed) { return static_cast<std::uint64_t>(1000 + 10 * seed + op); };
-  auto noise_seed = [](int op, int seed, int fault) {
-    return static_cast<std::uint64_t>(7000000 + 100000 * seed + 1000 * op + fault);
-  };
-
-  // --- Parameter faults ---------------------------------------------------------------
-  std::vector<Job> pjobs;
-  for (int f = 0; f < static_cast<int>(pfaults.size()); ++f)
-    for (int op = 0; op < kOps; ++op)
-      for (int s = 0; s < o.seeds; ++s) pjobs.push_back({f, op, s});
-  std::vector<Scored> pres(pjobs.size());
-  const auto t_param = std::chrono::steady_clock::now();
-  parallel_for(static_cast<int>(pjobs.size()), o.jobs, [&](int i) {
-    const Job& j = pjobs[static_cast<std::size_t>(i)];
-    const FaultCase& f = pfaults[static_cast<std::size_t>(j.fault)];
-    const Params machine = perturbed_machine(machine_seed(j.op, j.seed), o.spread);
-    const Inputs u = op_inputs(j.op);
-    sim::ThesisScenario sc;
-    sc.name = f.label;
-    sc.duration = duration;
-    sc.initial = sim::InitialCondition::kSteady;
-    sc.schedule = {{0.0, u}};
-    Params faulty = machine;
-    double t_param_fault = 1e300;
-    if (f.target == Target::kInput) {
-      Inputs uf = u;
-      uf.*(f.input) *= f.factor;
-      sc.schedule.push_back({o.t_fault, uf});
-      sc.logged = {{0.0, u}};
-    } else {
-      faulty.*(f.param) *= f.factor;
-      t_param_fault = o.t_fault;
+  // Jobs: nominal segments first (the long ones), then the fault runs.
+  const double hours_per_cond = o.hours / static_cast<double>(conds.size());
+  std::vector<Job> jobs;
+  for (int ci = 0; ci < static_cast<int>(conds.size()); ++ci) {
+    const double seg = 100.0 * (time_scale(conds[static_cast<std::size_t>(ci)]) > 1.0 ? 10.0 : 1.0);
+    const int n_seg = static_cast<int>(std::ceil(hours_per_cond * 3600.0 / seg - 1e-9));
+    for (int s = 0; s < n_seg; ++s) jobs.push_back({ci, Kind::kNominal, nullptr, s});
+  }
+  for (int ci = 0; ci < static_cast<int>(conds.size()); ++ci) {
+    for (const FaultCase& f : pfaults) {
+      const int n = f.group == std::string("kp- 50%") ? o.seeds : o.param_seeds;
+      for (int s = 0; s < n; ++s) jobs.push_back({ci, Kind::kFault, &f, s});
     }
-    const auto log = sim::measure_with_fault(sc, sensors, noise_seed(j.op, j.seed, j.fault), machine, t_param_fault,
-                                             faulty);
-    Scored s = score_run(monitor_log(log, cfg, o.t_fault), f.row, classes, tie);
-    s.visibility = predicted_visibility(f, u, cfg);
-    pres[static_cast<std::size_t>(i)] = s;
-  });
-  const double param_seconds = seconds_since(t_param);
+    for (const FaultCase& f : sfaults[static_cast<std::size_t>(ci)]) {
+      for (int s = 0; s < o.sensor_seeds; ++s) jobs.push_back({ci, Kind::kFault, &f, s});
+    }
+  }
 
-  // --- Sensor faults (on the nominal log of each operating point and seed) -----------
-  std::vector<Job> sjobs;
-  for (int f = 0; f < static_cast<int>(sfaults.size()); ++f)
-    for (int op = 0; op < kOps; ++op)
-      for (int s = 0; s < o.seeds; ++s) sjobs.push_back({f, op, s});
-  std::vector<sim::ThesisMeasurements> base(static_cast<std::size_t>(kOps * o.seeds));
-  const auto t_sensor = std::chrono::steady_clock::now();
-  parallel_for(kOps * o.seeds, o.jobs, [&](int i) {
-    const int op = i / o.seeds, s = i % o.seeds;
-    sim::ThesisScenario sc;
-    sc.name = "nominal";
-    sc.duration = duration;
-    sc.initial = sim::InitialCondition::kSteady;
-    sc.schedule = {{0.0, op_inputs(op)}};
-    const Params machine = perturbed_machine(machine_seed(op, s), o.spread);
-    base[static_cast<std::size_t>(i)] = sim::measure(sc, sensors, noise_seed(op, s, 999), machine);
-  });
-  std::vector<Scored> sres(sjobs.size());
-  parallel_for(static_cast<int>(sjobs.size()), o.jobs, [&](int i) {
-    const Job& j = sjobs[static_cast<std::size_t>(i)];
-    const FaultCase& f = sfaults[static_cast<std::size_t>(j.fault)];
-    auto log = base[static_cast<std::size_t>(j.op * o.seeds + j.seed)];
-    sim::SensorFault sf = f.sensor;
-    sf.t_start = o.t_fault;
-    sim::inject_sensor_fault(log, sensors, sf);
-    sres[static_cast<std::size_t>(i)] = score_run(monitor_log(log, cfg, o.t_fault), f.row, classes, tie);
-  });
-  const double sensor_seconds = seconds_since(t_sensor);
-
-  // --- Nominal long replay -------------------------------------------------------------
-  constexpr double kSegment = 100.0;  // [s]
-  const int n_seg = static_cast<int>(std::ceil(o.hours * 3600.0 / kSegment - 1e-9));
-  std::vector<NominalStats> nres(static_cast<std::size_t>(n_seg));
-  const auto t_nominal = std::chrono::steady_clock::now();
-  parallel_for(n_seg, o.jobs, [&](int i) {
-    const bool ramps = i % 2 == 1;  // every other segment with slow load changes
-    const auto sc = nominal_segment(static_cast<std::uint64_t>(50000 + i), kSegment, ramps);
-    const Params machine = perturbed_machine(static_cast<std::uint64_t>(90000 + i), o.spread);
-    const auto log = sim::measure(sc, sensors, static_cast<std::uint64_t>(300000 + i), machine);
-    nres[static_cast<std::size_t>(i)] = monitor_nominal(log, cfg);
-  });
-  const double nominal_seconds = seconds_since(t_nominal);
-  if (const char* dbg = std::getenv("HSTMON_CAMPAIGN_TRACE_SEGMENT")) {  // diagnostic: residual trace of one segment
-    const int i = std::atoi(dbg);
-    const auto sc = nominal_segment(static_cast<std::uint64_t>(50000 + i), kSegment, i % 2 == 1);
-    const Params machine = perturbed_machine(static_cast<std::uint64_t>(90000 + i), o.spread);
-    const auto log = sim::measure(sc, sensors, static_cast<std::uint64_t>(300000 + i), machine);
-    Mon mon;
-    (void)mon.configure(Params{}, cfg, hstmon::kThesisSignatures, hstmon::kThesisSignatureCount);
-    (void)mon.reset_steady(log.front().u);
-    Mon::Measurement m;
-    m.valid = 0xF;
-    const double t0 = std::atof(std::getenv("HSTMON_CAMPAIGN_TRACE_T") ? std::getenv("HSTMON_CAMPAIGN_TRACE_T") : "0");
-    for (const auto& r : log) {
-      for (int c = 0; c < 4; ++c) m.y[c] = r.y[static_cast<std::size_t>(c)];
-      mon.step(r.t, r.u, m);
-      if (r.t >= t0 - 0.02 && r.t <= t0 + 0.05) {
-        const auto& res = mon.observer().residual();
-        std::fprintf(stderr, "t %.3f kp/kp0 %.4f  r_w %.2f rpm bound_w %.2f  r_pp %.3f bar bound_pp %.3f alarm 0x%x\n", r.t,
-                     r.u.kp / sim::kThesisKpNominal, res[3] * 30 / M_PI, mon.evaluator().bound(3) * 30 / M_PI,
-                     res[2] / 1e5, mon.evaluator().bound(2) / 1e5, mon.evaluator().alarm());
+  std::vector<Outcome> out(jobs.size());
+  parallel_for(static_cast<int>(jobs.size()), o.jobs, [&](int i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Job& j = jobs[static_cast<std::size_t>(i)];
+    const Condition& c = conds[static_cast<std::size_t>(j.cond)];
+    const sim::SensorConfig sensors = sensors_of(c);
+    const double k = time_scale(c);
+    const auto seed = static_cast<std::uint64_t>(j.seed);
+    const double level = kLevels[j.seed % 3];
+    Outcome& r = out[static_cast<std::size_t>(i)];
+    if (j.kind == Kind::kNominal) {
+      const double seg = 100.0 * (k > 1.0 ? 10.0 : 1.0);
+      const sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, seg, level, 50000 + seed, true));
+      const Params machine = sim::perturbed_params(90000 + seed, c.spread);
+      r.n = score_nominal(replay_log(sim::measure(sc, sensors, 300000 + seed, machine), sensors, c.declare_ranges));
+    } else {
+      const FaultCase& f = *j.fault;
+      const double t_f = o.t_fault * k;
+      sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, t_f + o.after * k, level, 1000 + seed, false));
+      const Params machine = sim::perturbed_params(2000 + seed, c.spread);
+      const std::uint64_t noise = 7000000 + 1000 * seed + std::hash<std::string>{}(f.label) % 1000;
+      sim::ThesisMeasurements log;
+      if (f.target == Target::kInput) {
+        log = sim::measure(sim::with_input_fault(sc, f.input, f.factor, t_f), sensors, noise, machine);
+      } else if (f.target == Target::kParam) {
+        Params faulty = machine;
+        faulty.*(f.param) *= f.factor;
+        log = sim::measure_with_fault(sc, sensors, noise, machine, t_f, faulty);
+      } else {
+        log = sim::measure(sc, sensors, noise, machine);
+        sim::SensorFault sf = f.sensor;
+        sf.t_start = t_f;
+        sim::inject_sensor_fault(log, sensors, sf);
+      }
+      const hstmon::host::ReplayResult res = replay_log(log, sensors, c.declare_ranges);
+      r.s = score(res, f.row, t_f, tie);
+      if (o.verbose && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
+        char b[160];
+        std::snprintf(b, sizeof b, "%s | %s seed %d (t_f %.1f s):", c.name.c_str(), f.label.c_str(), j.seed, t_f);
+        r.trace = b;
+        for (const auto& e : res.events) {
+          std::snprintf(b, sizeof b, " %s@%.3f", e.event.c_str(), e.t);
+          r.trace += b;
+          if (!e.candidates.empty()) r.trace += "[" + e.candidates[0].fault + "]";
+        }
       }
     }
-  }
-  NominalStats nom;
-  long nom_ramp_ticks = 0, nom_ramp_det = 0;
-  std::map<std::string, int> nom_cands;
-  for (int i = 0; i < n_seg; ++i) {
-    const auto& s = nres[static_cast<std::size_t>(i)];
-    nom.ticks += s.ticks;
-    nom.alarm_ticks += s.alarm_ticks;
-    nom.detections += s.detections;
-    nom.health |= s.health;
-    if (i % 2 == 1) {
-      nom_ramp_ticks += s.ticks;
-      nom_ramp_det += s.detections;
-    }
-    for (const auto& c : s.first_candidates) ++nom_cands[c];
-    for (std::size_t k = 0; k < s.detection_times.size(); ++k) {
-      std::fprintf(o.json ? stderr : stdout, "  false alarm: nominal segment %d (%s), t = %.3f s, alarm channels 0x%x\n", i,
-                  i % 2 ? "load changes" : "constant", s.detection_times[k], s.alarm_channels[k]);
-    }
-  }
+    r.cpu_s = seconds_since(t0);
+  });
+  const double total_s = seconds_since(t_start);
 
-  if (o.verbose) {
-    for (std::size_t i = 0; i < pjobs.size(); ++i)
-      print_verbose(pfaults[static_cast<std::size_t>(pjobs[i].fault)].label, kOperatingPoints[pjobs[i].op].name,
-                    pjobs[i].seed, pres[i], o.t_fault);
-    for (std::size_t i = 0; i < sjobs.size(); ++i)
-      print_verbose(sfaults[static_cast<std::size_t>(sjobs[i].fault)].label, kOperatingPoints[sjobs[i].op].name,
-                    sjobs[i].seed, sres[i], o.t_fault);
-  }
-
-  // --- Aggregation ----------------------------------------------------------------------
-  std::map<std::string, Agg> by_label;       // parameter faults per label (fault × magnitude)
-  std::vector<std::string> label_order;
-  std::map<std::string, Agg> by_class;       // per isolable class of the truth
-  std::vector<std::string> class_order;
-  Agg vis_hi, vis_lo, design, all_param, kp_blockage;
-  for (std::size_t i = 0; i < pjobs.size(); ++i) {
-    const FaultCase& f = pfaults[static_cast<std::size_t>(pjobs[i].fault)];
-    const Scored& s = pres[i];
-    const int t = row_index(f.row);
-    const auto& cls = classes[static_cast<std::size_t>(t)];
-    const int csize = static_cast<int>(cls.size());
-    if (!by_label.count(f.label)) label_order.push_back(f.label);
-    by_label[f.label].add(s, f.row, csize, o.t_fault);
-    const std::string cn = class_name(cls);
-    if (!by_class.count(cn)) class_order.push_back(cn);
-    by_class[cn].add(s, f.row, csize, o.t_fault);
-    if (by_design(f.row)) {
-      design.add(s, f.row, csize, o.t_fault);
+  // Aggregate.
+  std::vector<std::map<std::string, Agg>> agg(conds.size());
+  std::vector<Agg> all_faults(conds.size());
+  std::vector<NomAgg> nom(conds.size());
+  std::vector<double> cpu(conds.size(), 0.0);
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const auto ci = static_cast<std::size_t>(jobs[i].cond);
+    cpu[ci] += out[i].cpu_s;
+    if (jobs[i].kind == Kind::kNominal) {
+      const NominalStats& n = out[i].n;
+      NomAgg& a = nom[ci];
+      a.seconds += n.seconds;
+      a.rows += n.rows;
+      a.detections += n.detections;
+      a.nonfinite += n.nonfinite;
+      a.health |= n.health;
+      ++a.segments;
+      for (const auto& s : n.calls) ++a.calls[s];
+      for (double t : n.times) a.first_times.push_back({jobs[i].seed, t});
     } else {
-      all_param.add(s, f.row, csize, o.t_fault);
-      (s.visibility >= 1.0 ? vis_hi : vis_lo).add(s, f.row, csize, o.t_fault);
+      agg[ci][jobs[i].fault->group].add(out[i].s);
+      all_faults[ci].add(out[i].s);
+      if (o.verbose && !out[i].trace.empty()) std::fprintf(stderr, "%s\n", out[i].trace.c_str());
     }
-    if (f.row == "kp-" && std::fabs(f.magnitude - 0.5) < 1e-12) kp_blockage.add(s, f.row, csize, o.t_fault);
   }
-  std::map<std::string, Agg> by_slabel;
-  std::vector<std::string> slabel_order;
-  std::map<std::string, Agg> by_skind;
-  std::vector<std::string> skind_order;
-  Agg sensor_all;
-  for (std::size_t i = 0; i < sjobs.size(); ++i) {
-    const FaultCase& f = sfaults[static_cast<std::size_t>(sjobs[i].fault)];
-    const Scored& s = sres[i];
-    const int csize = static_cast<int>(classes[static_cast<std::size_t>(row_index(f.row))].size());
-    if (!by_slabel.count(f.label)) slabel_order.push_back(f.label);
-    by_slabel[f.label].add(s, f.row, csize, o.t_fault);
-    const std::string kind = f.sensor.kind == sim::SensorFaultKind::kStuck
-                                 ? "stuck"
-                                 : (f.sensor.kind == sim::SensorFaultKind::kBias ? "bias" : "drift");
-    if (!by_skind.count(kind)) skind_order.push_back(kind);
-    by_skind[kind].add(s, f.row, csize, o.t_fault);
-    sensor_all.add(s, f.row, csize, o.t_fault);
-  }
-  // Isolation over every detected fault run (parameter incl. J/K, and sensor).
-  Agg overall;
-  for (std::size_t i = 0; i < pjobs.size(); ++i) {
-    const FaultCase& f = pfaults[static_cast<std::size_t>(pjobs[i].fault)];
-    overall.add(pres[i], f.row, static_cast<int>(classes[static_cast<std::size_t>(row_index(f.row))].size()), o.t_fault);
-  }
-  for (std::size_t i = 0; i < sjobs.size(); ++i) {
-    const FaultCase& f = sfaults[static_cast<std::size_t>(sjobs[i].fault)];
-    overall.add(sres[i], f.row, static_cast<int>(classes[static_cast<std::size_t>(row_index(f.row))].size()), o.t_fault);
-  }
-  int false_in_fault_runs = overall.false_events;
-
-  const bool t_false = nom.detections == 0 && false_in_fault_runs == 0;
-  const double in_set_pct = Agg::pct(overall.in_set, overall.detected);
-  const bool t_iso = in_set_pct >= 95.0;
-  const double kp_worst = kp_blockage.worst_ms();
-  const bool t_kp = kp_blockage.detected == kp_blockage.runs && kp_worst <= 50.0;
-  const double total_seconds = seconds_since(t_start);
 
   if (o.json) {
-    std::printf("{\"type\":\"fault_campaign\",\"seeds\":%d,\"operating_points\":3,\"t_fault\":%g,\"after\":%g,"
-                "\"spread\":%g,\"jobs\":%d,\n",
-                o.seeds, o.t_fault, o.after, o.spread, o.jobs);
-    std::printf("\"parameter_faults\":[\n");
-    for (std::size_t k = 0; k < label_order.size(); ++k)
-      json_agg("fault", label_order[k], by_label[label_order[k]], k + 1 == label_order.size());
-    std::printf("],\n\"classes\":[\n");
-    for (std::size_t k = 0; k < class_order.size(); ++k)
-      json_agg("class", class_order[k], by_class[class_order[k]], k + 1 == class_order.size());
-    std::printf("],\n\"sensor_faults\":[\n");
-    for (std::size_t k = 0; k < slabel_order.size(); ++k)
-      json_agg("fault", slabel_order[k], by_slabel[slabel_order[k]], k + 1 == slabel_order.size());
-    std::printf("],\n\"summary\":[\n");
-    json_agg("group", "parameter faults, steady effect above threshold", vis_hi, false);
-    json_agg("group", "parameter faults, steady effect below threshold", vis_lo, false);
-    json_agg("group", "J/K: not observable by design", design, false);
-    json_agg("group", "sensor faults", sensor_all, false);
-    json_agg("group", "kp- 50% (PRV blockage)", kp_blockage, false);
-    json_agg("group", "all fault runs", overall, true);
-    std::printf("],\n\"nominal\":{\"hours\":%g,\"segments\":%d,\"ticks\":%ld,\"load_change_ticks\":%ld,"
-                "\"alarm_ticks\":%ld,\"false_alarms\":%ld,\"false_alarms_load_changes\":%ld,\"health\":%u},\n",
-                static_cast<double>(nom.ticks) / 3.6e6, n_seg, nom.ticks, nom_ramp_ticks, nom.alarm_ticks,
-                nom.detections, nom_ramp_det, nom.health);
-    std::printf("\"targets\":{\"zero_false_alarms\":%s,\"false_events_in_fault_runs\":%d,\"truth_in_set_pct\":%.2f,"
-                "\"truth_in_set_met\":%s,\"blockage_worst_delay_ms\":%s,\"blockage_met\":%s},\n",
-                t_false ? "true" : "false", false_in_fault_runs, in_set_pct, t_iso ? "true" : "false",
-                fmt_ms(kp_worst).c_str(), t_kp ? "true" : "false");
-    std::printf("\"runtime_s\":{\"parameter\":%.1f,\"sensor\":%.1f,\"nominal\":%.1f,\"total\":%.1f}}\n", param_seconds,
-                sensor_seconds, nominal_seconds, total_seconds);
+    std::printf("{\"type\":\"fault_campaign\",\"hours\":%g,\"seeds\":%d,\"param_seeds\":%d,\"sensor_seeds\":%d,"
+                "\"jobs\":%d,\"runtime_s\":%.1f,\"conditions\":[\n",
+                o.hours, o.seeds, o.param_seeds, o.sensor_seeds, o.jobs, total_s);
+    for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+      const NomAgg& n = nom[ci];
+      std::printf("{\"condition\":\"%s\",\"factor\":\"%s\",\"cpu_s\":%.1f,\"nominal\":{\"hours\":%.3f,\"false_alarms\":%ld,"
+                  "\"nonfinite\":%ld,\"health\":%u},\"groups\":[",
+                  conds[ci].name.c_str(), conds[ci].factor.c_str(), cpu[ci], n.seconds / 3600.0, n.detections,
+                  n.nonfinite, n.health);
+      bool first = true;
+      for (const char* g : kGroups) {
+        const Agg& a = agg[ci][g];
+        std::printf("%s{\"group\":\"%s\",\"runs\":%d,\"detected\":%d,\"median_delay_ms\":%s,\"worst_delay_ms\":%s,"
+                    "\"truth_in_set\":%d,\"truth_in_last_event\":%d,\"isolated_as_truth\":%d,"
+                    "\"within_50ms_isolated\":%d,\"called_sensor\":%d,\"mean_set_size\":%s,\"false_before_fault\":%d}",
+                    first ? "" : ",", g, a.runs, a.detected, jnum(a.median_ms()).c_str(), jnum(a.worst_ms()).c_str(),
+                    a.in_set, a.in_last, a.iso_truth, a.within_50ms_and_iso, a.called_sensor,
+                    jnum(a.mean_set(), "%.2f").c_str(), a.false_events);
+        first = false;
+      }
+      std::printf("]}%s\n", ci + 1 == conds.size() ? "" : ",");
+    }
+    std::printf("]}\n");
     return 0;
   }
 
-  std::printf("hstmon fault campaign: Monitor<double>, generated thesis table (%d rows), thesis_fast_sensors(1 kHz)\n",
-              hstmon::kThesisSignatureCount);
-  std::printf("  %d seeds × 3 operating points (light kp×1.6, nominal, heavy kp×0.65); fault at t = %.1f s, "
-              "%.1f s after;\n  machine parameters off by uniform ±%.0f %% per run (monitor: Table 2.2); tie margin "
-              "%.3f rad\n\n",
-              o.seeds, o.t_fault, o.after, o.spread * 100, tie);
-  std::printf("visibility = largest steady-state change / detection threshold (model bound + 2σ), nominal machine;\n"
-              "det%% over runs; delays from the fault; iso = first isolated/ambiguous/unexplained decision;\n"
-              "inSet/first/class%% over detected runs (class%%: truth in the set and the set inside the truth's "
-              "isolable class);\nset/class = mean reported set size / mean isolable class size; unex = unexplained\n\n");
-  std::printf("Parameter faults (each row: 3 operating points × %d seeds)\n", o.seeds);
-  print_header("fault");
-  for (const auto& l : label_order) print_row(l.c_str(), by_label[l], true);
-  std::printf("\nPer isolable class of the table (truth's class; classes with identical signature and direction "
-              "within the tie margin)\n");
-  print_header("class");
-  for (const auto& c : class_order) print_row(c.c_str(), by_class[c], true);
-  std::printf("\nSensor faults (bias/drift in %% of the transmitter's full scale)\n");
-  print_header("fault");
-  for (const auto& l : slabel_order) print_row(l.c_str(), by_slabel[l], false);
-  for (const auto& k : skind_order) print_row(("all " + k).c_str(), by_skind[k], false);
-  std::printf("\nSummary\n");
-  print_header("group");
-  print_row("param, ss ≥ thr", vis_hi, true);
-  print_row("param, ss < thr", vis_lo, true);
-  print_row("param, all (no J/K)", all_param, true);
-  print_row("J±, K± (by design)", design, true);
-  print_row("sensor faults", sensor_all, false);
-  print_row("kp- 50% blockage", kp_blockage, true);
-  print_row("all fault runs", overall, false);
-  std::printf("\nNominal replay: %.2f h at 1 kHz (%d segments of %.0f s, each a machine off by ±%.0f %%; half at a "
-              "constant operating point,\n  half with slow load changes: kp ramps in [0.65, 1.6]·kp0 every 10 s): "
-              "%ld ticks, %ld alarm ticks, %ld false alarms (%ld in load-change segments), health 0x%x\n",
-              static_cast<double>(nom.ticks) / 3.6e6, n_seg, kSegment, o.spread * 100, nom.ticks, nom.alarm_ticks,
-              nom.detections, nom_ramp_det, nom.health);
-  if (!nom_cands.empty()) {
-    std::printf("  false alarms decided as:");
-    for (const auto& [k, n] : nom_cands) std::printf(" %s×%d", k.c_str(), n);
-    std::printf("\n");
+  std::printf("hstmon fault campaign over rig conditions (each log replayed as `hstmon replay` does, default\n"
+              "options: init auto, the replay's default transmitter ranges). Baseline: rig_fast sensors at 1 kHz (no lag, σ 0.04 bar / 0.5 rpm,\n"
+              "ADC 0.01 bar, Ppp 0–400 bar), machine ±2 %%, start from rest (supply on at the first sample), PRV steps every 2 s\n"
+              "in [0.65, 1.6]·kp0. Each other condition changes one factor. Fault at t = %.0f s (×20 at 0.25 Hz),\n"
+              "%.0f s after; nominal: %.2f h per condition in 100 s segments (1000 s at 0.25 Hz), each a start-up\n"
+              "from rest, a stop at 60 %% and a restart at 70 %% of the segment, a new machine and seeds.\n\n",
+              o.t_fault, o.after, hours_per_cond);
+  std::printf("A. Nominal replay and the 50 %% PRV blockage (kp-) per condition\n");
+  std::printf("%-20s %7s %6s %5s | %5s %6s %6s %6s %7s %7s %7s\n", "condition", "nom [h]", "false", "NaN", "runs",
+              "det%", "med", "worst", "≤50ms&", "iso kp-", "sensor");
+  std::printf("%-20s %7s %6s %5s | %5s %6s %6s %6s %7s %7s %7s\n", "", "", "alarms", "", "", "", "[ms]", "[ms]",
+              "iso kp-%", "%", "named%");
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    const NomAgg& n = nom[ci];
+    const Agg& b = agg[ci]["kp- 50%"];
+    std::printf("%-20s %7.2f %6ld %5ld | %5d %6s %6s %6s %7s %7s %7s\n", conds[ci].name.c_str(), n.seconds / 3600.0,
+                n.detections, n.nonfinite, b.runs, f1(Agg::pct(b.detected, b.runs)).c_str(), f1(b.median_ms(), "%.0f").c_str(),
+                f1(b.worst_ms(), "%.0f").c_str(), f1(Agg::pct(b.within_50ms_and_iso, b.runs)).c_str(),
+                f1(Agg::pct(b.iso_truth, b.runs)).c_str(), f1(Agg::pct(b.called_sensor, b.runs)).c_str());
+  }
+  std::printf("\nB. Fault groups per condition: detection rate, delay, truth in the reported set (last decision's\n"
+              "   candidates within the tie margin), truth among the last event's candidates (score_monitor.py's\n"
+              "   rule), mean set size; best candidate when the truth is not in the set\n");
+  std::printf("%-20s %-10s %5s %6s %6s %6s %6s %6s %5s %5s  %s\n", "condition", "group", "runs", "det%", "med",
+              "worst", "inSet%", "inLast", "set", "early", "best when truth not in set");
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    auto row = [&](const char* g, const Agg& a) {
+      std::printf("%-20s %-10s %5d %6s %6s %6s %6s %6s %5s %5d  %s\n", conds[ci].name.c_str(), g, a.runs,
+                  f1(Agg::pct(a.detected, a.runs)).c_str(), f1(a.median_ms(), "%.0f").c_str(),
+                  f1(a.worst_ms(), "%.0f").c_str(), f1(Agg::pct(a.in_set, a.detected)).c_str(),
+                  f1(Agg::pct(a.in_last, a.detected)).c_str(), f1(a.mean_set(), "%.2f").c_str(), a.false_events,
+                  a.wrong().c_str());
+    };
+    for (const char* g : kGroups) row(g, agg[ci][g]);
+    row("all", all_faults[ci]);
+  }
+  std::printf("\nC. False alarms on nominal replay: what the first decision after each named\n");
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    if (nom[ci].calls.empty()) continue;
+    std::printf("  %-20s", conds[ci].name.c_str());
+    for (const auto& [k, v] : nom[ci].calls) std::printf(" %s×%d", k.c_str(), v);
+    std::printf("  (first at");
+    for (std::size_t q = 0; q < nom[ci].first_times.size() && q < 3; ++q)
+      std::printf(" seg %d t=%.3f s", nom[ci].first_times[q].first, nom[ci].first_times[q].second);
+    std::printf(")\n");
+  }
+
+  // Targets.
+  double nom_h = 0;
+  long nom_fa = 0, nom_nan = 0;
+  int fault_false = 0, det = 0, in_set = 0;
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    nom_h += nom[ci].seconds / 3600.0;
+    nom_fa += nom[ci].detections;
+    nom_nan += nom[ci].nonfinite;
+    fault_false += all_faults[ci].false_events;
+    det += all_faults[ci].detected;
+    in_set += all_faults[ci].in_set;
   }
   std::printf("\nTargets\n");
-  std::printf("  0 false alarms (10 h nominal + before-fault parts of fault runs): %s (%ld nominal, %d in fault runs)\n",
-              t_false ? "MET" : "MISSED", nom.detections, false_in_fault_runs);
-  std::printf("  truth in the reported set ≥ 95 %% of detected fault runs: %s (%.1f %%, %d of %d)\n",
-              t_iso ? "MET" : "MISSED", in_set_pct, overall.in_set, overall.detected);
-  std::printf("  50 %% PRV blockage detected within 50 ms: %s (%d of %d detected, worst %s ms, median %s ms)\n",
-              t_kp ? "MET" : "MISSED", kp_blockage.detected, kp_blockage.runs, fmt_ms(kp_worst).c_str(),
-              fmt_ms(kp_blockage.med_ms()).c_str());
-  std::printf("\nRuntime: parameter faults %.1f s (%zu runs), sensor faults %.1f s (%zu runs), nominal %.1f s; "
-              "total %.1f s on %d thread(s)\n",
-              param_seconds, pjobs.size(), sensor_seconds, sjobs.size(), nominal_seconds, total_seconds, o.jobs);
+  std::printf("  0 false alarms, %.2f h nominal (start-ups, stop/start, load changes) + before-fault parts: %s "
+              "(%ld nominal, %d in fault runs; %ld non-finite)\n",
+              nom_h, nom_fa == 0 && fault_false == 0 ? "MET" : "MISSED", nom_fa, fault_false, nom_nan);
+  std::printf("  truth in the reported set ≥ 95 %% of detected fault runs: %s (%s %%, %d of %d)\n",
+              Agg::pct(in_set, det) >= 95.0 ? "MET" : "MISSED", f1(Agg::pct(in_set, det)).c_str(), in_set, det);
+  std::printf("  blockage detected ≤ 50 ms and isolated as kp- in ≥ 95 %% of runs, per transducer setting (1 kHz):\n");
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    if (conds[ci].factor != "base" && conds[ci].factor != "lag") continue;
+    const Agg& b = agg[ci]["kp- 50%"];
+    std::printf("    %-20s %s (%d of %d; named a sensor fault in %d)\n", conds[ci].name.c_str(),
+                Agg::pct(b.within_50ms_and_iso, b.runs) >= 95.0 ? "MET" : "MISSED", b.within_50ms_and_iso, b.runs,
+                b.called_sensor);
+  }
+  std::printf("  sensor faults caught (detected, truth in set), all conditions:\n");
+  for (const char* g : {"loop break", "stuck", "bias 2%FS", "bias 5%FS"}) {
+    int r = 0, d = 0, s = 0;
+    for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+      r += agg[ci][g].runs;
+      d += agg[ci][g].detected;
+      s += agg[ci][g].in_set;
+    }
+    std::printf("    %-10s %s %% detected (%d of %d), truth in set %s %%\n", g, f1(Agg::pct(d, r)).c_str(), d, r,
+                f1(Agg::pct(s, d)).c_str());
+  }
+  std::printf("\nRuntime: %.1f s wall on %d thread(s); per condition (CPU s):", total_s, o.jobs);
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) std::printf(" %s %.1f;", conds[ci].name.c_str(), cpu[ci]);
+  std::printf("\n");
   return 0;
 }

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Issue 3's fault campaign (docs/fault_campaign.md): builds the release configuration and
-# runs bench/fault_campaign.cpp — every fault of the thesis signature table at 2
-# magnitudes × 3 operating points × 5 seeds, sensor bias/drift/stuck faults, and 10 h of
-# nominal replay with ±2 % parameter error. Not part of CI.
+# The fault campaign over rig conditions (issues 3 and 12, docs/fault_campaign.md): builds
+# the release configuration and runs bench/fault_campaign.cpp — per condition (baseline rig,
+# then transducer lag, sample rate, start-up, load shape, ADC, parameter error and Ppp range
+# changed one at a time) the 50 % PRV blockage, every parameter fault of the thesis table,
+# sensor loop break / stuck / bias, and nominal replay (10 h in all) with start-ups,
+# stop/start and load changes. Not part of CI.
 #
 #   bash scripts/fault_campaign.sh [--quick] [--json] [--jobs N] [other campaign options]
 #
-# --quick: 2 seeds and 0.5 h of nominal replay (about 5 s). Options are passed through
+# --quick: 0.5 h of nominal replay, fewer seeds (about 10 s). Options are passed through
 # (hstmon_fault_campaign --help lists them). Set BUILD_DIR to use another build tree.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
