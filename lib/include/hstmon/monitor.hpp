@@ -189,6 +189,7 @@ class Monitor {
       var_[i] = T(0);
       gap_[i] = T(0);
       allow_[i] = T(0);
+      slack_[i] = T(0);
     }
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
@@ -232,7 +233,7 @@ class Monitor {
     // actually took on, not what was offered.
     const ThesisInputs<T> before = obs_.model().inputs();
     (void)obs_.step(u, m);
-    track_variation();
+    track_variation(m.valid != 0);
     if (!(hold_until_ == hold_until_)) hold_until_ = t + hold_;
     if (bound_valid_ && same_inputs(obs_.model().inputs(), before)) return false;
     if (bound_valid_) look_ahead();
@@ -243,14 +244,26 @@ class Monitor {
   // transducer's time constant (var_), and the undecayed sum since the last sample
   // (gap_). A first-order transducer of time constant ≤ τ_s reads y_s − y =
   // −∫ y'(t−s)·e^(−s/τ_s) ds, whose size var_ bounds; a sample taken after ticks without
-  // one may show the machine anywhere in between, which gap_ bounds.
-  void track_variation() noexcept {
+  // one may show the machine anywhere in between, which gap_ bounds. On a sampled tick
+  // the transient allowance follows (transient_factor times the larger of the two, plus
+  // half an ADC step: the reading's rounding, whatever the noise σ configured says), and
+  // with it the slack of the live-zero check. One pass, for the M4F's tick budget.
+  void track_variation(bool sampled) noexcept {
     const auto& y = obs_.estimate();
     for (int i = 0; i < kFdiChannels; ++i) {
       const T d = std::fabs(y[i] - yprev_[i]);
       yprev_[i] = y[i];
-      var_[i] = var_[i] * decay_ + d;
-      gap_[i] += d;
+      const T v = var_[i] * decay_ + d;
+      const T g = gap_[i] + d;
+      var_[i] = v;
+      if (sampled) {
+        const T a = transient_factor_ * (v > g ? v : g) + T(0.5) * sensors_.step(i);
+        allow_[i] = a;
+        slack_[i] = a + slack_base_[i];
+        gap_[i] = T(0);
+      } else {
+        gap_[i] = g;
+      }
     }
   }
 
@@ -263,6 +276,8 @@ class Monitor {
       const T d = std::fabs(y[i] - yprev_[i]);
       var_[i] += d;
       gap_[i] += d;
+      allow_[i] += transient_factor_ * d;
+      slack_[i] += transient_factor_ * d;
     }
   }
 
@@ -270,17 +285,9 @@ class Monitor {
   // frame (see step).
   HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
     if (m.valid == 0) return matcher_.status();
-    // Half an ADC step is the reading's rounding, whatever the noise σ configured says.
-    for (int i = 0; i < kFdiChannels; ++i) {
-      const T v = var_[i] > gap_[i] ? var_[i] : gap_[i];
-      allow_[i] = transient_factor_ * v + T(0.5) * sensors_.step(i);
-      gap_[i] = T(0);
-    }
     // A reading at a transmitter's live zero is a loop break only where the model,
     // allowed its error, says the channel cannot be there.
-    T slack[kFdiChannels];
-    for (int i = 0; i < kFdiChannels; ++i) slack[i] = ev_.bound(i) + allow_[i] + ev_.threshold(i);
-    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, obs_.estimate().data(), slack);
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, obs_.estimate().data(), slack_);
     // Start-up: the model's transient from its initial state is still running, so
     // nothing is judged; flags that persist (a loop break, a stuck channel) are reported
     // once it is over.
@@ -306,6 +313,7 @@ class Monitor {
       for (int i = 0; i < kFdiChannels; ++i) bound_[i] = m[i];
       (void)ev_.set_model_bound(bound_);
     }
+    for (int i = 0; i < kFdiChannels; ++i) slack_base_[i] = ev_.bound(i) + ev_.threshold(i);
     bound_valid_ = true;
   }
 
@@ -319,6 +327,10 @@ class Monitor {
   T var_[kFdiChannels] = {};    ///< leaky total variation of ŷ [channel unit]
   T gap_[kFdiChannels] = {};    ///< total variation of ŷ since the last sample [channel unit]
   T allow_[kFdiChannels] = {};  ///< transient allowance of the last sample [channel unit]
+  /// The live-zero check's allowance: allow_ + slack_base_ [channel unit].
+  T slack_[kFdiChannels] = {};
+  /// Evaluator bound b_i plus its CUSUM threshold [channel unit] (set with the bound).
+  T slack_base_[kFdiChannels] = {};
   T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]

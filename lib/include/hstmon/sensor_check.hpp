@@ -117,7 +117,10 @@ class SensorCheck {
   };
 
   /// The default configuration (valid: no range ends), flags clear — reset()'s state.
-  SensorCheck() noexcept { set(Config{}); }
+  SensorCheck() noexcept {
+    set(Config{});
+    reset();
+  }
 
   /// Takes a configuration and resets.
   /// @return kOk, or kInvalidConfig (a range with NaN or lo ≥ hi, stuck_time not finite
@@ -137,7 +140,10 @@ class SensorCheck {
   /// Forgets the last values (no kHave) and clears the flags; keeps the learned ADC steps
   /// (a property of the channel, not of the run).
   void reset() noexcept {
-    for (int i = 0; i < N; ++i) flags_[i] = 0;
+    for (int i = 0; i < N; ++i) {
+      flags_[i] = 0;
+      last_[i] = std::numeric_limits<T>::quiet_NaN();  // no reading: the next is no step
+    }
     sat_ = 0;
     latched_ = 0;
   }
@@ -163,7 +169,7 @@ class SensorCheck {
       // Fast path (the nominal sample): sampled, strictly inside the range (so finite) and
       // not equal to the previous value — no flag, a run of one.
       if ((valid & bit) != 0 && y[i] > lo_[i] && y[i] < hi_[i] && y[i] != last_[i]) {
-        learn_step(i, y[i]);
+        prev_[i] = last_[i];
         last_[i] = y[i];
         since_[i] = t;
         flags_[i] = kHave;
@@ -220,16 +226,24 @@ class SensorCheck {
     for (int i = 0; i < N; ++i) {
       noise_[i] = c.noise[i];
       step_[i] = T(0);
+      runs_[i] = 0;
     }
   }
 
-  /// The smallest change between successive readings of channel i seen: its ADC step
-  /// (or a multiple of it) [channel unit]; 0 until one is seen.
-  void learn_step(int i, T v) noexcept {
-    if ((flags_[i] & kHave) == 0) return;
-    const T d = std::fabs(v - last_[i]);
+  /// Learns channel i's ADC step from the change into the current run of equal readings
+  /// (prev_ → last_), when a run begins: the smallest change seen is the step or a
+  /// multiple of it. Runs are where the step matters, and this keeps the fast path to a
+  /// store (the instruction budget per tick on the Cortex-M4F).
+  void learn_step(int i) noexcept {
+    const T d = std::fabs(last_[i] - prev_[i]);
+    if (!(d > T(0))) return;
     if (step_[i] == T(0) || d < step_[i]) step_[i] = d;
+    if (runs_[i] < 255) ++runs_[i];
   }
+
+  /// True when channel i's step is known to be below its noise, or not known: one run
+  /// says nothing (the jump into a frozen reading is no ADC step), two runs do.
+  bool dithers(int i) const noexcept { return runs_[i] < 2 || !(step_[i] >= noise_[i]); }
 
   /// The channels off the fast path: full checks of the `sampled` ones, and the masks.
   HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled, const T* expect,
@@ -269,7 +283,7 @@ class SensorCheck {
       f |= kSensorUnderRange;  // clamped at the live zero, as a machine at rest reads
     }
     if ((before & kHave) == 0 || v != last_[i]) {  // a different value starts a run
-      if ((before & kHave) != 0) learn_step(i, v);
+      prev_[i] = (before & kHave) != 0 ? last_[i] : v;
       last_[i] = v;
       since_[i] = t;
     } else if (f == kHave && min_samples_ != 0) {
@@ -281,6 +295,7 @@ class SensorCheck {
         const T floor = static_cast<T>(min_samples_) * dt;
         since_[i] += (stuck_time_ > floor ? stuck_time_ : floor) - T(1.5) * dt;
         emin_[i] = emax_[i] = e;
+        learn_step(i);
       }
       emin_[i] = e < emin_[i] ? e : emin_[i];
       emax_[i] = e > emax_[i] ? e : emax_[i];
@@ -288,7 +303,7 @@ class SensorCheck {
       // A step below the noise dithers: a long run is impossible for a working sensor. A
       // coarser one repeats on a steady signal: stuck only if the model moved by more
       // than two steps and its allowance while the reading stood still.
-      const bool fine = !(step_[i] >= noise_[i]);
+      const bool fine = dithers(i);
       const bool moved = have_model && emax_[i] - emin_[i] > T(2) * step_[i] + s;
       if (t >= since_[i] && (fine || moved)) f |= kSensorStuck;
     }
@@ -298,6 +313,7 @@ class SensorCheck {
   T lo_[kN_] = {};      ///< Config::range_lo [channel unit]
   T noise_[kN_] = {};   ///< Config::noise [channel unit]
   T step_[kN_] = {};    ///< learned ADC step (learn_step) [channel unit]; 0: none seen
+  T prev_[kN_] = {};    ///< the reading before last_ (with kHave) [channel unit]
   T emin_[kN_] = {};    ///< smallest model estimate during the current run [channel unit]
   T emax_[kN_] = {};    ///< largest model estimate during the current run [channel unit]
   T hi_[kN_] = {};      ///< Config::range_hi [channel unit]
@@ -307,6 +323,7 @@ class SensorCheck {
   /// run becomes stuck [s].
   T since_[kN_] = {};
   std::uint8_t flags_[kN_] = {};  ///< SensorFlag bits, kHave and kRun
+  std::uint8_t runs_[kN_] = {};   ///< runs whose start taught the step (saturates at 255) [-]
   std::uint8_t sat_ = 0;          ///< saturated() of the last update
   std::uint8_t latched_ = 0;      ///< latched()
   std::uint8_t min_samples_ = kDefaultStuckMinSamples;  ///< Config::stuck_min_samples [-]
