@@ -5,11 +5,23 @@
 /// and the table-driven fault matcher. This is what firmware instantiates and what the
 /// host replay runs, so both go through the same code.
 ///
-/// Each step(): observer tick → sensor checks on the raw sample → evaluator on the
-/// residuals (a saturated channel's only while above the model) → matcher. When the
-/// inputs change, the model bound (parameter-uncertainty part of the thresholds) is
-/// recomputed for the operating point they lead to: about 20 steady-state solves, so a few
-/// hundred microseconds on a Cortex-M4, once per change.
+/// Each step(): observer tick → the model's own output variation (the transient
+/// allowance) → sensor checks on the raw sample → evaluator on the residuals (a saturated
+/// channel's only while above the model) → matcher. When the inputs change, the model
+/// bound (parameter-uncertainty part of the thresholds) is recomputed for the operating
+/// point they lead to: about 20 steady-state solves, so a few hundred microseconds on a
+/// Cortex-M4, once per change.
+///
+/// Transients are the model's business, not the sensors' (docs/fdi.md §9):
+///  - reset_measured() starts the observer where the first sample says (initial_state.hpp),
+///    and nothing is judged during the model's own start-up from there: a hold-off of
+///    (τ_m + τ_s)·ln D, τ_m the model's slowest time constant at the steady state for the
+///    inputs, τ_s the slowest transducer (Config::transducer_response), D the initial
+///    distance from that steady state in noise units;
+///  - each channel's bound is widened by transient_factor × the model's recent output
+///    variation (a leaky total variation with time constant τ_s, which bounds what a
+///    first-order transducer lag of up to τ_s can make of the model's own transient) plus
+///    half the learned ADC step; in steady operation the widening is 0.
 /// step() never allocates or throws.
 
 #include <cmath>
