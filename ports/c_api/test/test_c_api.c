@@ -260,6 +260,37 @@ static void test_names_of_any_int(void) {
   }
 }
 
+/* A log that begins with the machine at rest while the supply is already on: the monitor
+ * starts from the measured states, and the start-up that follows is not a fault. */
+static void test_reset_measured_start_from_rest(void) {
+  hstmon_monitor* m = make_monitor();
+  hstmon_sample s;
+  hstmon_event e;
+  uint8_t start = 99;
+  int k;
+  memset(&s, 0, sizeof s);
+  hstmon_default_inputs(&s.u);
+  s.y[HSTMON_CH_PPP] = s.u.p_bp; /* at rest: Ppp at the booster, pressures at 0 bar */
+  s.valid = 0x0F;
+  CHECK(hstmon_reset_measured(NULL, &s, &start) == HSTMON_INVALID_INPUTS);
+  CHECK(hstmon_reset_measured(m, NULL, &start) == HSTMON_INVALID_INPUTS);
+  CHECK(hstmon_reset_measured(m, &s, &start) == HSTMON_OK && start == HSTMON_START_MEASURED);
+  CHECK(hstmon_reset_measured(m, &s, NULL) == HSTMON_OK);
+  /* the first sample (0 bar at the motor while the model says 35 bar) is not judged */
+  CHECK(hstmon_step(m, &s) == 0u);
+  CHECK(hstmon_match_status(m) == HSTMON_MATCH_NOMINAL);
+  /* the machine then follows the model: nothing is raised */
+  for (k = 1; k < 500; ++k) {
+    int i;
+    s = sample_at_estimate(m, &s.u);
+    for (i = 0; i < HSTMON_CHANNELS; ++i) s.y[i] += (k & 1) ? kDither[i] : -kDither[i];
+    s.t_s = (float)k * 1e-3f;
+    (void)hstmon_step(m, &s);
+  }
+  CHECK(hstmon_match_status(m) == HSTMON_MATCH_NOMINAL);
+  CHECK(hstmon_pop_event(m, &e) == 0);
+}
+
 int main(void) {
   test_create();
   test_names_of_any_int();
@@ -267,6 +298,7 @@ int main(void) {
   test_ppp_jump_detected();
   test_bad_inputs_flagged();
   test_nan_measurement_flagged();
+  test_reset_measured_start_from_rest();
   if (failures != 0) {
     fprintf(stderr, "test_c_api: %d check(s) failed\n", failures);
     return 1;
