@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hstmon/initial_state.hpp"
 #include "hstmon/pump_curve.hpp"
 #include "hstmon/signed_root.hpp"
 #include "hstmon/thesis_reduced.hpp"
@@ -20,7 +21,7 @@ constexpr double kBeta = 1.5e9;          // bulk modulus of air-free oil [Pa]
 constexpr double kPolytropic = 1.4;      // air polytropic index [-]
 constexpr double kPatm = 1e5;            // atmosphere [Pa abs]
 constexpr double kPumpLeakShare = 0.1;   // pump B loses 10 % of Q0 to leakage at cut-in [-]
-constexpr int kDcvIterations = 6;        // fixed: outputs stay smooth in the parameters
+constexpr int kSupplyIterations = 6;     // pump-curve/DCV fixed point, fixed: outputs smooth in the parameters
 
 std::vector<EffectInfo> make_infos() {
   std::vector<EffectInfo> v;
@@ -114,12 +115,18 @@ double pump_pressure(const Row& r, double q) {
   return r.Pk + (q - r.q2) / r.s3;                                       // region 3 (and beyond)
 }
 
+// The extended model's right-hand side: lib's ThesisReducedModel (the same model the
+// observer runs; motor leakage enters through its Rlkg, Ripl) plus the effects' terms.
+// Mutable: the model holds the row's inputs (set_inputs is O(1)).
 class Rhs {
  public:
   Rhs(const ThesisParams<double>& p, const Ext& e) : p_(p), e_(e) {
-    gl_ = 1.0 / p.Rlkg + e.g_lkg;
-    gi_ = 1.0 / p.Ripl + e.g_ipl;
-    inv_kf_ = 1.0 / p.kf;
+    ThesisParams<double> q = p;
+    q.Rlkg = 1.0 / (1.0 / p.Rlkg + e.g_lkg);
+    q.Ripl = 1.0 / (1.0 / p.Ripl + e.g_ipl);
+    gl_ = 1.0 / q.Rlkg;
+    gi_ = 1.0 / q.Ripl;
+    model_.set_params(q);
   }
 
   void set_row(Row& r) const {
@@ -146,45 +153,55 @@ class Rhs {
 
   // f = (dPpp/dt, dωm/dt); y = true outputs (Pmi, Pmo, Ppp, ωm).
   void operator()(const Row& r, const double* x, double* f, double* y) const {
+    using M = ThesisReducedModel<double>;
     const double w = x[1];
-    const double qm = p_.Dm * w;
-    double Psup = r.pump ? pump_pressure(r, qm) : r.Psupl;
-    double dp = signed_square(qm * inv_kf_, p_.dp_t_dcv);
-    double Pmi = Psup - dp, Pmo = r.Ps + dp;
-    for (int i = 0; i < kDcvIterations; ++i) {
-      const double q_ipl = (Pmi - Pmo) * gi_;
-      const double q_in = qm + Pmi * gl_ + q_ipl;
-      const double q_out = qm + q_ipl - Pmo * gl_;
-      if (r.pump) Psup = pump_pressure(r, q_in);
-      Pmi = Psup - signed_square(q_in * inv_kf_, p_.dp_t_dcv);
-      Pmo = r.Ps + signed_square(q_out * inv_kf_, p_.dp_t_dcv);
+    ThesisInputs<double> in;
+    in.Psupl = r.Psupl;
+    in.Ps = r.Ps;
+    in.Pbp = r.Pbp;
+    in.kp = r.kp;
+    if (r.pump) {
+      // Supply pressure where pump B's curve meets the DCV inlet flow (fixed count:
+      // outputs stay smooth in the parameters).
+      in.Psupl = pump_pressure(r, p_.Dm * w);
+      for (int i = 0; i < kSupplyIterations; ++i) {
+        model_.set_inputs(in);
+        double Pmi = 0, Pmo = 0;
+        model_.dcv_pressures(w, Pmi, Pmo);
+        in.Psupl = pump_pressure(r, p_.Dm * w + Pmi * gl_ + (Pmi - Pmo) * gi_);
+      }
     }
-    double dPprv = x[0] - r.Pbp;
-    if (e_.crack) dPprv = softplus(dPprv - e_.p_cr, kCrackWidth) - softplus(-dPprv - e_.p_cr, kCrackWidth);
-    const double q_prv = r.kp * signed_root(dPprv, p_.dp_t_prv);
-    double K = p_.K;
+    if (!(in.Psupl == model_.inputs().Psupl && in.Ps == model_.inputs().Ps && in.Pbp == model_.inputs().Pbp &&
+          in.kp == model_.inputs().kp)) {
+      model_.set_inputs(in);
+    }
+    M::Output out;
+    const M::State d = model_.derivative(M::State(x[0], w), &out);
+    f[0] = d[0];
+    f[1] = d[1];
+    const double dP = x[0] - r.Pbp;
+    if (e_.crack) {
+      const double dPeff = softplus(dP - e_.p_cr, kCrackWidth) - softplus(-dP - e_.p_cr, kCrackWidth);
+      f[0] += p_.K * r.kp * (signed_root(dP, p_.dp_t_prv) - signed_root(dPeff, p_.dp_t_prv));
+    }
     if (e_.air) {
       const double pa = std::max(x[0] + kPatm, 1e4);
-      K /= 1.0 + e_.xa * (kBeta / (kPolytropic * pa)) * std::pow(kPatm / pa, 1.0 / kPolytropic);
+      f[0] /= 1.0 + e_.xa * (kBeta / (kPolytropic * pa)) * std::pow(kPatm / pa, 1.0 / kPolytropic);
     }
-    const double dpm = Pmi - Pmo;
-    const double th = std::tanh(w / kStribeckSpeed);
-    const double torque = p_.Dm * dpm - (p_.Rf + p_.Rbl) * w - e_.tc * th - e_.eta * p_.Dm * std::fabs(dpm) * th -
-                          p_.Dp * (x[0] - r.Pbp);
-    f[0] = K * (p_.Dp * w - q_prv);
-    f[1] = torque / p_.J;
+    if (e_.tc != 0 || e_.eta != 0) {
+      const double th = std::tanh(w / kStribeckSpeed);
+      f[1] -= (e_.tc * th + e_.eta * p_.Dm * std::fabs(out[kChPmi] - out[kChPmo]) * th) / p_.J;
+    }
     if (y != nullptr) {
-      y[0] = Pmi;
-      y[1] = Pmo;
-      y[2] = x[0];
-      y[3] = w;
+      for (int c = 0; c < kChannels; ++c) y[c] = out[c];
     }
   }
 
  private:
   ThesisParams<double> p_;
   Ext e_;
-  double gl_ = 0, gi_ = 0, inv_kf_ = 0;
+  double gl_ = 0, gi_ = 0;
+  mutable ThesisReducedModel<double> model_;
 };
 
 // One ROS2 step (Verwer et al. 1999; order 2 for any Jacobian approximation, L-stable).
@@ -278,7 +295,7 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
     return r;
   };
 
-  // Start: nominal steady state of the first row, then preroll with the effects.
+  // Start (docs/gap.md): the first sample by the rule replay and identify use, or forced.
   Row r = row_at(0);
   ThesisReducedModel<double> nom(model.nominal);
   ThesisInputs<double> in0;
@@ -287,12 +304,25 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
   in0.Pbp = r.Pbp;
   in0.kp = r.kp;
   nom.set_inputs(in0);
-  ThesisReducedModel<double>::State xs;
-  if (!nom.steady_state(xs)) xs = nom.rest_state();
+  ThesisReducedModel<double>::State xs = nom.rest_state();
+  bool preroll = false;
+  if (u.start == StartRule::kFirstSample) {
+    ThesisReducedModel<double>::Output ym;
+    for (int c = 0; c < kChannels; ++c) ym[c] = u.y0[static_cast<std::size_t>(c)] - e.offset[static_cast<std::size_t>(c)];
+    const InitialState kind = choose_initial_state(nom, ym, u.y0_valid, xs);
+    res.start = to_string(kind);
+    preroll = kind == InitialState::kSteady;
+  } else if (u.start == StartRule::kSteady) {
+    if (!nom.steady_state(xs)) xs = nom.rest_state();
+    res.start = "steady";
+    preroll = true;
+  } else {
+    res.start = "rest";
+  }
   double x[2] = {xs[0], xs[1]};
   double y[kChannels];
   const double hp = 2e-3;
-  for (double t = 0; t < opt.preroll; t += hp) {
+  for (double t = 0; preroll && t < opt.preroll; t += hp) {
     if (!ros2_step(f, r, x, hp, y)) {
       res.error = "simulation failed in the preroll";
       return res;
@@ -304,6 +334,7 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
   const bool use_lag = e.tau > 1e-9;
 
   res.y.resize(n);
+  double t_change = u.t[0];
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0) r = row_at(k);
     // Output at t_k.
@@ -319,26 +350,56 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
       res.error = "time not strictly increasing";
       return res;
     }
-    // Fine steps first; in long intervals (slow loggers) the transient has died out after
-    // 0.1 s and the L-stable scheme takes 5 ms steps. The schedule depends only on the
-    // sample times, so outputs stay smooth in the parameters.
+    // Step schedule: within transient_window of the start or of an input change, steps of
+    // transient_step (the Ppp mode's time constant is ≈ 0.2 ms: ROS2 at 0.25 ms is stable
+    // but 1 bar off in a kp step); then max_step; in long intervals (slow loggers) the
+    // transient has died out after 0.1 s and the L-stable scheme takes 5 ms steps. The
+    // schedule depends only on the sample times and inputs, so outputs stay smooth in the
+    // parameters.
+    if (k > 0 && (u.kp[k] != u.kp[k - 1] || u.Psupl[k] != u.Psupl[k - 1] || u.Ps[k] != u.Ps[k - 1] ||
+                  u.Pbp[k] != u.Pbp[k - 1])) {
+      t_change = u.t[k];
+    }
     const double fine = dt > 0.2 ? 0.1 : dt;
-    const int m1 = std::max(1, static_cast<int>(std::ceil(fine / opt.max_step - 1e-9)));
-    const int m2 = dt > 0.2 ? std::max(1, static_cast<int>(std::ceil((dt - fine) / 5e-3 - 1e-9))) : 0;
-    for (int s = 0; s < m1 + m2; ++s) {
-      const double h = s < m1 ? fine / m1 : (dt - fine) / m2;
-      if (!ros2_step(f, r, x, h, y)) {
-        res.error = "simulation failed";
-        return res;
-      }
-      if (use_lag) {
-        const double alpha = -std::expm1(-h / e.tau);
-        for (int c = 0; c < 3; ++c) lag[c] += alpha * (y[c] - lag[c]);
+    const double tr = std::clamp(t_change + opt.transient_window - u.t[k], 0.0, fine);
+    const double seg_len[3] = {tr, fine - tr, dt - fine};
+    const double seg_step[3] = {std::min(opt.transient_step, opt.max_step), opt.max_step, 5e-3};
+    for (int g = 0; g < 3; ++g) {
+      if (seg_len[g] <= 1e-12 * dt) continue;
+      const int m = std::max(1, static_cast<int>(std::ceil(seg_len[g] / seg_step[g] - 1e-9)));
+      const double h = seg_len[g] / m;
+      for (int s = 0; s < m; ++s) {
+        if (!ros2_step(f, r, x, h, y)) {
+          res.error = "simulation failed";
+          return res;
+        }
+        if (use_lag) {
+          const double alpha = -std::expm1(-h / e.tau);
+          for (int c = 0; c < 3; ++c) lag[c] += alpha * (y[c] - lag[c]);
+        }
       }
     }
   }
   res.ok = true;
   return res;
+}
+
+std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInputs<double>& u,
+                                     const std::array<double, 2>& x, std::array<double, kChannels>* y) {
+  const Rhs f(model.nominal, flatten(model));
+  Row r;
+  r.Psupl = u.Psupl;
+  r.Ps = u.Ps;
+  r.Pbp = u.Pbp;
+  r.kp = u.kp;
+  f.set_row(r);
+  std::array<double, 2> d{};
+  double out[kChannels];
+  f(r, x.data(), d.data(), out);
+  if (y != nullptr) {
+    for (std::size_t c = 0; c < kChannels; ++c) (*y)[c] = out[c];
+  }
+  return d;
 }
 
 }  // namespace hstmon::gap

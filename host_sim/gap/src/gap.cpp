@@ -266,6 +266,11 @@ class Analysis {
     ++res_.simulations;
     SimResult s = simulate(m, d.u, o_.sim);
     ok = s.ok;
+    // The first row is the initial condition, not evidence: the logged inputs may already
+    // hold the supply that comes on just after it (a log that starts at rest reads 0 bar
+    // where the quasi-steady Pmi is at supply). The start-up from it is compared.
+    if (ok && !s.y.empty()) s.y[0] = d.y[0];
+    start_ = s.start;
     return std::move(s.y);
   }
 
@@ -366,6 +371,9 @@ class Analysis {
   ThesisParams<double> p_;
   const GapOptions& o_;
   GapResult& res_;
+
+ public:
+  std::string start_;  // how the last simulation started
 };
 
 double score(const EffectFit& f) { return f.shrink_check - 0.005 * (f.k - 1); }
@@ -383,6 +391,15 @@ InputSeries inputs_from_log(const host::LogData& log, const ThesisInputs<double>
   u.Ps = col(host::Signal::kPS, d.Ps);
   u.Pbp = col(host::Signal::kPBp, d.Pbp);
   u.kp = col(host::Signal::kKp, d.kp);
+  // The first sample, for the initial state (choose_initial_state, as replay).
+  u.start = StartRule::kFirstSample;
+  for (int c = 0; c < kChannels; ++c) {
+    if (n == 0 || !log.has(kChannelSignal[c])) continue;
+    const double v = log.column(kChannelSignal[c])[0];
+    if (!std::isfinite(v)) continue;
+    u.y0[static_cast<std::size_t>(c)] = v;
+    u.y0_valid = static_cast<std::uint8_t>(u.y0_valid | (1u << c));
+  }
   return u;
 }
 

@@ -14,6 +14,7 @@ InputSeries staircase_profile(char profile, double duration, double rate, const 
   const auto* seg = profile == 'B' ? kB : kA;
   const std::size_t nseg = profile == 'B' ? std::size(kB) : std::size(kA);
   InputSeries u;
+  u.start = StartRule::kSteady;
   const auto n = static_cast<std::size_t>(std::floor(duration * rate)) + 1;
   for (std::size_t k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) / rate;

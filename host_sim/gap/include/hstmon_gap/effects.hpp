@@ -8,6 +8,7 @@
 /// Public types are std::vector based (lib/ defines EIGEN_NO_MALLOC for its users).
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -79,15 +80,28 @@ struct ExtendedModel {
   std::vector<ActiveEffect> effects;
 };
 
-/// Inputs per log row, held until the next row (zero-order hold). SI.
+/// How simulate() chooses its initial state.
+enum class StartRule : int {
+  kFirstSample = 0,  ///< from the first measured sample by hstmon::choose_initial_state (replay's rule)
+  kRest,             ///< at rest (truth logs of a start-up)
+  kSteady,           ///< at the steady state of the first row with the effects (truth logs)
+};
+
+/// Inputs per log row, held until the next row (zero-order hold), and what the first row
+/// measured. SI.
 struct InputSeries {
   std::vector<double> t, Psupl, Ps, Pbp, kp;
+  std::array<double, kChannels> y0{};  ///< first measured sample (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
+  std::uint8_t y0_valid = 0;           ///< bit c set: channel c of y0 was measured
+  StartRule start = StartRule::kFirstSample;
   std::size_t size() const noexcept { return t.size(); }
 };
 
 /// Settings of simulate().
 struct SimOptions {
   double max_step = 2.5e-4;  ///< largest internal step [s] (ROS2, fixed per log interval)
+  double transient_step = 2.5e-5;  ///< step within transient_window of the start or an input change [s]
+  double transient_window = 0.05;  ///< [s]
   double preroll = 1.0;      ///< time held at the first row's inputs before t0 [s]
 };
 
@@ -96,13 +110,21 @@ struct SimResult {
   std::vector<std::array<double, kChannels>> y;
   bool ok = false;
   std::string error;  ///< set when !ok
+  std::string start;  ///< how the initial state was chosen: "measured", "rest" or "steady"
 };
 
-/// Simulates the extended model open loop through the logged inputs, starting from the
-/// steady state of the first row's inputs (nominal steady state + preroll with the
-/// effects). Linearly implicit 2-stage Rosenbrock (ROS2, L-stable) with a finite-difference
+/// Simulates the extended model open loop through the logged inputs. Starts by u.start:
+/// from the first sample (choose_initial_state: measured Ppp and ωm, else rest or steady —
+/// an offset fitted on a state channel is taken off its reading), at rest, or at the
+/// steady state (nominal steady state + preroll with the effects). Linearly implicit 2-stage Rosenbrock (ROS2, L-stable) with a finite-difference
 /// Jacobian on (Ppp, ωm); the step is fixed per log interval, so outputs are smooth in the
 /// effect parameters (what a finite-difference Levenberg–Marquardt needs).
 SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt = {});
+
+/// Rates (dPpp/dt, dωm/dt) and, if y is given, true outputs of the extended model at state
+/// x = (Ppp, ωm) under inputs u: what simulate() integrates. With no effects this is
+/// ThesisReducedModel<double>::derivative (the test holds it there).
+std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInputs<double>& u,
+                                     const std::array<double, 2>& x, std::array<double, kChannels>* y = nullptr);
 
 }  // namespace hstmon::gap
