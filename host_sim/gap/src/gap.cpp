@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "hstmon_ident/least_squares.hpp"
+#include "load_bins.hpp"
 
 namespace hstmon::gap {
 
@@ -144,35 +145,7 @@ Where decompose(const Prepared& p, const std::vector<std::array<double, kChannel
     if (cs.rms_w > significance) w.significant = true;
   }
   w.rms_w_total = used > 0 ? std::sqrt(pooled / used) : 0.0;
-  // Load bins by kp: one per distinct setting (≤ 6), else tertiles.
-  std::vector<double> kps;
-  for (double v : p.u.kp) {
-    if (std::none_of(kps.begin(), kps.end(), [&](double q) { return std::fabs(q - v) <= 1e-3 * std::fabs(v); }))
-      kps.push_back(v);
-    if (kps.size() > 6) break;
-  }
-  std::vector<std::pair<double, double>> bins;  // [lo, hi]
-  if (kps.size() <= 6) {
-    std::sort(kps.begin(), kps.end());
-    for (double v : kps) bins.emplace_back(v * (1 - 1e-3), v * (1 + 1e-3));
-  } else {
-    std::vector<double> s = p.u.kp;
-    std::sort(s.begin(), s.end());
-    const double q1 = s[s.size() / 3], q2 = s[2 * s.size() / 3];
-    bins = {{s.front(), q1}, {std::nextafter(q1, 1e300), q2}, {std::nextafter(q2, 1e300), s.back()}};
-  }
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    std::vector<char> mask(n);
-    for (std::size_t k = 0; k < n; ++k) mask[k] = p.u.kp[k] >= bins[b].first && p.u.kp[k] <= bins[b].second;
-    char buf[96];
-    if (kps.size() <= 6) {
-      std::snprintf(buf, sizeof buf, "kp=%.4g%s", 0.5 * (bins[b].first + bins[b].second),
-                    b == 0 && bins.size() > 1 ? " (heaviest load)" : (b + 1 == bins.size() && bins.size() > 1 ? " (lightest load)" : ""));
-    } else {
-      std::snprintf(buf, sizeof buf, "kp in [%.4g, %.4g]", bins[b].first, bins[b].second);
-    }
-    w.load_bins.push_back(part(p, rw, buf, mask));
-  }
+  for (const auto& lb : detail::load_bins(p.u.kp)) w.load_bins.push_back(part(p, rw, lb.label, lb.mask));
   std::vector<char> st(n), tr(n);
   for (std::size_t k = 0; k < n; ++k) {
     tr[k] = p.transient[k];
@@ -432,6 +405,13 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   }
   res.where_fit = decompose(A, ya, o.significance);
   res.where_check = decompose(B, yb, o.significance);
+  // Where at equation level: the balance equations on the measured signals alone.
+  const ArrData arr_a = evaluate_arrs(params, A.u, A.y, A.present, A.noise);
+  const ArrData arr_b = evaluate_arrs(params, B.u, B.y, B.present, B.noise);
+  res.where_fit.equations = equation_stats(arr_a);
+  res.where_check.equations = equation_stats(arr_b);
+  res.where_fit.located = located_equation(res.where_fit.equations);
+  res.where_check.located = located_equation(res.where_check.equations);
   res.t_check = check_log.t;
   res.kp_check = B.u.kp;
   res.data_check = B.y;

@@ -1,5 +1,6 @@
 /// @file output.cpp
 /// JSON, text and Markdown/gnuplot report of a GapResult.
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -52,6 +53,16 @@ json where_json(const Where& w) {
     for (const auto& p : v) a.push_back(part_json(p));
     return a;
   };
+  json eq = json::array();
+  for (const auto& e : w.equations) {
+    if (!e.available) continue;
+    json bl = json::array();
+    for (const auto& b : e.by_load) bl.push_back({{"label", b.label}, {"mean", b.mean}, {"rms_over_noise", b.rms_w}});
+    eq.push_back({{"equation", e.equation}, {"unit", e.unit}, {"mean", e.mean}, {"rms", e.rms}, {"noise", e.noise},
+                  {"rms_over_noise", e.rms_w}, {"by_load", bl}, {"dependence", e.dependence}});
+  }
+  j["equations"] = eq;
+  j["located_equation"] = w.located >= 0 ? json(equation_names()[static_cast<std::size_t>(w.located)]) : json(nullptr);
   j["load_bins"] = arr(w.load_bins);
   j["phases"] = arr(w.phases);
   j["bands"] = arr(w.bands);
@@ -136,6 +147,17 @@ std::string to_text(const GapResult& r) {
     parts(w.load_bins);
     parts(w.phases);
     parts(w.bands);
+    o << "  balance equations on the measured signals (imbalance: a loss the model lacks is > 0):\n";
+    o << "  equation        unit       mean        RMS  RMS/noise\n";
+    for (const auto& e : w.equations) {
+      if (!e.available) continue;
+      o << sfmt("  %-12s %7s %10.3g %10.3g %10.3g%s\n", e.equation.c_str(), e.unit.c_str(), e.mean, e.rms, e.rms_w,
+                &e == &w.equations[static_cast<std::size_t>(std::max(w.located, 0))] ? "  <- located" : "");
+    }
+    if (w.located >= 0) {
+      o << "  " << w.equations[static_cast<std::size_t>(w.located)].equation << ": "
+        << w.equations[static_cast<std::size_t>(w.located)].dependence << "\n";
+    }
   };
   where("fit log", r.where_fit);
   where("check log", r.where_check);

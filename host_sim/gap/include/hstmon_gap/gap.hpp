@@ -10,6 +10,7 @@
 
 #include "hstmon/thesis_params.hpp"
 #include "hstmon_gap/effects.hpp"
+#include "hstmon_gap/equations.hpp"
 #include "hstmon_host/log_reader.hpp"
 
 namespace hstmon::gap {
@@ -46,6 +47,8 @@ struct Where {
   double rms_w_total = 0;             ///< pooled over present channels [noise units]
   bool significant = false;
   double sample_period = 0;           ///< median [s]
+  std::vector<EquationStats> equations;  ///< balance-equation imbalances on the measured signals
+  int located = -1;                   ///< equation with the largest imbalance over noise (-1: none)
 };
 
 /// One fitted parameter.
