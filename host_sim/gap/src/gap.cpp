@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "hstmon_ident/least_squares.hpp"
+#include "autocorr.hpp"
 #include "load_bins.hpp"
 
 namespace hstmon::gap {
@@ -283,7 +284,10 @@ class Analysis {
       ident::DenseMatrix jac;
       if (ident::central_jacobian(fn, m, lm.x, steps, jac)) {
         const auto st = ident::linear_stats(jac, ssr / static_cast<double>(m - L.size()));
+        // Residuals of a model error are autocorrelated: n/τ effective samples.
+        f.autocorrelation_time = detail::autocorrelation_time_blocks(lm.residuals, A_.y.size());
         se = st.se;
+        for (double& v : se) v *= std::sqrt(f.autocorrelation_time);
       }
     }
     for (std::size_t i = 0; i < L.index.size(); ++i) {
@@ -441,8 +445,16 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   }
 
   if (!res.where_fit.significant && !res.where_check.significant) {
-    res.verdict = "no_significant_gap";
-    res.verdict_text = "the nominal model matches both logs within the noise; no effect is needed";
+    decide_verdict(res);
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return res;
+  }
+  // Out of envelope: the machine is not the model's kind; no effect is fitted or named.
+  add_envelope_segments(res.envelope, nominal, A.u, A.y, ya, A.present, A.noise, o.settle_time);
+  add_envelope_segments(res.envelope, nominal, B.u, B.y, yb, B.present, B.noise, o.settle_time);
+  finish_envelope(res.envelope);
+  if (res.envelope.out) {
+    decide_verdict(res);
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
   }
@@ -514,19 +526,8 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   for (auto& f : pairs) res.ranking.push_back(std::move(f));
   for (auto& f : useful) res.ranking.push_back(std::move(f));
 
-  if (res.ranking.empty()) {
-    res.verdict = "unexplained";
-    res.verdict_text = "no effect of the library reduces the gap on the fit log";
-  } else {
+  if (!res.ranking.empty()) {
     const EffectFit& best = res.ranking.front();
-    for (Effect e : best.effects) res.explained_by.push_back(effect_info(e).name);
-    if (best.shrink_check >= 0.5) {
-      res.verdict = best.effects.size() > 1 ? "explained_by_pair" : "explained";
-    } else if (best.shrink_check >= 0.2) {
-      res.verdict = "partly_explained";
-    } else {
-      res.verdict = "unexplained";
-    }
     // Another set (not containing the best's effects) doing as well: the data cannot tell.
     for (std::size_t i = 1; i < res.ranking.size(); ++i) {
       const EffectFit& f = res.ranking[i];
@@ -538,15 +539,19 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
         res.cannot_tell_apart.push_back(f.name);
       }
     }
-    char buf[400];
-    std::snprintf(buf, sizeof buf, "%s: %s shrinks the check-log gap by %.0f %% (noise-weighted RMS %.3g -> %.3g)%s",
-                  res.verdict.c_str(), best.name.c_str(), 100.0 * best.shrink_check, best.rms_w_before_check,
-                  best.rms_w_after_check,
-                  res.cannot_tell_apart.empty() ? "" : "; other effects explain it as well - the data cannot tell them apart");
-    res.verdict_text = buf;
     bool ok = false;
     res.best_check = an.sim(best.model, B, ok);
     if (!ok) res.best_check = yb;
+  }
+  decide_verdict(res);
+  // Beyond the library: when no library set brings the check log to noise, propose the
+  // located equation's missing term.
+  if (res.verdict != "explained" && res.verdict != "explained_by_pair") {
+    const int eq = res.where_fit.located >= 0 ? res.where_fit.located : res.where_check.located;
+    if (eq >= 0) {
+      if (auto d = discover(arr_a, arr_b, eq)) res.discovered.push_back(std::move(*d));
+    }
+    decide_verdict(res);
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;

@@ -91,7 +91,7 @@ json fit_json(const EffectFit& f) {
             {"shrink_fit", num(f.shrink_fit)}, {"shrink_check", num(f.shrink_check)},
             {"rms_over_noise_check", {{"before", f.rms_w_before_check}, {"after", num(f.rms_w_after_check)}}},
             {"rms_check_before", before}, {"rms_check_after", after}, {"converged", f.converged},
-            {"evaluations", f.evaluations}};
+            {"evaluations", f.evaluations}, {"autocorrelation_time", f.autocorrelation_time}};
   if (f.offset_channel >= 0) j["offset_channel"] = channel_names()[static_cast<std::size_t>(f.offset_channel)];
   return j;
 }
@@ -112,6 +112,37 @@ std::string to_json(const GapResult& r, int indent) {
   j["ranking"] = rk;
   j["rejected"] = rej;
   j["not_identifiable"] = ni;
+  json env = json::array();
+  for (const auto& sg : r.envelope.segments) {
+    json m = json::object(), mo = json::object(), lo = json::object(), hi = json::object();
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      m[channel_names()[c]] = sg.measured[c];
+      mo[channel_names()[c]] = sg.model[c];
+      lo[channel_names()[c]] = sg.lo[c];
+      hi[channel_names()[c]] = sg.hi[c];
+    }
+    env.push_back({{"t", {sg.t0, sg.t1}}, {"p_sup", sg.Psupl}, {"kp", sg.kp}, {"measured", m}, {"model", mo},
+                   {"shift_min", lo}, {"shift_max", hi}, {"outside", sg.outside},
+                   {"worst_channel", sg.worst_channel >= 0 ? json(channel_names()[static_cast<std::size_t>(sg.worst_channel)]) : json(nullptr)}});
+  }
+  j["envelope"] = {{"out", r.envelope.out}, {"outside", r.envelope.outside}, {"settings", env}, {"text", r.envelope.text}};
+  json disc = json::array();
+  for (const auto& d : r.discovered) {
+    json terms = json::array();
+    for (const auto& t : d.terms) {
+      terms.push_back({{"form", t.form}, {"unit", t.unit}, {"coefficient", t.coefficient}, {"std_error", num(t.std_error)}});
+    }
+    disc.push_back({{"equation", d.equation}, {"terms", terms}, {"shrink_check", d.shrink_check},
+                    {"shrink_fit", d.shrink_fit}, {"rms_over_noise_check", {{"before", d.rms_w_before_check}, {"after", d.rms_w_after_check}}},
+                    {"reading", d.reading}});
+  }
+  j["discovered"] = disc;
+  json rem = json::object();
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    if (std::isfinite(r.remaining_rms_w[c])) rem[channel_names()[c]] = r.remaining_rms_w[c];
+  }
+  j["remaining_check"] = {{"rms_over_noise", rem}, {"where", r.remaining_where}};
+  j["verdict_rule"] = "explained only when every measured channel of the check log is within 2x its noise (RMS) after the top-ranked effect set";
   j["verdict"] = r.verdict;
   j["explained_by"] = r.explained_by;
   j["cannot_tell_apart"] = r.cannot_tell_apart;
@@ -172,6 +203,17 @@ std::string to_text(const GapResult& r) {
     }
   }
   for (const auto& n : r.not_identifiable) o << "  not identifiable: " << effect_info(n.effect).name << " - " << n.reason << "\n";
+  if (!r.envelope.segments.empty()) {
+    o << "\noperating-point envelope: " << (r.envelope.out ? "OUT - " : "") << r.envelope.text << "\n";
+  }
+  for (const auto& d : r.discovered) {
+    o << "\nbeyond the library (" << d.equation << ", STLSQ fitted on the fit log, judged on the check log):\n";
+    for (const auto& t : d.terms) {
+      o << sfmt("  %+.4g * %s  (+- %.2g %s)\n", t.coefficient, t.form.c_str(), t.std_error, t.unit.c_str());
+    }
+    o << sfmt("  %s; shrinks the check-log imbalance by %.0f %% (RMS/noise %.3g -> %.3g)\n", d.reading.c_str(),
+              100.0 * d.shrink_check, d.rms_w_before_check, d.rms_w_after_check);
+  }
   o << "\nverdict: " << r.verdict_text << "\n";
   o << sfmt("(%d simulations, %.1f s)\n", r.simulations, r.seconds);
   return o.str();

@@ -10,6 +10,8 @@
 
 #include "hstmon/thesis_params.hpp"
 #include "hstmon_gap/effects.hpp"
+#include "hstmon_gap/discover.hpp"
+#include "hstmon_gap/envelope.hpp"
 #include "hstmon_gap/equations.hpp"
 #include "hstmon_host/log_reader.hpp"
 
@@ -54,7 +56,7 @@ struct Where {
 /// One fitted parameter.
 struct ParamEstimate {
   std::string effect, name, unit;
-  double value = 0, se = 0;   ///< SI; se from the linearised covariance (∞ if not identifiable)
+  double value = 0, se = 0;   ///< SI; se from the linearised covariance × √τ (∞ if not identifiable)
   bool identified = true;     ///< se < |value|
 };
 
@@ -72,6 +74,7 @@ struct EffectFit {
   double rms_w_before_check = 0, rms_w_after_check = 0;
   bool converged = false;
   int evaluations = 0;
+  double autocorrelation_time = 1;    ///< τ of the fit-log residuals: SEs use n/τ samples
   ExtendedModel model;                ///< nominal + fitted effects
 };
 
@@ -89,7 +92,11 @@ struct GapResult {
   std::vector<EffectFit> ranking;     ///< best first (accepted pairs, then single effects)
   std::vector<EffectFit> rejected;    ///< tried but not improving the fit log, or pairs not needed
   std::vector<NotIdentifiable> not_identifiable;
-  std::string verdict;                ///< no_significant_gap | explained | explained_by_pair | partly_explained | unexplained
+  Envelope envelope;                  ///< operating points vs what the model and its effects can reach
+  std::vector<Discovery> discovered;  ///< missing terms proposed beyond the library
+  std::array<double, kChannels> remaining_rms_w{};  ///< check log after the top-ranked set, RMS/noise (NaN: absent)
+  std::string remaining_where;        ///< load regime where most remains
+  std::string verdict;                ///< no_significant_gap | out_of_envelope | explained | explained_by_pair | partly_explained | unexplained
   std::vector<std::string> explained_by;
   std::vector<std::string> cannot_tell_apart;  ///< effects that explain the check log equally well
   std::string verdict_text;           ///< one sentence
@@ -109,6 +116,10 @@ InputSeries inputs_from_log(const host::LogData& log, const ThesisInputs<double>
 /// from the fit). Never throws for bad data; sets error instead.
 GapResult run_gap(const host::LogData& fit, const host::LogData& check, const ThesisParams<double>& params,
                   const ThesisInputs<double>& defaults, const GapOptions& options = {});
+
+/// Sets verdict, explained_by and verdict_text from the rest of the result (docs/gap.md:
+/// `explained` only when every check-log channel is within 2× its noise after the fit).
+void decide_verdict(GapResult& r);
 
 /// The result as one JSON object (SI units), `{"where":…,"ranking":[…],"verdict":…}`.
 std::string to_json(const GapResult& r, int indent = -1);

@@ -1,0 +1,260 @@
+/// @file discover.cpp
+/// STLSQ on the located equation's imbalance (see discover.hpp, docs/gap.md).
+#include "hstmon_gap/discover.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "autocorr.hpp"
+
+namespace hstmon::gap {
+
+namespace {
+
+constexpr std::size_t kMi = 0, kMo = 1, kPp = 2, kW = 3;
+constexpr double kOmega0 = 0.5;  // tanh regularisation speed of a Coulomb term [rad/s], as the library's
+
+// One candidate term: its form, coefficient unit, what a term of this form means
+// physically, and its value at ARR row i.
+struct Candidate {
+  std::string form, unit, meaning;
+  std::function<double(const ArrData&, std::size_t)> value;
+};
+
+std::vector<Candidate> candidates(int eq) {
+  using A = const ArrData&;
+  std::vector<Candidate> c;
+  const auto t = [](A a, std::size_t i) { return a.t_since_start[i]; };
+  const auto w = [](A a, std::size_t i) { return a.y[i][kW]; };
+  if (eq == kEqTorque) {
+    // Coulomb before the constant: for a shaft that always turns one way they coincide,
+    // and the physical reading is friction.
+    c.push_back({"tanh(w_m/0.5)", "N*m", "coulomb", [](A a, std::size_t i) { return std::tanh(a.y[i][kW] / kOmega0); }});
+    c.push_back({"1", "N*m", "const", [](A, std::size_t) { return 1.0; }});
+    c.push_back({"w_m", "N*m*s/rad", "viscous", w});
+    c.push_back({"p_mi-p_mo", "m^3/rad", "motor_dp", [](A a, std::size_t i) { return a.y[i][kMi] - a.y[i][kMo]; }});
+    c.push_back({"p_pp-Pbp", "m^3/rad", "pump_dp", [](A a, std::size_t i) { return a.y[i][kPp] - a.Pbp[i]; }});
+    c.push_back({"w_m^2", "N*m*s^2/rad^2", "windage", [](A a, std::size_t i) { return a.y[i][kW] * std::fabs(a.y[i][kW]); }});
+    c.push_back({"(p_mi-p_mo)*w_m", "m^3*s/rad^2", "generic", [](A a, std::size_t i) { return (a.y[i][kMi] - a.y[i][kMo]) * a.y[i][kW]; }});
+    c.push_back({"dw_m/dt", "kg*m^2", "inertia", [](A a, std::size_t i) { return a.dw[i]; }});
+    c.push_back({"t", "N*m/s", "drift", t});
+    return c;
+  }
+  const std::size_t n = eq == kEqFlowMi ? kMi : (eq == kEqFlowMo ? kMo : kPp);
+  const std::string P = eq == kEqFlowMi ? "p_mi" : (eq == kEqFlowMo ? "p_mo" : "p_pp");
+  c.push_back({"1", "m^3/s", "const", [](A, std::size_t) { return 1.0; }});
+  c.push_back({P, "m^3/(s*Pa)", "leak", [n](A a, std::size_t i) { return a.y[i][n]; }});
+  c.push_back({"w_m", "m^3/rad", "displacement", w});
+  if (eq == kEqFlowPp) {
+    c.push_back({"kp*sqrt(p_pp-Pbp)", "1", "orifice", [](A a, std::size_t i) {
+                   const double d = a.y[i][kPp] - a.Pbp[i];
+                   return a.kp[i] * (d < 0 ? -std::sqrt(-d) : std::sqrt(d));
+                 }});
+    c.push_back({"p_pp-Pbp", "m^3/(s*Pa)", "laminar", [](A a, std::size_t i) { return a.y[i][kPp] - a.Pbp[i]; }});
+  } else {
+    c.push_back({"p_mi-p_mo", "m^3/(s*Pa)", "cross", [](A a, std::size_t i) { return a.y[i][kMi] - a.y[i][kMo]; }});
+    c.push_back({eq == kEqFlowMi ? "sqrt(Psupl-p_mi)" : "sqrt(p_mo-Ps)", "m^3/(s*sqrt(Pa))", "orifice",
+                 [eq](A a, std::size_t i) {
+                   const double d = eq == kEqFlowMi ? a.Psupl[i] - a.y[i][kMi] : a.y[i][kMo] - a.Ps[i];
+                   return d < 0 ? -std::sqrt(-d) : std::sqrt(d);
+                 }});
+  }
+  c.push_back({P + "*w_m", "m^3/(Pa*rad)", "generic", [n](A a, std::size_t i) { return a.y[i][n] * a.y[i][kW]; }});
+  if (eq == kEqFlowPp) {
+    c.push_back({"dp_pp/dt", "m^3/Pa", "compliance", [](A a, std::size_t i) { return a.dPpp[i]; }});
+  }
+  c.push_back({"t", "m^3/s^2", "drift", t});
+  return c;
+}
+
+// Weighted design matrix (rows / σ) of the chosen candidates, and the weighted target.
+void design(const ArrData& a, int eq, const std::vector<Candidate>& c, Eigen::MatrixXd& X, Eigen::VectorXd& y) {
+  const auto e = static_cast<std::size_t>(eq);
+  const std::size_t n = a.rows.size();
+  X.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(c.size()));
+  y.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double wt = 1.0 / a.sigma[e][i];
+    y[static_cast<Eigen::Index>(i)] = a.r[e][i] * wt;
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      X(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c[j].value(a, i) * wt;
+    }
+  }
+}
+
+Eigen::VectorXd solve(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<int>& active) {
+  Eigen::MatrixXd Xa(X.rows(), static_cast<Eigen::Index>(active.size()));
+  for (std::size_t j = 0; j < active.size(); ++j) Xa.col(static_cast<Eigen::Index>(j)) = X.col(active[j]);
+  return Xa.colPivHouseholderQr().solve(y);
+}
+
+double rms_after(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<int>& active,
+                 const Eigen::VectorXd& beta) {
+  Eigen::VectorXd r = y;
+  for (std::size_t j = 0; j < active.size(); ++j) r -= beta[static_cast<Eigen::Index>(j)] * X.col(active[j]);
+  return std::sqrt(r.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, y.size())));
+}
+
+std::string node_name(int eq) {
+  return eq == kEqFlowMi ? "motor-inlet" : (eq == kEqFlowMo ? "motor-outlet" : "loading-pump");
+}
+
+// The physical reading of the leading term, in words.
+std::string reading(int eq, const Candidate& c, double v) {
+  char b[320];
+  const bool flow = eq != kEqTorque;
+  const std::string node = node_name(eq);
+  if (c.meaning == "leak" && v > 0) {
+    std::snprintf(b, sizeof b, "a flow loss at the %s node proportional to %s: leakage to drain, R = %.3g Pa*s/m^3",
+                  node.c_str(), c.form.c_str(), 1.0 / v);
+  } else if (c.meaning == "leak") {
+    std::snprintf(b, sizeof b, "a flow gain at the %s node proportional to %s (%.3g m^3/(s*Pa)): an inflow the model lacks",
+                  node.c_str(), c.form.c_str(), -v);
+  } else if (c.meaning == "const" && flow) {
+    std::snprintf(b, sizeof b, "a constant flow %s at the %s node of %.3g m^3/s (%.3g L/min)", v > 0 ? "loss" : "gain",
+                  node.c_str(), std::fabs(v), std::fabs(v) * 6e4);
+  } else if (c.meaning == "displacement") {
+    std::snprintf(b, sizeof b, "a flow %s at the %s node proportional to the speed: %.3g m^3/rad (a displacement or volumetric efficiency error)",
+                  v > 0 ? "loss" : "gain", node.c_str(), std::fabs(v));
+  } else if (c.meaning == "orifice") {
+    if (eq == kEqFlowPp) {
+      std::snprintf(b, sizeof b, "the PRV passes %.3g times the model's flow (kp off by %+.1f %%)", 1.0 + v, 100.0 * v);
+    } else {
+      std::snprintf(b, sizeof b, "the DCV %s orifice's coefficient kf is off by %+.3g m^3/(s*sqrt(Pa))",
+                    eq == kEqFlowMi ? "inlet" : "outlet", eq == kEqFlowMi ? -v : v);
+    }
+  } else if (c.meaning == "cross") {
+    std::snprintf(b, sizeof b, "a cross-port leakage proportional to p_mi - p_mo: R = %.3g Pa*s/m^3", 1.0 / std::fabs(v));
+  } else if (c.meaning == "laminar") {
+    std::snprintf(b, sizeof b, "a flow %s at the loading-pump node proportional to p_pp - Pbp: a laminar path across the PRV, R = %.3g Pa*s/m^3",
+                  v > 0 ? "loss" : "gain", 1.0 / std::fabs(v));
+  } else if (c.meaning == "compliance") {
+    std::snprintf(b, sizeof b, "a compliance the model lacks at the loading-pump node: %.3g m^3/Pa", v);
+  } else if (c.meaning == "coulomb" || (c.meaning == "const" && !flow)) {
+    std::snprintf(b, sizeof b, "a %s torque on the shaft: Coulomb friction Tc = %.3g N*m", v > 0 ? "braking" : "driving",
+                  std::fabs(v));
+  } else if (c.meaning == "viscous") {
+    std::snprintf(b, sizeof b, "a torque loss proportional to the speed: extra viscous friction %.3g N*m*s/rad", v);
+  } else if (c.meaning == "motor_dp") {
+    std::snprintf(b, sizeof b, "a torque loss proportional to the motor pressure difference: mechanical efficiency off by %.3g m^3/rad", v);
+  } else if (c.meaning == "pump_dp") {
+    std::snprintf(b, sizeof b, "a torque proportional to the loading-pump pressure rise: pump displacement or efficiency off by %.3g m^3/rad", v);
+  } else if (c.meaning == "windage") {
+    std::snprintf(b, sizeof b, "a torque loss proportional to the speed squared (churning, windage): %.3g N*m*s^2/rad^2", v);
+  } else if (c.meaning == "inertia") {
+    std::snprintf(b, sizeof b, "an inertia error: J off by %.3g kg*m^2", v);
+  } else if (c.meaning == "drift") {
+    std::snprintf(b, sizeof b, "an imbalance drifting with time since start: %.3g %s", v, c.unit.c_str());
+  } else {
+    std::snprintf(b, sizeof b, "an imbalance proportional to %s: %.3g %s", c.form.c_str(), v, c.unit.c_str());
+  }
+  return b;
+}
+
+}  // namespace
+
+std::optional<Discovery> discover(const ArrData& fit, const ArrData& check, int eq) {
+  if (eq < 0 || eq >= kEquations) return std::nullopt;
+  const auto e = static_cast<std::size_t>(eq);
+  if (!fit.available[e] || !check.available[e] || fit.rows.size() < 20 || check.rows.size() < 20) return std::nullopt;
+  std::vector<Candidate> all = candidates(eq);
+  Eigen::MatrixXd X, Xc;
+  Eigen::VectorXd y, yc;
+  design(fit, eq, all, X, y);
+  design(check, eq, all, Xc, yc);
+  // Drop candidates (nearly) collinear with earlier ones on the fit log (Gram–Schmidt on
+  // the normalised columns): a constant Pbp makes p_pp - Pbp the constant plus p_pp.
+  std::vector<int> keep;
+  std::vector<Eigen::VectorXd> basis;
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    Eigen::VectorXd v = X.col(static_cast<Eigen::Index>(j));
+    const double n0 = v.norm();
+    if (!(n0 > 0) || !std::isfinite(n0)) continue;
+    v /= n0;
+    for (const auto& q : basis) v -= q.dot(v) * q;
+    const double n1 = v.norm();
+    if (n1 < 1e-3) continue;
+    basis.push_back(v / n1);
+    keep.push_back(static_cast<int>(j));
+  }
+  if (keep.empty()) return std::nullopt;
+  // Normalised columns: STLSQ thresholds compare contributions.
+  Eigen::VectorXd scale(X.cols());
+  for (Eigen::Index j = 0; j < X.cols(); ++j) scale[j] = std::max(X.col(j).norm(), 1e-300);
+  const Eigen::MatrixXd Xn = X * scale.cwiseInverse().asDiagonal();
+  // Model pool: the STLSQ path over thresholds, and every single term.
+  std::vector<std::vector<int>> pool;
+  auto add = [&](std::vector<int> s) {
+    std::sort(s.begin(), s.end());
+    if (!s.empty() && std::find(pool.begin(), pool.end(), s) == pool.end()) pool.push_back(std::move(s));
+  };
+  for (int j : keep) add({j});
+  for (double lambda : {0.01, 0.03, 0.1, 0.2, 0.35, 0.5}) {
+    std::vector<int> act = keep;
+    for (int it = 0; it < 20; ++it) {
+      const Eigen::VectorXd xi = solve(Xn, y, act);
+      const double mx = xi.cwiseAbs().maxCoeff();
+      std::vector<int> next;
+      for (std::size_t j = 0; j < act.size(); ++j) {
+        if (std::fabs(xi[static_cast<Eigen::Index>(j)]) >= lambda * mx) next.push_back(act[j]);
+      }
+      if (next == act) break;
+      act = next;
+    }
+    add(act);
+  }
+  // Judge on the check log: the sparsest model within 10 % of the best achievable shrink.
+  const double before = std::sqrt(yc.squaredNorm() / static_cast<double>(yc.size()));
+  std::vector<double> after(pool.size());
+  std::vector<Eigen::VectorXd> betas(pool.size());
+  double best = before;
+  for (std::size_t m = 0; m < pool.size(); ++m) {
+    betas[m] = solve(X, y, pool[m]);
+    after[m] = rms_after(Xc, yc, pool[m], betas[m]);
+    best = std::min(best, after[m]);
+  }
+  if (!(best < before)) return std::nullopt;
+  std::size_t pick = pool.size();
+  for (std::size_t m = 0; m < pool.size(); ++m) {
+    if (after[m] > best + 0.1 * (before - best)) continue;
+    if (pick == pool.size() || pool[m].size() < pool[pick].size() ||
+        (pool[m].size() == pool[pick].size() && after[m] < after[pick])) {
+      pick = m;
+    }
+  }
+  const std::vector<int>& act = pool[pick];
+  const Eigen::VectorXd& beta = betas[pick];
+  // Standard errors: s²·(XᵀX)⁻¹ on the weighted rows, scaled by the residuals'
+  // autocorrelation time (effective sample size n/τ).
+  Eigen::MatrixXd Xa(X.rows(), static_cast<Eigen::Index>(act.size()));
+  for (std::size_t j = 0; j < act.size(); ++j) Xa.col(static_cast<Eigen::Index>(j)) = X.col(act[j]);
+  const Eigen::VectorXd res = y - Xa * beta;
+  const double dof = std::max(1.0, static_cast<double>(X.rows()) - static_cast<double>(act.size()));
+  const double tau = detail::autocorrelation_time(res.data(), static_cast<std::size_t>(res.size()));
+  const Eigen::MatrixXd cov = (Xa.transpose() * Xa).inverse() * (res.squaredNorm() / dof * tau);
+  Discovery d;
+  d.equation = equation_names()[e];
+  d.rms_w_before_check = before;
+  d.rms_w_after_check = after[pick];
+  d.shrink_check = 1.0 - after[pick] / before;
+  const double before_fit = std::sqrt(y.squaredNorm() / static_cast<double>(y.size()));
+  d.shrink_fit = 1.0 - std::sqrt(res.squaredNorm() / static_cast<double>(y.size())) / before_fit;
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t j = 0; j < act.size(); ++j) {
+    order.emplace_back(std::fabs(beta[static_cast<Eigen::Index>(j)]) * Xa.col(static_cast<Eigen::Index>(j)).norm(), j);
+  }
+  std::sort(order.rbegin(), order.rend());
+  for (const auto& [contrib, j] : order) {
+    const Candidate& c = all[static_cast<std::size_t>(act[j])];
+    const auto ji = static_cast<Eigen::Index>(j);
+    d.terms.push_back({c.form, c.unit, beta[ji], std::sqrt(std::max(0.0, cov(ji, ji)))});
+  }
+  const Candidate& lead = all[static_cast<std::size_t>(act[order.front().second])];
+  d.reading = reading(eq, lead, d.terms.front().coefficient);
+  return d;
+}
+
+}  // namespace hstmon::gap

@@ -1,0 +1,147 @@
+/// @file verdict.cpp
+/// The verdict and its sentence (see gap.hpp, docs/gap.md). Shrink ranks the effects; the
+/// verdict asks what remains: `explained` only when every measured channel of the check
+/// log is within kAtNoise × its noise after the top-ranked set.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "hstmon_gap/gap.hpp"
+#include "load_bins.hpp"
+
+namespace hstmon::gap {
+
+namespace {
+
+constexpr double kAtNoise = 2.0;       // "at noise level": check-log RMS ≤ 2× noise on every channel
+constexpr double kPartly = 0.2;        // below this shrink nothing is explained even in part
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+// Balance equations an effect enters (empty: a sensor effect, any channel).
+std::vector<int> effect_equations(Effect e) {
+  switch (e) {
+    case Effect::kCoulombFriction:
+    case Effect::kPressureTorqueLoss: return {kEqTorque};
+    case Effect::kMotorLeakage: return {kEqFlowMi, kEqFlowMo};
+    case Effect::kPrvCracking:
+    case Effect::kAirEntrainment: return {kEqFlowPp};
+    case Effect::kSupplyFlowLimit: return {kEqFlowMi};
+    case Effect::kSensorLag:
+    case Effect::kSensorOffset: return {};
+  }
+  return {};
+}
+
+std::string fmt_channel(std::size_t c, double rms, double ratio) {
+  char b[96];
+  if (c == 3) {
+    std::snprintf(b, sizeof b, "%s %.3g rpm RMS (%.1fx noise)", channel_names()[c], rms * 60.0 / (2.0 * M_PI), ratio);
+  } else {
+    std::snprintf(b, sizeof b, "%s %.3g bar RMS (%.1fx noise)", channel_names()[c], rms * 1e-5, ratio);
+  }
+  return b;
+}
+
+}  // namespace
+
+void decide_verdict(GapResult& r) {
+  r.explained_by.clear();
+  r.remaining_rms_w.fill(kNan);
+  r.remaining_where.clear();
+  const bool significant = r.where_fit.significant || r.where_check.significant;
+  if (!significant) {
+    r.verdict = "no_significant_gap";
+    r.verdict_text = "the nominal model matches both logs within the noise; no effect is needed";
+    return;
+  }
+  if (r.envelope.out) {
+    r.verdict = "out_of_envelope";
+    r.verdict_text = "out of envelope: " + r.envelope.text +
+                     ". The model does not describe this machine, so no effect is named: identify its parameters "
+                     "(hstmon identify on its steady data) or use a model of its circuit.";
+    return;
+  }
+  std::string text;
+  if (r.ranking.empty()) {
+    r.verdict = "unexplained";
+    text = "unexplained: no effect of the library reduces the gap on the fit log";
+  } else {
+    const EffectFit& best = r.ranking.front();
+    // What remains on the check log, per channel and per load regime.
+    bool at_noise = true;
+    std::string remains;
+    for (std::size_t c = 0; c < kChannels; ++c) {
+      const auto& ch = r.where_check.channels[c];
+      if (!ch.present || !std::isfinite(best.rms_after_check[c])) continue;
+      const double ratio = best.rms_after_check[c] / ch.noise;
+      r.remaining_rms_w[c] = ratio;
+      if (ratio > kAtNoise) {
+        at_noise = false;
+        remains += (remains.empty() ? "" : ", ") + fmt_channel(c, best.rms_after_check[c], ratio);
+      }
+    }
+    if (!at_noise && r.best_check.size() == r.data_check.size()) {
+      double worst = -1;
+      for (const auto& b : detail::load_bins(r.kp_check)) {
+        double s = 0;
+        std::size_t cnt = 0;
+        for (std::size_t k = 0; k < b.mask.size(); ++k) {
+          if (!b.mask[k]) continue;
+          for (std::size_t c = 0; c < kChannels; ++c) {
+            const auto& ch = r.where_check.channels[c];
+            if (ch.present) s += std::pow((r.data_check[k][c] - r.best_check[k][c]) / ch.noise, 2);
+          }
+          ++cnt;
+        }
+        if (cnt > 0 && s / static_cast<double>(cnt) > worst) {
+          worst = s / static_cast<double>(cnt);
+          r.remaining_where = b.label;
+        }
+      }
+    }
+    char buf[400];
+    if (at_noise) {
+      r.verdict = best.effects.size() > 1 ? "explained_by_pair" : "explained";
+      for (Effect e : best.effects) r.explained_by.push_back(effect_info(e).name);
+      std::snprintf(buf, sizeof buf,
+                    "%s: %s shrinks the check-log gap by %.0f %% (noise-weighted RMS %.3g -> %.3g) and leaves every "
+                    "channel within %.0fx its noise",
+                    r.verdict.c_str(), best.name.c_str(), 100.0 * best.shrink_check, best.rms_w_before_check,
+                    best.rms_w_after_check, kAtNoise);
+      text = buf;
+      if (!r.cannot_tell_apart.empty()) text += "; other effects explain it as well - the data cannot tell them apart";
+    } else {
+      r.verdict = best.shrink_check >= kPartly ? "partly_explained" : "unexplained";
+      std::snprintf(buf, sizeof buf, "%s: the best library set, %s, shrinks the check-log gap by %.0f %%, but ",
+                    r.verdict.c_str(), best.name.c_str(), 100.0 * best.shrink_check);
+      text = buf + std::string("what remains is above noise: ") + remains;
+      if (!r.remaining_where.empty()) text += ", most at " + r.remaining_where;
+      // A library effect acting on another equation than the one out of balance: its
+      // physical reading is doubtful, whatever it shrinks.
+      const int eq = r.where_check.located;
+      if (eq >= 0) {
+        bool enters = false, sensor = false;
+        for (Effect e : best.effects) {
+          const auto q = effect_equations(e);
+          sensor = sensor || q.empty();
+          enters = enters || std::find(q.begin(), q.end(), eq) != q.end();
+        }
+        if (!enters) {
+          text += std::string("; the imbalance is in ") + equation_names()[static_cast<std::size_t>(eq)] + ", which " +
+                  best.name + (sensor ? " only mimics through a sensor" : " does not enter") +
+                  ": its physical reading is doubtful";
+        }
+      }
+    }
+  }
+  for (const auto& d : r.discovered) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, ", shrinks the check-log imbalance of %s by %.0f %%", d.equation.c_str(),
+                  100.0 * d.shrink_check);
+    text += ". Beyond the library: " + d.reading + buf;
+  }
+  r.verdict_text = text;
+}
+
+}  // namespace hstmon::gap
