@@ -73,10 +73,12 @@ struct Ext {
   double xa = 0;
   double tau = 0;
   std::array<double, kChannels> offset{};
+  TruthExtras extras{};
 };
 
 Ext flatten(const ExtendedModel& m) {
   Ext e;
+  e.extras = m.extras;
   for (const auto& a : m.effects) {
     const auto& v = a.values;
     auto val = [&](std::size_t i) { return i < v.size() ? v[i] : 0.0; };
@@ -192,6 +194,8 @@ class Rhs {
       const double th = std::tanh(w / kStribeckSpeed);
       f[1] -= (e_.tc * th + e_.eta * p_.Dm * std::fabs(out[kChPmi] - out[kChPmo]) * th) / p_.J;
     }
+    if (e_.extras.g_pp != 0) f[0] -= p_.K * e_.extras.g_pp * x[0];
+    if (e_.extras.windage != 0) f[1] -= e_.extras.windage * w * std::fabs(w) / p_.J;
     if (y != nullptr) {
       for (int c = 0; c < kChannels; ++c) y[c] = out[c];
     }

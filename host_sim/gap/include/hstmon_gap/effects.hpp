@@ -74,10 +74,18 @@ struct ActiveEffect {
 /// Active effect with its default (start) parameter values.
 ActiveEffect default_effect(Effect e, int channel = 2);
 
+/// Terms outside the library, for truth logs only (tests of discovery): the analysis never
+/// fits them.
+struct TruthExtras {
+  double g_pp = 0;     ///< leakage conductance from the loading-pump node to drain [m³/(s·Pa)]
+  double windage = 0;  ///< shaft torque −windage·ωm·|ωm| [N·m·s²/rad²]
+};
+
 /// The extended model: nominal thesis parameters + active effects.
 struct ExtendedModel {
   ThesisParams<double> nominal{};
   std::vector<ActiveEffect> effects;
+  TruthExtras extras{};
 };
 
 /// How simulate() chooses its initial state.
