@@ -1,0 +1,750 @@
+#pragma once
+/// @file circuit_model.hpp
+/// The model engine: a circuit description (circuit.hpp) as the Observer's model.
+///
+/// States are the pressures of the volume nodes outside the stiff mask and the speeds of
+/// the free shafts, in node then shaft order. Stiff nodes (stiffness.hpp picks them) are
+/// taken quasi-steady: each evaluation solves their flow balances for their pressures
+/// given the states, by Gauss–Seidel sweeps of exact scalar solves (safeguarded Newton),
+/// which contract because every element is monotone and every stiff node keeps a
+/// guaranteed conductance to fixed pressures (docs/circuits.md gives the argument and
+/// contraction_bound() its number). Outputs are what the sensor channels measure.
+///
+/// Everything is in the object: capacity-sized arrays, no heap, no exceptions, no RTTI.
+/// The description is referred to by pointer (it can live in flash) and must outlive the
+/// model. The last quasi-steady solution is kept as the next solve's start (a warm start;
+/// results agree to rounding whatever the start), so a model must not be evaluated from
+/// two threads at once.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "hstmon/circuit/circuit.hpp"
+#include "hstmon/circuit/dense.hpp"
+#include "hstmon/circuit/laws.hpp"
+#include "hstmon/circuit/pseudo_transient.hpp"
+#include "hstmon/circuit/validate.hpp"
+#include "hstmon/pump_curve.hpp"
+
+namespace hstmon::circuit {
+
+template <typename T, class Cap = HostCapacity>
+class CircuitModel {
+ public:
+  using Scalar = T;
+  using Description = Circuit<Cap>;
+  static constexpr int kStates = Cap::kStates;
+  static constexpr int kOutputs = Cap::kChannels;
+  static constexpr int kNodes = Cap::kNodes;
+  static constexpr int kElements = Cap::kElements;
+  /// Size of the full unknown space: every node, then every shaft.
+  static constexpr int kZ = Cap::kNodes + Cap::kShafts;
+  using State = Eigen::Matrix<T, kStates, 1>;
+  using Output = Eigen::Matrix<T, kOutputs, 1>;
+  using StateMatrix = Eigen::Matrix<T, kStates, kStates>;
+
+  /// Parameter values by index (SI units of each parameter; the host's circuit file
+  /// says which is which).
+  struct Params {
+    T v[kExtent<Cap::kParams>]{};
+  };
+  /// Input values by index (SI), held over a tick.
+  struct Inputs {
+    T v[kExtent<Cap::kInputs>]{};
+  };
+
+  /// Gauss–Seidel sweeps and Newton iterations per node before a solve is declared failed.
+  static constexpr int kMaxSweeps = 40;
+  static constexpr int kMaxNewton = 60;
+  /// Laminar transition of an orifice or poppet when the circuit does not give one [Pa].
+  static constexpr double kDefaultDpT = 1e3;
+
+  CircuitModel() noexcept = default;
+
+  /// bind(c), set_params(p), set_inputs(u).
+  CircuitModel(const Description& c, const Params& p, const Inputs& u = Inputs{}) noexcept {
+    bind(c);
+    u_ = u;
+    set_params(p);
+  }
+
+  /// Takes a description (kept by pointer) and builds the index maps. O(elements).
+  /// @return kOk, or the structural error (the model then has no states and no outputs)
+  CircuitError bind(const Description& c) noexcept {
+    c_ = nullptr;
+    n_states_ = n_stiff_ = n_unknowns_ = 0;
+    error_ = validate(c);
+    if (error_ != CircuitError::kOk) return error_;
+    c_ = &c;
+    for (int k = 0; k < kZ; ++k) state_of_z_[k] = -1;
+    for (int i = 0; i < c.n_nodes; ++i) {
+      if (c.nodes[i].kind != NodeKind::kVolume) continue;
+      unknown_z_[n_unknowns_++] = static_cast<std::uint8_t>(i);
+      if (((c.stiff_mask >> i) & 1u) != 0) {
+        stiff_[n_stiff_++] = static_cast<std::uint8_t>(i);
+      } else {
+        state_of_z_[i] = static_cast<std::int8_t>(n_states_);
+        z_of_state_[n_states_++] = static_cast<std::uint8_t>(i);
+      }
+    }
+    for (int s = 0; s < c.n_shafts; ++s) {
+      if (c.shafts[s].driven) continue;
+      const int z = kNodes + s;
+      unknown_z_[n_unknowns_++] = static_cast<std::uint8_t>(z);
+      state_of_z_[z] = static_cast<std::int8_t>(n_states_);
+      z_of_state_[n_states_++] = static_cast<std::uint8_t>(z);
+    }
+    // Incidence lists (node → elements with a port on it), compressed rows.
+    int k = 0;
+    stiff_coupled_ = false;
+    for (int i = 0; i < c.n_nodes; ++i) {
+      inc_start_[i] = static_cast<std::uint16_t>(k);
+      for (int e = 0; e < c.n_elements; ++e) {
+        const Element& el = c.elements[e];
+        if (!has_ports(el.kind) || (el.a != i && el.b != i)) continue;
+        inc_[k++] = static_cast<std::uint8_t>(e);
+        const int o = el.a == i ? el.b : el.a;
+        if (is_stiff(i) && is_stiff(o)) stiff_coupled_ = true;
+      }
+    }
+    inc_start_[c.n_nodes] = static_cast<std::uint16_t>(k);
+    set_inputs(u_);
+    return error_;
+  }
+
+  /// True when every parameter is finite (the static check the observer can make;
+  /// whether the values make a physical circuit is valid()).
+  static bool params_valid(const Params& p) noexcept { return all_finite(p.v); }
+  /// True when every input is finite. Negative openings are taken as shut.
+  static bool inputs_valid(const Inputs& u) noexcept { return all_finite(u.v); }
+
+  /// Replaces the parameter values and re-resolves the coefficients. O(elements).
+  void set_params(const Params& p) noexcept {
+    p_ = p;
+    set_inputs(u_);
+  }
+
+  /// Sets the inputs held over the next evaluations and resolves every element's
+  /// coefficients, the capacitances, boundary pressures, driven speeds and the rest
+  /// state. O(elements); the observer calls it only when the inputs change.
+  void set_inputs(const Inputs& u) noexcept {
+    u_ = u;
+    if (c_ == nullptr) return;
+    resolve();
+  }
+
+  const Params& params() const noexcept { return p_; }
+  const Inputs& inputs() const noexcept { return u_; }
+  const Description* description() const noexcept { return c_; }
+  /// The structural error of the last bind (kOk once bound, kUnbound before).
+  CircuitError error() const noexcept { return error_; }
+  /// True when bound and every resolved number is physical (capacitances, inertias,
+  /// transitions > 0, poppets with full > crack, a consistent pump curve, finite all).
+  bool valid() const noexcept { return c_ != nullptr && values_ok_; }
+
+  int n_states() const noexcept { return n_states_; }
+  int n_stiff() const noexcept { return n_stiff_; }
+  int n_outputs() const noexcept { return c_ != nullptr ? c_->n_channels : 0; }
+  /// Node index (< n_nodes) or kNodes + shaft index of state s.
+  int state_z(int s) const noexcept { return z_of_state_[s]; }
+  /// Node index of the j-th stiff node.
+  int stiff_node(int j) const noexcept { return stiff_[j]; }
+  /// Capacitance K of node i [Pa/m³] (0 for a boundary) after the last set_inputs.
+  T node_stiffness(int i) const noexcept { return inv_mass_[i]; }
+  T pressure_envelope() const noexcept { return p_env_; }  ///< [Pa]
+  T speed_envelope() const noexcept { return w_env_; }     ///< [rad/s]
+  const Coeffs<T>& coeffs(int e) const noexcept { return coef_[e]; }
+
+  /// Full vector z at state x: node pressures (boundaries, states, stiff nodes solved)
+  /// then shaft speeds (states, driven).
+  /// @param z  out: kZ values [Pa, rad/s]
+  /// @return   true when the quasi-steady solve converged
+  bool full_vector(const State& x, T (&z)[kExtent<kZ>]) const noexcept {
+    fill(x, z);
+    return solve_stiff(z);
+  }
+
+  /// Time derivative of the states [Pa/s, rad/s²] and, if y is given, the outputs.
+  State derivative(const State& x, Output* y = nullptr) const noexcept {
+    T z[kExtent<kZ>];
+    fill(x, z);
+    (void)solve_stiff(z);
+    if (y != nullptr) *y = outputs_at(z);
+    return rates(z);
+  }
+
+  /// derivative(x, &y) with the observer's per-tick checks (Observer's model interface).
+  /// @param rho_max  ρ at or below which its value is not needed [1/s]
+  /// @param y        out: outputs at x
+  /// @param rho      out: spectral radius of ∂f/∂x [1/s] — exact for up to two states, an
+  ///                 upper bound beyond (dense.hpp radius_bound) — or 0 if at most rho_max
+  /// @param alg_ok   out: the quasi-steady solve converged and contracts at x by < 0.5
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+    T z[kExtent<kZ>];
+    fill(x, z);
+    const bool conv = solve_stiff(z);
+    y = outputs_at(z);
+    T jr[kExtent<kStates>][kExtent<kStates>];
+    T q = T(0);
+    reduced_jacobian(z, jr, q);
+    rho = radius_bound(jr, n_states_, rho_max);
+    alg_ok = conv && q < T(0.5);
+    return rates(z);
+  }
+
+  /// Outputs at x: what each channel measures, in SI units.
+  Output outputs(const State& x) const noexcept {
+    T z[kExtent<kZ>];
+    fill(x, z);
+    (void)solve_stiff(z);
+    return outputs_at(z);
+  }
+
+  /// Spectral radius of ∂f/∂x at x (tick_derivative's rho with rho_max = 0) [1/s].
+  T spectral_radius(const State& x) const noexcept {
+    Output y;
+    T rho;
+    bool ok;
+    (void)tick_derivative(x, T(0), y, rho, ok);
+    return rho;
+  }
+
+  /// Jacobian ∂f/∂x of the (reduced) state equations at x [1/s in state units]; the
+  /// stiff nodes enter through the Schur complement of their block.
+  void jacobian(const State& x, StateMatrix& J) const noexcept {
+    T z[kExtent<kZ>];
+    fill(x, z);
+    (void)solve_stiff(z);
+    T jr[kExtent<kStates>][kExtent<kStates>];
+    T q;
+    reduced_jacobian(z, jr, q);
+    J.setZero();
+    for (int r = 0; r < n_states_; ++r) {
+      for (int c = 0; c < n_states_; ++c) J(r, c) = jr[r][c];
+    }
+  }
+
+  /// Local contraction factor of the quasi-steady solve at x [-]: the largest row sum
+  /// Σ_{j≠i} |∂F_i/∂p_j| / |∂F_i/∂p_i| over the stiff nodes, the Jacobi iteration's
+  /// ∞-norm factor there (Gauss–Seidel's is no larger). 0 without stiff nodes.
+  T contraction_factor(const State& x) const noexcept {
+    T z[kExtent<kZ>];
+    fill(x, z);
+    (void)solve_stiff(z);
+    T jr[kExtent<kStates>][kExtent<kStates>];
+    T q;
+    reduced_jacobian(z, jr, q);
+    return q;
+  }
+
+  /// A-priori contraction factor over the whole envelope [-]: for each stiff node,
+  /// S/(S + G) with S the largest conductance it can have to other stiff nodes and G the
+  /// least it keeps to fixed pressures (laws.hpp's bounds); the largest over the stiff
+  /// nodes. < 1 means the solve contracts at every state; ≥ 1 (or no G) that the stiff
+  /// mask is not admissible for these values.
+  T contraction_bound() const noexcept { return q_bound_; }
+
+  /// Conductance bounds of node i for stiff set `mask` [m³/(s·Pa)]: g_min the least
+  /// total conductance over the envelope, g_fix the least to nodes outside the mask,
+  /// s_max the most to nodes inside it (stiffness.hpp's classification).
+  void conductance_bounds(int i, std::uint32_t mask, T& g_min, T& g_fix, T& s_max) const noexcept {
+    g_min = g_fix = s_max = T(0);
+    if (c_ == nullptr) return;
+    for (int k = inc_start_[i]; k < inc_start_[i + 1]; ++k) {
+      const Element& el = c_->elements[inc_[k]];
+      const int o = el.a == i ? el.b : el.a;
+      const T gmin = min_conductance(el.kind, coef_[inc_[k]], p_env_);
+      g_min += gmin;
+      if (c_->nodes[o].kind == NodeKind::kVolume && ((mask >> o) & 1u) != 0) {
+        s_max += max_conductance(el.kind, coef_[inc_[k]]);
+      } else {
+        g_fix += gmin;
+      }
+    }
+  }
+
+  /// Output channel that measures state s, or −1.
+  int state_channel(int s) const noexcept {
+    if (c_ == nullptr || s >= n_states_) return -1;
+    const int z = z_of_state_[s];
+    for (int ch = 0; ch < c_->n_channels; ++ch) {
+      const Channel& h = c_->channels[ch];
+      if ((h.kind == ChannelKind::kPressure && h.index == z) || (h.kind == ChannelKind::kSpeed && kNodes + h.index == z)) {
+        return ch;
+      }
+    }
+    return -1;
+  }
+
+  /// True when every state is finite and within twice the envelope (pressures ±2·
+  /// pressure_max, speeds ±2·speed_max).
+  bool state_plausible(const State& x) const noexcept {
+    if (!((x * T(0)).sum() == T(0))) return false;
+    for (int s = 0; s < n_states_; ++s) {
+      const T lim = z_of_state_[s] < kNodes ? p_env_ : w_env_;
+      if (!(std::fabs(x[s]) <= T(2) * lim)) return false;
+    }
+    return true;
+  }
+
+  /// The state at rest: free shafts still, every volume at the pressure of the first
+  /// boundary it reaches through orifices, leakages and valves (0 if none).
+  State rest_state() const noexcept { return from_z(rest_z_); }
+
+  /// Steady state under the current inputs, by pseudo_transient() on the full circuit
+  /// (every volume node and free shaft) from rest.
+  /// @param x  out: the states there (untouched on failure)
+  /// @return   false if no steady state was found
+  bool steady_state(State& x) const noexcept {
+    T z[kExtent<kZ>];
+    if (!steady_full(z)) return false;
+    x = from_z(z);
+    return true;
+  }
+
+  /// steady_state() as the full vector z (stiff nodes included) [Pa, rad/s].
+  bool steady_full(T (&z)[kExtent<kZ>]) const noexcept {
+    if (c_ == nullptr || !values_ok_) return false;
+    for (int k = 0; k < kZ; ++k) z[k] = rest_z_[k];
+    T u[kExtent<kZ>], mass[kExtent<kZ>], scale[kExtent<kZ>];
+    for (int k = 0; k < n_unknowns_; ++k) {
+      const int zk = unknown_z_[k];
+      u[k] = z[zk];
+      mass[k] = T(1) / inv_mass_[zk];
+      scale[k] = zk < kNodes ? p_env_ : w_env_;
+    }
+    T zz[kExtent<kZ>];
+    for (int k = 0; k < kZ; ++k) zz[k] = z[k];
+    auto eval = [&](const T(&uu)[kExtent<kZ>], T(&g)[kExtent<kZ>], T(&J)[kExtent<kZ>][kExtent<kZ>]) {
+      for (int k = 0; k < n_unknowns_; ++k) zz[unknown_z_[k]] = uu[k];
+      T gz[kExtent<kZ>], jz[kExtent<kZ>][kExtent<kZ>];
+      net(zz, gz);
+      full_jacobian(zz, jz);
+      for (int r = 0; r < n_unknowns_; ++r) {
+        g[r] = gz[unknown_z_[r]];
+        for (int c = 0; c < n_unknowns_; ++c) J[r][c] = jz[unknown_z_[r]][unknown_z_[c]];
+      }
+    };
+    if (!pseudo_transient(eval, mass, scale, n_unknowns_, u)) return false;
+    for (int k = 0; k < n_unknowns_; ++k) z[unknown_z_[k]] = u[k];
+    for (int k = 0; k < n_unknowns_; ++k) {
+      if (!std::isfinite(u[k])) return false;
+    }
+    for (int j = 0; j < n_stiff_; ++j) guess_[j] = z[stiff_[j]];
+    return true;
+  }
+
+  /// The states in the full vector z.
+  State from_z(const T (&z)[kExtent<kZ>]) const noexcept {
+    State x = State::Zero();
+    for (int s = 0; s < n_states_; ++s) x[s] = z[z_of_state_[s]];
+    return x;
+  }
+
+  /// Net inflow into each node [m³/s] and net torque on each shaft [N·m] at z.
+  void net(const T (&z)[kExtent<kZ>], T (&g)[kExtent<kZ>]) const noexcept {
+    for (int k = 0; k < kZ; ++k) g[k] = T(0);
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      if (has_ports(el.kind)) {
+        const T q = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w).q;
+        g[el.a] -= q;
+        g[el.b] += q;
+      }
+      if (has_shaft(el.kind)) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+        g[kNodes + el.shaft] += element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
+      }
+    }
+  }
+
+  /// ∂(net)/∂z at z, dense [kExtent<kZ>][kExtent<kZ>] (rows: node flows, shaft torques).
+  void full_jacobian(const T (&z)[kExtent<kZ>], T (&J)[kExtent<kZ>][kExtent<kZ>]) const noexcept {
+    for (int r = 0; r < kZ; ++r) {
+      for (int c = 0; c < kZ; ++c) J[r][c] = T(0);
+    }
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const int sz = kNodes + el.shaft;
+      const T w = el.shaft >= 0 ? z[sz] : T(0);
+      if (has_ports(el.kind)) {
+        const Flow<T> f = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w);
+        J[el.a][el.a] -= f.dpa;
+        J[el.a][el.b] -= f.dpb;
+        J[el.b][el.a] += f.dpa;
+        J[el.b][el.b] += f.dpb;
+        if (el.shaft >= 0) {
+          J[el.a][sz] -= f.dw;
+          J[el.b][sz] += f.dw;
+        }
+      }
+      if (has_shaft(el.kind)) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+        (void)element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
+        if (has_ports(el.kind)) {
+          J[sz][el.a] += da;
+          J[sz][el.b] += db;
+        }
+        J[sz][sz] += dw;
+      }
+    }
+  }
+
+ private:
+  bool is_stiff(int i) const noexcept { return c_ != nullptr && ((c_->stiff_mask >> i) & 1u) != 0; }
+
+  template <std::size_t N>
+  static bool all_finite(const T (&v)[N]) noexcept {
+    T s = T(0);
+    for (const T& e : v) s += e * T(0);  // ±0 for finite values, NaN otherwise
+    return s == T(0);
+  }
+
+  T value(Ref r, T dflt) const noexcept {
+    switch (r.kind) {
+      case RefKind::kParam:
+        return p_.v[r.index];
+      case RefKind::kInput:
+        return u_.v[r.index];
+      default:
+        return dflt;
+    }
+  }
+
+  /// k of an orifice or poppet: the given k, or Cd·A·√(2/ρ).
+  T flow_coefficient(const Element& el) const noexcept {
+    if (el.r[kK].kind != RefKind::kNone) return value(el.r[kK], T(0));
+    return value(el.r[kCd], T(0)) * value(el.r[kArea], T(0)) * std::sqrt(T(2) / value(el.r[kRho], T(1)));
+  }
+
+  /// Resolves every number from the parameters and inputs (set_inputs' work).
+  void resolve() noexcept {
+    const Description& c = *c_;
+    bool ok = true;
+    p_env_ = value(c.pressure_max, T(0));
+    w_env_ = value(c.speed_max, T(0));
+    ok = ok && p_env_ > T(0) && w_env_ > T(0);
+    for (int k = 0; k < kZ; ++k) {
+      fixed_z_[k] = T(0);
+      inv_mass_[k] = T(0);
+    }
+    for (int i = 0; i < c.n_nodes; ++i) {
+      const Node& n = c.nodes[i];
+      if (n.kind == NodeKind::kBoundary) {
+        fixed_z_[i] = value(n.pressure, T(0));
+      } else {
+        const T K = n.K.kind != RefKind::kNone ? value(n.K, T(0)) : value(n.beta, T(0)) / value(n.volume, T(0));
+        inv_mass_[i] = K;
+        ok = ok && K > T(0) && K < std::numeric_limits<T>::infinity();
+      }
+    }
+    for (int s = 0; s < c.n_shafts; ++s) {
+      const Shaft& sh = c.shafts[s];
+      if (sh.driven) {
+        fixed_z_[kNodes + s] = value(sh.speed, T(0));
+      } else {
+        const T J = value(sh.J, T(0));
+        ok = ok && J > T(0);
+        inv_mass_[kNodes + s] = T(1) / J;
+      }
+    }
+    for (int e = 0; e < c.n_elements; ++e) ok = resolve_element(c.elements[e], coef_[e]) && ok;
+    values_ok_ = ok && all_finite(fixed_z_) && all_finite(inv_mass_);
+    rest();
+    bound();
+  }
+
+  bool resolve_element(const Element& el, Coeffs<T>& k) noexcept {
+    for (T& v : k.c) v = T(0);
+    T* c = k.c;
+    switch (el.kind) {
+      case ElementKind::kOrifice: {
+        const T s = value(el.r[kOpening], T(1));
+        const T open = el.opening_sign < 0 ? -s : s;
+        c[0] = flow_coefficient(el) * (open > T(0) ? open : T(0));
+        c[1] = value(el.r[kDpT], T(kDefaultDpT));
+        return std::isfinite(c[0]) && c[0] >= T(0) && c[1] > T(0);
+      }
+      case ElementKind::kPoppet: {
+        c[0] = flow_coefficient(el);
+        c[1] = value(el.r[kDpT], T(kDefaultDpT));
+        c[2] = value(el.r[kCrack], T(0));
+        c[4] = value(el.r[kFull], T(0));
+        c[3] = T(1) / (c[4] - c[2]);
+        return std::isfinite(c[0]) && c[0] >= T(0) && c[1] > T(0) && c[4] > c[2] && std::isfinite(c[3]);
+      }
+      case ElementKind::kLaminar: {
+        const T R = value(el.r[kR], T(0));
+        c[0] = T(1) / R;
+        return R > T(0);
+      }
+      case ElementKind::kFlowSource:
+        c[0] = value(el.r[kQ], T(0));
+        return true;
+      case ElementKind::kMachine:
+        c[0] = value(el.r[kFraction], T(1)) * value(el.r[kD], T(0));
+        return true;
+      case ElementKind::kCompPump: {
+        PumpCurveParams<T> pp;
+        pp.Q0 = value(el.r[kQ0], T(0));
+        pp.R = value(el.r[kRleak], T(0));
+        pp.Pc = value(el.r[kPc], T(0));
+        pp.Pk = value(el.r[kPk], T(0));
+        pp.Pmax = value(el.r[kPmax], T(0));
+        PumpCurve<T> curve;
+        if (!curve.make(pp)) return false;
+        c[0] = pp.Q0;
+        c[1] = -T(1) / pp.R;
+        c[2] = pp.Pc;
+        c[3] = pp.Pk;
+        c[4] = curve.q_cutin();
+        c[5] = curve.parabola();
+        c[6] = curve.q_knee();
+        c[7] = -curve.q_knee() / (pp.Pmax - pp.Pk);
+        return true;
+      }
+      case ElementKind::kTorque:
+        c[0] = value(el.r[kTau], T(0));
+        return true;
+      case ElementKind::kFriction:
+        c[0] = value(el.r[kC], T(0));
+        return c[0] >= T(0);
+    }
+    return false;
+  }
+
+  /// rest_z_: boundaries and driven speeds, free shafts at 0, volumes at the pressure of
+  /// the first boundary reached breadth-first through conductive elements.
+  void rest() noexcept {
+    const Description& c = *c_;
+    bool seen[kExtent<kNodes>];
+    std::uint8_t queue[kExtent<kNodes>];
+    int head = 0, tail = 0;
+    for (int k = 0; k < kZ; ++k) rest_z_[k] = fixed_z_[k];
+    for (int i = 0; i < c.n_nodes; ++i) {
+      seen[i] = c.nodes[i].kind == NodeKind::kBoundary;
+      if (seen[i]) queue[tail++] = static_cast<std::uint8_t>(i);
+    }
+    while (head < tail) {
+      const int i = queue[head++];
+      for (int k = inc_start_[i]; k < inc_start_[i + 1]; ++k) {
+        const Element& el = c.elements[inc_[k]];
+        if (el.kind != ElementKind::kOrifice && el.kind != ElementKind::kLaminar && el.kind != ElementKind::kPoppet) continue;
+        const int o = el.a == i ? el.b : el.a;
+        if (seen[o]) continue;
+        seen[o] = true;
+        rest_z_[o] = rest_z_[i];
+        queue[tail++] = static_cast<std::uint8_t>(o);
+      }
+    }
+    for (int j = 0; j < n_stiff_; ++j) guess_[j] = rest_z_[stiff_[j]];
+  }
+
+  /// q_bound_: contraction_bound() for the current values.
+  void bound() noexcept {
+    q_bound_ = T(0);
+    for (int j = 0; j < n_stiff_; ++j) {
+      T g_min, g_fix, s_max;
+      conductance_bounds(stiff_[j], c_->stiff_mask, g_min, g_fix, s_max);
+      const T q = g_fix > T(0) ? s_max / (s_max + g_fix) : std::numeric_limits<T>::infinity();
+      q_bound_ = std::fmax(q_bound_, q);
+    }
+  }
+
+  /// z from the fixed values and the states (stiff nodes left at their last values).
+  void fill(const State& x, T (&z)[kExtent<kZ>]) const noexcept {
+    for (int k = 0; k < kZ; ++k) z[k] = fixed_z_[k];
+    for (int s = 0; s < n_states_; ++s) z[z_of_state_[s]] = x[s];
+  }
+
+  /// Net inflow into node i [m³/s] at z, and its derivative by z[i] in slope (≤ 0).
+  T node_balance(int i, const T (&z)[kExtent<kZ>], T& slope) const noexcept {
+    T F = T(0), dF = T(0);
+    for (int k = inc_start_[i]; k < inc_start_[i + 1]; ++k) {
+      const int e = inc_[k];
+      const Element& el = c_->elements[e];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      const Flow<T> f = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w);
+      if (el.a == i) {
+        F -= f.q;
+        dF -= f.dpa;
+      } else {
+        F += f.q;
+        dF += f.dpb;
+      }
+    }
+    slope = dF;
+    return F;
+  }
+
+  /// Solves node i's balance for z[i], the other entries held: Newton, kept inside the
+  /// bracket the signs of the balance have established (bisection when it leaves it),
+  /// and a widening search while the balance is flat (valves shut).
+  bool solve_node(int i, T (&z)[kExtent<kZ>]) const noexcept {
+    const T eps = std::numeric_limits<T>::epsilon();
+    const T floor = T(1e-6) * p_env_;
+    T p = z[i];
+    T lo = -std::numeric_limits<T>::infinity();
+    T hi = std::numeric_limits<T>::infinity();
+    for (int it = 0; it < kMaxNewton; ++it) {
+      z[i] = p;
+      T dF;
+      const T F = node_balance(i, z, dF);
+      if (F == T(0)) return true;
+      if (!(F == F)) return false;
+      if (F > T(0)) {
+        lo = p;
+      } else {
+        hi = p;
+      }
+      T p_new = dF < T(0) ? p - F / dF : std::numeric_limits<T>::quiet_NaN();
+      if (!(p_new > lo && p_new < hi)) {
+        if (std::isfinite(lo) && std::isfinite(hi)) {
+          p_new = T(0.5) * (lo + hi);
+        } else {
+          p_new = p + (F > T(0) ? T(1) : T(-1)) * (std::fabs(p) + T(0.01) * p_env_);
+        }
+      }
+      const T step = p_new - p;
+      p = p_new;
+      if (std::fabs(step) <= T(8) * eps * (std::fabs(p) + floor)) {
+        z[i] = p;
+        return true;
+      }
+    }
+    z[i] = p;
+    return false;
+  }
+
+  /// The quasi-steady solve: Gauss–Seidel sweeps over the stiff nodes from the last
+  /// solution until a sweep moves no pressure by more than 16ε relative.
+  bool solve_stiff(T (&z)[kExtent<kZ>]) const noexcept {
+    if (n_stiff_ == 0) return true;
+    for (int j = 0; j < n_stiff_; ++j) z[stiff_[j]] = guess_[j];
+    const T eps = std::numeric_limits<T>::epsilon();
+    const T floor = T(1e-6) * p_env_;
+    bool conv = false;
+    for (int sweep = 0; sweep < kMaxSweeps && !conv; ++sweep) {
+      T change = T(0);
+      bool ok = true;
+      for (int j = 0; j < n_stiff_; ++j) {
+        const int i = stiff_[j];
+        const T before = z[i];
+        ok = solve_node(i, z) && ok;
+        change = std::fmax(change, std::fabs(z[i] - before) / (std::fabs(z[i]) + floor));
+      }
+      if (!ok) break;
+      // Uncoupled stiff nodes are exact after one sweep.
+      conv = !stiff_coupled_ || change <= T(16) * eps;
+    }
+    if (conv) {
+      for (int j = 0; j < n_stiff_; ++j) guess_[j] = z[stiff_[j]];
+    }
+    return conv;
+  }
+
+  State rates(const T (&z)[kExtent<kZ>]) const noexcept {
+    T g[kExtent<kZ>];
+    net(z, g);
+    State d = State::Zero();
+    for (int s = 0; s < n_states_; ++s) d[s] = inv_mass_[z_of_state_[s]] * g[z_of_state_[s]];
+    return d;
+  }
+
+  Output outputs_at(const T (&z)[kExtent<kZ>]) const noexcept {
+    Output y = Output::Zero();
+    if (c_ == nullptr) return y;
+    for (int ch = 0; ch < c_->n_channels; ++ch) {
+      const Channel& h = c_->channels[ch];
+      if (h.kind == ChannelKind::kPressure) {
+        y[ch] = z[h.index];
+      } else if (h.kind == ChannelKind::kSpeed) {
+        y[ch] = z[kNodes + h.index];
+      } else {
+        const Element& el = c_->elements[h.index];
+        const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+        y[ch] = element_flow(el.kind, coef_[h.index], z[el.a], z[el.b], w).q;
+      }
+    }
+    return y;
+  }
+
+  /// Reduced Jacobian jr = M⁻¹(G_xx − G_xa·G_aa⁻¹·G_ax) at z (a: stiff nodes) and the local
+  /// contraction factor q of the stiff block. G_aa is strictly diagonally dominant
+  /// wherever the solve contracts, so it is eliminated without pivoting.
+  void reduced_jacobian(const T (&z)[kExtent<kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
+    T G[kExtent<kZ>][kExtent<kZ>];
+    full_jacobian(z, G);
+    q = T(0);
+    const int n = n_states_;
+    const int m = n_stiff_;
+    T A[kExtent<kNodes>][kExtent<kNodes>];
+    T X[kExtent<kNodes>][kExtent<kStates>];
+    for (int a = 0; a < m; ++a) {
+      T off = T(0);
+      for (int b = 0; b < m; ++b) {
+        A[a][b] = G[stiff_[a]][stiff_[b]];
+        if (b != a) off += std::fabs(A[a][b]);
+      }
+      q = std::fmax(q, off / std::fabs(A[a][a]));
+      for (int s = 0; s < n; ++s) X[a][s] = G[stiff_[a]][z_of_state_[s]];
+    }
+    for (int k = 0; k < m; ++k) {
+      const T inv = T(1) / A[k][k];
+      for (int r = k + 1; r < m; ++r) {
+        const T f = A[r][k] * inv;
+        if (f == T(0)) continue;
+        for (int c = k + 1; c < m; ++c) A[r][c] -= f * A[k][c];
+        for (int s = 0; s < n; ++s) X[r][s] -= f * X[k][s];
+      }
+    }
+    for (int k = m - 1; k >= 0; --k) {
+      for (int s = 0; s < n; ++s) {
+        T v = X[k][s];
+        for (int c = k + 1; c < m; ++c) v -= A[k][c] * X[c][s];
+        X[k][s] = v / A[k][k];
+      }
+    }
+    for (int r = 0; r < n; ++r) {
+      const int zr = z_of_state_[r];
+      for (int s = 0; s < n; ++s) {
+        T v = G[zr][z_of_state_[s]];
+        for (int a = 0; a < m; ++a) v -= G[zr][stiff_[a]] * X[a][s];
+        jr[r][s] = inv_mass_[zr] * v;
+      }
+    }
+  }
+
+  const Description* c_ = nullptr;
+  CircuitError error_ = CircuitError::kUnbound;
+  Params p_{};
+  Inputs u_{};
+  int n_states_ = 0, n_stiff_ = 0, n_unknowns_ = 0;
+  bool stiff_coupled_ = false;
+  bool values_ok_ = false;
+  std::int8_t state_of_z_[kExtent<kZ>]{};
+  std::uint8_t z_of_state_[kExtent<kStates>]{};
+  std::uint8_t stiff_[kExtent<kNodes>]{};
+  std::uint8_t unknown_z_[kExtent<kZ>]{};
+  std::uint16_t inc_start_[kExtent<kNodes + 1>]{};
+  std::uint8_t inc_[kExtent<2 * kElements>]{};
+  Coeffs<T> coef_[kExtent<kElements>]{};
+  T inv_mass_[kExtent<kZ>]{};  ///< K [Pa/m³] per volume node, 1/J [1/(kg·m²)] per free shaft, else 0
+  T fixed_z_[kExtent<kZ>]{};   ///< boundary pressures [Pa], driven speeds [rad/s], else 0
+  T rest_z_[kExtent<kZ>]{};    ///< the rest state as a full vector
+  T p_env_{}, w_env_{};
+  T q_bound_{};
+  mutable T guess_[kExtent<kNodes>]{};  ///< last quasi-steady pressures (warm start) [Pa]
+};
+
+}  // namespace hstmon::circuit

@@ -1,0 +1,180 @@
+#pragma once
+/// @file laws.hpp
+/// The flow and torque law of each element kind, with its slopes, from coefficients
+/// resolved once per input change (CircuitModel::set_inputs). Every flow element is
+/// monotone: Q(pa, pb) never falls as pa rises or as pb falls. That is what makes the
+/// quasi-steady solve of stiff nodes a contraction (docs/circuits.md, "Why the solve
+/// contracts"); the conductance bounds below are its numbers.
+
+#include <cmath>
+
+#include "hstmon/circuit/circuit.hpp"
+#include "hstmon/signed_root.hpp"
+
+namespace hstmon::circuit {
+
+/// Number of resolved coefficients per element.
+constexpr int kCoeffs = 8;
+
+/// Resolved coefficients, by kind (SI units):
+///  orifice:   c[0] k·opening [m³/(s·√Pa)], c[1] ΔP_t [Pa]
+///  poppet:    c[0] k [m³/(s·√Pa)], c[1] ΔP_t [Pa], c[2] crack [Pa], c[3] 1/(full − crack) [1/Pa], c[4] full [Pa]
+///  laminar:   c[0] 1/R [m³/(s·Pa)]
+///  source:    c[0] Q [m³/s]
+///  machine:   c[0] ε·D [m³/rad]
+///  comp pump: c[0] Q0 [m³/s], c[1] s1 = −1/R, c[2] Pc [Pa], c[3] Pk [Pa], c[4] Q1 [m³/s],
+///             c[5] curvature [m³/(s·Pa²)], c[6] Q2 [m³/s], c[7] s3 [m³/(s·Pa)]
+///  torque:    c[0] τ [N·m];  friction: c[0] c [N·m·s/rad]
+template <typename T>
+struct Coeffs {
+  T c[kCoeffs]{};
+};
+
+/// An element's flow a→b [m³/s] and its partial derivatives.
+template <typename T>
+struct Flow {
+  T q{};    ///< flow from port a to port b [m³/s]
+  T dpa{};  ///< ∂Q/∂pa [m³/(s·Pa)], ≥ 0
+  T dpb{};  ///< ∂Q/∂pb [m³/(s·Pa)], ≤ 0
+  T dw{};   ///< ∂Q/∂ω [m³/rad] (machines)
+};
+
+/// True for kinds that exchange flow between their two ports.
+constexpr bool has_ports(ElementKind k) noexcept { return k != ElementKind::kTorque && k != ElementKind::kFriction; }
+
+/// True for kinds that act on a shaft.
+constexpr bool has_shaft(ElementKind k) noexcept {
+  return k == ElementKind::kMachine || k == ElementKind::kTorque || k == ElementKind::kFriction;
+}
+
+/// Flow of one element at port pressures pa, pb [Pa] and shaft speed w [rad/s].
+template <typename T>
+inline Flow<T> element_flow(ElementKind kind, const Coeffs<T>& k, T pa, T pb, T w) noexcept {
+  Flow<T> f;
+  const T* c = k.c;
+  switch (kind) {
+    case ElementKind::kOrifice: {
+      T s;
+      f.q = c[0] * signed_root(pa - pb, c[1], s);
+      f.dpa = c[0] * s;
+      f.dpb = -f.dpa;
+      break;
+    }
+    case ElementKind::kPoppet: {
+      const T dp = pa - pb;
+      if (dp > c[2]) {
+        // Opening x rises linearly from the cracking to the full-open difference; the
+        // flow through the opening is the orifice law.
+        const T x_raw = (dp - c[2]) * c[3];
+        const bool full = x_raw >= T(1);
+        const T x = full ? T(1) : x_raw;
+        T s;
+        const T r = signed_root(dp, c[1], s);
+        f.q = c[0] * x * r;
+        f.dpa = c[0] * (x * s + (full ? T(0) : c[3] * r));
+        f.dpb = -f.dpa;
+      }
+      break;
+    }
+    case ElementKind::kLaminar:
+      f.q = c[0] * (pa - pb);
+      f.dpa = c[0];
+      f.dpb = -c[0];
+      break;
+    case ElementKind::kFlowSource:
+      f.q = c[0];
+      break;
+    case ElementKind::kMachine:
+      f.q = c[0] * w;
+      f.dw = c[0];
+      break;
+    case ElementKind::kCompPump: {
+      // Delivery from a (suction) to b at the pressure rise pb − pa; pump_curve.hpp's law.
+      const T P = pb - pa;
+      T q, s;
+      if (P <= c[2]) {
+        q = c[0] + c[1] * P;
+        s = c[1];
+      } else if (P <= c[3]) {
+        const T e = P - c[2];
+        q = c[4] + c[1] * e - c[5] * e * e;
+        s = c[1] - T(2) * c[5] * e;
+      } else {
+        q = c[6] + c[7] * (P - c[3]);
+        s = c[7];
+      }
+      f.q = q;
+      f.dpb = s;
+      f.dpa = -s;
+      break;
+    }
+    case ElementKind::kTorque:
+    case ElementKind::kFriction:
+      break;
+  }
+  return f;
+}
+
+/// Torque of an element on its shaft [N·m] at port pressures pa, pb [Pa] and speed w
+/// [rad/s]; dpa, dpb [N·m/Pa] and dw [N·m·s/rad] receive its slopes. 0 for kinds without
+/// a shaft.
+template <typename T>
+inline T element_torque(ElementKind kind, const Coeffs<T>& k, T pa, T pb, T w, T& dpa, T& dpb, T& dw) noexcept {
+  dpa = dpb = dw = T(0);
+  switch (kind) {
+    case ElementKind::kMachine:
+      dpa = k.c[0];
+      dpb = -k.c[0];
+      return k.c[0] * (pa - pb);
+    case ElementKind::kTorque:
+      return -k.c[0];
+    case ElementKind::kFriction:
+      dw = -k.c[0];
+      return -k.c[0] * w;
+    default:
+      return T(0);
+  }
+}
+
+/// Largest conductance |∂Q/∂p| an element can have at either port [m³/(s·Pa)], over all
+/// pressures: the regularised root's slope peaks at 5/(4√ΔP_t) at zero.
+template <typename T>
+inline T max_conductance(ElementKind kind, const Coeffs<T>& k) noexcept {
+  const T* c = k.c;
+  switch (kind) {
+    case ElementKind::kOrifice:
+      return c[0] * T(1.25) / std::sqrt(c[1]);
+    case ElementKind::kPoppet:
+      // x·sq'(Δp) + x'·sq(Δp) with x ≤ 1 and sq(Δp) ≤ √full while x is still rising.
+      return c[0] * (T(1.25) / std::sqrt(c[1]) + c[3] * std::sqrt(std::fabs(c[4])));
+    case ElementKind::kLaminar:
+      return std::fabs(c[0]);
+    case ElementKind::kCompPump: {
+      const T s2 = c[1] - T(2) * c[5] * (c[3] - c[2]);
+      return std::fmax(std::fmax(-c[1], -s2), -c[7]);
+    }
+    default:
+      return T(0);
+  }
+}
+
+/// Smallest conductance an element keeps at either port while |pa − pb| ≤ p_env [Pa]
+/// (the circuit's envelope) [m³/(s·Pa)]: what a node can count on whatever the state.
+/// Poppets can close and machines and sources do not depend on pressure: 0.
+template <typename T>
+inline T min_conductance(ElementKind kind, const Coeffs<T>& k, T p_env) noexcept {
+  const T* c = k.c;
+  switch (kind) {
+    case ElementKind::kOrifice:
+      // The regularised slope falls monotonically with |Δp|: its least is at p_env.
+      return c[0] * signed_root_slope(p_env, c[1]);
+    case ElementKind::kLaminar:
+      return std::fabs(c[0]);
+    case ElementKind::kCompPump:
+      return -c[1];  // the curve is concave: region 1's leakage slope is its least steep
+    default:
+      return T(0);
+  }
+}
+
+}  // namespace hstmon::circuit

@@ -1,0 +1,83 @@
+#pragma once
+/// @file pseudo_transient.hpp
+/// Steady state of M·du/dt = g(u) by pseudo-transient continuation: implicit Euler steps
+/// (M/Δt − ∂g/∂u)·δ = g(u) whose Δt grows as the residual falls (switched evolution
+/// relaxation, Δt ← Δt·‖g_old‖/‖g_new‖), so far from the solution it follows the
+/// circuit's own (dissipative, stable) transient and near it it becomes Newton's method.
+/// Plain Newton from rest diverges on orifice circuits (the root's slope is unbounded at
+/// zero flow); the transient does not. Runs at configuration and on input changes only.
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "hstmon/circuit/dense.hpp"
+
+namespace hstmon::circuit {
+
+/// Settings of pseudo_transient().
+template <typename T>
+struct PtcConfig {
+  T dt0 = T(1e-6);         ///< first pseudo time step [s]
+  T dt_newton = T(1e4);    ///< Δt beyond which a small step means convergence [s]
+  int max_iterations = 600;
+};
+
+/// Finds u with g(u) = 0 starting from u (in place).
+/// @param eval   eval(u, g, J): g [n] the residual (flows [m³/s], torques [N·m]) and J [N][N]
+///               its Jacobian ∂g/∂u at u
+/// @param mass   M's diagonal [n]: 1/K [m³/Pa] for a node, J [kg·m²] for a shaft
+/// @param scale  typical magnitude of each unknown [n] (its envelope), for the norms
+/// @param n      unknowns used, ≤ N
+/// @param u      in: start (rest); out: the steady state when true is returned
+/// @return       true on convergence (relative Newton step ≤ 64ε with Δt ≥ dt_newton)
+template <typename T, std::size_t N, typename Eval>
+bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n, T (&u)[N],
+                      const PtcConfig<T>& cfg = PtcConfig<T>{}) noexcept {
+  T g[N], J[N][N], A[N][N], d[N], u_prev[N];
+  T dt = cfg.dt0;
+  T prev_norm = T(-1);
+  const T tol = T(64) * std::numeric_limits<T>::epsilon();
+  for (int it = 0; it < cfg.max_iterations; ++it) {
+    eval(u, g, J);
+    T norm = T(0);
+    for (int k = 0; k < n; ++k) norm = std::fmax(norm, std::fabs(g[k] / mass[k]) / scale[k]);
+    if (!std::isfinite(norm)) {
+      if (prev_norm < T(0)) return false;
+      for (int k = 0; k < n; ++k) u[k] = u_prev[k];  // retreat with a shorter step
+      dt *= T(0.1);
+      continue;
+    }
+    if (norm == T(0)) return true;
+    if (prev_norm > T(0)) {
+      if (norm > T(100) * prev_norm && dt > cfg.dt0) {
+        for (int k = 0; k < n; ++k) u[k] = u_prev[k];
+        dt *= T(0.1);
+        continue;
+      }
+      const T r = prev_norm / norm;
+      dt *= r < T(0.1) ? T(0.1) : (r > T(10) ? T(10) : r);
+      if (dt > T(1e15)) dt = T(1e15);
+    }
+    prev_norm = norm;
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) A[r][c] = -J[r][c];
+      A[r][r] += mass[r] / dt;
+      d[r] = g[r];
+    }
+    if (!solve_dense(A, d, n)) {
+      dt *= T(0.1);
+      continue;
+    }
+    T step = T(0);
+    for (int k = 0; k < n; ++k) {
+      u_prev[k] = u[k];
+      u[k] += d[k];
+      step = std::fmax(step, std::fabs(d[k]) / (std::fabs(u[k]) + T(1e-6) * scale[k]));
+    }
+    if (step <= tol && dt >= cfg.dt_newton) return true;
+  }
+  return false;
+}
+
+}  // namespace hstmon::circuit
