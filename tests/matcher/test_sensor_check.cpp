@@ -209,19 +209,22 @@ TEST(SensorCheck, CoarseAdcIsStuckOnlyWhenTheModelMoved) {
   ASSERT_EQ(sc.configure(ranged()), hstmon::Status::kOk);
   double y[4] = {100e5, 100e5, 100e5, 100e5};
   double e[4] = {100e5, 100e5, 100e5, 100e5};
-  const double slack[4] = {0.5e5, 0.5e5, 0.5e5, 0.5e5};
+  const auto model = [&e](int c, double& est, double& allowance) {
+    est = e[c];
+    allowance = 0.5e5;
+  };
   double t = 0;
-  ASSERT_EQ(sc.update(t, y, 0x1, e, slack), 0);
+  ASSERT_EQ(sc.update(t, y, 0x1, model), 0);
   for (int run = 0; run < 2; ++run) {  // two runs teach the 1 bar step (20 σ)
     y[0] += 1e5;
-    ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, e, slack), 0);
-    ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, e, slack), 0);
+    ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, model), 0);
+    ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, model), 0);
   }
   EXPECT_EQ(sc.step(0), 1e5);
-  for (int k = 0; k < 1000; ++k) ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, e, slack), 0) << "steady, k = " << k;
+  for (int k = 0; k < 1000; ++k) ASSERT_EQ(sc.update(t += 1e-3, y, 0x1, model), 0) << "steady, k = " << k;
   for (int k = 0; k < 200; ++k) {
     e[0] += 0.05e5;  // the model rises by 10 bar while the reading stands still
-    sc.update(t += 1e-3, y, 0x1, e, slack);
+    sc.update(t += 1e-3, y, 0x1, model);
   }
   EXPECT_EQ(sc.mask(), 0b0001);
   EXPECT_EQ(sc.flags(0), kSensorStuck);

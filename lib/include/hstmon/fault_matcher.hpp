@@ -221,6 +221,13 @@ class FaultMatcher {
     return Status::kOk;
   }
 
+  /// Forgets the baseline's history (the next tracked sample starts a new running mean;
+  /// until then the old baseline stands): the residual offset that parameter error leaves
+  /// depends on the operating point, so after the inputs change the old one is stale.
+  void restart_baseline() noexcept {
+    for (int i = 0; i < kChannels; ++i) base_n_[i] = 0;
+  }
+
   /// Back to kNominal: episode, baseline and event queue cleared.
   void reset() noexcept {
     end_episode();
@@ -239,8 +246,11 @@ class FaultMatcher {
   /// @param ev           the evaluator, already updated with this tick's residuals
   /// @param sensor_mask     bit i set: channel i failed a sensor check this tick (SensorCheck::mask())
   /// @param saturated_mask  bit i set: channel i is saturated this tick (SensorCheck::saturated())
+  /// @param settled         false while the residuals still carry an operating-point change's
+  ///                        transient: the baseline does not follow them then
   /// @return                status() after the tick
-  MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0, std::uint8_t saturated_mask = 0) noexcept {
+  MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0, std::uint8_t saturated_mask = 0,
+                     bool settled = true) noexcept {
     const unsigned all = (1u << kChannels) - 1u;
     const unsigned sensors = sensor_mask & all;
     const unsigned alarm = ev.alarm() & all;
@@ -248,7 +258,7 @@ class FaultMatcher {
 
     if (status_ == MatchStatus::kNominal) {
       if (!active) {
-        track_baseline(ev);
+        if (settled) track_baseline(ev);
         return status_;
       }
       start_episode(t);

@@ -177,9 +177,10 @@ class Monitor {
   std::uint32_t health() const noexcept { return obs_.last_health(); }
   /// The model bound in use, per channel [channel unit].
   const T* model_bound() const noexcept { return bound_; }
-  /// The transient allowance of the last sample, per channel [channel unit]: the model's
-  /// own recent output variation times transient_factor (see the file comment).
-  const T* transient_allowance() const noexcept { return allow_; }
+  /// The transient allowance of channel i at the last sample [channel unit]: the model's
+  /// own recent output variation times transient_factor, plus half the learned ADC step
+  /// (see the file comment).
+  T transient_allowance(int i) const noexcept { return transient_factor_ * peak_[i] + T(0.5) * sensors_.step(i); }
   /// Start-up hold-off after the last reset [s]: no detection for this long after the
   /// first step (see plan_startup).
   T startup_hold() const noexcept { return hold_; }
@@ -200,11 +201,11 @@ class Monitor {
       yprev_[i] = obs_.estimate()[i];
       var_[i] = T(0);
       gap_[i] = T(0);
-      allow_[i] = T(0);
-      slack_[i] = T(0);
+      peak_[i] = T(0);
     }
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
+    settled_from_ = -std::numeric_limits<T>::infinity();
   }
 
   // Start-up hold-off: the time the model needs to come from its initial state to the
@@ -225,7 +226,8 @@ class Monitor {
         d = di > d ? di : d;
       }
       if (rate > T(0)) {
-        const T h = (T(1) / rate + transducer_tau_) * std::log(d);
+        tau_m_ = T(1) / rate;
+        const T h = (tau_m_ + transducer_tau_) * std::log(d);
         hold = h < hold_max_ ? h : hold_max_;
       }
     }
@@ -248,7 +250,13 @@ class Monitor {
     track_variation(m.valid != 0);
     if (!(hold_until_ == hold_until_)) hold_until_ = t + hold_;
     if (bound_valid_ && same_inputs(obs_.model().inputs(), before)) return false;
-    if (bound_valid_) look_ahead();
+    if (bound_valid_) {
+      look_ahead();
+      // The pre-fault baseline restarts at the new operating point once its transient
+      // has gone: 5 time constants of the model and the transducer.
+      matcher_.restart_baseline();
+      settled_from_ = t + T(5) * (tau_m_ + transducer_tau_);
+    }
     return true;
   }
 
@@ -256,10 +264,10 @@ class Monitor {
   // transducer's time constant (var_), and the undecayed sum since the last sample
   // (gap_). A first-order transducer of time constant ≤ τ_s reads y_s − y =
   // −∫ y'(t−s)·e^(−s/τ_s) ds, whose size var_ bounds; a sample taken after ticks without
-  // one may show the machine anywhere in between, which gap_ bounds. On a sampled tick
-  // the transient allowance follows (transient_factor times the larger of the two, plus
-  // half an ADC step: the reading's rounding, whatever the noise σ configured says), and
-  // with it the slack of the live-zero check. One pass, for the M4F's tick budget.
+  // one may show the machine anywhere in between, which gap_ bounds. A sample's transient
+  // allowance is transient_factor times the larger of the two (peak_), plus half an ADC
+  // step (the reading's rounding, whatever the noise σ configured says) — computed only
+  // for a channel whose residual needs it (allowance()).
   void track_variation(bool sampled) noexcept {
     const auto& y = obs_.estimate();
     for (int i = 0; i < kFdiChannels; ++i) {
@@ -268,14 +276,8 @@ class Monitor {
       const T v = var_[i] * decay_ + d;
       const T g = gap_[i] + d;
       var_[i] = v;
-      if (sampled) {
-        const T a = transient_factor_ * (v > g ? v : g) + T(0.5) * sensors_.step(i);
-        allow_[i] = a;
-        slack_[i] = a + slack_base_[i];
-        gap_[i] = T(0);
-      } else {
-        gap_[i] = g;
-      }
+      peak_[i] = v > g ? v : g;
+      gap_[i] = sampled ? T(0) : g;
     }
   }
 
@@ -288,8 +290,7 @@ class Monitor {
       const T d = std::fabs(y[i] - yprev_[i]);
       var_[i] += d;
       gap_[i] += d;
-      allow_[i] += transient_factor_ * d;
-      slack_[i] += transient_factor_ * d;
+      peak_[i] += d;
     }
   }
 
@@ -298,8 +299,13 @@ class Monitor {
   HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
     if (m.valid == 0) return matcher_.status();
     // A reading at a transmitter's live zero is a loop break only where the model,
-    // allowed its error, says the channel cannot be there.
-    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, obs_.estimate().data(), slack_);
+    // allowed its error (bound, allowance and the CUSUM threshold), says the channel
+    // cannot be there; asked only for a channel off the sensor check's fast path.
+    const auto model_say = [this](int i, T& e, T& s) noexcept {
+      e = obs_.estimate()[i];
+      s = ev_.bound(i) + transient_allowance(i) + ev_.threshold(i);
+    };
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, model_say);
     // Start-up: the model's transient from its initial state is still running, so
     // nothing is judged; flags that persist (a loop break, a stuck channel) are reported
     // once it is over.
@@ -314,8 +320,9 @@ class Monitor {
         if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
       }
     }
-    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used), allow_);
-    return matcher_.update(t, ev_, sensor_mask, saturated);
+    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used),
+               [this](int i) noexcept { return transient_allowance(i); });
+    return matcher_.update(t, ev_, sensor_mask, saturated, t >= settled_from_);
   }
 
   // Keeps the last good bound when the changed operating point has no steady state.
@@ -325,7 +332,6 @@ class Monitor {
       for (int i = 0; i < kFdiChannels; ++i) bound_[i] = m[i];
       (void)ev_.set_model_bound(bound_);
     }
-    for (int i = 0; i < kFdiChannels; ++i) slack_base_[i] = ev_.bound(i) + ev_.threshold(i);
     bound_valid_ = true;
   }
 
@@ -338,17 +344,15 @@ class Monitor {
   T yprev_[kFdiChannels] = {};  ///< ŷ of the previous tick [channel unit]
   T var_[kFdiChannels] = {};    ///< leaky total variation of ŷ [channel unit]
   T gap_[kFdiChannels] = {};    ///< total variation of ŷ since the last sample [channel unit]
-  T allow_[kFdiChannels] = {};  ///< transient allowance of the last sample [channel unit]
-  /// The live-zero check's allowance: allow_ + slack_base_ [channel unit].
-  T slack_[kFdiChannels] = {};
-  /// Evaluator bound b_i plus its CUSUM threshold [channel unit] (set with the bound).
-  T slack_base_[kFdiChannels] = {};
+  T peak_[kFdiChannels] = {};   ///< max(var_, gap_) at the last tick [channel unit]
   T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]
   T hold_until_ = T(0);         ///< no judgement before this time [s]; NaN until the first step
+  T tau_m_ = T(0);              ///< model's slowest time constant at the last reset's steady state [s]
+  T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
   bool bound_valid_ = false;
 };
 

@@ -126,11 +126,17 @@ class ResidualEvaluator {
   /// @param r      N residuals [channel unit] (e.g. Observer::residual().data())
   /// @param valid  bit i set: r[i] was computed this tick; other channels (and non-finite
   ///               r[i]) keep their statistics and alarm unchanged
-  /// @param allow  optional, N extra allowances a_i ≥ 0 for this tick [channel unit]: the
-  ///               bound is b_i + a_i (Monitor passes the model's transient allowance);
-  ///               null means none
   /// @return       alarm() after the update
-  std::uint8_t update(const T* r, std::uint8_t valid, const T* allow = nullptr) noexcept {
+  std::uint8_t update(const T* r, std::uint8_t valid) noexcept {
+    return update(r, valid, [](int) noexcept { return T(0); });
+  }
+
+  /// update() with an extra allowance per channel: allow(i) returns a_i ≥ 0 [channel
+  /// unit] and the bound is b_i + a_i (Monitor: the model's transient allowance). It is
+  /// asked only for a channel whose residual exceeds b_i, so a costly allowance costs
+  /// nothing in steady operation.
+  template <typename Allow>
+  std::uint8_t update(const T* r, std::uint8_t valid, const Allow& allow) noexcept {
     unsigned alarm = alarm_;
     unsigned used = 0;
     // Fast path (the nominal tick): a quiet channel (quiet_: not in alarm, both statistics
@@ -142,8 +148,14 @@ class ResidualEvaluator {
     for (int i = 0; i < N; ++i) {
       const unsigned bit = 1u << i;
       if ((valid & bit) == 0) continue;
-      const T b = allow != nullptr ? drift_[i] + allow[i] : drift_[i];
-      if ((quiet & bit) != 0 && std::fabs(r[i]) <= b) {
+      const T a = std::fabs(r[i]);
+      if ((quiet & bit) != 0 && a <= drift_[i]) {
+        used |= bit;
+        r_[i] = r[i];
+        continue;
+      }
+      const T b = drift_[i] + allow(i);
+      if ((quiet & bit) != 0 && a <= b) {
         used |= bit;
         r_[i] = r[i];
       } else if (update_channel(i, r[i], b, alarm)) {

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "hstmon/status.hpp"
 
@@ -65,7 +66,7 @@ enum SensorFlag : std::uint8_t {
   /// In [range_hi, range_hi + (range_hi − range_lo)/32]: over range, not a fault (masked only).
   kSensorSaturated = 1u << 3,
   /// At or just below range_lo where the model says the channel may be there (update's
-  /// expect): a machine at rest, not a loop break; never stuck (a clamped value repeats).
+  /// model): a machine at rest, not a loop break; never stuck (a clamped value repeats).
   kSensorUnderRange = 1u << 4,
 };
 
@@ -152,16 +153,20 @@ class SensorCheck {
   /// @param t      sample time [s], non-decreasing (the stuck window is measured in it)
   /// @param y      N raw measurements [channel unit]
   /// @param valid  bit i set: channel i was sampled this tick (others keep their flags)
-  /// @param expect  optional, N model estimates [channel unit]; with slack, a reading at or
-  ///                below range_lo (but within the band below it, when range_hi is finite)
-  ///                is a loop break only where expect[i] − range_lo > slack[i] — the physics
-  ///                says the channel cannot be at its live zero; elsewhere it is under
-  ///                range (kSensorUnderRange), a plausible reading of a machine at rest.
-  ///                Null: every reading at or below range_lo is a loop break.
-  /// @param slack   N model-error allowances ≥ 0 [channel unit], with expect
   /// @return       mask(): bit i set if channel i is a sensor problem (kSensorFaultFlags)
-  std::uint8_t update(T t, const T* y, std::uint8_t valid, const T* expect = nullptr,
-                      const T* slack = nullptr) noexcept {
+  std::uint8_t update(T t, const T* y, std::uint8_t valid) noexcept { return update(t, y, valid, NoModel{}); }
+
+  /// update() with the model's say (Monitor): model(i, e, s) is called only for a channel
+  /// off the fast path and sets e, the model's estimate of channel i, and s ≥ 0, the
+  /// model's error allowance there [channel unit]. A reading at or below range_lo (but
+  /// within the band below it, when range_hi is finite) is then a loop break only where
+  /// e − range_lo > s — the physics says the channel cannot be at its live zero; elsewhere
+  /// it is under range (kSensorUnderRange), a plausible reading of a machine at rest. And
+  /// a coarse channel (ADC step ≥ its noise) is stuck only if e moved by more than two
+  /// steps and s during the run. Without a model, every reading at or below range_lo is a
+  /// loop break and a coarse channel is never stuck.
+  template <typename ModelSay>
+  std::uint8_t update(T t, const T* y, std::uint8_t valid, const ModelSay& model) noexcept {
     unsigned slow = 0;
     HSTMON_UNROLL
     for (int i = 0; i < N; ++i) {
@@ -181,8 +186,14 @@ class SensorCheck {
       sat_ = 0;
       return 0;
     }
-    return update_slow(t, y, valid & slow, expect, slack);
+    return update_slow(t, y, valid & slow, model);
   }
+
+  /// The model argument of update() when there is none.
+  struct NoModel {
+    static constexpr bool kHas = false;  ///< no estimates
+    void operator()(int, T&, T&) const noexcept {}
+  };
 
   /// SensorFlag bits of channel i from its last sample.
   std::uint8_t flags(int i) const noexcept { return static_cast<std::uint8_t>(flags_[i] & ~(kHave | kRun)); }
@@ -230,6 +241,15 @@ class SensorCheck {
     }
   }
 
+  template <typename ModelSay>
+  static constexpr bool has_model() noexcept {
+    if constexpr (std::is_same_v<ModelSay, NoModel>) {
+      return false;
+    } else {
+      return true;
+    }
+  }
+
   /// Learns channel i's ADC step from the change into the current run of equal readings
   /// (prev_ → last_), when a run begins: the smallest change seen is the step or a
   /// multiple of it. Runs are where the step matters, and this keeps the fast path to a
@@ -246,14 +266,15 @@ class SensorCheck {
   bool dithers(int i) const noexcept { return runs_[i] < 2 || !(step_[i] >= noise_[i]); }
 
   /// The channels off the fast path: full checks of the `sampled` ones, and the masks.
-  HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled, const T* expect,
-                                                   const T* slack) noexcept {
+  template <typename ModelSay>
+  HSTMON_SENSOR_SLOW_PATH std::uint8_t update_slow(T t, const T* y, unsigned sampled, const ModelSay& model) noexcept {
     unsigned fault = 0, sat = 0;
     for (int i = 0; i < N; ++i) {
       if (((sampled >> i) & 1u) != 0) {
-        const bool may_be_low = expect != nullptr && slack != nullptr && !(expect[i] - lo_[i] > slack[i]);
-        check_channel(i, y[i], t, may_be_low, expect != nullptr ? expect[i] : T(0), slack != nullptr ? slack[i] : T(0),
-                      expect != nullptr && slack != nullptr);
+        T e = T(0), s = T(0);
+        model(i, e, s);
+        const bool have = has_model<ModelSay>();
+        check_channel(i, y[i], t, have && !(e - lo_[i] > s), e, s, have);
       }
       fault |= (flags_[i] & kSensorFaultFlags) != 0 ? 1u << i : 0u;
       sat |= (flags_[i] & kSensorSaturated) != 0 ? 1u << i : 0u;

@@ -1,0 +1,46 @@
+#pragma once
+/// @file circuit_units.hpp
+/// The quantities of circuit files and their units: pressure, speed and area through
+/// units.hpp, and the others a circuit needs (flow, displacement, resistance, ...).
+
+#include <string>
+#include <string_view>
+
+#include "hstmon_host/units.hpp"
+
+namespace hstmon::host {
+
+/// What a circuit number measures; decides the units it may be written in.
+enum class CircuitQuantity {
+  kPressure,      ///< Pa (bar, MPa, psi, ...)
+  kSpeed,         ///< rad/s (rpm, ...)
+  kFlow,          ///< m³/s (L/min, ...)
+  kDisplacement,  ///< m³/rad (cc/rev, ...)
+  kResistance,    ///< laminar resistance, Pa·s/m³
+  kOrifice,       ///< orifice coefficient, m³/(s·√Pa)
+  kArea,          ///< m² (mm², ...)
+  kStiffness,     ///< bulk stiffness K of a volume, Pa/m³
+  kVolume,        ///< m³ (L, cm³, ...)
+  kInertia,       ///< kg·m²
+  kDamping,       ///< viscous friction, N·m·s/rad
+  kTorque,        ///< N·m
+  kDensity,       ///< kg/m³
+  kFraction,      ///< dimensionless (-, %)
+};
+
+/// Name used in files ("pressure", "flow", ...).
+const char* circuit_quantity_name(CircuitQuantity q) noexcept;
+/// SI unit for messages ("Pa", "m3/s", ...).
+const char* circuit_si_unit(CircuitQuantity q) noexcept;
+/// Parses a quantity name; false if unknown.
+bool parse_circuit_quantity(std::string_view name, CircuitQuantity& q) noexcept;
+/// Every quantity name, comma separated (for messages).
+std::string circuit_quantity_list();
+
+/// Conversion of a unit of quantity q to SI (error in the result if unknown).
+UnitResult parse_circuit_unit(CircuitQuantity q, std::string_view unit);
+
+/// "<number> [unit]" to SI for quantity q (e.g. "55 cc/rev", "35 bar", "0.5").
+ValueResult parse_circuit_value(CircuitQuantity q, std::string_view text);
+
+}  // namespace hstmon::host
