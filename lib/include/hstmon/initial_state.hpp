@@ -48,7 +48,7 @@ InitialState choose_initial_state(const Model& model, const typename Model::Outp
   State xm = model.rest_state();
   for (int i = 0; i < Model::kStates; ++i) {
     const int c = Model::state_channel(i);
-    if (c >= 0 && ((valid >> c) & 1u) != 0 && std::isfinite(y[c])) {
+    if (c >= 0 && ((static_cast<unsigned>(valid) >> static_cast<unsigned>(c)) & 1u) != 0 && std::isfinite(y[c])) {
       measured |= 1u << i;
       xm[i] = y[c];
     }
