@@ -588,14 +588,17 @@ class CircuitModel {
   }
 
   /// Solves node i's balance for z[i], the other entries held: Newton, kept inside the
-  /// bracket the signs of the balance have established (bisection when it leaves it),
-  /// and a widening search while the balance is flat (valves shut).
+  /// bracket the signs of the balance have established, with a bisection whenever a
+  /// Newton step would leave it or would not halve the step before last (a root law makes
+  /// Newton cycle across zero flow otherwise), and a widening search while the balance is
+  /// flat (valves shut).
   bool solve_node(int i, T (&z)[kExtent<kZ>]) const noexcept {
     const T eps = std::numeric_limits<T>::epsilon();
     const T floor = T(1e-6) * p_env_;
+    const T inf = std::numeric_limits<T>::infinity();
     T p = z[i];
-    T lo = -std::numeric_limits<T>::infinity();
-    T hi = std::numeric_limits<T>::infinity();
+    T lo = -inf, hi = inf;
+    T dx_old = inf, dx = inf;
     for (int it = 0; it < kMaxNewton; ++it) {
       z[i] = p;
       T dF;
@@ -607,17 +610,20 @@ class CircuitModel {
       } else {
         hi = p;
       }
-      T p_new = dF < T(0) ? p - F / dF : std::numeric_limits<T>::quiet_NaN();
-      if (!(p_new > lo && p_new < hi)) {
-        if (std::isfinite(lo) && std::isfinite(hi)) {
-          p_new = T(0.5) * (lo + hi);
-        } else {
-          p_new = p + (F > T(0) ? T(1) : T(-1)) * (std::fabs(p) + T(0.01) * p_env_);
-        }
+      const bool bracketed = lo > -inf && hi < inf;
+      const T newton = dF < T(0) ? p - F / dF : std::numeric_limits<T>::quiet_NaN();
+      T p_new;
+      if (bracketed && (!(newton > lo && newton < hi) || std::fabs(T(2) * F) > std::fabs(dx_old * dF))) {
+        p_new = T(0.5) * (lo + hi);
+      } else if (newton == newton) {
+        p_new = newton;
+      } else {
+        p_new = p + (F > T(0) ? T(1) : T(-1)) * (std::fabs(p) + T(0.01) * p_env_);
       }
-      const T step = p_new - p;
+      dx_old = dx;
+      dx = p_new - p;
       p = p_new;
-      if (std::fabs(step) <= T(8) * eps * (std::fabs(p) + floor)) {
+      if (std::fabs(dx) <= T(8) * eps * (std::fabs(p) + floor)) {
         z[i] = p;
         return true;
       }

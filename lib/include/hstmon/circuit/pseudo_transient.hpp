@@ -2,7 +2,7 @@
 /// @file pseudo_transient.hpp
 /// Steady state of M·du/dt = g(u) by pseudo-transient continuation: implicit Euler steps
 /// (M/Δt − ∂g/∂u)·δ = g(u) whose Δt grows as the residual falls (switched evolution
-/// relaxation, Δt ← Δt·‖g_old‖/‖g_new‖), so far from the solution it follows the
+/// relaxation, Δt ← Δt·‖g_old‖/‖g_new‖, at least 1.5× a step), so far from the solution it follows the
 /// circuit's own (dissipative, stable) transient and near it it becomes Newton's method.
 /// Plain Newton from rest diverges on orifice circuits (the root's slope is unbounded at
 /// zero flow); the transient does not. Runs at configuration and on input changes only.
@@ -55,8 +55,12 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
         dt *= T(0.1);
         continue;
       }
+      // Grow Δt with the fall of the residual (SER), but by at least 1.5× while it does
+      // not rise much: during a physical transient the residual stays level and pure SER
+      // would follow it at the first step's pace. Implicit Euler is L-stable, so a long
+      // step on a dissipative circuit is safe; a residual that halves or worse shrinks it.
       const T r = prev_norm / norm;
-      dt *= r < T(0.1) ? T(0.1) : (r > T(10) ? T(10) : r);
+      dt *= r >= T(0.5) ? (r > T(10) ? T(10) : (r < T(1.5) ? T(1.5) : r)) : T(0.5);
       if (dt > T(1e15)) dt = T(1e15);
     }
     prev_norm = norm;

@@ -1,0 +1,48 @@
+#pragma once
+/// @file circuit_values.hpp
+/// Parameter files for circuits: they bind a value to every parameter and a nominal value
+/// to every input of a circuit file (docs/circuits.md):
+///
+///     {"circuit": "thesis", "description": "Table 2.2",
+///      "params": {"Dm": 7.96e-6, "kf": 3.226e-6, "K": "1e14"},
+///      "inputs": {"Psupl": "35 bar", "kp": 4.41e-8}}
+///
+/// Values are SI numbers or strings with a unit of the parameter's quantity. The circuit
+/// file's own values (declared "value"s, literals) are the defaults; a parameter or input
+/// left without a value is an error. Errors carry file:line:column.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "hstmon_host/circuit_file.hpp"
+#include "hstmon_host/source_error.hpp"
+
+namespace hstmon::host {
+
+/// The values of a circuit's parameters and nominal inputs (SI, by index).
+struct CircuitValues {
+  HostCircuitModel::Params params{};
+  HostCircuitModel::Inputs inputs{};
+  std::string description;
+};
+
+/// Result of reading values: `values` on success, `error` otherwise.
+struct CircuitValuesResult {
+  std::optional<CircuitValues> values;
+  std::optional<SourceError> error;
+  bool ok() const noexcept { return !error.has_value(); }
+};
+
+/// The circuit file's own values; an error (at the circuit file, no position) naming the
+/// first parameter or input it leaves without one.
+CircuitValuesResult circuit_file_values(const CircuitFile& circuit);
+
+/// Reads the parameter file at path for `circuit`.
+CircuitValuesResult read_circuit_values(const std::string& path, const CircuitFile& circuit);
+
+/// As read_circuit_values, from text; path_for_messages names it in errors.
+CircuitValuesResult parse_circuit_values_json(std::string_view text, std::string path_for_messages,
+                                              const CircuitFile& circuit);
+
+}  // namespace hstmon::host

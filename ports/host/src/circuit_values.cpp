@@ -1,0 +1,198 @@
+#include "hstmon_host/circuit_values.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "json_locations.hpp"
+#include "text_util.hpp"
+
+namespace hstmon::host {
+
+namespace {
+
+using Json = nlohmann::json;
+
+/// Fills v with the circuit file's own values; `missing` names what has none.
+void defaults(const CircuitFile& cf, CircuitValues& v, std::vector<bool>& p_set, std::vector<bool>& u_set) {
+  p_set.assign(cf.params.size(), false);
+  u_set.assign(cf.inputs.size(), false);
+  for (std::size_t i = 0; i < cf.params.size(); ++i) {
+    if (cf.params[i].value) {
+      v.params.v[i] = *cf.params[i].value;
+      p_set[i] = true;
+    }
+  }
+  for (std::size_t i = 0; i < cf.inputs.size(); ++i) {
+    if (cf.inputs[i].value) {
+      v.inputs.v[i] = *cf.inputs[i].value;
+      u_set[i] = true;
+    }
+  }
+}
+
+std::string missing(const CircuitFile& cf, const std::vector<bool>& p_set, const std::vector<bool>& u_set) {
+  for (std::size_t i = 0; i < p_set.size(); ++i) {
+    if (!p_set[i]) return "parameter '" + cf.params[i].name + "' has no value";
+  }
+  for (std::size_t i = 0; i < u_set.size(); ++i) {
+    if (!u_set[i]) return "input '" + cf.inputs[i].name + "' has no nominal value";
+  }
+  return {};
+}
+
+class Reader {
+ public:
+  Reader(std::string_view text, std::string path, const CircuitFile& cf, CircuitValuesResult& out)
+      : text_(text), path_(std::move(path)), cf_(cf), out_(out) {}
+
+  void run() {
+    Json j;
+    try {
+      j = Json::parse(text_.begin(), text_.end());
+    } catch (const Json::exception& e) {
+      const auto* pe = dynamic_cast<const Json::parse_error*>(&e);
+      std::string what = e.what();
+      const std::size_t c = what.find("column ");
+      const std::size_t colon = c == std::string::npos ? std::string::npos : what.find(": ", c);
+      fail(pe != nullptr && pe->byte > 0 ? pe->byte - 1 : text_.size(),
+           "JSON: " + detail::printable(colon == std::string::npos ? what : what.substr(colon + 2), 200));
+      return;
+    }
+    loc_ = detail::locate_json_members(text_, 2);
+    if (loc_.duplicate) {
+      const std::string& ptr = loc_.duplicate->first;
+      fail(loc_.duplicate->second, "duplicate key '" + ptr.substr(ptr.rfind('/') + 1) + "'");
+      return;
+    }
+    if (!j.is_object()) {
+      fail(0, "the top level must be an object {\"circuit\": NAME, \"params\": {...}, \"inputs\": {...}}");
+      return;
+    }
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() != "circuit" && it.key() != "description" && it.key() != "params" && it.key() != "inputs") {
+        fail_key("/" + detail::json_pointer_token(it.key()),
+                 "unknown key '" + detail::printable(it.key()) + "' (known: circuit, description, params, inputs)");
+        return;
+      }
+    }
+    const auto c = j.find("circuit");
+    if (c == j.end() || !c->is_string() || c->get<std::string>() != cf_.name) {
+      fail_value(c == j.end() ? "" : "/circuit", "'circuit' must be \"" + cf_.name + "\" (the circuit file's name)");
+      return;
+    }
+    CircuitValues v;
+    std::vector<bool> p_set, u_set;
+    defaults(cf_, v, p_set, u_set);
+    if (const auto d = j.find("description"); d != j.end()) {
+      if (!d->is_string()) {
+        fail_value("/description", "'description' must be a string");
+        return;
+      }
+      v.description = d->get<std::string>();
+    }
+    if (const auto p = j.find("params"); p != j.end() && !section(*p, "params", true, v, p_set)) return;
+    if (const auto u = j.find("inputs"); u != j.end() && !section(*u, "inputs", false, v, u_set)) return;
+    const std::string m = missing(cf_, p_set, u_set);
+    if (!m.empty()) {
+      fail(0, m + " (give it in this file or in the circuit file)");
+      return;
+    }
+    out_.values = v;
+  }
+
+ private:
+  bool section(const Json& obj, const char* name, bool params, CircuitValues& v, std::vector<bool>& set) {
+    const std::string base = std::string("/") + name;
+    if (!obj.is_object()) {
+      fail_value(base, std::string("'") + name + "' must be an object of name: value pairs");
+      return false;
+    }
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      const std::string ptr = base + "/" + detail::json_pointer_token(it.key());
+      const int i = params ? cf_.param_index(it.key()) : cf_.input_index(it.key());
+      if (i < 0) {
+        fail_key(ptr, std::string("no ") + (params ? "parameter" : "input") + " '" + detail::printable(it.key()) +
+                          "' in circuit '" + cf_.name + "'");
+        return false;
+      }
+      const CircuitQuantity q = params ? cf_.params[static_cast<std::size_t>(i)].quantity : cf_.inputs[static_cast<std::size_t>(i)].quantity;
+      double x;
+      if (it->is_number()) {
+        x = it->get<double>();
+      } else if (it->is_string()) {
+        const ValueResult r = parse_circuit_value(q, it->get<std::string>());
+        if (!r.ok()) {
+          fail_value(ptr, it.key() + ": " + r.error);
+          return false;
+        }
+        x = r.value;
+      } else {
+        fail_value(ptr, it.key() + " must be a number [" + circuit_si_unit(q) + "] or a string with a unit");
+        return false;
+      }
+      if (!std::isfinite(x)) {
+        fail_value(ptr, it.key() + " must be finite");
+        return false;
+      }
+      (params ? v.params.v : v.inputs.v)[i] = x;
+      set[static_cast<std::size_t>(i)] = true;
+    }
+    return true;
+  }
+
+  void fail(std::size_t offset, std::string message) {
+    const detail::LineCol lc = detail::locate(text_, offset);
+    out_.error = SourceError{path_, lc.line, lc.column, std::move(message)};
+  }
+  void fail_key(const std::string& ptr, std::string message) {
+    const auto it = loc_.key.find(ptr);
+    fail(it != loc_.key.end() ? it->second : 0, std::move(message));
+  }
+  void fail_value(const std::string& ptr, std::string message) {
+    const auto it = loc_.value.find(ptr);
+    fail(it != loc_.value.end() ? it->second : 0, std::move(message));
+  }
+
+  std::string_view text_;
+  std::string path_;
+  const CircuitFile& cf_;
+  CircuitValuesResult& out_;
+  detail::JsonLocations loc_;
+};
+
+}  // namespace
+
+CircuitValuesResult circuit_file_values(const CircuitFile& circuit) {
+  CircuitValuesResult out;
+  CircuitValues v;
+  std::vector<bool> p_set, u_set;
+  defaults(circuit, v, p_set, u_set);
+  const std::string m = missing(circuit, p_set, u_set);
+  if (!m.empty()) {
+    out.error = SourceError{circuit.path, 0, 0, m};
+    return out;
+  }
+  out.values = v;
+  return out;
+}
+
+CircuitValuesResult parse_circuit_values_json(std::string_view text, std::string path_for_messages,
+                                              const CircuitFile& circuit) {
+  CircuitValuesResult out;
+  Reader r(text, std::move(path_for_messages), circuit, out);
+  r.run();
+  if (out.error) out.values.reset();
+  return out;
+}
+
+CircuitValuesResult read_circuit_values(const std::string& path, const CircuitFile& circuit) {
+  std::string text;
+  if (auto e = read_text_file(path, text)) {
+    CircuitValuesResult out;
+    out.error = *e;
+    return out;
+  }
+  return parse_circuit_values_json(text, path, circuit);
+}
+
+}  // namespace hstmon::host

@@ -1,0 +1,54 @@
+#pragma once
+// Loading a shipped circuit and its parameter file for the circuit tests.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hstmon/circuit/engine.hpp"
+#include "hstmon_host/circuit_file.hpp"
+#include "hstmon_host/circuit_values.hpp"
+
+namespace circuit_test {
+
+using hstmon::host::CircuitFile;
+using hstmon::host::CircuitValues;
+using Model = hstmon::host::HostCircuitModel;
+
+/// examples/circuits/<file>.
+inline std::string example(const std::string& file) {
+  return std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + file;
+}
+
+/// A circuit file and its values (a failed read is a test failure, and empty results).
+struct Loaded {
+  CircuitFile file;
+  CircuitValues values;
+  bool ok = false;
+};
+
+/// Reads <name>.json and <name>.params.json from examples/circuits, and sets the stiff
+/// mask for an observer ticking at `tick` [s].
+inline Loaded load(const std::string& name, double tick) {
+  Loaded l;
+  const auto f = hstmon::host::read_circuit_file(example(name + ".json"));
+  if (!f.ok()) {
+    ADD_FAILURE() << f.error->to_string();
+    return l;
+  }
+  l.file = *f.file;
+  const auto v = hstmon::host::read_circuit_values(example(name + ".params.json"), l.file);
+  if (!v.ok()) {
+    ADD_FAILURE() << v.error->to_string();
+    return l;
+  }
+  l.values = *v.values;
+  l.file.circuit.stiff_mask =
+      hstmon::circuit::auto_stiff_mask<double>(l.file.circuit, l.values.params, l.values.inputs, tick);
+  l.ok = true;
+  return l;
+}
+
+/// A model of l (bound to l.file.circuit, which must outlive it) at l's values.
+inline Model model_of(const Loaded& l) { return Model(l.file.circuit, l.values.params, l.values.inputs); }
+
+}  // namespace circuit_test
