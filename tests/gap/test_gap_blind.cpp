@@ -2,7 +2,9 @@
 // staircases and durations) come from the truth simulator with an effect switched on; the
 // analysis is not told which. Every single-effect case must rank the true effect first
 // with ≥ 80 % shrink on the check log; the nominal case must report no significant gap;
-// two effects at once must both come out on top.
+// two effects at once must both come out on top. Every case runs twice: logs that start at
+// a steady state and logs that start at rest (supply on at the first sample, a start-up
+// the analysis must follow from the measured first sample).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,14 +23,17 @@ using namespace hstmon::gap;
 struct Case {
   std::string label;
   std::vector<ActiveEffect> truth;
+  StartRule start = StartRule::kSteady;
 };
 void PrintTo(const Case& c, std::ostream* os) { *os << c.label; }
 
 GapResult run_case(const Case& c, double rate = 100.0, double dur_a = 6.0, double dur_b = 4.0) {
   ExtendedModel truth;
   truth.effects = c.truth;
-  const auto a = synth_log(truth, staircase_profile('A', dur_a, rate), {}, 11, "fit");
-  const auto b = synth_log(truth, staircase_profile('B', dur_b, rate), {}, 12, "check");
+  InputSeries ua = staircase_profile('A', dur_a, rate), ub = staircase_profile('B', dur_b, rate);
+  ua.start = ub.start = c.start;
+  const auto a = synth_log(truth, ua, {}, 11, "fit");
+  const auto b = synth_log(truth, ub, {}, 12, "check");
   EXPECT_TRUE(a.ok() && b.ok());
   GapResult r = run_gap(a, b, hstmon::ThesisParams<double>{}, hstmon::ThesisInputs<double>{});
   std::printf("[%s] verdict %s, %d sims, %.1f s\n", c.label.c_str(), r.verdict.c_str(), r.simulations, r.seconds);
@@ -64,27 +69,38 @@ TEST_P(SingleEffect, TrueEffectRankedFirstAndShrinksCheckGap) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Blind, SingleEffect,
-    ::testing::Values(Case{"coulomb_friction", {eff(Effect::kCoulombFriction, {1.5})}},
-                      Case{"pressure_torque_loss", {eff(Effect::kPressureTorqueLoss, {0.06})}},
-                      Case{"motor_leakage", {eff(Effect::kMotorLeakage, {3e-11, 1e-11})}},
-                      Case{"prv_cracking", {eff(Effect::kPrvCracking, {15e5})}},
-                      Case{"supply_flow_limit", {eff(Effect::kSupplyFlowLimit, {1.45e-3, 3e5})}},
-                      Case{"air_entrainment", {eff(Effect::kAirEntrainment, {0.3})}},
-                      Case{"sensor_lag", {eff(Effect::kSensorLag, {0.03})}},
-                      Case{"sensor_offset", {eff(Effect::kSensorOffset, {1e5}, 0)}}),
-    [](const ::testing::TestParamInfo<Case>& i) { return i.param.label; });
-
-TEST(GapBlind, NominalReportsNoSignificantGap) {
-  const GapResult r = run_case({"nominal", {}});
-  ASSERT_TRUE(r.ok) << r.error;
-  EXPECT_EQ(r.verdict, "no_significant_gap");
-  EXPECT_TRUE(r.ranking.empty());
+std::vector<Case> single_effects(StartRule start) {
+  std::vector<Case> v = {{"coulomb_friction", {eff(Effect::kCoulombFriction, {1.5})}},
+                         {"pressure_torque_loss", {eff(Effect::kPressureTorqueLoss, {0.06})}},
+                         {"motor_leakage", {eff(Effect::kMotorLeakage, {3e-11, 1e-11})}},
+                         {"prv_cracking", {eff(Effect::kPrvCracking, {15e5})}},
+                         {"supply_flow_limit", {eff(Effect::kSupplyFlowLimit, {1.45e-3, 3e5})}},
+                         {"air_entrainment", {eff(Effect::kAirEntrainment, {0.3})}},
+                         {"sensor_lag", {eff(Effect::kSensorLag, {0.03})}},
+                         {"sensor_offset", {eff(Effect::kSensorOffset, {1e5}, 0)}}};
+  for (auto& c : v) c.start = start;
+  return v;
 }
 
-TEST(GapBlind, TwoEffectsBothOnTop) {
-  const GapResult r = run_case({"coulomb+lag", {eff(Effect::kCoulombFriction, {1.0}), eff(Effect::kSensorLag, {0.03})}});
+INSTANTIATE_TEST_SUITE_P(Blind, SingleEffect, ::testing::ValuesIn(single_effects(StartRule::kSteady)),
+                         [](const ::testing::TestParamInfo<Case>& i) { return i.param.label; });
+INSTANTIATE_TEST_SUITE_P(BlindFromRest, SingleEffect, ::testing::ValuesIn(single_effects(StartRule::kRest)),
+                         [](const ::testing::TestParamInfo<Case>& i) { return i.param.label; });
+
+TEST(GapBlind, NominalReportsNoSignificantGap) {
+  for (StartRule start : {StartRule::kSteady, StartRule::kRest}) {
+    const GapResult r = run_case({"nominal", {}, start});
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.verdict, "no_significant_gap");
+    EXPECT_TRUE(r.ranking.empty());
+  }
+}
+
+class TwoEffects : public ::testing::TestWithParam<StartRule> {};
+
+TEST_P(TwoEffects, BothOnTop) {
+  const GapResult r = run_case(
+      {"coulomb+lag", {eff(Effect::kCoulombFriction, {1.0}), eff(Effect::kSensorLag, {0.03})}, GetParam()});
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_FALSE(r.ranking.empty());
   std::vector<Effect> top = r.ranking.front().effects;
@@ -94,6 +110,11 @@ TEST(GapBlind, TwoEffectsBothOnTop) {
   EXPECT_EQ(r.verdict, "explained_by_pair");
   EXPECT_GE(r.ranking.front().shrink_check, 0.8);
 }
+
+INSTANTIATE_TEST_SUITE_P(GapBlind, TwoEffects, ::testing::Values(StartRule::kSteady, StartRule::kRest),
+                         [](const ::testing::TestParamInfo<StartRule>& i) {
+                           return std::string(i.param == StartRule::kRest ? "FromRest" : "FromSteady");
+                         });
 
 TEST(GapBlind, SlowSamplingCannotIdentifyTransientEffects) {
   // Thesis DAS-like sampling (here 0.5 s): lag and air entrainment only act in transients.

@@ -384,6 +384,13 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
                   const ThesisInputs<double>& defaults, const GapOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   GapResult res;
+  auto t_stage = t0;
+  // Wall time of the stage that ends here (GapResult::stage_seconds).
+  auto stage = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    res.stage_seconds.emplace_back(name, std::chrono::duration<double>(now - t_stage).count());
+    t_stage = now;
+  };
   for (const auto* lg : {&fit_log, &check_log}) {
     if (!lg->ok() || lg->rows() < 10) {
       res.error = lg->path + ": log unusable (needs at least 10 rows)";
@@ -407,6 +414,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     res.error = "the nominal model cannot be simulated with these inputs";
     return res;
   }
+  stage("nominal_run");
   res.where_fit = decompose(A, ya, o.significance);
   res.where_check = decompose(B, yb, o.significance);
   // Where at equation level: the balance equations on the measured signals alone.
@@ -416,6 +424,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   res.where_check.equations = equation_stats(arr_b);
   res.where_fit.located = located_equation(res.where_fit.equations);
   res.where_check.located = located_equation(res.where_check.equations);
+  stage("where_and_equations");
   res.t_check = check_log.t;
   res.kp_check = B.u.kp;
   res.data_check = B.y;
@@ -453,6 +462,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   add_envelope_segments(res.envelope, nominal, A.u, A.y, ya, A.present, A.noise, o.settle_time);
   add_envelope_segments(res.envelope, nominal, B.u, B.y, yb, B.present, B.noise, o.settle_time);
   finish_envelope(res.envelope);
+  stage("envelope");
   if (res.envelope.out) {
     decide_verdict(res);
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -500,6 +510,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   }
   std::sort(useful.begin(), useful.end(), [](const EffectFit& x, const EffectFit& y) { return score(x) > score(y); });
 
+  stage("single_effects");
   // Pairs among the best few.
   std::vector<EffectFit> pairs;
   const std::size_t np = std::min<std::size_t>(useful.size(), static_cast<std::size_t>(std::max(0, o.pair_candidates)));
@@ -526,6 +537,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   for (auto& f : pairs) res.ranking.push_back(std::move(f));
   for (auto& f : useful) res.ranking.push_back(std::move(f));
 
+  stage("pairs");
   if (!res.ranking.empty()) {
     const EffectFit& best = res.ranking.front();
     // Another set (not containing the best's effects) doing as well: the data cannot tell.
@@ -553,6 +565,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     }
     decide_verdict(res);
   }
+  stage("verdict_and_discovery");
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

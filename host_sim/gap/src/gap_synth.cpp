@@ -14,7 +14,11 @@ int main(int argc, char** argv) {
   double duration = 15, rate = 1000;
   std::uint64_t seed = 1;
   std::vector<std::string> effects;
-  std::string out;
+  std::string out, start = "steady";
+  double g_pp = 0;
+  app.add_option("--start", start, "truth starts at 'steady' state or at 'rest' (supply on at the first sample)")
+      ->check(CLI::IsMember({"steady", "rest"}));
+  app.add_option("--load-pump-leak", g_pp, "truth only, outside the library: leakage conductance loading-pump node to drain [m^3/(s*Pa)]");
   app.add_option("--profile", profile, "input staircase A or B");
   app.add_option("--duration", duration, "[s]");
   app.add_option("--rate", rate, "[Hz]");
@@ -43,7 +47,9 @@ int main(int argc, char** argv) {
     while (std::getline(ss, v, ':')) a.values.push_back(std::stod(v));
     truth.effects.push_back(a);
   }
-  const auto u = hstmon::gap::staircase_profile(profile, duration, rate);
+  truth.extras.g_pp = g_pp;
+  auto u = hstmon::gap::staircase_profile(profile, duration, rate);
+  u.start = start == "rest" ? hstmon::gap::StartRule::kRest : hstmon::gap::StartRule::kSteady;
   const auto log = hstmon::gap::synth_log(truth, u, {}, seed, out);
   if (!log.ok()) {
     std::fprintf(stderr, "%s\n", log.error->message.c_str());

@@ -148,6 +148,9 @@ std::string to_json(const GapResult& r, int indent) {
   j["cannot_tell_apart"] = r.cannot_tell_apart;
   j["verdict_text"] = r.verdict_text;
   j["seconds"] = r.seconds;
+  json st = json::array();
+  for (const auto& [name, sec] : r.stage_seconds) st.push_back({{"stage", name}, {"seconds", sec}});
+  j["stage_seconds"] = st;
   j["simulations"] = r.simulations;
   return j.dump(indent);
 }
@@ -215,7 +218,9 @@ std::string to_text(const GapResult& r) {
               100.0 * d.shrink_check, d.rms_w_before_check, d.rms_w_after_check);
   }
   o << "\nverdict: " << r.verdict_text << "\n";
-  o << sfmt("(%d simulations, %.1f s)\n", r.simulations, r.seconds);
+  o << sfmt("(%d simulations, %.1f s:", r.simulations, r.seconds);
+  for (const auto& [name, sec] : r.stage_seconds) o << sfmt(" %s %.2f", name.c_str(), sec);
+  o << ")\n";
   return o.str();
 }
 

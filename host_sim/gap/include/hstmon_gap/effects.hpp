@@ -109,7 +109,7 @@ struct InputSeries {
 struct SimOptions {
   double max_step = 2.5e-4;  ///< largest internal step [s] (ROS2, fixed per log interval)
   double transient_step = 2.5e-5;  ///< step within transient_window of the start or an input change [s]
-  double transient_window = 0.05;  ///< [s]
+  double transient_window = 0.025;  ///< [s]
   double preroll = 1.0;      ///< time held at the first row's inputs before t0 [s]
 };
 

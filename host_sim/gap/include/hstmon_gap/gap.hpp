@@ -6,6 +6,7 @@
 /// second, withheld log, BIC-penalised), and how far the gap shrinks. docs/gap.md.
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hstmon/thesis_params.hpp"
@@ -101,6 +102,7 @@ struct GapResult {
   std::vector<std::string> cannot_tell_apart;  ///< effects that explain the check log equally well
   std::string verdict_text;           ///< one sentence
   double seconds = 0;                 ///< wall time
+  std::vector<std::pair<std::string, double>> stage_seconds;  ///< wall time per stage, in order
   int simulations = 0;
   // Series for the report (check log): time, kp, data, nominal model, top-ranked model.
   std::vector<double> t_check, kp_check;
