@@ -409,7 +409,9 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   nominal.nominal = params;
   bool ok_a = false, ok_b = false;
   const auto ya = an.sim(nominal, A, ok_a);
+  res.start_fit = an.start_;
   const auto yb = an.sim(nominal, B, ok_b);
+  res.start_check = an.start_;
   if (!ok_a || !ok_b) {
     res.error = "the nominal model cannot be simulated with these inputs";
     return res;

@@ -105,6 +105,7 @@ std::string to_json(const GapResult& r, int indent) {
     return j.dump(indent);
   }
   j["where"] = {{"fit", where_json(r.where_fit)}, {"check", where_json(r.where_check)}};
+  j["start"] = {{"fit", r.start_fit}, {"check", r.start_check}};
   json rk = json::array(), rej = json::array(), ni = json::array();
   for (const auto& f : r.ranking) rk.push_back(fit_json(f));
   for (const auto& f : r.rejected) rej.push_back(fit_json(f));
@@ -193,6 +194,8 @@ std::string to_text(const GapResult& r) {
         << w.equations[static_cast<std::size_t>(w.located)].dependence << "\n";
     }
   };
+  o << "model runs start from the first sample (choose_initial_state): fit log " << r.start_fit << ", check log "
+    << r.start_check << "\n\n";
   where("fit log", r.where_fit);
   where("check log", r.where_check);
   o << "\nranking (fit on the fit log, shrink = 1 - RMS_after/RMS_before on the check log, noise-weighted):\n";

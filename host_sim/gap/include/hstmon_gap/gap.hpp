@@ -90,6 +90,7 @@ struct GapResult {
   bool ok = false;
   std::string error;
   Where where_fit, where_check;
+  std::string start_fit, start_check;  ///< how each run started: "measured", "rest" or "steady"
   std::vector<EffectFit> ranking;     ///< best first (accepted pairs, then single effects)
   std::vector<EffectFit> rejected;    ///< tried but not improving the fit log, or pairs not needed
   std::vector<NotIdentifiable> not_identifiable;
