@@ -26,17 +26,17 @@ struct Loaded {
   bool ok = false;
 };
 
-/// Reads <name>.json and <name>.params.json from examples/circuits, and sets the stiff
-/// mask for an observer ticking at `tick` [s].
-inline Loaded load(const std::string& name, double tick) {
+/// Reads a circuit file and its parameter file, and sets the stiff mask for an observer
+/// ticking at `tick` [s].
+inline Loaded load_paths(const std::string& circuit_path, const std::string& params_path, double tick) {
   Loaded l;
-  const auto f = hstmon::host::read_circuit_file(example(name + ".json"));
+  const auto f = hstmon::host::read_circuit_file(circuit_path);
   if (!f.ok()) {
     ADD_FAILURE() << f.error->to_string();
     return l;
   }
   l.file = *f.file;
-  const auto v = hstmon::host::read_circuit_values(example(name + ".params.json"), l.file);
+  const auto v = hstmon::host::read_circuit_values(params_path, l.file);
   if (!v.ok()) {
     ADD_FAILURE() << v.error->to_string();
     return l;
@@ -46,6 +46,11 @@ inline Loaded load(const std::string& name, double tick) {
       hstmon::circuit::auto_stiff_mask<double>(l.file.circuit, l.values.params, l.values.inputs, tick);
   l.ok = true;
   return l;
+}
+
+/// load_paths for examples/circuits/<name>.json and <name>.params.json.
+inline Loaded load(const std::string& name, double tick) {
+  return load_paths(example(name + ".json"), example(name + ".params.json"), tick);
 }
 
 /// A model of l (bound to l.file.circuit, which must outlive it) at l's values.

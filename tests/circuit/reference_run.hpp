@@ -4,6 +4,8 @@
 // Rosenbrock-4 (Boost.Odeint rosenbrock4), inputs piecewise constant and met exactly at
 // their steps. Used by the accuracy tests.
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -106,6 +108,11 @@ inline RunResult run_against_reference(const Loaded& l_in, double tick, double t
     for (int c = 0; c < channels; ++c) {
       y_ref[static_cast<std::size_t>(k)].push_back(yr[c]);
       y_obs[static_cast<std::size_t>(k)].push_back(obs.estimate()[c]);
+    }
+    if (std::getenv("CIRCUIT_TRACE") != nullptr && k < 40) {
+      std::printf("t %.3f", t);
+      for (int c = 0; c < channels; ++c) std::printf("  %.6g/%.6g", obs.estimate()[c], yr[c]);
+      std::printf("  sub %d\n", obs.substeps());
     }
     ref.advance_to((k + 1) * tick);
   }

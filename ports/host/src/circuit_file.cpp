@@ -220,8 +220,8 @@ class Reader {
   void check_quantity(CircuitQuantity have, CircuitQuantity want, const std::string& ptr, const std::string& what,
                       const std::string& field) {
     if (have != want) {
-      fail_value(ptr, field + " is a " + circuit_quantity_name(want) + ", but " + what + " is declared as a " +
-                          circuit_quantity_name(have));
+      fail_value(ptr, field + " is a quantity '" + circuit_quantity_name(want) + "', but " + what + " is declared as '" +
+                          circuit_quantity_name(have) + "'");
     }
   }
 

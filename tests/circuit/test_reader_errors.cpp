@@ -1,0 +1,127 @@
+// Circuit and parameter files with mistakes: each is reported as file:line:column with a
+// message saying what is wrong, and nothing crashes (including on binary junk).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hstmon_host/circuit_file.hpp"
+#include "hstmon_host/circuit_values.hpp"
+
+namespace {
+
+using hstmon::host::parse_circuit_json;
+
+const char* const kGood = R"({
+  "circuit": "tiny",
+  "envelope": {"pressure": "100 bar", "speed": "1000 rpm"},
+  "parameters": {"k": {"quantity": "orifice"}},
+  "inputs": {"q": {"quantity": "flow", "unit": "L/min"}},
+  "nodes": {"tank": {"boundary": 0}, "n": {"K": 1e12}},
+  "components": {
+    "src": {"type": "flow_source", "from": "tank", "to": "n", "flow": "q"},
+    "ori": {"type": "orifice", "from": "n", "to": "tank", "k": "k"}
+  },
+  "sensors": {"p": {"node": "n", "unit": "bar"}}
+})";
+
+/// Replaces the first `from` in kGood by `to`.
+std::string variant(const std::string& from, const std::string& to) {
+  std::string s = kGood;
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+/// The error of reading text, as "file:line:column: error: ...".
+std::string error_of(const std::string& text) {
+  const auto r = parse_circuit_json(text, "c.json");
+  return r.ok() ? std::string("(no error)") : r.error->to_string();
+}
+
+TEST(CircuitReader, GoodFileReads) {
+  const auto r = parse_circuit_json(kGood, "c.json");
+  ASSERT_TRUE(r.ok()) << r.error->to_string();
+  EXPECT_EQ(r.file->nodes.size(), 2u);
+  EXPECT_EQ(r.file->elements.size(), 2u);
+  EXPECT_EQ(r.file->circuit.n_channels, 1);
+}
+
+TEST(CircuitReader, ErrorsCarryLineAndColumn) {
+  struct Case {
+    std::string text;
+    std::string expect;  // the start of the message, position included
+  };
+  const Case cases[] = {
+      {variant(R"("to": "n", "flow")", R"("to": "nn", "flow")"), "c.json:8:58: error: src.to: no node 'nn'"},
+      {variant(R"("k": "k"}
+  },)", R"("k": "kk"}
+  },)"), "c.json:9:64: error: ori.k: 'kk' is neither a declared parameter nor an input"},
+      {variant(R"("type": "orifice")", R"("type": "orifise")"), "c.json:9:21: error: ori: unknown type 'orifise'"},
+      {variant(R"({"K": 1e12})", R"({"K": "1e12 bar"})"), "c.json:6:49: error: n.K: unknown stiffness unit 'bar'"},
+      {variant(R"("unit": "L/min")", R"("unit": "gallons")"), "c.json:5:48: error: q: unknown flow unit 'gallons'"},
+      {variant(R"("k": {"quantity": "orifice"})", R"("k": {"quantity": "pressure"})"),
+       "c.json:9:64: error: ori.k is a quantity 'orifice', but parameter 'k' is declared as 'pressure'"},
+      {variant(R"("p": {"node": "n")", R"("p": {"node": "n", "shaft": "x")"),
+       "c.json:11:20: error: sensor 'p' measures exactly one of"},
+      {variant(R"("tank": {"boundary": 0}, )", R"("tank": {"boundary": 0}, "tank": {"boundary": 0}, )"),
+       "c.json:6:38: error: duplicate key 'tank'"},
+      {variant(R"("envelope")", R"("envelop")"), "c.json:3:3: error: unknown key 'envelop'"},
+      {variant(R"("ori": {)", R"("ori": {"colour": 1, )"), "c.json:9:13: error: unknown key 'colour'"},
+      {variant(R"("n": {"K": 1e12})", R"("n": {})"), "c.json:6:38: error: node 'n' has neither a capacitance"},
+      {variant(R"("from": "n", "to": "tank")", R"("from": "n", "to": "n")"), "c.json:9:51: error: ori: 'from' and 'to' are the same node"},
+      {std::string(kGood).substr(0, 120), "c.json:4:38: error: JSON:"},
+      {"\x01\x02\xff junk", "c.json:1:1: error: JSON:"},
+      {"[1, 2]", "c.json:1:1: error: the top level must be an object"},
+  };
+  // Each position is that of the offending token (the value, the key, the end of the text).
+  for (const Case& c : cases) {
+    const std::string e = error_of(c.text);
+    EXPECT_EQ(e.substr(0, c.expect.size()), c.expect) << "got: " << e;
+  }
+}
+
+TEST(CircuitReader, ParameterFileErrors) {
+  const auto r = parse_circuit_json(kGood, "c.json");
+  ASSERT_TRUE(r.ok());
+  const auto& cf = *r.file;
+  using hstmon::host::parse_circuit_values_json;
+  const auto ok = parse_circuit_values_json(R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": "10 L/min"}})", "p.json", cf);
+  ASSERT_TRUE(ok.ok()) << ok.error->to_string();
+  EXPECT_NEAR(ok.values->inputs.v[0], 10e-3 / 60, 1e-15);
+  struct Case {
+    const char* text;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {R"({"circuit": "tiny", "params": {"kk": 1e-7}})", "p.json:1:32: error: no parameter 'kk' in circuit 'tiny'"},
+      {R"({"circuit": "big", "params": {}})", "p.json:1:13: error: 'circuit' must be \"tiny\""},
+      {R"({"circuit": "tiny",
+ "params": {"k": "1e-7 bar"}})", "p.json:2:18: error: k: unknown"},
+      {R"({"circuit": "tiny", "params": {"k": 1e-7}})", "p.json:1:1: error: input 'q' has no nominal value"},
+      {R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": [1]}})", "p.json:1:60: error: q must be a number"},
+  };
+  for (const Case& c : cases) {
+    const auto v = parse_circuit_values_json(c.text, "p.json", cf);
+    ASSERT_FALSE(v.ok()) << c.text;
+    const std::string e = v.error->to_string();
+    EXPECT_EQ(e.substr(0, std::string(c.expect).size()), c.expect) << "got: " << e;
+  }
+}
+
+TEST(CircuitReader, EveryTruncationFailsCleanly) {
+  // Every prefix of a good file is an error with a position (or, the whole file, none).
+  const std::string good = kGood;
+  for (std::size_t n = 0; n < good.size(); ++n) {
+    const auto r = parse_circuit_json(good.substr(0, n), "c.json");
+    ASSERT_FALSE(r.ok()) << n;
+    EXPECT_GT(r.error->line, 0u) << n;
+  }
+}
+
+TEST(CircuitReader, MissingFileIsAnError) {
+  const auto r = hstmon::host::read_circuit_file("/nonexistent/circuit.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error->to_string().rfind("/nonexistent/circuit.json: error: cannot open", 0), 0u);
+}
+
+}  // namespace
