@@ -44,7 +44,7 @@ std::vector<EffectInfo> make_infos() {
   v.push_back({Effect::kAirEntrainment, "air_entrainment",
                "effective bulk modulus of the Ppp volume K/(1 + xa*(beta/(n*p))*(p0/p)^(1/n))",
                {{"xa", "1", 0.1, 0.03, true}}, 0.01});
-  v.push_back({Effect::kSensorLag, "sensor_lag", "first-order lag tau on p_mi, p_mo, p_pp",
+  v.push_back({Effect::kSensorLag, "sensor_lag", "first-order lag tau on the samples of p_mi, p_mo, p_pp",
                {{"tau", "s", 0.01, 0.005, true}}, 0.005});
   v.push_back({Effect::kSensorOffset, "sensor_offset", "constant offset on one channel (fitted channel)",
                {{"offset", "SI", 1e5, 0.0, false}}, 0.0});
@@ -335,6 +335,11 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
   double fdummy[2];
   f(r, x, fdummy, y);
   double lag[3] = {y[0], y[1], y[2]};
+  // A lagged transducer starts from what it read, not from the model's quasi-steady
+  // pressures (at a start from rest Pmi is at supply at once, its reading is not).
+  for (std::size_t c = 0; c < 3 && u.start == StartRule::kFirstSample; ++c) {
+    if ((u.y0_valid >> c) & 1u) lag[c] = u.y0[c] - e.offset[c];
+  }
   const bool use_lag = e.tau > 1e-9;
 
   res.y.resize(n);
@@ -343,6 +348,12 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
     if (k > 0) r = row_at(k);
     // Output at t_k.
     f(r, x, fdummy, y);
+    if (use_lag && k > 0) {
+      // The lag acts on the samples (a logger's first-order filter, exact for a held
+      // input): the independent simulator's lagged logs follow this to their noise.
+      const double alpha = -std::expm1(-(u.t[k] - u.t[k - 1]) / e.tau);
+      for (int c = 0; c < 3; ++c) lag[c] += alpha * (y[c] - lag[c]);
+    }
     auto& out = res.y[k];
     for (int c = 0; c < kChannels; ++c) {
       const double v = (use_lag && c < 3) ? lag[c] : y[c];
@@ -376,10 +387,6 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
         if (!ros2_step(f, r, x, h, y)) {
           res.error = "simulation failed";
           return res;
-        }
-        if (use_lag) {
-          const double alpha = -std::expm1(-h / e.tau);
-          for (int c = 0; c < 3; ++c) lag[c] += alpha * (y[c] - lag[c]);
         }
       }
     }

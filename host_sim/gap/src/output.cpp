@@ -187,7 +187,7 @@ std::string to_text(const GapResult& r) {
     for (const auto& e : w.equations) {
       if (!e.available) continue;
       o << sfmt("  %-12s %7s %10.3g %10.3g %10.3g%s\n", e.equation.c_str(), e.unit.c_str(), e.mean, e.rms, e.rms_w,
-                &e == &w.equations[static_cast<std::size_t>(std::max(w.located, 0))] ? "  <- located" : "");
+                w.located >= 0 && &e == &w.equations[static_cast<std::size_t>(w.located)] ? "  <- located" : "");
     }
     if (w.located >= 0) {
       o << "  " << w.equations[static_cast<std::size_t>(w.located)].equation << ": "
