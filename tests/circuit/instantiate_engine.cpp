@@ -5,7 +5,7 @@
 #include "hstmon/observer.hpp"
 
 namespace hstmon::circuit {
-using FirmwareThesisCap = Capacity<7, 1, 8, 4, 4, 16, 2>;
+using FirmwareThesisCap = Capacity<7, 1, 10, 4, 4, 16, 2>;  // thesis.json: 7 nodes, 10 elements, 15 parameters
 template class CircuitModel<float, HostCapacity>;
 template class CircuitModel<double, HostCapacity>;
 template class CircuitModel<float, FirmwareThesisCap>;
