@@ -276,6 +276,15 @@ ActiveEffect default_effect(Effect e, int channel) {
   return a;
 }
 
+bool input_step(const InputSeries& u, std::size_t k) {
+  if (k == 0 || k >= u.size()) return false;
+  auto moved = [](double a, double b, double floor) {
+    return std::fabs(a - b) > std::max(5e-3 * std::max(std::fabs(a), std::fabs(b)), floor);
+  };
+  return moved(u.kp[k], u.kp[k - 1], 0.0) || moved(u.Psupl[k], u.Psupl[k - 1], 500.0) ||
+         moved(u.Ps[k], u.Ps[k - 1], 500.0) || moved(u.Pbp[k], u.Pbp[k - 1], 500.0);
+}
+
 SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt) {
   SimResult res;
   const std::size_t n = u.size();
@@ -344,6 +353,7 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
 
   res.y.resize(n);
   double t_change = u.t[0];
+  bool switched_early = false;
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0) r = row_at(k);
     // Output at t_k.
@@ -371,24 +381,54 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
     // transient has died out after 0.1 s and the L-stable scheme takes 5 ms steps. The
     // schedule depends only on the sample times and inputs, so outputs stay smooth in the
     // parameters.
-    if (k > 0 && (u.kp[k] != u.kp[k - 1] || u.Psupl[k] != u.Psupl[k - 1] || u.Ps[k] != u.Ps[k - 1] ||
-                  u.Pbp[k] != u.Pbp[k - 1])) {
-      t_change = u.t[k];
-    }
-    const double fine = dt > 0.2 ? 0.1 : dt;
-    const double tr = std::clamp(t_change + opt.transient_window - u.t[k], 0.0, fine);
-    const double seg_len[3] = {tr, fine - tr, dt - fine};
-    const double seg_step[3] = {std::min(opt.transient_step, opt.max_step), opt.max_step, 5e-3};
-    for (int g = 0; g < 3; ++g) {
-      if (seg_len[g] <= 1e-12 * dt) continue;
-      const int m = std::max(1, static_cast<int>(std::ceil(seg_len[g] / seg_step[g] - 1e-9)));
-      const double h = seg_len[g] / m;
-      for (int s = 0; s < m; ++s) {
-        if (!ros2_step(f, r, x, h, y)) {
-          res.error = "simulation failed";
-          return res;
+    if (input_step(u, k) && !(switched_early && k > 0)) t_change = u.t[k];
+    switched_early = false;
+    // Inputs between rows: a step at the next row takes effect step_lead of the interval
+    // before it (loggers differ in whether a row shows the setting before or after a change
+    // at its instant); otherwise the inputs are interpolated — a ramp logged row by row,
+    // held, would put the model a sample behind.
+    const bool slow = dt > 0.2;
+    const bool next_step = !slow && input_step(u, k + 1);
+    const bool ramp = !slow && !next_step &&
+                      (u.kp[k + 1] != u.kp[k] || u.Psupl[k + 1] != u.Psupl[k] || u.Ps[k + 1] != u.Ps[k] ||
+                       u.Pbp[k + 1] != u.Pbp[k]);
+    const double t_switch = next_step ? (1.0 - std::clamp(u.step_lead, 0.0, 1.0)) * dt : dt;
+    // Integrates [from, from + len) of this interval with the current row r.
+    auto advance = [&](double from, double len) {
+      const double fine = slow ? 0.1 : len;
+      const double tr = std::clamp(t_change + opt.transient_window - (u.t[k] + from), 0.0, fine);
+      const double seg_len[3] = {tr, fine - tr, len - fine};
+      const double seg_step[3] = {std::min(opt.transient_step, opt.max_step), opt.max_step, 5e-3};
+      double elapsed = from;
+      for (int g = 0; g < 3; ++g) {
+        if (seg_len[g] <= 1e-12 * dt) continue;
+        const int m = std::max(1, static_cast<int>(std::ceil(seg_len[g] / seg_step[g] - 1e-9)));
+        const double h = seg_len[g] / m;
+        for (int s = 0; s < m; ++s) {
+          if (ramp) {
+            const double a = (elapsed + 0.5 * h) / dt;  // midpoint of the step
+            r.Psupl = u.Psupl[k] + a * (u.Psupl[k + 1] - u.Psupl[k]);
+            r.Ps = u.Ps[k] + a * (u.Ps[k + 1] - u.Ps[k]);
+            r.Pbp = u.Pbp[k] + a * (u.Pbp[k + 1] - u.Pbp[k]);
+            r.kp = u.kp[k] + a * (u.kp[k + 1] - u.kp[k]);
+            f.set_row(r);
+          }
+          elapsed += h;
+          if (!ros2_step(f, r, x, h, y)) return false;
         }
       }
+      return true;
+    };
+    bool ok = advance(0.0, t_switch);
+    if (ok && t_switch < dt * (1.0 - 1e-12)) {
+      r = row_at(k + 1);
+      t_change = u.t[k] + t_switch;
+      switched_early = true;
+      ok = advance(t_switch, dt - t_switch);
+    }
+    if (!ok) {
+      res.error = "simulation failed";
+      return res;
     }
   }
   res.ok = true;

@@ -78,13 +78,13 @@ void envelope_at(const ExtendedModel& nominal, const ThesisInputs<double>& in, c
   const double w = std::fabs(y0[3]);
   const double dPs = std::fabs(in.Psupl - in.Ps);
   const double flow = nominal.nominal.Dm * w;
-  const double g = dPs > 0 ? 0.1 * flow / dPs : 0.0;  // each leakage path: 10 % of the motor flow
+  const double g = dPs > 0 ? 0.15 * flow / dPs : 0.0;  // each leakage path: 15 % of the motor flow
   std::vector<ActiveEffect> big = {
-      effect(Effect::kCoulombFriction, {0.15 * nominal.nominal.Dm * dPs}),  // 15 % of the stall torque
-      effect(Effect::kPressureTorqueLoss, {0.15}),                         // mechanical efficiency 85 %
+      effect(Effect::kCoulombFriction, {0.2 * nominal.nominal.Dm * dPs}),  // 20 % of the stall torque
+      effect(Effect::kPressureTorqueLoss, {0.2}),                          // mechanical efficiency 80 %
       effect(Effect::kMotorLeakage, {g, g}),
-      effect(Effect::kPrvCracking, {0.25 * std::max(0.0, y0[2] - in.Pbp)}),
-      effect(Effect::kSupplyFlowLimit, {0.8 * flow, 0.1 * std::max(in.Psupl, 1e5)}),
+      effect(Effect::kPrvCracking, {0.3 * std::max(0.0, y0[2] - in.Pbp)}),
+      effect(Effect::kSupplyFlowLimit, {0.6 * flow, 0.2 * std::max(in.Psupl, 1e5)}),
   };
   for (const auto& a : big) {
     ExtendedModel m = nominal;

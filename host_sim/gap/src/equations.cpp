@@ -46,11 +46,7 @@ ArrData evaluate_arrs(const ThesisParams<double>& p, const InputSeries& u,
   // Input setting id per row: a window must not straddle a change (the smoothing of a step
   // is no signal of the model's).
   std::vector<int> seg(n, 0);
-  for (std::size_t k = 1; k < n; ++k) {
-    const bool same = u.kp[k] == u.kp[k - 1] && u.Psupl[k] == u.Psupl[k - 1] && u.Ps[k] == u.Ps[k - 1] &&
-                      u.Pbp[k] == u.Pbp[k - 1];
-    seg[k] = seg[k - 1] + (same ? 0 : 1);
-  }
+  for (std::size_t k = 1; k < n; ++k) seg[k] = seg[k - 1] + (input_step(u, k) ? 1 : 0);
   const bool has_mi = present[kChPmi], has_mo = present[kChPmo], has_pp = present[kChPpp], has_w = present[kChWm];
   a.available = {has_mi && has_w, has_mo && has_w, has_pp && has_w, has_mi && has_mo && has_pp && has_w};
   const auto mu = static_cast<std::size_t>(m);

@@ -106,6 +106,7 @@ std::string to_json(const GapResult& r, int indent) {
   }
   j["where"] = {{"fit", where_json(r.where_fit)}, {"check", where_json(r.where_check)}};
   j["start"] = {{"fit", r.start_fit}, {"check", r.start_check}};
+  j["step_lead"] = {{"fit", r.step_lead_fit}, {"check", r.step_lead_check}};
   json rk = json::array(), rej = json::array(), ni = json::array();
   for (const auto& f : r.ranking) rk.push_back(fit_json(f));
   for (const auto& f : r.rejected) rej.push_back(fit_json(f));
@@ -195,7 +196,9 @@ std::string to_text(const GapResult& r) {
     }
   };
   o << "model runs start from the first sample (choose_initial_state): fit log " << r.start_fit << ", check log "
-    << r.start_check << "\n\n";
+    << r.start_check << "\n";
+  o << sfmt("input steps take effect %.2g (fit) / %.2g (check) of a sample interval before the row that shows them\n\n",
+            r.step_lead_fit, r.step_lead_check);
   where("fit log", r.where_fit);
   where("check log", r.where_check);
   o << "\nranking (fit on the fit log, shrink = 1 - RMS_after/RMS_before on the check log, noise-weighted):\n";

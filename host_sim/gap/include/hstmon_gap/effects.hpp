@@ -102,8 +102,17 @@ struct InputSeries {
   std::array<double, kChannels> y0{};  ///< first measured sample (Pmi, Pmo, Ppp [Pa], ωm [rad/s])
   std::uint8_t y0_valid = 0;           ///< bit c set: channel c of y0 was measured
   StartRule start = StartRule::kFirstSample;
+  /// Where in the interval before a row whose inputs step the step takes effect, as a
+  /// fraction of the interval back from that row: 0 = at the row (the row shows the new
+  /// setting, its outputs not yet moved), 1 = at the row before (the row before still shows
+  /// the old setting). run_gap estimates it per log from the nominal run.
+  double step_lead = 0;
   std::size_t size() const noexcept { return t.size(); }
 };
+
+/// True when the inputs step between rows k − 1 and k (a change beyond 0.5 % of kp, or of
+/// 0.5 % of a pressure, at least 500 Pa): a transient starts there. A slow ramp is no step.
+bool input_step(const InputSeries& u, std::size_t k);
 
 /// Settings of simulate().
 struct SimOptions {

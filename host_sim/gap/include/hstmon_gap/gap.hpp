@@ -91,6 +91,7 @@ struct GapResult {
   std::string error;
   Where where_fit, where_check;
   std::string start_fit, start_check;  ///< how each run started: "measured", "rest" or "steady"
+  double step_lead_fit = 0, step_lead_check = 0;  ///< the logger's step timing (InputSeries::step_lead)
   std::vector<EffectFit> ranking;     ///< best first (accepted pairs, then single effects)
   std::vector<EffectFit> rejected;    ///< tried but not improving the fit log, or pairs not needed
   std::vector<NotIdentifiable> not_identifiable;
