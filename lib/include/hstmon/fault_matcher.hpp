@@ -221,11 +221,14 @@ class FaultMatcher {
     return Status::kOk;
   }
 
-  /// Forgets the baseline's history (the next tracked sample starts a new running mean;
-  /// until then the old baseline stands): the residual offset that parameter error leaves
-  /// depends on the operating point, so after the inputs change the old one is stale.
+  /// Restarts the baseline's running mean, the old baseline counting as one sample: the
+  /// residual offset that parameter error leaves depends on the operating point, so after
+  /// the inputs change the old one is stale. Only quiet samples are tracked
+  /// (track_baseline), so a fault's first samples, before its CUSUM fires, are not absorbed.
   void restart_baseline() noexcept {
-    for (int i = 0; i < kChannels; ++i) base_n_[i] = 0;
+    for (int i = 0; i < kChannels; ++i) {
+      if (base_n_[i] > 1) base_n_[i] = 1;
+    }
   }
 
   /// Back to kNominal: episode, baseline and event queue cleared.
@@ -403,8 +406,10 @@ class FaultMatcher {
     detected_pending_ = true;
   }
 
+  // Only quiet channels (both CUSUM statistics at 0): a fault's first samples, before its
+  // statistic reaches the threshold, must not pull the baseline towards it.
   void track_baseline(const Evaluator& ev) noexcept {
-    const unsigned valid = ev.valid();
+    const unsigned valid = ev.valid() & ev.quiet();
     const std::uint32_t n_max = cfg_.baseline_samples;
     for (int i = 0; i < kChannels; ++i) {
       if (((valid >> i) & 1u) == 0) continue;

@@ -32,7 +32,7 @@ constexpr const char* to_string(InitialState k) noexcept {
 }
 
 /// The initial state for a model whose inputs are already set, from the first sample.
-/// @tparam Model  needs kStates, State, Output, state_channel(i), rest_state(),
+/// @tparam Model  needs kStates, State, Output, state_channel(i) (static or not), rest_state(),
 ///                steady_state(State&) and state_plausible(State)
 /// @param model   the model, inputs set to the first sample's
 /// @param y       first measured sample, in output order and units
@@ -47,7 +47,7 @@ InitialState choose_initial_state(const Model& model, const typename Model::Outp
   unsigned measured = 0;
   State xm = model.rest_state();
   for (int i = 0; i < Model::kStates; ++i) {
-    const int c = Model::state_channel(i);
+    const int c = model.state_channel(i);
     if (c >= 0 && ((static_cast<unsigned>(valid) >> static_cast<unsigned>(c)) & 1u) != 0 && std::isfinite(y[c])) {
       measured |= 1u << i;
       xm[i] = y[c];

@@ -222,7 +222,7 @@ class Monitor {
       const T rate = model.slowest_rate(xs);
       T d = T(1);
       for (int i = 0; i < Model::kStates; ++i) {
-        const T di = std::fabs(xs[i] - obs_.state()[i]) / ev_.sigma(Model::state_channel(i));
+        const T di = std::fabs(xs[i] - obs_.state()[i]) / ev_.sigma(model.state_channel(i));
         d = di > d ? di : d;
       }
       if (rate > T(0)) {

@@ -172,6 +172,8 @@ class ResidualEvaluator {
   std::uint8_t alarm() const noexcept { return alarm_; }
   /// Bit i set: channel i went into alarm in the last update.
   std::uint8_t rising() const noexcept { return rising_; }
+  /// Bit i set: channel i is quiet — not in alarm and both CUSUM statistics at 0.
+  std::uint8_t quiet() const noexcept { return quiet_; }
   /// Bit i set: channel i had a finite residual in the last update.
   std::uint8_t valid() const noexcept { return valid_; }
   /// Side that raised channel i's alarm: +1 (residual above), −1 (below), 0 (no alarm).
