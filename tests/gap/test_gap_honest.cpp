@@ -56,6 +56,9 @@ TEST(GapHonest, LeakageAtTheLoadingPumpIsLocatedAndDiscovered) {
   EXPECT_EQ(d.terms.front().form, "p_pp");
   EXPECT_NEAR(1.0 / d.terms.front().coefficient, 3e12, 0.3e12);
   EXPECT_GT(d.shrink_check, 0.8);
+  // Added to the model, the term closes the channels' gap too.
+  EXPECT_TRUE(d.simulated);
+  EXPECT_GT(d.model_shrink_check, 0.8);
 }
 
 TEST(GapHonest, WindageTorqueIsLocatedOnTheShaft) {
@@ -71,6 +74,8 @@ TEST(GapHonest, WindageTorqueIsLocatedOnTheShaft) {
   ASSERT_FALSE(d.terms.empty());
   // The leading term is a function of the speed.
   EXPECT_NE(d.terms.front().form.find("w_m"), std::string::npos) << d.terms.front().form;
+  EXPECT_TRUE(d.simulated);
+  EXPECT_GT(d.model_shrink_check, 0.8);
 }
 
 TEST(GapHonest, AnotherMachineIsOutOfEnvelopeAndNamesNoEffect) {

@@ -18,53 +18,71 @@ constexpr std::size_t kMi = 0, kMo = 1, kPp = 2, kW = 3;
 constexpr double kOmega0 = 0.5;  // tanh regularisation speed of a Coulomb term [rad/s], as the library's
 
 // One candidate term: its form, coefficient unit, what a term of this form means
-// physically, and its value at ARR row i.
+// physically, and its value (derivative terms: the equation's own state derivative).
 struct Candidate {
   std::string form, unit, meaning;
-  std::function<double(const ArrData&, std::size_t)> value;
+  std::function<double(const TermInputs&)> value;
+  bool derivative = false;
 };
 
+TermInputs row_inputs(const ArrData& a, std::size_t i) {
+  TermInputs t;
+  t.Pmi = a.y[i][kMi];
+  t.Pmo = a.y[i][kMo];
+  t.Ppp = a.y[i][kPp];
+  t.w = a.y[i][kW];
+  t.dPpp = a.dPpp[i];
+  t.dw = a.dw[i];
+  t.t = a.t_since_start[i];
+  t.Psupl = a.Psupl[i];
+  t.Ps = a.Ps[i];
+  t.Pbp = a.Pbp[i];
+  t.kp = a.kp[i];
+  return t;
+}
+
+double sroot(double d) { return d < 0 ? -std::sqrt(-d) : std::sqrt(d); }
+
 std::vector<Candidate> candidates(int eq) {
-  using A = const ArrData&;
+  using X = const TermInputs&;
   std::vector<Candidate> c;
-  const auto t = [](A a, std::size_t i) { return a.t_since_start[i]; };
-  const auto w = [](A a, std::size_t i) { return a.y[i][kW]; };
+  const auto t = [](X x) { return x.t; };
+  const auto w = [](X x) { return x.w; };
+  const auto one = [](X) { return 1.0; };
   if (eq == kEqTorque) {
     // Coulomb before the constant: for a shaft that always turns one way they coincide,
     // and the physical reading is friction.
-    c.push_back({"tanh(w_m/0.5)", "N*m", "coulomb", [](A a, std::size_t i) { return std::tanh(a.y[i][kW] / kOmega0); }});
-    c.push_back({"1", "N*m", "const", [](A, std::size_t) { return 1.0; }});
+    c.push_back({"tanh(w_m/0.5)", "N*m", "coulomb", [](X x) { return std::tanh(x.w / kOmega0); }});
+    c.push_back({"1", "N*m", "const", one});
     c.push_back({"w_m", "N*m*s/rad", "viscous", w});
-    c.push_back({"p_mi-p_mo", "m^3/rad", "motor_dp", [](A a, std::size_t i) { return a.y[i][kMi] - a.y[i][kMo]; }});
-    c.push_back({"p_pp-Pbp", "m^3/rad", "pump_dp", [](A a, std::size_t i) { return a.y[i][kPp] - a.Pbp[i]; }});
-    c.push_back({"w_m^2", "N*m*s^2/rad^2", "windage", [](A a, std::size_t i) { return a.y[i][kW] * std::fabs(a.y[i][kW]); }});
-    c.push_back({"(p_mi-p_mo)*w_m", "m^3*s/rad^2", "generic", [](A a, std::size_t i) { return (a.y[i][kMi] - a.y[i][kMo]) * a.y[i][kW]; }});
-    c.push_back({"dw_m/dt", "kg*m^2", "inertia", [](A a, std::size_t i) { return a.dw[i]; }});
+    c.push_back({"p_mi-p_mo", "m^3/rad", "motor_dp", [](X x) { return x.Pmi - x.Pmo; }});
+    c.push_back({"p_pp-Pbp", "m^3/rad", "pump_dp", [](X x) { return x.Ppp - x.Pbp; }});
+    c.push_back({"w_m^2", "N*m*s^2/rad^2", "windage", [](X x) { return x.w * std::fabs(x.w); }});
+    c.push_back({"(p_mi-p_mo)*w_m", "m^3*s/rad^2", "generic", [](X x) { return (x.Pmi - x.Pmo) * x.w; }});
+    c.push_back({"dw_m/dt", "kg*m^2", "inertia", [](X x) { return x.dw; }, true});
     c.push_back({"t", "N*m/s", "drift", t});
     return c;
   }
-  const std::size_t n = eq == kEqFlowMi ? kMi : (eq == kEqFlowMo ? kMo : kPp);
   const std::string P = eq == kEqFlowMi ? "p_mi" : (eq == kEqFlowMo ? "p_mo" : "p_pp");
-  c.push_back({"1", "m^3/s", "const", [](A, std::size_t) { return 1.0; }});
-  c.push_back({P, "m^3/(s*Pa)", "leak", [n](A a, std::size_t i) { return a.y[i][n]; }});
+  c.push_back({"1", "m^3/s", "const", one});
+  if (eq == kEqFlowMi) c.push_back({P, "m^3/(s*Pa)", "leak", [](X x) { return x.Pmi; }});
+  if (eq == kEqFlowMo) c.push_back({P, "m^3/(s*Pa)", "leak", [](X x) { return x.Pmo; }});
+  if (eq == kEqFlowPp) c.push_back({P, "m^3/(s*Pa)", "leak", [](X x) { return x.Ppp; }});
   c.push_back({"w_m", "m^3/rad", "displacement", w});
   if (eq == kEqFlowPp) {
-    c.push_back({"kp*sqrt(p_pp-Pbp)", "1", "orifice", [](A a, std::size_t i) {
-                   const double d = a.y[i][kPp] - a.Pbp[i];
-                   return a.kp[i] * (d < 0 ? -std::sqrt(-d) : std::sqrt(d));
-                 }});
-    c.push_back({"p_pp-Pbp", "m^3/(s*Pa)", "laminar", [](A a, std::size_t i) { return a.y[i][kPp] - a.Pbp[i]; }});
+    c.push_back({"kp*sqrt(p_pp-Pbp)", "1", "orifice", [](X x) { return x.kp * sroot(x.Ppp - x.Pbp); }});
+    c.push_back({"p_pp-Pbp", "m^3/(s*Pa)", "laminar", [](X x) { return x.Ppp - x.Pbp; }});
+    c.push_back({"p_pp*w_m", "m^3/(Pa*rad)", "generic", [](X x) { return x.Ppp * x.w; }});
+    c.push_back({"dp_pp/dt", "m^3/Pa", "compliance", [](X x) { return x.dPpp; }, true});
   } else {
-    c.push_back({"p_mi-p_mo", "m^3/(s*Pa)", "cross", [](A a, std::size_t i) { return a.y[i][kMi] - a.y[i][kMo]; }});
-    c.push_back({eq == kEqFlowMi ? "sqrt(Psupl-p_mi)" : "sqrt(p_mo-Ps)", "m^3/(s*sqrt(Pa))", "orifice",
-                 [eq](A a, std::size_t i) {
-                   const double d = eq == kEqFlowMi ? a.Psupl[i] - a.y[i][kMi] : a.y[i][kMo] - a.Ps[i];
-                   return d < 0 ? -std::sqrt(-d) : std::sqrt(d);
-                 }});
-  }
-  c.push_back({P + "*w_m", "m^3/(Pa*rad)", "generic", [n](A a, std::size_t i) { return a.y[i][n] * a.y[i][kW]; }});
-  if (eq == kEqFlowPp) {
-    c.push_back({"dp_pp/dt", "m^3/Pa", "compliance", [](A a, std::size_t i) { return a.dPpp[i]; }});
+    c.push_back({"p_mi-p_mo", "m^3/(s*Pa)", "cross", [](X x) { return x.Pmi - x.Pmo; }});
+    if (eq == kEqFlowMi) {
+      c.push_back({"sqrt(Psupl-p_mi)", "m^3/(s*sqrt(Pa))", "orifice", [](X x) { return sroot(x.Psupl - x.Pmi); }});
+      c.push_back({"p_mi*w_m", "m^3/(Pa*rad)", "generic", [](X x) { return x.Pmi * x.w; }});
+    } else {
+      c.push_back({"sqrt(p_mo-Ps)", "m^3/(s*sqrt(Pa))", "orifice", [](X x) { return sroot(x.Pmo - x.Ps); }});
+      c.push_back({"p_mo*w_m", "m^3/(Pa*rad)", "generic", [](X x) { return x.Pmo * x.w; }});
+    }
   }
   c.push_back({"t", "m^3/s^2", "drift", t});
   return c;
@@ -78,9 +96,10 @@ void design(const ArrData& a, int eq, const std::vector<Candidate>& c, Eigen::Ma
   y.resize(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const double wt = 1.0 / a.sigma[e][i];
+    const TermInputs ti = row_inputs(a, i);
     y[static_cast<Eigen::Index>(i)] = a.r[e][i] * wt;
     for (std::size_t j = 0; j < c.size(); ++j) {
-      X(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c[j].value(a, i) * wt;
+      X(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = c[j].value(ti) * wt;
     }
   }
 }
@@ -251,6 +270,7 @@ std::optional<Discovery> discover(const ArrData& fit, const ArrData& check, int 
     const Candidate& c = all[static_cast<std::size_t>(act[j])];
     const auto ji = static_cast<Eigen::Index>(j);
     d.terms.push_back({c.form, c.unit, beta[ji], std::sqrt(std::max(0.0, cov(ji, ji)))});
+    d.model_terms.push_back({eq, beta[ji], c.value, c.derivative});
   }
   const Candidate& lead = all[static_cast<std::size_t>(act[order.front().second])];
   d.reading = reading(eq, lead, d.terms.front().coefficient);

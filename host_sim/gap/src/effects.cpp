@@ -74,11 +74,13 @@ struct Ext {
   double tau = 0;
   std::array<double, kChannels> offset{};
   TruthExtras extras{};
+  std::vector<ImbalanceTerm> terms;
 };
 
 Ext flatten(const ExtendedModel& m) {
   Ext e;
   e.extras = m.extras;
+  e.terms = m.terms;
   for (const auto& a : m.effects) {
     const auto& v = a.values;
     auto val = [&](std::size_t i) { return i < v.size() ? v[i] : 0.0; };
@@ -101,6 +103,7 @@ Ext flatten(const ExtendedModel& m) {
 // Inputs of one log row with what depends only on them.
 struct Row {
   double Psupl = 0, Ps = 0, Pbp = 0, kp = 0;
+  double t = 0;  // time since the first row, for discovered terms [s]
   bool pump = false;
   PumpCurve<double> curve;
   double q0 = 0, R = 0, q1 = 0, q2 = 0, c = 0, s3 = 0, Pc = 0, Pk = 0;
@@ -195,6 +198,7 @@ class Rhs {
       f[1] -= (e_.tc * th + e_.eta * p_.Dm * std::fabs(out[kChPmi] - out[kChPmo]) * th) / p_.J;
     }
     if (e_.extras.g_pp != 0) f[0] -= p_.K * e_.extras.g_pp * x[0];
+    if (!e_.terms.empty()) add_terms(r, out, f);
     if (e_.extras.windage != 0) f[1] -= e_.extras.windage * w * std::fabs(w) / p_.J;
     if (y != nullptr) {
       for (int c = 0; c < kChannels; ++c) y[c] = out[c];
@@ -202,6 +206,32 @@ class Rhs {
   }
 
  private:
+  // Discovered terms: imbalance Σ c·φ of the Ppp flow balance or the torque balance;
+  // derivative terms scale the compliance or the inertia.
+  void add_terms(const Row& r, const ThesisReducedModel<double>::Output& out, double* f) const {
+    TermInputs ti;
+    ti.Pmi = out[kChPmi];
+    ti.Pmo = out[kChPmo];
+    ti.Ppp = out[kChPpp];
+    ti.w = out[kChWm];
+    ti.t = r.t;
+    ti.Psupl = r.Psupl;
+    ti.Ps = r.Ps;
+    ti.Pbp = r.Pbp;
+    ti.kp = r.kp;
+    double q = 0, cq = 0, T = 0, cT = 0;
+    for (const auto& term : e_.terms) {
+      const bool flow = term.equation == 2;
+      if (term.derivative) {
+        (flow ? cq : cT) += term.coefficient;
+      } else if (term.value) {
+        (flow ? q : T) += term.coefficient * term.value(ti);
+      }
+    }
+    f[0] = (f[0] - p_.K * q) / (1.0 + p_.K * cq);
+    f[1] = (f[1] - T / p_.J) / (1.0 + cT / p_.J);
+  }
+
   ThesisParams<double> p_;
   Ext e_;
   double gl_ = 0, gi_ = 0;
@@ -405,6 +435,7 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
         const int m = std::max(1, static_cast<int>(std::ceil(seg_len[g] / seg_step[g] - 1e-9)));
         const double h = seg_len[g] / m;
         for (int s = 0; s < m; ++s) {
+          r.t = u.t[k] + elapsed - u.t[0];
           if (ramp) {
             const double a = (elapsed + 0.5 * h) / dt;  // midpoint of the step
             r.Psupl = u.Psupl[k] + a * (u.Psupl[k + 1] - u.Psupl[k]);

@@ -591,7 +591,26 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   if (res.verdict != "explained" && res.verdict != "explained_by_pair") {
     const int eq = res.where_fit.located >= 0 ? res.where_fit.located : res.where_check.located;
     if (eq >= 0) {
-      if (auto d = discover(arr_a, arr_b, eq)) res.discovered.push_back(std::move(*d));
+      if (auto d = discover(arr_a, arr_b, eq)) {
+        // State equations: simulate the nominal model with the terms on the check log.
+        if (eq == kEqFlowPp || eq == kEqTorque) {
+          ExtendedModel m = nominal;
+          m.terms = d->model_terms;
+          bool ok = false;
+          const auto y = an.sim(m, B, ok);
+          if (ok) {
+            d->simulated = true;
+            d->model_shrink_check = 1.0 - pooled_rms_w(B, y) / rmsw_b;
+            for (std::size_t c = 0; c < kChannels; ++c) {
+              double s2 = 0;
+              for (std::size_t k = 0; k < y.size(); ++k) s2 += std::pow(B.y[k][c] - y[k][c], 2);
+              d->channel_rms_w_after_check[c] =
+                  B.present[c] ? std::sqrt(s2 / static_cast<double>(y.size())) / B.noise[c] : kNan;
+            }
+          }
+        }
+        res.discovered.push_back(std::move(*d));
+      }
     }
     decide_verdict(res);
   }

@@ -136,7 +136,15 @@ std::string to_json(const GapResult& r, int indent) {
     }
     disc.push_back({{"equation", d.equation}, {"terms", terms}, {"shrink_check", d.shrink_check},
                     {"shrink_fit", d.shrink_fit}, {"rms_over_noise_check", {{"before", d.rms_w_before_check}, {"after", d.rms_w_after_check}}},
-                    {"reading", d.reading}});
+                    {"reading", d.reading}, {"simulated", d.simulated}});
+    if (d.simulated) {
+      json after = json::object();
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        if (std::isfinite(d.channel_rms_w_after_check[c])) after[channel_names()[c]] = d.channel_rms_w_after_check[c];
+      }
+      disc.back()["model_shrink_check"] = d.model_shrink_check;
+      disc.back()["rms_over_noise_after_check"] = after;
+    }
   }
   j["discovered"] = disc;
   json rem = json::object();
@@ -222,6 +230,13 @@ std::string to_text(const GapResult& r) {
     }
     o << sfmt("  %s; shrinks the check-log imbalance by %.0f %% (RMS/noise %.3g -> %.3g)\n", d.reading.c_str(),
               100.0 * d.shrink_check, d.rms_w_before_check, d.rms_w_after_check);
+    if (d.simulated) {
+      o << sfmt("  the model with it: check-log gap shrinks by %.0f %%; RMS/noise after", 100.0 * d.model_shrink_check);
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        if (std::isfinite(d.channel_rms_w_after_check[c])) o << sfmt(" %s %.3g", channel_names()[c], d.channel_rms_w_after_check[c]);
+      }
+      o << "\n";
+    }
   }
   o << "\nverdict: " << r.verdict_text << "\n";
   o << sfmt("(%d simulations, %.1f s:", r.simulations, r.seconds);

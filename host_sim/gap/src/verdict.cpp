@@ -136,9 +136,20 @@ void decide_verdict(GapResult& r) {
     }
   }
   for (const auto& d : r.discovered) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, ", shrinks the check-log imbalance of %s by %.0f %%", d.equation.c_str(),
-                  100.0 * d.shrink_check);
+    char buf[240];
+    if (d.simulated) {
+      double worst = 0;
+      for (double v : d.channel_rms_w_after_check) {
+        if (std::isfinite(v)) worst = std::max(worst, v);
+      }
+      std::snprintf(buf, sizeof buf,
+                    "; added to the model it shrinks the check-log gap by %.0f %% (the imbalance of %s by %.0f %%)%s",
+                    100.0 * d.model_shrink_check, d.equation.c_str(), 100.0 * d.shrink_check,
+                    worst <= kAtNoise ? " and leaves every channel within 2x its noise" : "");
+    } else {
+      std::snprintf(buf, sizeof buf, "; it shrinks the check-log imbalance of %s by %.0f %%", d.equation.c_str(),
+                    100.0 * d.shrink_check);
+    }
     text += ". Beyond the library: " + d.reading + buf;
   }
   r.verdict_text = text;

@@ -5,6 +5,7 @@
 /// pressure differences, orifice flows, pressure × speed, derivatives, time since start)
 /// by sequentially thresholded least squares (STLSQ), fitted on the fit log and the
 /// sparsest model that does (nearly) as well as the best chosen on the check log.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,12 @@ struct Discovery {
   double shrink_check = 0;            ///< same on the check log (the judge)
   double rms_w_before_check = 0, rms_w_after_check = 0;
   std::string reading;                ///< in words: "a flow loss at the loading-pump node ∝ Ppp: leakage R = …"
+  std::vector<ImbalanceTerm> model_terms;  ///< the terms for the simulator (ExtendedModel::terms)
+  /// The nominal model with the terms, simulated on the check log (state equations
+  /// flow:p_pp and torque:w_m only; simulated false otherwise): the channels' gap.
+  bool simulated = false;
+  double model_shrink_check = 0;      ///< 1 − rms_w_after/rms_w_before, channels pooled, noise-weighted
+  std::array<double, kChannels> channel_rms_w_after_check{};  ///< per channel, RMS/noise (NaN: absent)
 };
 
 /// Proposes the missing term of equation `eq` (EquationId) from fit-log and check-log ARR

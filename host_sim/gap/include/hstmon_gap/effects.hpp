@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -81,11 +82,30 @@ struct TruthExtras {
   double windage = 0;  ///< shaft torque −windage·ωm·|ωm| [N·m·s²/rad²]
 };
 
+/// What a term of a balance equation may depend on (SI), at one instant.
+struct TermInputs {
+  double Pmi = 0, Pmo = 0, Ppp = 0, w = 0;  ///< outputs
+  double dPpp = 0, dw = 0;                  ///< state derivatives (used by `derivative` terms only)
+  double t = 0;                             ///< time since the log's first row [s]
+  double Psupl = 0, Ps = 0, Pbp = 0, kp = 0;
+};
+
+/// A term added to a balance equation's imbalance (discovery, docs/gap.md): the model's
+/// imbalance of `equation` (kEqFlowPp = 2 or kEqTorque = 3) becomes Σ coefficient·value.
+/// `derivative` terms multiply the equation's own state derivative (value unused).
+struct ImbalanceTerm {
+  int equation = 2;
+  double coefficient = 0;
+  std::function<double(const TermInputs&)> value;
+  bool derivative = false;
+};
+
 /// The extended model: nominal thesis parameters + active effects.
 struct ExtendedModel {
   ThesisParams<double> nominal{};
   std::vector<ActiveEffect> effects;
   TruthExtras extras{};
+  std::vector<ImbalanceTerm> terms;  ///< discovered terms (state equations only)
 };
 
 /// How simulate() chooses its initial state.
