@@ -22,7 +22,7 @@ struct EnvelopeSegment {
   std::array<double, kChannels> measured{}, model{};  ///< means (SI)
   std::array<double, kChannels> lo{}, hi{};           ///< envelope of model − nominal shifts (SI)
   std::array<double, kChannels> margin{};             ///< noise and rounding allowance (SI)
-  bool outside = false;
+  bool outside = false;                       ///< two channels outside, or one beyond a sensor's plausible offset
   int worst_channel = -1;                     ///< channel furthest outside (in envelope widths)
   double excess = 0;                          ///< its distance outside / (envelope width + margin)
 };
