@@ -23,7 +23,7 @@
 /// (every tick on the general path, and no storage for it: the C API, and any build that
 /// must compute the firmware's bits).
 ///
-/// Model requirements (see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
+/// Model requirements (model_concept.hpp checks them; see ThesisReducedModel): Scalar, State, Output, Inputs, kStates,
 /// kOutputs, set_inputs(), inputs(), static inputs_valid(), outputs(x), rest_state(),
 /// steady_state(x), derivative(x) (RK4 stages), state_plausible(x) (false for any
 /// non-finite x), and
@@ -41,6 +41,7 @@
 
 #include "hstmon/code_size.hpp"
 #include "hstmon/initial_state.hpp"
+#include "hstmon/model_concept.hpp"
 #include "hstmon/rk4.hpp"
 #include "hstmon/status.hpp"
 
@@ -105,6 +106,13 @@ class Observer {
   static constexpr int kOutputs = Model::kOutputs;
   /// True when the model offers a fused usual tick (see the file comment).
   static constexpr bool kUsualTick = UsualTick;
+  static_assert(ObserverModelParts<Model>::kTypes,
+                "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
+  static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
+  static_assert(ObserverModelParts<Model>::kStates,
+                "model: needs outputs, rest_state, steady_state, state_plausible, state_channel (model_concept.hpp)");
+  static_assert(ObserverModelParts<Model>::kDerivatives,
+                "model: needs derivative and tick_derivative (model_concept.hpp)");
   static_assert(!UsualTick || observer_detail::HasUsualTick<Model>::value, "the model has no usual tick");
   static_assert(kOutputs <= 8, "channel masks are 8 bits wide");
   /// Output-injection gain L [state unit per channel unit], applied once per tick.
