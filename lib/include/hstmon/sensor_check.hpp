@@ -58,7 +58,8 @@ namespace hstmon {
 /// Sensor flags of one channel, OR-ed into a bit set. Zero means plausible.
 enum SensorFlag : std::uint8_t {
   kSensorNonFinite = 1u << 0,   ///< the value is NaN or ±Inf
-  /// At or below range_lo (a 4–20 mA loop break), or above range_hi + (range_hi − range_lo)/32.
+  /// At or below range_lo (a 4–20 mA loop break; with a model, only where it says the channel
+  /// cannot be there), or above range_hi + (range_hi − range_lo)/32.
   kSensorOutOfRange = 1u << 1,
   /// Bit-identical for stuck_time and stuck_min_samples samples, on a channel whose ADC
   /// step is below its noise or while the model moved (Config::noise).
@@ -191,8 +192,7 @@ class SensorCheck {
 
   /// The model argument of update() when there is none.
   struct NoModel {
-    static constexpr bool kHas = false;  ///< no estimates
-    void operator()(int, T&, T&) const noexcept {}
+    void operator()(int, T&, T&) const noexcept {}  ///< says nothing
   };
 
   /// SensorFlag bits of channel i from its last sample.
@@ -285,7 +285,7 @@ class SensorCheck {
   }
 
   /// The full check of sampled channel i with value v at time t: sets flags_[i].
-  /// may_be_low: the model allows channel i at its live zero (see update's expect).
+  /// may_be_low: the model allows channel i at its live zero (see update's model).
   /// With a model (have_model), e and s are its estimate and allowance for channel i.
   HSTMON_SENSOR_SLOW_PATH void check_channel(int i, T v, T t, bool may_be_low, T e, T s, bool have_model) noexcept {
     if (!std::isfinite(v)) {
