@@ -1,7 +1,9 @@
 // `hstmon gap --fit LOG_A --check LOG_B [--params FILE] [--json] [--report DIR]`: where the
-// thesis model and the machine disagree, which unmodelled effect of the library explains
-// it (fitted on LOG_A, judged on the withheld LOG_B), and how far the gap shrinks.
-// docs/gap.md describes the method and the output.
+// thesis model and the machine disagree (per channel and per balance equation), whether
+// the machine is the model's kind at all (envelope), which unmodelled effect of the
+// library explains it (fitted on LOG_A, judged on the withheld LOG_B), how far the gap
+// shrinks, and what term beyond the library would close it. docs/gap.md describes the
+// method and the output.
 #include <fmt/format.h>
 
 #include <memory>
@@ -80,7 +82,7 @@ int run_gap_command(const GapArgs& a) {
 void add_gap_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<GapArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "gap", "Where model and machine disagree, which unmodelled effect explains it, and how far the gap shrinks");
+      "gap", "Where model and machine disagree (channels, balance equations), which unmodelled effect explains it, how far the gap shrinks");
   cmd->add_option("--fit", args->fit, "log to fit the effects on (CSV as for replay, with p_sup and kp)")->required();
   cmd->add_option("--check", args->check, "withheld log to judge the fitted effects on")->required();
   cmd->add_option("--params", args->params, "nominal parameter file (default Table 2.2)");

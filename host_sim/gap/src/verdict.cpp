@@ -43,6 +43,22 @@ std::string fmt_channel(std::size_t c, double rms, double ratio) {
   return b;
 }
 
+// A library set acting on another equation than the one out of balance: its physical
+// reading is doubtful, whatever it shrinks.
+std::string reading_note(const GapResult& r, const EffectFit& best) {
+  const int eq = r.where_check.located;
+  if (eq < 0) return {};
+  bool enters = false, sensor = false;
+  for (Effect e : best.effects) {
+    const auto q = effect_equations(e);
+    sensor = sensor || q.empty();
+    enters = enters || std::find(q.begin(), q.end(), eq) != q.end();
+  }
+  if (enters) return {};
+  return std::string("; the imbalance is in ") + equation_names()[static_cast<std::size_t>(eq)] + ", which " +
+         best.name + (sensor ? " only mimics through a sensor" : " does not enter") + ": its physical reading is doubtful";
+}
+
 }  // namespace
 
 void decide_verdict(GapResult& r) {
@@ -117,23 +133,8 @@ void decide_verdict(GapResult& r) {
                     r.verdict.c_str(), best.name.c_str(), 100.0 * best.shrink_check);
       text = buf + std::string("what remains is above noise: ") + remains;
       if (!r.remaining_where.empty()) text += ", most at " + r.remaining_where;
-      // A library effect acting on another equation than the one out of balance: its
-      // physical reading is doubtful, whatever it shrinks.
-      const int eq = r.where_check.located;
-      if (eq >= 0) {
-        bool enters = false, sensor = false;
-        for (Effect e : best.effects) {
-          const auto q = effect_equations(e);
-          sensor = sensor || q.empty();
-          enters = enters || std::find(q.begin(), q.end(), eq) != q.end();
-        }
-        if (!enters) {
-          text += std::string("; the imbalance is in ") + equation_names()[static_cast<std::size_t>(eq)] + ", which " +
-                  best.name + (sensor ? " only mimics through a sensor" : " does not enter") +
-                  ": its physical reading is doubtful";
-        }
-      }
     }
+    text += reading_note(r, best);
   }
   for (const auto& d : r.discovered) {
     char buf[240];
