@@ -141,7 +141,9 @@ TEST(GapJson, HasWhereRankingVerdict) {
   o.effects = {Effect::kCoulombFriction, Effect::kSensorOffset};
   const GapResult r = run_gap(a, b, hstmon::ThesisParams<double>{}, hstmon::ThesisInputs<double>{}, o);
   const std::string j = to_json(r);
-  for (const char* key : {"\"where\"", "\"ranking\"", "\"verdict\"", "\"shrink_check\"", "\"params\"", "\"tc\""}) {
+  for (const char* key : {"\"where\"", "\"ranking\"", "\"verdict\"", "\"shrink_check\"", "\"params\"", "\"tc\"",
+                          "\"equations\"", "\"rms_over_noise\"", "\"envelope\"", "\"discovered\"", "\"start\"",
+                          "\"stage_seconds\"", "\"verdict_rule\"", "\"autocorrelation_time\""}) {
     EXPECT_NE(j.find(key), std::string::npos) << key;
   }
 }

@@ -1,0 +1,85 @@
+// `hstmon gap` on bad input: never a crash, exit status 2 and a message naming
+// file:line:column; on good logs, --json prints one object with the equations.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string("'") + HSTMON_CLI + "' gap " + args + " 2>&1";
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("hstmon_gap_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+std::string log_text(int rows, double kp2) {
+  std::string s = "t[s],p_sup[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
+  for (int k = 0; k < rows; ++k) {
+    const double kp = k < rows / 2 ? 4.41e-8 : kp2;
+    char b[160];
+    std::snprintf(b, sizeof b, "%.3f,35,%.4e,33.1,1.9,171.1,1678\n", 0.01 * k, kp);
+    s += b;
+  }
+  return s;
+}
+
+TEST(GapCli, BadNumberNamesFileLineColumn) {
+  const fs::path good = write("good.csv", log_text(40, 4.41e-8));
+  std::string bad = log_text(40, 4.41e-8);
+  bad.replace(bad.find("33.1"), 4, "3x.1");
+  const fs::path badf = write("bad.csv", bad);
+  const CliRun r = run("--fit '" + badf.string() + "' --check '" + good.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("bad.csv:2:"), std::string::npos) << r.out;
+}
+
+TEST(GapCli, MissingFileAndTooShortLogExitTwo) {
+  const fs::path good = write("good.csv", log_text(40, 4.41e-8));
+  EXPECT_EQ(run("--fit /nonexistent/x.csv --check '" + good.string() + "'").status, 2);
+  const fs::path tiny = write("tiny.csv", log_text(3, 4.41e-8));
+  const CliRun r = run("--fit '" + tiny.string() + "' --check '" + good.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.out;
+}
+
+TEST(GapCli, JsonHasEquationsForEveryPressureNodeAndTheShaft) {
+  const fs::path a = write("a.csv", log_text(400, 3e-8));
+  const fs::path b = write("b.csv", log_text(300, 6e-8));
+  const CliRun r = run("--fit '" + a.string() + "' --check '" + b.string() + "' --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')), nullptr, false);
+  ASSERT_TRUE(j.is_object()) << r.out;
+  std::string names;
+  for (const auto& e : j["where"]["check"]["equations"]) {
+    names += e["equation"].get<std::string>() + " ";
+    for (const char* k : {"unit", "mean", "rms", "rms_over_noise"}) EXPECT_TRUE(e.contains(k)) << k;
+  }
+  EXPECT_EQ(names, "flow:p_mi flow:p_mo flow:p_pp torque:w_m ");
+}
+
+}  // namespace
