@@ -18,8 +18,9 @@ constexpr double kAtNoise = 2.0;       // "at noise level": check-log RMS â‰¤ 2Ã
 constexpr double kPartly = 0.2;        // below this shrink nothing is explained even in part
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
-// Balance equations an effect enters (empty: a sensor effect, any channel).
-std::vector<int> effect_equations(Effect e) {
+// Balance equations an effect unbalances when evaluated on the measured signals: the one
+// it enters, or for a sensor effect every equation that reads the channel.
+std::vector<int> effect_equations(Effect e, int offset_channel) {
   switch (e) {
     case Effect::kCoulombFriction:
     case Effect::kPressureTorqueLoss: return {kEqTorque};
@@ -27,11 +28,16 @@ std::vector<int> effect_equations(Effect e) {
     case Effect::kPrvCracking:
     case Effect::kAirEntrainment: return {kEqFlowPp};
     case Effect::kSupplyFlowLimit: return {kEqFlowMi};
-    case Effect::kSensorLag:
-    case Effect::kSensorOffset: return {};
+    case Effect::kSensorLag: return {kEqFlowMi, kEqFlowMo, kEqFlowPp, kEqTorque};
+    case Effect::kSensorOffset:
+      if (offset_channel == 2) return {kEqFlowPp, kEqTorque};
+      if (offset_channel == 3) return {kEqFlowMi, kEqFlowMo, kEqFlowPp, kEqTorque};
+      return {kEqFlowMi, kEqFlowMo, kEqTorque};  // p_mi, p_mo
   }
   return {};
 }
+
+bool is_sensor(Effect e) { return e == Effect::kSensorLag || e == Effect::kSensorOffset; }
 
 std::string fmt_channel(std::size_t c, double rms, double ratio) {
   char b[96];
@@ -50,13 +56,14 @@ std::string reading_note(const GapResult& r, const EffectFit& best) {
   if (eq < 0) return {};
   bool enters = false, sensor = false;
   for (Effect e : best.effects) {
-    const auto q = effect_equations(e);
-    sensor = sensor || q.empty();
+    const auto q = effect_equations(e, best.offset_channel);
+    sensor = sensor || is_sensor(e);
     enters = enters || std::find(q.begin(), q.end(), eq) != q.end();
   }
   if (enters) return {};
   return std::string("; the imbalance is in ") + equation_names()[static_cast<std::size_t>(eq)] + ", which " +
-         best.name + (sensor ? " only mimics through a sensor" : " does not enter") + ": its physical reading is doubtful";
+         best.name + (sensor ? " reaches only through a sensor that equation does not read" : " does not enter") +
+         ": its physical reading is doubtful";
 }
 
 }  // namespace
@@ -152,6 +159,12 @@ void decide_verdict(GapResult& r) {
                     100.0 * d.shrink_check);
     }
     text += ". Beyond the library: " + d.reading + buf;
+    // A library set that fits a little must not hide a better term it does not contain.
+    if (d.simulated && !r.ranking.empty() && d.model_shrink_check > r.ranking.front().shrink_check + 0.05) {
+      std::snprintf(buf, sizeof buf, " - better than %s (%.0f %%), whose physical reading is then doubtful",
+                    r.ranking.front().name.c_str(), 100.0 * r.ranking.front().shrink_check);
+      text += buf;
+    }
   }
   r.verdict_text = text;
 }
