@@ -116,6 +116,21 @@ INSTANTIATE_TEST_SUITE_P(GapBlind, TwoEffects, ::testing::Values(StartRule::kSte
                            return std::string(i.param == StartRule::kRest ? "FromRest" : "FromSteady");
                          });
 
+TEST(GapBlind, OffsetHiddenBehindAnotherEffectIsFoundAsThePair) {
+  // A 1 bar p_pp offset under a torque loss: the torque-loss fit alone bends eta to absorb
+  // part of the offset, so the offset ranks low alone and is found with it as the pair.
+  const GapResult r = run_case({"torque_loss+offset",
+                                {eff(Effect::kPressureTorqueLoss, {0.03}), eff(Effect::kSensorOffset, {1e5}, 2)},
+                                StartRule::kRest});
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_FALSE(r.ranking.empty());
+  std::vector<Effect> top = r.ranking.front().effects;
+  std::sort(top.begin(), top.end());
+  EXPECT_EQ(top, (std::vector<Effect>{Effect::kPressureTorqueLoss, Effect::kSensorOffset}));
+  EXPECT_EQ(r.ranking.front().offset_channel, 2);
+  EXPECT_GE(r.ranking.front().shrink_check, 0.8);
+}
+
 TEST(GapBlind, SlowSamplingCannotIdentifyTransientEffects) {
   // Thesis DAS-like sampling (here 0.5 s): lag and air entrainment only act in transients.
   ExtendedModel truth;

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hstmon_gap/gap.hpp"
 #include "hstmon_gap/synth.hpp"
+#include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 
 int main(int argc, char** argv) {
@@ -19,6 +21,11 @@ int main(int argc, char** argv) {
   app.add_option("--start", start, "truth starts at 'steady' state or at 'rest' (supply on at the first sample)")
       ->check(CLI::IsMember({"steady", "rest"}));
   app.add_option("--load-pump-leak", g_pp, "truth only, outside the library: leakage conductance loading-pump node to drain [m^3/(s*Pa)]");
+  std::string inputs_from;
+  double noise_p = 5e3, noise_w = 0.3;
+  app.add_option("--inputs", inputs_from, "take t and the inputs (p_sup, kp, ...) from this log instead of a profile");
+  app.add_option("--noise-p", noise_p, "pressure noise [Pa]");
+  app.add_option("--noise-w", noise_w, "speed noise [rad/s]");
   app.add_option("--profile", profile, "input staircase A or B");
   app.add_option("--duration", duration, "[s]");
   app.add_option("--rate", rate, "[Hz]");
@@ -49,8 +56,16 @@ int main(int argc, char** argv) {
   }
   truth.extras.g_pp = g_pp;
   auto u = hstmon::gap::staircase_profile(profile, duration, rate);
+  if (!inputs_from.empty()) {
+    const auto in = hstmon::host::read_log(inputs_from);
+    if (!in.ok()) {
+      std::fprintf(stderr, "%s\n", in.error->to_string().c_str());
+      return 2;
+    }
+    u = hstmon::gap::inputs_from_log(in, hstmon::ThesisInputs<double>{});
+  }
   u.start = start == "rest" ? hstmon::gap::StartRule::kRest : hstmon::gap::StartRule::kSteady;
-  const auto log = hstmon::gap::synth_log(truth, u, {}, seed, out);
+  const auto log = hstmon::gap::synth_log(truth, u, {noise_p, noise_w}, seed, out);
   if (!log.ok()) {
     std::fprintf(stderr, "%s\n", log.error->message.c_str());
     return 2;
