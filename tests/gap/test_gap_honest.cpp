@@ -21,8 +21,8 @@ struct Logs {
   hstmon::host::LogData fit, check;
 };
 
-Logs make_logs(const ExtendedModel& truth, StartRule start, double psup_factor = 1.0) {
-  InputSeries a = staircase_profile('A', 6.0, 200.0), b = staircase_profile('B', 4.0, 200.0);
+Logs make_logs(const ExtendedModel& truth, StartRule start, double psup_factor = 1.0, double rate = 200.0) {
+  InputSeries a = staircase_profile('A', 6.0, rate), b = staircase_profile('B', 4.0, rate);
   for (auto* u : {&a, &b}) {
     u->start = start;
     for (double& p : u->Psupl) p *= psup_factor;
@@ -64,7 +64,7 @@ TEST(GapHonest, LeakageAtTheLoadingPumpIsLocatedAndDiscovered) {
 TEST(GapHonest, WindageTorqueIsLocatedOnTheShaft) {
   ExtendedModel truth;
   truth.extras.windage = 4e-5;  // ≈ 1.2 N·m at 175 rad/s
-  const GapResult r = run(make_logs(truth, StartRule::kSteady));
+  const GapResult r = run(make_logs(truth, StartRule::kSteady, 1.0, 100.0));
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_NE(r.verdict.rfind("explained", 0), 0u) << r.verdict;
   EXPECT_EQ(located(r.where_check), "torque:w_m");
