@@ -203,6 +203,8 @@ std::string to_text(const GapResult& r) {
         << w.equations[static_cast<std::size_t>(w.located)].dependence << "\n";
     }
   };
+  // Out of envelope comes first: nothing below names an effect.
+  if (r.envelope.out) o << "OUT OF ENVELOPE - " << r.verdict_text << "\n\n";
   o << "model runs start from the first sample (choose_initial_state): fit log " << r.start_fit << ", check log "
     << r.start_check << "\n";
   o << sfmt("input steps take effect %.2g (fit) / %.2g (check) of a sample interval before the row that shows them\n\n",
@@ -220,9 +222,7 @@ std::string to_text(const GapResult& r) {
     }
   }
   for (const auto& n : r.not_identifiable) o << "  not identifiable: " << effect_info(n.effect).name << " - " << n.reason << "\n";
-  if (!r.envelope.segments.empty()) {
-    o << "\noperating-point envelope: " << (r.envelope.out ? "OUT - " : "") << r.envelope.text << "\n";
-  }
+  if (!r.envelope.segments.empty() && !r.envelope.out) o << "\noperating-point envelope: " << r.envelope.text << "\n";
   for (const auto& d : r.discovered) {
     o << "\nbeyond the library (" << d.equation << ", STLSQ fitted on the fit log, judged on the check log):\n";
     for (const auto& t : d.terms) {
