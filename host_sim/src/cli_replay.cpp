@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
@@ -36,6 +37,7 @@ struct ReplayArgs {
   bool lenient = false;
   bool no_progress = false;
   bool no_diagnosis = false;
+  std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
 };
 
 struct Display {
@@ -305,7 +307,30 @@ void add_replay_command(CLI::App& app, int& exit_code) {
                 "Skip rows whose time does not increase (noted); on any other bad row, report it and replay the rows before it");
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
-  cmd->callback([args, &exit_code]() { exit_code = run_replay(*args); });
+  cmd->add_option("--circuit", args->circuit,
+                  "Replay through the model of this circuit file (docs/circuits.md): residuals only; --params is then "
+                  "its parameter file (default: <stem>.params.json beside it)");
+  cmd->callback([args, cmd, &exit_code]() {
+    if (args->circuit.empty()) {
+      exit_code = run_replay(*args);
+      return;
+    }
+    for (const char* opt : {"--residuals", "--plot", "--map", "--separator", "--lenient"}) {
+      if (cmd->count(opt) > 0) {
+        fmt::print(stderr, "hstmon: {} does not go with --circuit (yet)\n", opt);
+        exit_code = kExitUsage;
+        return;
+      }
+    }
+    CircuitReplayArgs c;
+    c.log = args->log;
+    c.circuit = args->circuit;
+    c.params = args->params;
+    c.json = args->json;
+    c.tick = args->tick;
+    c.init = args->init;
+    exit_code = run_circuit_replay(c);
+  });
 }
 
 }  // namespace hstmon::cli

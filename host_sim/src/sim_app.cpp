@@ -8,6 +8,9 @@
 ///              --scenario rig [--start rest|steady] [--supply-on S] [--cycle ON,OFF]
 ///              [--load constant|steps|ramp|sine] [--load-period S] [--load-range LO,HI]
 ///              [--load-seed N] [--blockage T]
+///   any circuit file (docs/circuits.md; sim_circuit.hpp):
+///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--start rest|steady]
+///              [--duration S] [--rate HZ] [--seed N] [--no-noise] [--out FILE.csv]
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -20,6 +23,7 @@
 
 #include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/sim.hpp"
+#include "sim_circuit.hpp"
 
 namespace {
 
@@ -52,6 +56,10 @@ struct Options {
   std::vector<double> load_range = {0.65, 1.6};
   std::uint64_t load_seed = 1;
   double blockage = -1.0;     // ≥ 0: true kp halved from then on, logged kp unchanged
+  // Any circuit file (sim_circuit.hpp).
+  std::string circuit;
+  std::string circuit_params;
+  std::vector<std::string> steps;
 };
 
 void list_all() {
@@ -207,7 +215,39 @@ int main(int argc, char** argv) {
   app.add_option("--load-seed", o.load_seed, "rig: seed of the step levels");
   app.add_option("--blockage", o.blockage, "rig: 50 % PRV blockage (true kp halved, logged kp kept) from T [s]")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--circuit", o.circuit,
+                 "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
+                 "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
+                 "(default steady), --no-noise, --params, --step");
+  app.add_option("--params", o.circuit_params,
+                 "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
+  app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 (repeatable)");
   CLI11_PARSE(app, argc, argv);
+  if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0)) {
+    std::cerr << "hstmon-sim: --params and --step go with --circuit\n";
+    return 1;
+  }
+  if (!o.circuit.empty()) {
+    for (const char* opt : {"--scenario", "--model", "--preset", "--ideal", "--units", "--rpm", "--lag", "--quant",
+                            "--adc-bits", "--param-error", "--machine-seed", "--supply-on", "--cycle", "--load",
+                            "--load-period", "--load-range", "--load-seed", "--blockage", "--list"}) {
+      if (app.count(opt) > 0) {
+        std::cerr << "hstmon-sim: " << opt << " does not go with --circuit\n";
+        return 1;
+      }
+    }
+    hstmon::sim_app::CircuitSimArgs c;
+    c.circuit = o.circuit;
+    c.params = o.circuit_params;
+    c.duration = o.duration;
+    c.rate = o.rate;
+    c.seed = o.seed;
+    c.out = o.out;
+    c.start = app.count("--start") > 0 ? o.start : "steady";
+    c.no_noise = o.no_noise;
+    c.steps = o.steps;
+    return hstmon::sim_app::run_circuit_sim(c);
+  }
   try {
     if (o.list) {
       list_all();

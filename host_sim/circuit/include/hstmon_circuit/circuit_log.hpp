@@ -1,0 +1,51 @@
+#pragma once
+/// @file circuit_log.hpp
+/// Logs of a circuit: a time column `t[s]`, then any of the circuit's input columns and
+/// sensor columns (CircuitInput::column, CircuitSensor::column), each `name[unit]` or
+/// `name (unit)` in the header, or a bare name for the unit the circuit file gives the
+/// column ("" = SI). The format `hstmon replay` reads and hstmon-sim writes:
+///  - optional UTF-8 BOM, LF or CRLF; blank lines and lines starting with '#' skipped;
+///  - separator from the header line: tab if it has one, else ';', else ',';
+///  - data rows of decimal numbers (blanks around them allowed), time strictly rising.
+/// Columns the circuit does not know are ignored with a note. Every error (bad number,
+/// ragged row, unknown unit, duplicated column, no time column, no rows, time not rising,
+/// non-finite value, unreadable file) is a SourceError at file:line:column; nothing
+/// throws, and the rows before an error are not kept.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hstmon_host/circuit_file.hpp"
+#include "hstmon_host/source_error.hpp"
+
+namespace hstmon::circuit_tools {
+
+/// A circuit log in memory, column-major, SI units.
+struct CircuitLog {
+  std::string path;                           ///< source name used in messages
+  std::vector<double> t;                      ///< time [s], strictly increasing
+  std::vector<std::vector<double>> inputs;    ///< by input index; empty when not in the log
+  std::vector<std::vector<double>> sensors;   ///< by channel index; empty when not in the log
+  std::vector<std::string> notes;             ///< "file:line:col: note: ..." lines
+  std::optional<host::SourceError> error;     ///< set when reading failed (then no rows)
+
+  std::size_t rows() const noexcept { return t.size(); }
+  bool ok() const noexcept { return !error.has_value(); }
+};
+
+/// Reads the log at path for circuit c.
+CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c);
+
+/// Parses log text for circuit c; path_for_messages names it in errors.
+CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c);
+
+/// The log as text: `t[s]`, the present input columns, then the present sensor columns,
+/// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g".
+/// @param comments  lines written first as "# ..."
+std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log,
+                             const std::vector<std::string>& comments = {});
+
+}  // namespace hstmon::circuit_tools

@@ -1,0 +1,47 @@
+#pragma once
+/// @file circuit_replay.hpp
+/// Replays a circuit log through Observer<CircuitModel> (hstmon replay --circuit):
+/// residuals only. The observer ticks at a fixed rate, each log row one measurement,
+/// inputs held from the last row, as the thesis replay (ports/host replay.hpp); it starts
+/// by hstmon::choose_initial_state (reset_measured) unless told otherwise. Stiff nodes are
+/// taken quasi-steady for the tick (circuit::auto_stiff_mask). The fault matcher is not
+/// run: it is thesis-only for now (a note says so).
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hstmon/initial_state.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_host/replay.hpp"
+
+namespace hstmon::circuit_tools {
+
+/// Options of replay_circuit().
+struct CircuitReplayOptions {
+  double tick = 0.0;                         ///< observer tick [s]; 0 = the log's median period, at most 10 ms
+  host::InitMode init = host::InitMode::kAuto;
+};
+
+/// Result of a circuit replay; channels in the circuit's sensor order, SI units.
+struct CircuitReplayResult {
+  std::size_t rows = 0;
+  std::uint64_t ticks = 0;
+  double tick = 0.0;                          ///< [s]
+  double t_first = 0.0, t_last = 0.0;         ///< [s]
+  int states = 0, stiff_nodes = 0;            ///< the reduced model's states and quasi-steady nodes
+  std::vector<bool> measured;                 ///< per channel: in the log
+  std::vector<host::ChannelStats> channels;   ///< per channel
+  std::uint32_t health = 0;                   ///< HealthFlag bits OR-ed over all ticks
+  std::size_t unhealthy_rows = 0;
+  std::uint32_t max_substeps = 0;
+  InitialState start = InitialState::kRest;
+  std::vector<std::string> notes;
+};
+
+/// Replays `log` (read for c, without error) through the observer on c's engine.
+CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o);
+
+}  // namespace hstmon::circuit_tools

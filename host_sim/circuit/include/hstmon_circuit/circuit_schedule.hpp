@@ -1,0 +1,30 @@
+#pragma once
+/// @file circuit_schedule.hpp
+/// A simple input schedule for simulating a circuit: steps `INPUT=VALUE@T` (the input's
+/// name, a value with an optional unit of its quantity, the time in seconds), applied on
+/// top of the nominal inputs of the parameter file.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hstmon_host/circuit_file.hpp"
+
+namespace hstmon::circuit_tools {
+
+/// At time t [s] input `input` (index) becomes `value` [SI].
+struct InputStep {
+  double t = 0.0;
+  int input = -1;
+  double value = 0.0;
+};
+
+/// Parses "INPUT=VALUE@T", e.g. "throttle=0.7@5", "T_L=300 N*m@3", "n_e=1800 rpm@2.5".
+/// @return an error message, or nothing with `out` set
+std::optional<std::string> parse_input_step(std::string_view text, const host::CircuitFile& c, InputStep& out);
+
+/// Sorts steps by time, keeping the given order among equal times.
+void sort_steps(std::vector<InputStep>& steps);
+
+}  // namespace hstmon::circuit_tools

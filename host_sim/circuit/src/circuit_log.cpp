@@ -1,0 +1,276 @@
+#include "hstmon_circuit/circuit_log.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/units.hpp"
+
+namespace hstmon::circuit_tools {
+
+namespace {
+
+using host::SourceError;
+
+// What one header column feeds.
+struct Target {
+  enum Kind { kIgnored, kTime, kInput, kSensor } kind = kIgnored;
+  int index = -1;
+  host::UnitConversion conv;
+};
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+bool same_name(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
+  }
+  return true;
+}
+
+// 1-based character (code point) column of byte offset `off` within `line`.
+std::size_t char_column(std::string_view line, std::size_t off) {
+  std::size_t col = 1;
+  for (std::size_t i = 0; i < off && i < line.size(); ++i) {
+    if ((static_cast<unsigned char>(line[i]) & 0xC0u) != 0x80u) ++col;
+  }
+  return col;
+}
+
+// Fields of a line split at sep, with each field's byte offset.
+void split(std::string_view line, char sep, std::vector<std::string_view>& fields, std::vector<std::size_t>& offs) {
+  fields.clear();
+  offs.clear();
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t p = line.find(sep, start);
+    const std::size_t end = p == std::string_view::npos ? line.size() : p;
+    fields.push_back(line.substr(start, end - start));
+    offs.push_back(start);
+    if (p == std::string_view::npos) break;
+    start = p + 1;
+  }
+}
+
+// "name[unit]", "name (unit)" or "name" (quotes around the whole stripped).
+void name_and_unit(std::string_view f, std::string_view& name, std::string_view& unit, bool& has_unit) {
+  f = trim(f);
+  if (f.size() >= 2 && f.front() == '"' && f.back() == '"') f = trim(f.substr(1, f.size() - 2));
+  has_unit = false;
+  unit = {};
+  name = f;
+  if (f.empty()) return;
+  const char close = f.back();
+  const char open = close == ']' ? '[' : (close == ')' ? '(' : '\0');
+  if (open == '\0') return;
+  const std::size_t p = f.rfind(open);
+  if (p == std::string_view::npos || p == 0) return;
+  name = trim(f.substr(0, p));
+  unit = trim(f.substr(p + 1, f.size() - p - 2));
+  has_unit = true;
+}
+
+// A number field: blanks around, optional '+', a decimal comma when allowed.
+bool parse_number(std::string_view f, bool decimal_comma, double& v) {
+  f = trim(f);
+  if (!f.empty() && f.front() == '+') f.remove_prefix(1);
+  if (f.empty() || f.size() > 64) return false;
+  char buf[65];
+  for (std::size_t i = 0; i < f.size(); ++i) buf[i] = (decimal_comma && f[i] == ',') ? '.' : f[i];
+  const char* end = buf + f.size();
+  const auto r = std::from_chars(buf, end, v);
+  return r.ec == std::errc() && r.ptr == end;
+}
+
+std::string format_value(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
+
+}  // namespace
+
+CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c) {
+  std::string text;
+  if (auto err = host::read_text_file(path, text)) {
+    CircuitLog log;
+    log.path = path;
+    log.error = *err;
+    return log;
+  }
+  return parse_circuit_log(text, path, c);
+}
+
+CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c) {
+  CircuitLog log;
+  log.path = std::move(path_for_messages);
+  log.inputs.assign(c.inputs.size(), {});
+  log.sensors.assign(c.sensors.size(), {});
+  auto fail = [&](std::size_t line, std::size_t col, std::string msg) {
+    log.error = SourceError{log.path, line, col, std::move(msg)};
+    log.t.clear();
+    for (auto& v : log.inputs) v.clear();
+    for (auto& v : log.sensors) v.clear();
+    return log;
+  };
+  if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
+      static_cast<unsigned char>(text[2]) == 0xBF) {
+    text.remove_prefix(3);
+  }
+  if (text.find('\0') != std::string_view::npos) {
+    std::size_t line = 1, start = 0;
+    const std::size_t z = text.find('\0');
+    for (std::size_t i = 0; i < z; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        start = i + 1;
+      }
+    }
+    return fail(line, char_column(text.substr(start), z - start), "NUL byte: not a text log");
+  }
+
+  std::vector<Target> targets;
+  char sep = ',';
+  bool header_seen = false;
+  std::vector<std::string_view> fields;
+  std::vector<std::size_t> offs;
+  std::size_t line_no = 0, pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t nl = text.find('\n', pos);
+    std::string_view line = text.substr(pos, (nl == std::string_view::npos ? text.size() : nl) - pos);
+    pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::string_view body = trim(line);
+    if (body.empty() || body.front() == '#') continue;
+
+    if (!header_seen) {
+      header_seen = true;
+      sep = line.find('\t') != std::string_view::npos ? '\t' : (line.find(';') != std::string_view::npos ? ';' : ',');
+      split(line, sep, fields, offs);
+      targets.assign(fields.size(), Target{});
+      bool time_seen = false;
+      std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
+      for (std::size_t k = 0; k < fields.size(); ++k) {
+        std::string_view name, unit;
+        bool has_unit = false;
+        name_and_unit(fields[k], name, unit, has_unit);
+        const std::size_t lead = fields[k].find_first_not_of(" \t");
+        const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
+        if (name.empty()) return fail(line_no, col, "empty column name in the header");
+        Target& tg = targets[k];
+        std::string err;
+        if (same_name(name, "t") || same_name(name, "time")) {
+          if (time_seen) return fail(line_no, col, "duplicated time column '" + std::string(name) + "'");
+          time_seen = true;
+          tg.kind = Target::kTime;
+          const host::UnitResult u = host::parse_unit(host::Quantity::kTime, has_unit ? unit : std::string_view("s"));
+          if (!u.ok()) return fail(line_no, col, u.error);
+          tg.conv = u.conversion;
+          continue;
+        }
+        for (std::size_t i = 0; i < c.inputs.size() && tg.kind == Target::kIgnored; ++i) {
+          if (!same_name(name, c.inputs[i].column)) continue;
+          if (in_seen[i]) return fail(line_no, col, "duplicated column '" + std::string(name) + "'");
+          in_seen[i] = true;
+          const host::UnitResult u =
+              host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
+          if (!u.ok()) return fail(line_no, col, "column '" + std::string(name) + "': " + u.error);
+          tg = Target{Target::kInput, static_cast<int>(i), u.conversion};
+        }
+        for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
+          if (!same_name(name, c.sensors[i].column)) continue;
+          if (s_seen[i]) return fail(line_no, col, "duplicated column '" + std::string(name) + "'");
+          s_seen[i] = true;
+          const host::UnitResult u =
+              host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
+          if (!u.ok()) return fail(line_no, col, "column '" + std::string(name) + "': " + u.error);
+          tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
+        }
+        if (tg.kind == Target::kIgnored) {
+          log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": note: column '" +
+                              std::string(name) + "' is no input or sensor of circuit " + c.name + ": ignored");
+        }
+      }
+      if (!time_seen) return fail(line_no, 1, "no time column (t[s]) in the header");
+      continue;
+    }
+
+    split(line, sep, fields, offs);
+    if (fields.size() != targets.size()) {
+      const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
+      return fail(line_no, char_column(line, off),
+                  "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size()));
+    }
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const Target& tg = targets[k];
+      if (tg.kind == Target::kIgnored) continue;
+      double v = 0.0;
+      const std::size_t col = char_column(line, offs[k]);
+      if (!parse_number(fields[k], sep != ',', v)) {
+        return fail(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
+      }
+      v = tg.conv.to_si(v);
+      if (!std::isfinite(v)) return fail(line_no, col, "value is not finite");
+      switch (tg.kind) {
+        case Target::kTime:
+          if (!log.t.empty() && !(v > log.t.back())) {
+            return fail(line_no, col, "time not strictly increasing: " + format_value(v) + " s after " +
+                                          format_value(log.t.back()) + " s");
+          }
+          log.t.push_back(v);
+          break;
+        case Target::kInput: log.inputs[static_cast<std::size_t>(tg.index)].push_back(v); break;
+        case Target::kSensor: log.sensors[static_cast<std::size_t>(tg.index)].push_back(v); break;
+        case Target::kIgnored: break;
+      }
+    }
+  }
+  if (!header_seen) return fail(line_no, 1, "empty log: no header row");
+  if (log.t.empty()) return fail(line_no, 1, "no data rows after the header");
+  return log;
+}
+
+std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log, const std::vector<std::string>& comments) {
+  struct Col {
+    const std::vector<double>* v;
+    host::UnitConversion conv;
+  };
+  std::vector<Col> cols;
+  std::ostringstream os;
+  for (const auto& s : comments) os << "# " << s << '\n';
+  os << "t[s]";
+  auto add = [&](const std::vector<double>& v, host::CircuitQuantity q, const std::string& name, const std::string& unit) {
+    if (v.size() != log.t.size() || v.empty()) return;
+    const host::UnitResult u = host::parse_circuit_unit(q, unit);
+    cols.push_back({&v, u.ok() ? u.conversion : host::UnitConversion{}});
+    os << ',' << name;
+    if (u.ok() && !is_si(unit)) os << '[' << unit << ']';
+  };
+  for (std::size_t i = 0; i < c.inputs.size() && i < log.inputs.size(); ++i) {
+    add(log.inputs[i], c.inputs[i].quantity, c.inputs[i].column, c.inputs[i].unit);
+  }
+  for (std::size_t i = 0; i < c.sensors.size() && i < log.sensors.size(); ++i) {
+    add(log.sensors[i], c.sensors[i].quantity, c.sensors[i].column, c.sensors[i].unit);
+  }
+  os << '\n';
+  for (std::size_t k = 0; k < log.t.size(); ++k) {
+    os << format_value(log.t[k]);
+    for (const Col& col : cols) os << ',' << format_value(col.conv.from_si((*col.v)[k]));
+    os << '\n';
+  }
+  return os.str();
+}
+
+}  // namespace hstmon::circuit_tools

@@ -1,0 +1,41 @@
+#include "hstmon_circuit/circuit_schedule.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::circuit_tools {
+
+std::optional<std::string> parse_input_step(std::string_view text, const host::CircuitFile& c, InputStep& out) {
+  const std::size_t eq = text.find('=');
+  const std::size_t at = text.rfind('@');
+  if (eq == std::string_view::npos || at == std::string_view::npos || at < eq || eq == 0) {
+    return "--step takes INPUT=VALUE@T (e.g. throttle=0.7@5), got '" + std::string(text) + "'";
+  }
+  const std::string name(text.substr(0, eq));
+  const int i = c.input_index(name);
+  if (i < 0) {
+    std::string known;
+    for (const auto& in : c.inputs) known += (known.empty() ? "" : ", ") + in.name;
+    return "--step: circuit " + c.name + " has no input '" + name + "' (inputs: " + known + ")";
+  }
+  const host::ValueResult v =
+      host::parse_circuit_value(c.inputs[static_cast<std::size_t>(i)].quantity, text.substr(eq + 1, at - eq - 1));
+  if (!v.ok()) return "--step " + std::string(text) + ": " + v.error;
+  const std::string_view ts = text.substr(at + 1);
+  double t = 0.0;
+  const auto r = std::from_chars(ts.data(), ts.data() + ts.size(), t);
+  if (r.ec != std::errc() || r.ptr != ts.data() + ts.size() || !std::isfinite(t) || t < 0.0) {
+    return "--step " + std::string(text) + ": the time after '@' must be seconds >= 0";
+  }
+  out = InputStep{t, i, v.value};
+  return std::nullopt;
+}
+
+void sort_steps(std::vector<InputStep>& steps) {
+  std::stable_sort(steps.begin(), steps.end(), [](const InputStep& a, const InputStep& b) { return a.t < b.t; });
+}
+
+}  // namespace hstmon::circuit_tools

@@ -1,0 +1,145 @@
+// `hstmon replay --circuit FILE LOG`: prints per-channel residual statistics of a circuit
+// log, in the shapes of the thesis replay (cli_replay.cpp) where they fit.
+#include "cli_circuit_replay.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_commands.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+using circuit_tools::CircuitReplayResult;
+using circuit_tools::LoadedCircuit;
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+const char* start_words(InitialState k) {
+  switch (k) {
+    case InitialState::kMeasured: return "from the measured state";
+    case InitialState::kSteady: return "at steady state (measured states set to their readings)";
+    case InitialState::kRest: return "at rest (measured states set to their readings)";
+  }
+  return "?";
+}
+
+void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
+  const nlohmann::json head = {{"type", "replay"},
+                               {"log", a.log},
+                               {"circuit", c.file.name},
+                               {"circuit_file", a.circuit},
+                               {"params_file", c.params_path},
+                               {"rows", r.rows},
+                               {"t_first", r.t_first},
+                               {"t_last", r.t_last},
+                               {"tick_s", r.tick},
+                               {"ticks", r.ticks},
+                               {"start", to_string(r.start)},
+                               {"states", r.states},
+                               {"stiff_nodes", r.stiff_nodes},
+                               {"health", host::health_names(r.health)},
+                               {"unhealthy_rows", r.unhealthy_rows},
+                               {"max_substeps", r.max_substeps},
+                               {"notes", r.notes}};
+  fmt::print("{}\n", head.dump());
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
+    const auto& s = r.channels[ch];
+    const host::CircuitSensor& sensor = c.file.sensors[ch];
+    nlohmann::json j = {{"type", "residual"},
+                        {"channel", sensor.name},
+                        {"unit", host::circuit_si_unit(sensor.quantity)},
+                        {"measured", static_cast<bool>(r.measured[ch])},
+                        {"sensor_noise", sensor.noise},
+                        {"n", s.n}};
+    if (s.n > 0) {
+      j["mean"] = number_or_null(s.mean());
+      j["rms"] = number_or_null(s.rms());
+      j["max_abs"] = number_or_null(s.max_abs);
+      j["max"] = number_or_null(s.max_signed);
+      j["t_max"] = s.t_max;
+      j["noise"] = number_or_null(s.noise());
+    }
+    fmt::print("{}\n", j.dump());
+  }
+  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", "not_run"}, {"events", 0}}.dump());
+}
+
+void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
+  fmt::print("hstmon replay --circuit {} {}\n", a.circuit, a.log);
+  fmt::print("  circuit {}{}: {} states, {} quasi-steady nodes\n", c.file.name,
+             c.params_path.empty() ? std::string() : " with " + c.params_path, r.states, r.stiff_nodes);
+  fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
+             r.t_last, r.tick * 1e3, r.ticks, start_words(r.start));
+  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
+  fmt::print("\n  residual = measured − model; noise = scatter estimated from successive samples; σ = the sensor's\n");
+  fmt::print("  {:<16} {:>11} {:>11} {:>11} {:>11} {:>11} {:>10}\n", "channel", "mean", "RMS", "noise", "σ", "peak",
+             "at t [s]");
+  std::string beyond;
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
+    const auto& s = r.channels[ch];
+    const host::CircuitSensor& sensor = c.file.sensors[ch];
+    const std::string unit = sensor.unit.empty() ? host::circuit_si_unit(sensor.quantity) : sensor.unit;
+    const host::UnitResult u = host::parse_circuit_unit(sensor.quantity, sensor.unit);
+    const double k = u.ok() ? 1.0 / u.conversion.factor : 1.0;
+    const std::string label = fmt::format("{} [{}]", sensor.name, unit);
+    if (!r.measured[ch]) {
+      fmt::print("  {:<16} {:>11}\n", label, "not in log");
+      continue;
+    }
+    fmt::print("  {:<16} {:>11.4g} {:>11.4g} {:>11.4g} {:>11.4g} {:>11.4g} {:>10.6g}\n", label, s.mean() * k,
+               s.rms() * k, s.noise() * k, sensor.noise * k, s.max_signed * k, s.t_max);
+    if (s.n > 1 && std::fabs(s.mean()) > 5.0 * s.noise() + 1e-12) {
+      beyond += fmt::format("{}{}{}", beyond.empty() ? "" : ", ", sensor.name, s.mean() > 0 ? "+" : "−");
+    }
+  }
+  if (beyond.empty()) {
+    fmt::print("\n  residual means are within the sensor noise on every measured channel\n");
+  } else {
+    fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
+  }
+  fmt::print("\n  diagnosis: not run (the fault matcher is thesis-only for now)\n");
+  const auto names = host::health_names(r.health);
+  if (names.empty()) {
+    fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
+  } else {
+    std::string joined;
+    for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
+    fmt::print("\n  observer health: {} on {} rows — results there are not trustworthy\n", joined, r.unhealthy_rows);
+  }
+}
+
+}  // namespace
+
+int run_circuit_replay(const CircuitReplayArgs& a) {
+  LoadedCircuit c;
+  if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return kExitBadInput;
+  }
+  const circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(a.log, c.file);
+  for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
+  if (log.error) {
+    fmt::print(stderr, "{}\n", log.error->to_string());
+    return kExitBadInput;
+  }
+  circuit_tools::CircuitReplayOptions o;
+  o.tick = a.tick;
+  o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
+  if (a.json) {
+    print_json(a, c, r);
+  } else {
+    print_human(a, c, r);
+  }
+  return kExitOk;
+}
+
+}  // namespace hstmon::cli

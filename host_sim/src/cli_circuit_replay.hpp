@@ -1,0 +1,22 @@
+#pragma once
+// `hstmon replay --circuit FILE [--params FILE] LOG`: a log of any circuit file through
+// Observer<CircuitModel>, residuals only (circuit_replay.hpp).
+#include <string>
+
+namespace hstmon::cli {
+
+/// The options of replay that apply with --circuit.
+struct CircuitReplayArgs {
+  std::string log;
+  std::string circuit;
+  std::string params;        ///< circuit parameter file ("" = <stem>.params.json beside it, else the file's values)
+  bool json = false;
+  double tick = 0.0;         ///< [s]; 0 = the log's median period, at most 10 ms
+  std::string init = "auto"; ///< auto | rest | steady
+};
+
+/// Runs it and prints the result (human, or JSON lines); errors as file:line:column on
+/// stderr. @return kExitOk, or kExitBadInput for an unusable circuit, parameter file or log
+int run_circuit_replay(const CircuitReplayArgs& a);
+
+}  // namespace hstmon::cli
