@@ -58,6 +58,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                         {"unit", host::circuit_si_unit(sensor.quantity)},
                         {"measured", static_cast<bool>(r.measured[ch])},
                         {"sensor_noise", sensor.noise},
+                        {"clipped_rows", r.clipped[ch]},
                         {"n", s.n}};
     if (s.n > 0) {
       j["mean"] = number_or_null(s.mean());

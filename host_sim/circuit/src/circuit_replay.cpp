@@ -7,6 +7,7 @@
 
 #include "hstmon/circuit/engine.hpp"
 #include "hstmon/observer.hpp"
+#include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -46,12 +47,31 @@ void count(host::ChannelStats& st, double r, double t, std::size_t row) {
   }
 }
 
+// True when every channel of m is measured with a noise σ > 0 and lies within 3σ of the
+// outputs at the steady state for inputs u.
+bool at_steady_within_noise(const LoadedCircuit& c, Model model, const Model::Inputs& u, const Obs::Measurement& m) {
+  const std::size_t channels = c.file.sensors.size();
+  if (channels == 0) return false;
+  model.set_inputs(u);
+  Model::State xs;
+  if (!model.steady_state(xs)) return false;
+  const Model::Output ys = model.outputs(xs);
+  for (std::size_t ch = 0; ch < channels; ++ch) {
+    const int i = static_cast<int>(ch);
+    const double sigma = c.file.sensors[ch].noise;
+    if ((m.valid & (1u << ch)) == 0 || !(sigma > 0.0)) return false;
+    if (!(std::fabs(m.y[i] - ys[i]) <= 3.0 * sigma)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o) {
   CircuitReplayResult res;
   const std::size_t channels = c.file.sensors.size();
   res.measured.assign(channels, false);
+  res.clipped.assign(channels, 0);
   res.channels.assign(channels, host::ChannelStats{});
   res.rows = log.rows();
   res.notes.push_back("residuals only: the fault matcher is thesis-only for now (no diagnosis for circuit " +
@@ -116,14 +136,31 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
 
   const Model::Inputs u0 = inputs_at(0);
   Obs::Measurement m;
+  // A reading at or beyond an end of its transmitter's range says only that the signal is
+  // there or beyond: it is not compared (counted in res.clipped).
   auto measurement_at = [&](std::size_t row) {
-    for (std::size_t ch = 0; ch < channels; ++ch) m.y[static_cast<int>(ch)] = meas[ch] ? meas[ch][row] : 0.0;
     m.valid = mask;
+    for (std::size_t ch = 0; ch < channels; ++ch) {
+      const double y = meas[ch] ? meas[ch][row] : 0.0;
+      m.y[static_cast<int>(ch)] = y;
+      const host::CircuitSensor& s = c.file.sensors[ch];
+      if (meas[ch] != nullptr && (y <= s.lo || y >= s.hi)) {
+        m.valid = static_cast<std::uint8_t>(m.valid & ~(1u << ch));
+        ++res.clipped[ch];
+      }
+    }
   };
   measurement_at(0);
   Status started = Status::kInvalidInputs;
   if (o.init == host::InitMode::kAuto) {
     started = obs->reset_measured(u0, m, &res.start);
+    if (started == Status::kOk && at_steady_within_noise(c, model, u0, m)) {
+      // The readings' noise would otherwise be the initial error of a parallel model,
+      // which a lightly damped circuit (a closed-loop HST) rings with for seconds.
+      started = obs->reset_steady(u0);
+      res.start = InitialState::kSteady;
+      res.notes.push_back("first row within 3 sigma of the steady state on every channel: started there");
+    }
   } else if (o.init == host::InitMode::kSteady) {
     started = obs->reset_steady(u0);
     res.start = InitialState::kSteady;
@@ -134,6 +171,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     res.start = InitialState::kRest;
   }
 
+  res.clipped.assign(channels, 0);  // the first row is counted again below
   Model::Inputs u_prev = u0;
   const Obs::Measurement none;
   for (std::size_t k = 0; k < res.rows; ++k) {
@@ -155,6 +193,14 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     }
   }
   res.ticks = obs->ticks();
+  for (std::size_t ch = 0; ch < channels; ++ch) {
+    if (res.clipped[ch] > 0) {
+      res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +
+                          " row(s) at an end of the sensor's range (" + number(c.file.sensors[ch].lo) + " .. " +
+                          number(c.file.sensors[ch].hi) + " " + host::circuit_si_unit(c.file.sensors[ch].quantity) +
+                          ") not compared");
+    }
+  }
   return res;
 }
 

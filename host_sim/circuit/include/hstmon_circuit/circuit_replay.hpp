@@ -3,9 +3,13 @@
 /// Replays a circuit log through Observer<CircuitModel> (hstmon replay --circuit):
 /// residuals only. The observer ticks at a fixed rate, each log row one measurement,
 /// inputs held from the last row, as the thesis replay (ports/host replay.hpp); it starts
-/// by hstmon::choose_initial_state (reset_measured) unless told otherwise. Stiff nodes are
+/// by hstmon::choose_initial_state (reset_measured) unless told otherwise, and then, when
+/// the first row lies within 3σ of the steady state's outputs on every channel (each with
+/// a sensor noise σ), at that steady state instead: a parallel model keeps the readings'
+/// noise as its initial error, and a lightly damped circuit rings with it. Stiff nodes are
 /// taken quasi-steady for the tick (circuit::auto_stiff_mask). The fault matcher is not
-/// run: it is thesis-only for now (a note says so).
+/// run: it is thesis-only for now (a note says so). A reading at or beyond an end of its
+/// sensor's range is not compared (a clipped transmitter says only "there or beyond").
 
 #include <cstddef>
 #include <cstdint>
@@ -34,6 +38,7 @@ struct CircuitReplayResult {
   int states = 0, stiff_nodes = 0;            ///< the reduced model's states and quasi-steady nodes
   std::vector<bool> measured;                 ///< per channel: in the log
   std::vector<host::ChannelStats> channels;   ///< per channel
+  std::vector<std::size_t> clipped;           ///< per channel: rows not compared (reading at a range end)
   std::uint32_t health = 0;                   ///< HealthFlag bits OR-ed over all ticks
   std::size_t unhealthy_rows = 0;
   std::uint32_t max_substeps = 0;
