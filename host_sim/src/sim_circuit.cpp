@@ -1,5 +1,6 @@
 #include "sim_circuit.hpp"
 
+#include <cstdio>
 #include <exception>
 #include <fstream>
 #include <iostream>
@@ -8,6 +9,16 @@
 #include "hstmon_circuit/circuit_sim.hpp"
 
 namespace hstmon::sim_app {
+
+namespace {
+
+std::string shortest(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+}  // namespace
 
 int run_circuit_sim(const CircuitSimArgs& a) {
   circuit_tools::LoadedCircuit c;
@@ -39,7 +50,8 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   std::vector<std::string> comments = {
       "hstmon-sim --circuit " + a.circuit + (c.params_path.empty() ? std::string() : " --params " + c.params_path),
       "circuit " + c.file.name + ": full equations (Rosenbrock-4), " + (o.from_rest ? "from rest" : "from steady state") +
-          ", seed " + std::to_string(o.seed) + (o.noise ? "" : ", no noise")};
+          ", " + shortest(o.duration) + " s at " + shortest(o.rate) + " Hz, seed " + std::to_string(o.seed) +
+          (o.noise ? "" : ", no noise")};
   for (const std::string& s : a.steps) comments.push_back("step " + s);
   const std::string text = circuit_tools::circuit_log_text(c.file, log, comments);
   if (a.out == "-") {
