@@ -108,6 +108,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       mask = static_cast<std::uint8_t>(mask | (1u << ch));
     }
   }
+  if (mask == 0) res.notes.push_back("no sensor column of circuit " + c.file.name + " in the log: nothing compared");
   auto inputs_at = [&](std::size_t row) {
     Model::Inputs u = c.values.inputs;
     for (std::size_t i = 0; i < n_inputs; ++i) {

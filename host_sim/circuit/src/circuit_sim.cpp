@@ -21,6 +21,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   if (!(o.duration > 0.0 && std::isfinite(o.duration)) || !(o.rate > 0.0 && std::isfinite(o.rate))) {
     throw std::runtime_error("duration and rate must be > 0");
   }
+  if (o.duration * o.rate > 1e7) throw std::runtime_error("more than 10 million samples: lower --duration or --rate");
   std::vector<InputStep> steps = o.steps;
   sort_steps(steps);
   host::HostCircuit desc = c.file.circuit;

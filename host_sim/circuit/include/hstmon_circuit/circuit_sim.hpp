@@ -26,7 +26,7 @@ struct CircuitSimOptions {
 };
 
 /// Simulates c and returns the log: every input column and every sensor column, SI.
-/// @throws std::runtime_error when the circuit's values are not physical, there is no
+/// @throws std::runtime_error for more than 1e7 samples, when the circuit's values are not physical, there is no
 ///         steady state to start from, or the integration fails
 CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o);
 
