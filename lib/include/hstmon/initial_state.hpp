@@ -16,6 +16,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 namespace hstmon {
 
@@ -31,6 +33,24 @@ constexpr const char* to_string(InitialState k) noexcept {
   return k == InitialState::kMeasured ? "measured" : (k == InitialState::kRest ? "rest" : "steady");
 }
 
+namespace initial_detail {
+template <typename M, typename = void>
+struct HasStateCount : std::false_type {};
+template <typename M>
+struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
+}  // namespace initial_detail
+
+/// States a model uses: n_states() where the model has it (a circuit model's kStates is
+/// its capacity), else kStates.
+template <typename Model>
+int used_states(const Model& model) noexcept {
+  if constexpr (initial_detail::HasStateCount<Model>::value) {
+    return model.n_states();
+  } else {
+    return Model::kStates;
+  }
+}
+
 /// The initial state for a model whose inputs are already set, from the first sample.
 /// @tparam Model  needs kStates, State, Output, state_channel(i) (static or not), rest_state(),
 ///                steady_state(State&) and state_plausible(State)
@@ -44,16 +64,17 @@ InitialState choose_initial_state(const Model& model, const typename Model::Outp
                                   typename Model::State& x) noexcept {
   using State = typename Model::State;
   using T = typename Model::Scalar;
+  const int n = used_states(model);
   unsigned measured = 0;
   State xm = model.rest_state();
-  for (int i = 0; i < Model::kStates; ++i) {
+  for (int i = 0; i < n; ++i) {
     const int c = model.state_channel(i);
     if (c >= 0 && ((static_cast<unsigned>(valid) >> static_cast<unsigned>(c)) & 1u) != 0 && std::isfinite(y[c])) {
       measured |= 1u << i;
       xm[i] = y[c];
     }
   }
-  const unsigned all = (1u << Model::kStates) - 1u;
+  const unsigned all = n >= 32 ? ~0u : (1u << static_cast<unsigned>(n)) - 1u;
   if (measured == all && model.state_plausible(xm)) {
     x = xm;
     return InitialState::kMeasured;
@@ -67,7 +88,7 @@ InitialState choose_initial_state(const Model& model, const typename Model::Outp
   if (measured != 0 && model.steady_state(xs)) {
     // Closer in each measured state, scaled by the distance rest → steady.
     T d_rest = T(0), d_steady = T(0);
-    for (int i = 0; i < Model::kStates; ++i) {
+    for (int i = 0; i < n; ++i) {
       if (((measured >> i) & 1u) == 0) continue;
       const T scale = std::fabs(xs[i] - xr[i]);
       if (!(scale > T(0))) continue;
@@ -79,7 +100,7 @@ InitialState choose_initial_state(const Model& model, const typename Model::Outp
       kind = InitialState::kSteady;
     }
   }
-  for (int i = 0; i < Model::kStates; ++i) {
+  for (int i = 0; i < n; ++i) {
     if (((measured >> i) & 1u) != 0) x[i] = xm[i];
   }
   if (!model.state_plausible(x)) x = kind == InitialState::kSteady ? xs : xr;
