@@ -14,6 +14,7 @@
 #include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/rig_run.hpp"
 #include "hstmon_sim/sensor_presets.hpp"
+#include "../support/replay_events.hpp"
 
 namespace {
 
@@ -38,15 +39,7 @@ hstmon::host::ReplayResult replay(const sim::ThesisScenario& sc, double rate_hz,
   return hstmon::host::replay(log, {}, {}, {});
 }
 
-std::string events(const hstmon::host::ReplayResult& r) {
-  std::string s;
-  for (const auto& e : r.events) {
-    s += "  t=" + std::to_string(e.t) + " " + e.event;
-    for (const auto& c : e.candidates) s += " " + c.fault;
-    s += "\n";
-  }
-  return s;
-}
+using hstmon_test::event_lines;
 
 // From rest, load steps, every transducer from none to 10 ms: nothing is raised.
 TEST(ReplayStartup, StartFromRestAndLoadStepsRaiseNothing) {
@@ -55,7 +48,7 @@ TEST(ReplayStartup, StartFromRestAndLoadStepsRaiseNothing) {
       const auto r = replay(sim::thesis_rig_run(rig_from_rest(7.0)), rate, lag);
       EXPECT_EQ(r.start, hstmon::InitialState::kMeasured);
       EXPECT_GT(r.startup_hold, 0.0) << "a start from rest has a start-up to wait for";
-      EXPECT_TRUE(r.events.empty()) << "lag " << lag << " s, " << rate << " Hz:\n" << events(r);
+      EXPECT_TRUE(r.events.empty()) << "lag " << lag << " s, " << rate << " Hz:\n" << event_lines(r);
     }
   }
 }
@@ -69,10 +62,10 @@ TEST(ReplayStartup, FaultFromTheFirstSampleIsReportedAfterTheStartUp) {
     ASSERT_FALSE(r.events.empty()) << rate << " Hz";
     EXPECT_EQ(r.events.front().event, "detected");
     EXPECT_GE(r.events.front().t, r.startup_hold) << "not judged during the start-up";
-    EXPECT_LT(r.events.front().t, r.startup_hold + 0.05) << events(r);
-    EXPECT_EQ(r.final_status, "isolated") << events(r);
+    EXPECT_LT(r.events.front().t, r.startup_hold + 0.05) << event_lines(r);
+    EXPECT_EQ(r.final_status, "isolated") << event_lines(r);
     ASSERT_FALSE(r.events.back().candidates.empty());
-    EXPECT_EQ(r.events.back().candidates.front().fault, "kp-") << events(r);
+    EXPECT_EQ(r.events.back().candidates.front().fault, "kp-") << event_lines(r);
   }
 }
 

@@ -24,6 +24,7 @@
 #include "hstmon/monitor.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/replay.hpp"
+#include "../support/replay_events.hpp"
 
 namespace {
 
@@ -399,15 +400,7 @@ hstmon::host::ReplayResult replay_text(const std::string& text, bool lenient, hs
   return r;
 }
 
-std::string dump(const hstmon::host::ReplayResult& r) {
-  std::string s;
-  for (const auto& e : r.events) {
-    s += "  t=" + std::to_string(e.t) + " " + e.event;
-    for (const auto& c : e.candidates) s += " " + c.fault;
-    s += "\n";
-  }
-  return s;
-}
+std::string dump(const hstmon::host::ReplayResult& r) { return hstmon_test::event_lines(r); }
 
 TEST(ReplayStreamFaults, MissingTimestampsTickThroughTheGap) {
   // 1 s, then 50 ms of rows missing, then 1 s.
