@@ -30,23 +30,6 @@ std::string number(double v) {
   return b;
 }
 
-void count(host::ChannelStats& st, double r, double t, std::size_t row) {
-  if (st.n > 0) {
-    st.sumsq_diff += (r - st.last) * (r - st.last);
-    ++st.n_diff;
-  }
-  st.last = r;
-  ++st.n;
-  st.sum += r;
-  st.sumsq += r * r;
-  if (std::fabs(r) > st.max_abs) {
-    st.max_abs = std::fabs(r);
-    st.max_signed = r;
-    st.t_max = t;
-    st.row_max = row;
-  }
-}
-
 // True when every channel of m is measured with a noise σ > 0 and lies within 3σ of the
 // outputs at the steady state for inputs u.
 bool at_steady_within_noise(const LoadedCircuit& c, Model model, const Model::Inputs& u, const Obs::Measurement& m) {
@@ -190,7 +173,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     u_prev = u;
     const std::uint8_t rv = obs->residual_valid();
     for (std::size_t ch = 0; ch < channels; ++ch) {
-      if ((rv & (1u << ch)) != 0) count(res.channels[ch], obs->residual()[static_cast<int>(ch)], t[k], k);
+      if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs->residual()[static_cast<int>(ch)], t[k], k);
     }
   }
   res.ticks = obs->ticks();

@@ -252,8 +252,8 @@ class Monitor {
     if (bound_valid_ && same_inputs(obs_.model().inputs(), before)) return false;
     if (bound_valid_) {
       look_ahead();
-      // The pre-fault baseline restarts at the new operating point once its transient
-      // has gone: 5 time constants of the model and the transducer.
+      // The pre-fault baseline restarts at the changed operating point once its
+      // transient has gone: 5 time constants of the model and the transducer.
       matcher_.restart_baseline();
       settled_from_ = t + T(5) * (tau_m_ + transducer_tau_);
     }

@@ -12,6 +12,23 @@ namespace hstmon::host {
 
 const std::array<Signal, 4> kMeasuredSignals = {Signal::kPMi, Signal::kPMo, Signal::kPPp, Signal::kWm};
 
+void ChannelStats::add(double r, double t, std::size_t row) noexcept {
+  if (n > 0) {
+    sumsq_diff += (r - last) * (r - last);
+    ++n_diff;
+  }
+  last = r;
+  ++n;
+  sum += r;
+  sumsq += r * r;
+  if (std::fabs(r) > max_abs) {
+    max_abs = std::fabs(r);
+    max_signed = r;
+    t_max = t;
+    row_max = row;
+  }
+}
+
 double ChannelStats::mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
 double ChannelStats::rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
 double ChannelStats::noise() const noexcept {
@@ -182,22 +199,7 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     const std::uint8_t rv = obs.residual_valid();
     for (int c = 0; c < 4; ++c) {
       if (!(rv & (1u << c))) continue;
-      ChannelStats& st = res.channels[static_cast<std::size_t>(c)];
-      const double rc = r[c];
-      if (st.n > 0) {
-        st.sumsq_diff += (rc - st.last) * (rc - st.last);
-        ++st.n_diff;
-      }
-      st.last = rc;
-      ++st.n;
-      st.sum += rc;
-      st.sumsq += rc * rc;
-      if (std::fabs(rc) > st.max_abs) {
-        st.max_abs = std::fabs(rc);
-        st.max_signed = rc;
-        st.t_max = t[k];
-        st.row_max = k;
-      }
+      res.channels[static_cast<std::size_t>(c)].add(r[c], t[k], k);
     }
     if (options.keep_trace) {
       TraceRow tr;

@@ -51,6 +51,8 @@ struct ChannelStats {
   double sumsq_diff = 0.0;     ///< Σ (r_k − r_{k−1})² over successive rows
   double last = 0.0;           ///< previous residual (for the differences)
 
+  /// Counts residual r [SI] of data row `row` at log time t [s].
+  void add(double r, double t, std::size_t row) noexcept;
   double mean() const noexcept;  ///< Σ r / n (0 when n = 0)
   double rms() const noexcept;   ///< √(Σ r² / n) (0 when n = 0)
   /// Noise level estimated from successive differences, √(Σ Δr² / 2(n−1)): white sensor
