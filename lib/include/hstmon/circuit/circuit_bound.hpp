@@ -46,16 +46,16 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
 
   /// @param model  the observer's model (description, parameters and inputs set)
   /// @param eps    relative uncertainties, each finite, ≥ 0 and < 0.5
-  /// @param m      out: bound per channel [channel unit] (unused channels 0)
+  /// @param m      out: bound per channel [channel unit] (unused channels 0; a partial sum after an error)
   /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState
   static Status compute(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>]) noexcept {
+    for (int i = 0; i < kN; ++i) m[i] = T(0);
     for (int k = 0; k < Cap::kParams; ++k) {
       const T e = eps.rel[k];
       if (!(std::isfinite(e) && e >= T(0) && e < T(0.5))) return Status::kInvalidParams;
     }
     typename Model::Output y0, y;
     if (!circuit::steady_outputs(model, y0)) return Status::kNoSteadyState;
-    for (int i = 0; i < kN; ++i) m[i] = T(0);
     const int n = model.description() != nullptr ? model.description()->n_params : 0;
     Model p = model;  // perturbed one parameter at a time
     typename Model::Params v = model.params();
