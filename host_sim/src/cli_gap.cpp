@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_circuit_gap.hpp"
 #include "cli_commands.hpp"
 #include "hstmon_gap/gap.hpp"
 #include "hstmon_host/log_reader.hpp"
@@ -25,6 +26,7 @@ struct GapArgs {
   bool refit = false;
   std::vector<std::string> effects;
   double max_step = 2.5e-4;
+  std::string circuit;  // --circuit: run_circuit_gap instead (cli_circuit_gap.hpp)
 };
 
 int run_gap_command(const GapArgs& a) {
@@ -91,7 +93,29 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
   cmd->add_option("--effects", args->effects, "restrict the library to these effects (names)");
   cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();
-  cmd->callback([args, &exit_code]() { exit_code = run_gap_command(*args); });
+  cmd->add_option("--circuit", args->circuit,
+                  "the gap of this circuit file (docs/circuits.md): candidates derived from the circuit, judged on "
+                  "steady operating points; --params is then its parameter file");
+  cmd->callback([args, cmd, &exit_code]() {
+    if (args->circuit.empty()) {
+      exit_code = run_gap_command(*args);
+      return;
+    }
+    for (const char* opt : {"--report", "--refit-nominal", "--effects", "--max-step"}) {
+      if (cmd->count(opt) > 0) {
+        fmt::print(stderr, "hstmon gap: {} does not go with --circuit\n", opt);
+        exit_code = kExitUsage;
+        return;
+      }
+    }
+    CircuitGapArgs c;
+    c.circuit = args->circuit;
+    c.params = args->params;
+    c.fit = args->fit;
+    c.check = args->check;
+    c.json = args->json;
+    exit_code = run_circuit_gap(c);
+  });
 }
 
 }  // namespace hstmon::cli

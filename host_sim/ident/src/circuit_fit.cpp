@@ -71,6 +71,34 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
 
 }  // namespace
 
+std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
+                                                            const std::vector<circuit_tools::CircuitLog>& logs,
+                                                            double min_duration) {
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = 0;
+  std::vector<CircuitOperatingPoint> out;
+  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, min_duration, out);
+  return out;
+}
+
+bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
+                             const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res) {
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = 0;
+  res.clear();
+  for (const auto& pt : points) {
+    Model::Inputs u = c.values.inputs;
+    for (std::size_t i = 0; i < pt.inputs.size(); ++i) u.v[i] = pt.inputs[i];
+    const Model model(desc, p, u);
+    Model::Output y;
+    if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
+    for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+      if (std::isfinite(pt.mean[ch])) res.push_back((y[static_cast<int>(ch)] - pt.mean[ch]) / sigma_of(c.file.sensors[ch]));
+    }
+  }
+  return true;
+}
+
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o) {
   CircuitFitResult r;
@@ -95,7 +123,7 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     r.error = "nothing to fit: name the parameters with --fit";
     return r;
   }
-  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, o.min_duration, r.points);
+  r.points = circuit_operating_points(c, logs, o.min_duration);
   const std::size_t channels = c.file.sensors.size();
   std::size_t m = 0;
   for (const auto& p : r.points) {

@@ -51,6 +51,18 @@ struct CircuitFitResult {
   std::optional<std::string> error;      ///< set when nothing could be fitted
 };
 
+/// The operating points of `logs` for circuit c (see the file comment); `before` and
+/// `after` empty.
+std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
+                                                            const std::vector<circuit_tools::CircuitLog>& logs,
+                                                            double min_duration);
+
+/// Residuals (model − mean)/σ at every point and measured channel, in point then channel
+/// order, for circuit c with parameter values p (c's inputs apart from those the points
+/// hold). @return false when some point has no steady state
+bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
+                             const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res);
+
 /// Fits `o.fit` of circuit c to the operating points of `logs` (each read for c).
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o);

@@ -1,0 +1,92 @@
+// `hstmon gap --circuit`: prints where the gap lies (mean residual per channel), every
+// candidate effect's fitted magnitude with its fit and check residual, and the verdict.
+#include "cli_circuit_gap.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_commands.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_gap/circuit_gap.hpp"
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+const char* unit_of(const circuit_tools::LoadedCircuit& c, const gap::CircuitEffect& e) {
+  switch (e.kind) {
+    case gap::CircuitEffect::Kind::kLeak: return "m3/(s*Pa)";
+    case gap::CircuitEffect::Kind::kFriction: return "N*m*s/rad";
+    case gap::CircuitEffect::Kind::kTorqueLoss: return "N*m";
+    case gap::CircuitEffect::Kind::kOffset:
+      return host::circuit_si_unit(c.file.sensors[static_cast<std::size_t>(e.index)].quantity);
+  }
+  return "";
+}
+
+std::string verdict_words(const gap::CircuitGapResult& r) {
+  if (r.verdict == "none") return "no gap: the model meets the fit log's operating points within 2 sigma";
+  if (r.verdict == "unexplained") return "no single candidate explains the gap (none halves the check log's residual)";
+  return r.verdict;
+}
+
+}  // namespace
+
+int run_circuit_gap(const CircuitGapArgs& a) {
+  circuit_tools::LoadedCircuit c;
+  if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return kExitBadInput;
+  }
+  circuit_tools::CircuitLog logs[2];
+  const std::string* paths[2] = {&a.fit, &a.check};
+  for (int i = 0; i < 2; ++i) {
+    logs[i] = circuit_tools::read_circuit_log(*paths[i], c.file);
+    for (const auto& n : logs[i].notes) fmt::print(stderr, "{}\n", n);
+    if (logs[i].error) {
+      fmt::print(stderr, "{}\n", logs[i].error->to_string());
+      return kExitBadInput;
+    }
+  }
+  const gap::CircuitGapResult r = gap::circuit_gap(c, logs[0], logs[1]);
+  if (r.error) {
+    fmt::print(stderr, "hstmon gap --circuit {}: {}\n", a.circuit, *r.error);
+    return kExitBadInput;
+  }
+  if (a.json) {
+    nlohmann::json where = nlohmann::json::object();
+    for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = num(r.mean_fit[ch]);
+    nlohmann::json ranked = nlohmann::json::array();
+    for (const auto& e : r.ranked) {
+      ranked.push_back({{"effect", e.effect.name}, {"magnitude", num(e.magnitude)}, {"unit", unit_of(c, e.effect)},
+                        {"rms_fit", num(e.rms_fit)}, {"rms_check", num(e.rms_check)}});
+    }
+    const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
+                              {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", num(r.rms_check)},
+                              {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict}};
+    fmt::print("{}\n", j.dump());
+    return kExitOk;
+  }
+  fmt::print("hstmon gap --circuit {}: fit {} ({} operating points), check {} ({})\n", a.circuit, a.fit, r.fit_points,
+             a.check, r.check_points);
+  fmt::print("\n  verdict: {}\n", verdict_words(r));
+  fmt::print("\n  where the gap lies (mean of model − reading over the fit log's points, in sensor σ):\n   ");
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) fmt::print(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
+  fmt::print("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
+  fmt::print("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS", "check RMS",
+             "shrink");
+  for (const auto& e : r.ranked) {
+    const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
+    fmt::print("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude, unit_of(c, e.effect),
+               e.rms_fit, e.rms_check, shrink);
+  }
+  return kExitOk;
+}
+
+}  // namespace hstmon::cli

@@ -1,0 +1,21 @@
+#pragma once
+// `hstmon gap --circuit FILE --fit LOG --check LOG`: the gap tool on any circuit file
+// (hstmon_gap circuit_gap.hpp): candidates derived from the circuit, fitted on one log,
+// judged on the withheld one.
+#include <string>
+
+namespace hstmon::cli {
+
+/// The options of gap that apply with --circuit.
+struct CircuitGapArgs {
+  std::string circuit;
+  std::string params;  ///< "" = <stem>.params.json beside it
+  std::string fit, check;
+  bool json = false;
+};
+
+/// Runs it and prints the result; errors as file:line:column on stderr.
+/// @return kExitOk or kExitBadInput
+int run_circuit_gap(const CircuitGapArgs& a);
+
+}  // namespace hstmon::cli
