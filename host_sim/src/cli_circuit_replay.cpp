@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "cli_commands.hpp"
@@ -134,6 +135,30 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   }
 }
 
+// Measured, model and residual per row in each sensor's unit ("nan" where absent).
+std::string write_circuit_residuals(const std::string& path, const LoadedCircuit& c, const CircuitReplayResult& r) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return "cannot open " + path + " for writing";
+  std::vector<double> k;
+  std::string head = "t[s]";
+  for (const host::CircuitSensor& s : c.file.sensors) {
+    const std::string unit = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
+    const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
+    k.push_back(u.ok() ? 1.0 / u.conversion.factor : 1.0);
+    head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}]", s.name, unit);
+  }
+  std::fprintf(f, "%s,health\n", head.c_str());
+  for (const auto& tr : r.trace) {
+    std::string line = fmt::format("{}", tr.t);
+    for (std::size_t ch = 0; ch < k.size(); ++ch) {
+      line += fmt::format(",{},{},{}", tr.y[ch] * k[ch], tr.y_hat[ch] * k[ch], tr.r[ch] * k[ch]);
+    }
+    std::fprintf(f, "%s,%u\n", line.c_str(), tr.health);
+  }
+  const bool ok = std::ferror(f) == 0;
+  return std::fclose(f) == 0 && ok ? std::string() : "write failed: " + path;
+}
+
 }  // namespace
 
 int run_circuit_replay(const CircuitReplayArgs& a) {
@@ -152,11 +177,20 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
+  o.keep_trace = !a.residuals_csv.empty();
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   if (a.json) {
     print_json(a, c, r);
   } else {
     print_human(a, c, r);
+  }
+  if (!a.residuals_csv.empty()) {
+    const std::string err = write_circuit_residuals(a.residuals_csv, c, r);
+    if (!err.empty()) {
+      fmt::print(stderr, "hstmon replay: {}\n", err);
+      return kExitBadInput;
+    }
+    if (!a.json) fmt::print("  residuals written to {}\n", a.residuals_csv);
   }
   return kExitOk;
 }

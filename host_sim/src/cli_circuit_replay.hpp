@@ -14,6 +14,7 @@ struct CircuitReplayArgs {
   double tick = 0.0;         ///< [s]; 0 = the log's median period, at most 10 ms
   std::string init = "auto"; ///< auto | rest | steady
   bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
+  std::string residuals_csv; ///< --residuals: measured, model and residual per row ("" = none)
 };
 
 /// Runs it and prints the result (human, or JSON lines); errors as file:line:column on

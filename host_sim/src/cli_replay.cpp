@@ -281,7 +281,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       exit_code = run_replay(*args);
       return;
     }
-    for (const char* opt : {"--residuals", "--plot", "--map", "--separator", "--lenient"}) {
+    for (const char* opt : {"--plot", "--map", "--separator", "--lenient"}) {
       if (cmd->count(opt) > 0) {
         fmt::print(stderr, "hstmon: {} does not go with --circuit (yet)\n", opt);
         exit_code = kExitUsage;
@@ -296,6 +296,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     c.tick = args->tick;
     c.init = args->init;
     c.diagnose = !args->no_diagnosis;
+    c.residuals_csv = args->residuals_csv;
     exit_code = run_circuit_replay(c);
   });
 }

@@ -244,6 +244,18 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     for (std::size_t ch = 0; ch < channels; ++ch) {
       if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs.residual()[static_cast<int>(ch)], t[k], k);
     }
+    if (o.keep_trace) {
+      CircuitTraceRow tr;
+      tr.t = t[k];
+      tr.health = flags;
+      for (std::size_t ch = 0; ch < channels; ++ch) {
+        const int i = static_cast<int>(ch);
+        tr.y.push_back(meas[ch] != nullptr ? meas[ch][k] : std::nan(""));
+        tr.y_hat.push_back(obs.estimate()[i]);
+        tr.r.push_back((rv & (1u << ch)) != 0 ? obs.residual()[i] : std::nan(""));
+      }
+      res.trace.push_back(std::move(tr));
+    }
   }
   drain_events();
   res.ticks = obs.ticks();

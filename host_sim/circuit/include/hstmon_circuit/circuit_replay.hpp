@@ -31,6 +31,14 @@ struct CircuitReplayOptions {
   double tick = 0.0;                         ///< observer tick [s]; 0 = the log's median period, at most 10 ms
   host::InitMode init = host::InitMode::kAuto;
   bool diagnose = true;                      ///< run the fault matcher (false: residuals only)
+  bool keep_trace = false;                   ///< keep measured, model and residual per row (CircuitReplayResult::trace)
+};
+
+/// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).
+struct CircuitTraceRow {
+  double t = 0.0;                 ///< [s]
+  std::vector<double> y, y_hat, r;
+  std::uint32_t health = 0;       ///< HealthFlag bits of the row's tick
 };
 
 /// Result of a circuit replay; channels in the circuit's sensor order, SI units.
@@ -52,6 +60,7 @@ struct CircuitReplayResult {
   std::string final_status = "nominal";       ///< matcher status after the last row
   std::size_t table_rows = 0;                 ///< hypotheses in the circuit's fault table (0: not run)
   std::vector<std::string> undetectable;      ///< parameter faults without a row (no visible steady change)
+  std::vector<CircuitTraceRow> trace;         ///< per row, if CircuitReplayOptions::keep_trace
   std::vector<std::string> notes;
 };
 
