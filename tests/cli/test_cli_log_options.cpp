@@ -133,6 +133,7 @@ TEST(CliLogOptions, BadOptionValuesInOneStyle) {
     EXPECT_NE(sep.output.find("hstmon " + name + ": error: --separator must be"), std::string::npos) << sep.output;
     const CliRun rate = run(cmd + " --rate -5");
     EXPECT_EQ(rate.exit_code, 1) << name << ": " << rate.output;
+    EXPECT_EQ(rate.output.rfind("hstmon: error: --rate", 0), 0u) << name << ": " << rate.output;
   }
 }
 

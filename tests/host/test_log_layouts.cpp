@@ -236,3 +236,12 @@ TEST(LogMessages, WideExportGivesFewShortNotes) {
   ASSERT_FALSE(e.ok());
   EXPECT_LT(e.error->to_string().size(), 300u);
 }
+
+// A units row with no names row next to it is still refused, but the message says what
+// the line looks like instead of only "duplicate column name 'V'".
+TEST(InstrumentExports, UnitsRowWithoutNamesSaysSo) {
+  const auto d = read("s\tV\tV\tbar\r\n0\t1\t2\t3\r\n");
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error->message.find("duplicate column name 'V'"), std::string::npos) << d.error->message;
+  EXPECT_NE(d.error->message.find("reads as a units row"), std::string::npos) << d.error->message;
+}

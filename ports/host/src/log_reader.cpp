@@ -379,8 +379,13 @@ class Parser {
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
         if (detail::iequals(cells_[i].name, cells_[j].name)) {
+          // Units taken for names ("V" twice): say so rather than only "duplicate".
+          const bool unit = unit_score(header, sep_) * 2 > cells_.size();
           fail(header, cells_[i].name_pos, "duplicate column name '" + printable(cells_[i].name) +
-                                               "' (also field " + std::to_string(j + 1) + ")");
+                                               "' (also field " + std::to_string(j + 1) + ")" +
+                                               (unit ? "; this line reads as a units row: the column names "
+                                                       "must be on the line right above or below it"
+                                                     : ""));
           return false;
         }
       }
