@@ -211,7 +211,14 @@ TEST(LogRate, TimeFromTheRowIndexStartsAtTheLoggedTime) {
   const auto none = read("p_mi\n1\n2\n", o);
   EXPECT_LOG_OK(none);
   EXPECT_EQ(none.t, (std::vector<double>{0.0, 0.5}));
+  // A start time so large that steps of 1/rate vanish is an error, not equal times.
+  o.rate = 1000.0;
+  const auto huge = read("t,p_mi\n1e20,1\n1e20,2\n", o);
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.error->message.find("too large for steps"), std::string::npos) << huge.error->message;
+  EXPECT_EQ(huge.rows(), 0u);
   // A lenient read with a rate keeps the rows before a bad one, timed by the rate.
+  o.rate = 2.0;
   o.lenient = true;
   const auto part = read("p_mi\n1\n2\nx\n", o);
   ASSERT_FALSE(part.ok());

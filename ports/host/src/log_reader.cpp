@@ -862,7 +862,21 @@ class Parser {
       }
     }
     t.resize(rows_);
-    for (std::size_t i = 0; i < rows_; ++i) t[i] = t0 + static_cast<double>(i) / rate;
+    for (std::size_t i = 0; i < rows_; ++i) {
+      t[i] = t0 + static_cast<double>(i) / rate;
+      // A huge start time swallows steps of 1/rate (1e20 s + 1 ms = 1e20 s).
+      if (i > 0 && !(t[i] > t[i - 1])) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "time from the sample rate does not increase: start time %.9g s is too large for steps of %.3g s",
+                      t0, 1.0 / rate);
+        if (!out_.error) fail_at(out_.header_line, 1, msg);
+        rows_ = i;
+        trim_to_kept_rows();
+        t.resize(rows_);
+        if (!opt_.lenient) rows_ = 0;
+        return;
+      }
+    }
   }
 
   /// Skipped rows that get a note of their own (a clock reset can skip thousands).
