@@ -103,6 +103,9 @@ TEST(CliLogOptions, IdentifyTakesTheLogOptions) {
   const CliRun params = run("identify " + spider8_path() + " " + spider8_options() + " --params " + bad + " --out x");
   EXPECT_EQ(params.exit_code, 2) << params.output;
   EXPECT_NE(params.output.find(bad + ":3:"), std::string::npos) << params.output;
+  const CliRun prior = run("identify " + spider8_path() + " " + spider8_options() + " --prior " + bad + " --out x");
+  EXPECT_EQ(prior.exit_code, 2) << prior.output;
+  EXPECT_NE(prior.output.find(bad + ":3:"), std::string::npos) << prior.output;
 }
 
 TEST(CliLogOptions, GapTakesTheLogOptions) {

@@ -158,6 +158,21 @@ TEST(LogOptions, ColumnMapSplitsAtTheLastEquals) {
   EXPECT_LT(hh::add_column_map(o, std::string(5000, 'x')).size(), 200u) << "a long entry is not echoed whole";
 }
 
+// A name is matched ignoring case and the width of blank runs: one typed space finds
+// the Spider8's two.
+TEST(LogOptions, MapNameIgnoresBlankWidth) {
+  hh::ReadOptions o;
+  ASSERT_EQ(hh::add_column_map(o, "time spider8_1 ch=1=t"), "");
+  o.rate = 4800.0;
+  const auto d = read(hstmon_test::spider8_export(10), o);
+  EXPECT_LOG_OK(d);
+  EXPECT_EQ(d.source_columns[hh::index(Signal::kT)], 1u);
+  EXPECT_EQ(d.notes.size(), 7u) << "the other seven columns";
+  o.column_map = {{"time spider8_1 ch=", "t"}};
+  const auto partial = read(hstmon_test::spider8_export(10), o);
+  EXPECT_EQ(partial.source_columns[hh::index(Signal::kT)], 0u) << "no prefix match";
+}
+
 TEST(LogOptions, ColumnNumberWinsAndMustExist) {
   hh::ReadOptions o;
   o.column_number_map = {{2, "p_mo"}};

@@ -68,7 +68,8 @@ struct ReadOptions {
   /// and the rows before it are kept (error is still set).
   bool lenient = false;
   /// Log column name → canonical signal name, e.g. {"Druck_A", "p_mi"}. Keys and
-  /// targets match ignoring ASCII case. A target of "" drops the column without a note.
+  /// targets match ignoring ASCII case (keys also the width of blank runs: "Time CH=1"
+  /// finds "Time  CH=1"). A target of "" drops the column without a note.
   std::map<std::string, std::string> column_map;
   /// Column number (1-based, as in the header) → canonical signal name, e.g. {8, "p_pp"};
   /// for names that repeat or are awkward to type. Wins over a column_map entry for the
