@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "cli_commands.hpp"
+#include "cli_log_options.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"hstmon — hydrostatic transmission monitor (host tools)"};
@@ -10,7 +11,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "hstmon 0.1.0");
   // Command-line errors in the style of every other hstmon error ("who: error: what").
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return fmt::format("hstmon: error: {}\nRun with --help for more information.\n", e.what());
+    return fmt::format("hstmon: error: {}\nRun with --help for more information.\n", hstmon::cli::capped(e.what()));
   });
   int exit_code = hstmon::cli::kExitOk;
   hstmon::cli::add_replay_command(app, exit_code);

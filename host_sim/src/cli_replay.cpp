@@ -277,7 +277,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
   cmd->add_option("--tick", args->tick, "Observer tick [s] (default: the log's sample period, at most 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--init", args->init, "Initial state: auto (from the first row's measurements), rest or steady")
       ->check(CLI::IsMember({"auto", "rest", "steady"}));
   add_log_options(*cmd, args->io, "JSON parameter file (default: thesis Table 2.2)");

@@ -137,6 +137,7 @@ TEST(CliLogOptions, BadOptionValuesInOneStyle) {
     const CliRun rate = run(cmd + " --rate -5");
     EXPECT_EQ(rate.exit_code, 1) << name << ": " << rate.output;
     EXPECT_EQ(rate.output.rfind("hstmon: error: --rate", 0), 0u) << name << ": " << rate.output;
+    EXPECT_LT(longest_line(rate.output), 120u) << name << ": " << rate.output;
   }
 }
 
