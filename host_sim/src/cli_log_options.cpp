@@ -2,10 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-#include <exception>
 #include <string>
 
+#include "cli_validators.hpp"
 #include "hstmon_host/log_options.hpp"
 
 namespace hstmon::cli {
@@ -24,24 +23,6 @@ void add_log_options(CLI::App& cmd, LogOptionArgs& args, const std::string& para
                  "sample period, or none)")
       ->check(positive_number());
   cmd.add_option(params_names, args.params, params_help);
-}
-
-CLI::Validator positive_number() {
-  return CLI::Validator(
-      [](const std::string& text) -> std::string {
-        double v = 0.0;
-        std::size_t used = 0;
-        try {
-          v = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != text.size() || used == 0 || !(v > 0.0) || !std::isfinite(v)) {
-          return "must be a number above 0, got '" + capped(text, 40) + "'";
-        }
-        return {};
-      },
-      "POSITIVE");
 }
 
 std::optional<host::ReadOptions> to_read_options(const LogOptionArgs& args, const char* command) {

@@ -40,10 +40,6 @@ host::LogData read_log_reporting(const std::string& path, const host::ReadOption
 /// appended: no message fills a screen.
 std::string capped(const std::string& message, std::size_t max_chars = 400);
 
-/// A CLI11 check for a number above 0 whose message is one short line (CLI11's own
-/// PositiveNumber prints the largest double in full: 310 digits).
-CLI::Validator positive_number();
-
 /// Notes printed per log before "… and N more notes".
 inline constexpr std::size_t kMaxNotes = 30;
 

@@ -15,6 +15,7 @@
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "cli_log_options.hpp"
+#include "cli_validators.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
