@@ -54,19 +54,6 @@ using Model = ThesisReducedModel<double>;
 using Mon = Monitor<double>;
 using Obs = Mon::Obs;
 
-ReplayEvent to_replay_event(const Mon::Event& e) {
-  ReplayEvent out;
-  out.t = e.time;
-  out.event = to_string(e.kind);
-  out.consistent = e.consistent;
-  // The matcher's cosine is negative when the residuals point away from a fault's
-  // direction: no match at all, so 0 (a printed "-0.3" read as a bug).
-  for (int j = 0; j < e.count; ++j) {
-    out.candidates.push_back({e.candidate[j].name, std::max(0.0, static_cast<double>(e.candidate[j].score))});
-  }
-  return out;
-}
-
 // Median of the positive sample intervals; 0 for fewer than two rows.
 double median_interval(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;
@@ -230,6 +217,19 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   res.ticks = obs.ticks();
   res.final_status = to_string(mon.matcher().status());
   return res;
+}
+
+ReplayEvent to_replay_event(const MatchEvent<double>& e) {
+  ReplayEvent out;
+  out.t = e.time;
+  out.event = to_string(e.kind);
+  out.consistent = e.consistent;
+  // The matcher's cosine is negative when the residuals point away from a fault's
+  // direction: no match at all, so 0 (a printed "-0.3" read as a bug).
+  for (int j = 0; j < e.count; ++j) {
+    out.candidates.push_back({e.candidate[j].name, std::max(0.0, static_cast<double>(e.candidate[j].score))});
+  }
+  return out;
 }
 
 }  // namespace hstmon::host
