@@ -7,11 +7,13 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli_circuit_gap.hpp"
 #include "cli_commands.hpp"
+#include "cli_log_options.hpp"
 #include "hstmon_gap/gap.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -21,7 +23,8 @@ namespace hstmon::cli {
 namespace {
 
 struct GapArgs {
-  std::string fit, check, params, report;
+  std::string fit, check, report;
+  LogOptionArgs io;  // --map, --separator, --lenient, --rate, --params (both logs)
   bool json = false;
   bool refit = false;
   std::vector<std::string> effects;
@@ -30,8 +33,10 @@ struct GapArgs {
 };
 
 int run_gap_command(const GapArgs& a) {
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "gap");
+  if (!ro) return kExitUsage;
   host::ParamsFileResult pf;
-  if (!read_params_option(a.params, pf)) return kExitBadInput;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
   const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
   const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
   gap::GapOptions o;
@@ -42,7 +47,7 @@ int run_gap_command(const GapArgs& a) {
     for (const auto& n : a.effects) {
       const auto e = gap::effect_from_name(n);
       if (!e) {
-        fmt::print(stderr, "error: unknown effect '{}'\n", n);
+        fmt::print(stderr, "hstmon gap: error: unknown effect '{}'\n", n);
         return kExitUsage;
       }
       o.effects.push_back(*e);
@@ -51,16 +56,13 @@ int run_gap_command(const GapArgs& a) {
   host::LogData logs[2];
   const std::string* paths[2] = {&a.fit, &a.check};
   for (int i = 0; i < 2; ++i) {
-    logs[i] = host::read_log(*paths[i]);
-    for (const auto& n : logs[i].notes) fmt::print(stderr, "{}\n", n);
-    if (logs[i].error) {
-      fmt::print(stderr, "{}\n", logs[i].error->to_string());
-      return kExitBadInput;
-    }
+    logs[i] = read_log_reporting(*paths[i], *ro);
+    // A lenient read keeps the rows before a bad one; gap fits on whole logs only.
+    if (logs[i].error) return kExitBadInput;
   }
   const gap::GapResult r = gap::run_gap(logs[0], logs[1], params, inputs, o);
   if (!r.ok) {
-    fmt::print(stderr, "error: {}\n", r.error);
+    fmt::print(stderr, "hstmon gap: error: {}\n", capped(r.error));
     return kExitBadInput;
   }
   if (a.json) {
@@ -71,7 +73,7 @@ int run_gap_command(const GapArgs& a) {
   if (!a.report.empty()) {
     const std::string err = gap::write_report(r, a.report, a.fit, a.check);
     if (!err.empty()) {
-      fmt::print(stderr, "error: report: {}\n", err);
+      fmt::print(stderr, "hstmon gap: error: report: {}\n", err);
       return kExitBadInput;
     }
     if (!a.json) fmt::print("report: {}/report.md\n", a.report);
@@ -87,7 +89,7 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       "gap", "Where model and machine disagree (channels, balance equations), which unmodelled effect explains it, how far the gap shrinks");
   cmd->add_option("--fit", args->fit, "log to fit the effects on (CSV as for replay, with p_sup and kp)")->required();
   cmd->add_option("--check", args->check, "withheld log to judge the fitted effects on")->required();
-  cmd->add_option("--params", args->params, "nominal parameter file (default Table 2.2)");
+  add_log_options(*cmd, args->io, "nominal parameter file (default Table 2.2)");
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
   cmd->add_option("--report", args->report, "directory for report.md and PNG plots");
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
@@ -101,16 +103,17 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       exit_code = run_gap_command(*args);
       return;
     }
-    for (const char* opt : {"--report", "--refit-nominal", "--effects", "--max-step"}) {
+    for (const char* opt : {"--report", "--refit-nominal", "--effects", "--max-step", "--map", "--separator", "--lenient",
+                            "--rate"}) {
       if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon gap: {} does not go with --circuit\n", opt);
+        fmt::print(stderr, "hstmon gap: error: {} does not go with --circuit (yet)\n", opt);
         exit_code = kExitUsage;
         return;
       }
     }
     CircuitGapArgs c;
     c.circuit = args->circuit;
-    c.params = args->params;
+    c.params = args->io.params;
     c.fit = args->fit;
     c.check = args->check;
     c.json = args->json;

@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli_circuit_identify.hpp"
 #include "cli_commands.hpp"
+#include "cli_log_options.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_ident/identified_outputs.hpp"
@@ -39,7 +41,7 @@ struct IdentifyArgs {
   std::string header;
   bool json = false;
   std::string report;
-  std::string prior;
+  LogOptionArgs io;  // --map, --separator, --lenient, --rate, --params (alias --prior)
   double min_duration = 1.0;
   std::size_t min_samples = 3;
   bool assume_steady = false;
@@ -70,12 +72,14 @@ struct Report {
 };
 
 void plot_or_warn(const std::string& err) {
-  if (!err.empty()) fmt::print(stderr, "hstmon: warning: {}\n", err);
+  if (!err.empty()) fmt::print(stderr, "hstmon identify: warning: {}\n", err);
 }
 
 int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   host::ParamsFileResult pf;
-  if (!read_params_option(a.prior, pf)) return kExitBadInput;
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "identify");
+  if (!ro) return kExitUsage;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
   const ThesisParams<double> prior = pf.params.value_or(ThesisParams<double>{});
   const ThesisInputs<double> defaults = pf.inputs.value_or(ThesisInputs<double>{});
   id::SteadyWindowOptions wo;
@@ -90,15 +94,11 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   nlohmann::json jwin = nlohmann::json::array();
   rep("hstmon identify — steady-state regression of the thesis model (seed 000 §2.3)\n\n");
   for (const std::string& path : a.logs) {
-    const host::LogData log = host::read_log(path);
-    for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
-    if (log.error) {
-      fmt::print(stderr, "{}\n", log.error->to_string());
-      return kExitBadInput;
-    }
+    const host::LogData log = read_log_reporting(path, *ro);
+    if (log.error) return kExitBadInput;
     const id::SteadyWindowResult w = id::find_steady_windows(log, wo);
     if (w.error) {
-      fmt::print(stderr, "{}\n", *w.error);
+      fmt::print(stderr, "{}\n", capped(*w.error));
       return kExitBadInput;
     }
     if (w.windows.empty()) {
@@ -133,9 +133,10 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   if (a.noise_speed > 0.0) fo.noise[3] = a.noise_speed;
   const id::ThesisFitResult fit = id::fit_thesis_steady(points, settings, fo);
   if (!fit.ok()) {
-    std::string files;
-    for (const auto& l : a.logs) files += (files.empty() ? "" : ", ") + l;
-    fmt::print(stderr, "{}: error: {}\n", files, *fit.error);
+    // One log named: the fit is over all of them, and a list of many would fill the screen.
+    const std::string files =
+        a.logs.size() == 1 ? a.logs[0] : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
+    fmt::print(stderr, "{}\n", capped(fmt::format("{}: error: {}", files, *fit.error)));
     return kExitBadInput;
   }
 
@@ -368,15 +369,15 @@ void run_studies(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
 
 int run_identify(const IdentifyArgs& a) {
   if (a.logs.empty() && a.paper.empty() && !a.studies) {
-    fmt::print(stderr, "hstmon identify: give LOG files, --paper FILE.csv or --studies\n");
+    fmt::print(stderr, "hstmon identify: error: give LOG files, --paper FILE.csv or --studies\n");
     return kExitUsage;
   }
   if (!a.logs.empty() && a.out.empty()) {
-    fmt::print(stderr, "hstmon identify: --out FILE is required with LOG files\n");
+    fmt::print(stderr, "hstmon identify: error: --out FILE is required with LOG files\n");
     return kExitUsage;
   }
   if (a.studies && a.report.empty()) {
-    fmt::print(stderr, "hstmon identify: --studies needs --report DIR for its plots\n");
+    fmt::print(stderr, "hstmon identify: error: --studies needs --report DIR for its plots\n");
     return kExitUsage;
   }
   if (!a.report.empty()) {
@@ -414,7 +415,8 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
   cmd->add_flag("--json", args->json, "print the results as JSON instead of the human report");
   cmd->add_option("--report", args->report, "directory for report.txt, report.json and SVG plots");
-  cmd->add_option("--prior", args->prior, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)");
+  add_log_options(*cmd, args->io, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)",
+                  "--params,--prior");
   cmd->add_option("--min-duration", args->min_duration, "shortest steady window [s]")->capture_default_str();
   cmd->add_option("--min-samples", args->min_samples, "fewest samples in a steady window")->capture_default_str();
   cmd->add_flag("--assume-steady", args->assume_steady,
@@ -431,7 +433,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--studies", args->studies, "run the paper's parameter studies (Figs. 7-9) into --report DIR");
   cmd->add_option("--circuit", args->circuit,
                   "fit parameters of this circuit file (docs/circuits.md) to the logs' steady operating points; "
-                  "--prior is then its parameter file (default <stem>.params.json beside it)");
+                  "--params is then its parameter file (default <stem>.params.json beside it)");
   cmd->add_option("--fit", args->fit, "with --circuit: parameters to fit, by name (comma separated, repeatable)")
       ->delimiter(',')
       ->expected(1)
@@ -440,7 +442,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->callback([args, cmd, &exit_code]() {
     if (args->circuit.empty()) {
       if (cmd->count("--fit") > 0) {
-        fmt::print(stderr, "hstmon identify: --fit goes with --circuit\n");
+        fmt::print(stderr, "hstmon identify: error: --fit goes with --circuit\n");
         exit_code = kExitUsage;
         return;
       }
@@ -449,9 +451,9 @@ void add_identify_command(CLI::App& app, int& exit_code) {
     }
     for (const char* opt : {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
                             "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
-                            "--studies"}) {
+                            "--studies", "--map", "--separator", "--lenient", "--rate"}) {
       if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon identify: {} does not go with --circuit\n", opt);
+        fmt::print(stderr, "hstmon identify: error: {} does not go with --circuit (yet)\n", opt);
         exit_code = kExitUsage;
         return;
       }
@@ -459,7 +461,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
     CircuitIdentifyArgs c;
     c.logs = args->logs;
     c.circuit = args->circuit;
-    c.params = args->prior;
+    c.params = args->io.params;
     c.fit = args->fit;
     c.out = args->out;
     c.json = args->json;

@@ -15,6 +15,8 @@
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
+#include "cli_log_options.hpp"
+#include "cli_validators.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -27,15 +29,12 @@ namespace {
 
 struct ReplayArgs {
   std::string log;
-  std::string params;
+  LogOptionArgs io;  // --map, --separator, --lenient, --rate, --params
   bool json = false;
   std::string residuals_csv;
   std::string plot;
   double tick = 0.0;
   std::string init = "auto";
-  std::vector<std::string> maps;
-  std::string separator;
-  bool lenient = false;
   bool no_progress = false;
   bool no_diagnosis = false;
   std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
@@ -181,36 +180,18 @@ std::string write_residual_csv(const std::string& path, const host::ReplayResult
 }
 
 int run_replay(const ReplayArgs& a) {
-  host::ReadOptions ro;
-  ro.lenient = a.lenient;
-  if (a.separator == "tab" || a.separator == "\\t") {
-    ro.separator = '\t';
-  } else if (a.separator.size() == 1) {
-    ro.separator = a.separator[0];
-  } else if (!a.separator.empty()) {
-    fmt::print(stderr, "hstmon: --separator must be one character or 'tab'\n");
-    return kExitUsage;
-  }
-  for (const auto& m : a.maps) {
-    const auto eq = m.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
-      fmt::print(stderr, "hstmon: --map takes LOG_COLUMN=SIGNAL (e.g. Druck_A=p_mi), got '{}'\n", m);
-      return kExitUsage;
-    }
-    ro.column_map[m.substr(0, eq)] = m.substr(eq + 1);
-  }
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "replay");
+  if (!ro) return kExitUsage;
 
   host::ParamsFileResult pf;
-  if (!read_params_option(a.params, pf)) return kExitBadInput;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
   const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
   const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
 
-  const host::LogData log = host::read_log(a.log, ro);
-  for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
+  const host::LogData log = read_log_reporting(a.log, *ro);
   if (log.error) {
-    fmt::print(stderr, "{}\n", log.error->to_string());
-    if (!a.lenient || log.rows() == 0) return kExitBadInput;
-    fmt::print(stderr, "hstmon: --lenient: replaying the {} valid rows before the error\n", log.rows());
+    if (!a.io.lenient || log.rows() == 0) return kExitBadInput;
+    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
   }
 
   host::ReplayOptions opt;
@@ -243,7 +224,7 @@ int run_replay(const ReplayArgs& a) {
   if (!a.plot.empty()) {
     const std::string err = plot_trace(r, "hstmon replay " + a.log, a.plot);
     if (!err.empty()) {
-      fmt::print(stderr, "hstmon: plot: {}\n", err);
+      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
       rc = kExitBadInput;
     } else if (!a.json) {
       fmt::print("  plot written to {}\n", a.plot);
@@ -258,18 +239,14 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ReplayArgs>();
   CLI::App* cmd = app.add_subcommand("replay", "Replay a sensor log through the observer and report residuals");
   cmd->add_option("LOG", args->log, "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m)")->required();
-  cmd->add_option("--params", args->params, "JSON parameter file (default: thesis Table 2.2)");
   cmd->add_flag("--json", args->json, "One JSON object per line instead of the human summary");
   cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
   cmd->add_option("--tick", args->tick, "Observer tick [s] (default: the log's sample period, at most 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--init", args->init, "Initial state: auto (from the first row's measurements), rest or steady")
       ->check(CLI::IsMember({"auto", "rest", "steady"}));
-  cmd->add_option("--map", args->maps, "Map a log column to a signal: LOG_COLUMN=SIGNAL (repeatable)");
-  cmd->add_option("--separator", args->separator, "Field separator: , ; or tab (default: detected)");
-  cmd->add_flag("--lenient", args->lenient,
-                "Skip rows whose time does not increase (noted); on any other bad row, report it and replay the rows before it");
+  add_log_options(*cmd, args->io, "JSON parameter file (default: thesis Table 2.2)");
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->add_option("--circuit", args->circuit,
@@ -281,9 +258,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       exit_code = run_replay(*args);
       return;
     }
-    for (const char* opt : {"--plot", "--map", "--separator", "--lenient"}) {
+    for (const char* opt : {"--plot", "--map", "--separator", "--lenient", "--rate"}) {
       if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon: {} does not go with --circuit (yet)\n", opt);
+        fmt::print(stderr, "hstmon replay: error: {} does not go with --circuit (yet)\n", opt);
         exit_code = kExitUsage;
         return;
       }
@@ -291,7 +268,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     CircuitReplayArgs c;
     c.log = args->log;
     c.circuit = args->circuit;
-    c.params = args->params;
+    c.params = args->io.params;
     c.json = args->json;
     c.tick = args->tick;
     c.init = args->init;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_validators.hpp"
 #include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/sim.hpp"
 #include "sim_circuit.hpp"
@@ -179,8 +180,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"thesis", "paper"}));
   app.add_option("--preset", o.preset,
                  "sensor preset: thesis_das | fast | rig_fast | paper_logger (default: fast / paper_logger)");
-  app.add_option("--rate", o.rate, "sample rate [Hz] (default: the preset's)")->check(CLI::PositiveNumber);
-  app.add_option("--duration", o.duration, "run length [s] (default: the scenario's)")->check(CLI::PositiveNumber);
+  app.add_option("--rate", o.rate, "sample rate [Hz] (default: the preset's)")->check(hstmon::cli::positive_number());
+  app.add_option("--duration", o.duration, "run length [s] (default: the scenario's)")->check(hstmon::cli::positive_number());
   app.add_option("--seed", o.seed, "noise seed (std::mt19937_64)");
   app.add_option("--out", o.out, "output CSV file, - for stdout");
   app.add_flag("--no-noise", o.no_noise, "no sensor noise (lag and ADC kept)");
@@ -189,9 +190,9 @@ int main(int argc, char** argv) {
   app.add_flag("--rpm", o.rpm, "speed in rpm (default rad/s)");
   app.add_flag("--list", o.list, "list scenarios and presets, then exit");
   app.add_option("--lag", o.lag_ms, "transducer time constant of every channel [ms], 0 = none (default: the preset's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(hstmon::cli::non_negative_number());
   app.add_option("--quant", o.quant_bar, "pressure ADC step [bar], 0 = none (default: the preset's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(hstmon::cli::non_negative_number());
   app.add_option("--adc-bits", o.adc_bits, "pressure ADC bits over the transmitter range (instead of --quant)")
       ->check(CLI::Range(4, 24))
       ->excludes("--quant");
@@ -202,20 +203,20 @@ int main(int argc, char** argv) {
   app.add_option("--start", o.start, "rig: rest (logger runs before the supply) | steady")
       ->check(CLI::IsMember({"rest", "steady"}));
   app.add_option("--supply-on", o.supply_on, "rig: time the supply steps on [s] (default 0: at the first sample)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(hstmon::cli::non_negative_number());
   app.add_option("--cycle", o.cycle, "rig: start/stop cycles ON,OFF [s]: supply on for ON, off for OFF, repeated")
       ->expected(2)
       ->delimiter(',');
   app.add_option("--load", o.load, "rig: PRV setting over time: constant | steps | ramp | sine")
       ->check(CLI::IsMember({"constant", "steps", "ramp", "sine"}));
   app.add_option("--load-period", o.load_period, "rig: steps' hold, a ramp's leg or the sine's period [s] (default 2)")
-      ->check(CLI::PositiveNumber);
+      ->check(hstmon::cli::positive_number());
   app.add_option("--load-range", o.load_range, "rig: kp range LO,HI as multiples of 4.41e-8 (default 0.65,1.6)")
       ->expected(2)
       ->delimiter(',');
   app.add_option("--load-seed", o.load_seed, "rig: seed of the step levels");
   app.add_option("--blockage", o.blockage, "rig: 50 % PRV blockage (true kp halved, logged kp kept) from T [s]")
-      ->check(CLI::NonNegativeNumber);
+      ->check(hstmon::cli::non_negative_number());
   app.add_option("--circuit", o.circuit,
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "

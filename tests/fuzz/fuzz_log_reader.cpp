@@ -32,6 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.lenient = (sel & 4u) != 0;
   if (sel & 8u) o.column_map = {{"Druck_A", "p_mi"}, {"speed", "w_m"}, {"junk", ""}};
   if (sel & 16u) o.column_map["P_MI"] = "p_mo";  // may collide with a real p_mo column
+  if (sel & 32u) {  // issue 16: time from the sample rate, a column by number
+    o.rate = 4800.0;
+    o.column_number_map = {{2, "p_pp"}};
+  }
   // The text is passed as is, not NUL-terminated (the API allows that), so a read one
   // past the end is caught. HSTMON_FUZZ_PAD=1 passes a std::string copy instead (its
   // terminator hides an over-read by one byte) to fuzz past a known over-read.

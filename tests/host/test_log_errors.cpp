@@ -230,23 +230,57 @@ TEST(LenientRead, ASkippedRowMustStillBeWellFormed) {
 }
 
 TEST(LenientRead, ClockResetSkipsUpToTheOldTimeWithCappedNotes) {
-  // 0..99 s, then the logger's clock restarts at 0: rows at 0..99 s again are skipped
-  // (not above the last kept time), 100..149 s are kept.
+  // 0..999 s, then the logger's clock steps back 30 s: rows at 970..999 s again are
+  // skipped (not above the last kept time), 1000..1029 s are kept. 30 of 1060 rows
+  // (2.8 %) is within what a lenient read may drop.
+  std::string text = "t,p_mi\n";
+  for (int k = 0; k < 1000; ++k) text += std::to_string(k) + ",1\n";
+  for (int k = 970; k < 1030; ++k) text += std::to_string(k) + ",2\n";
+  const auto d = read_lenient(text);
+  ASSERT_TRUE(d.ok()) << d.error->to_string();
+  EXPECT_EQ(d.rows(), 1030u);
+  EXPECT_EQ(d.skipped_rows, 30u);
+  EXPECT_EQ(d.t[999], 999.0);
+  EXPECT_EQ(d.t[1000], 1000.0);
+  EXPECT_EQ(d.column(Signal::kPMi)[1000], 2.0);
+  ASSERT_EQ(d.notes.size(), 21u) << "20 notes of their own, then one with the count";
+  EXPECT_EQ(d.notes[0].rfind("mem.csv:1002:1: note: time not strictly increasing: 970 s after 999 s", 0), 0u)
+      << d.notes[0];
+  EXPECT_EQ(d.notes[20].rfind("mem.csv:1031:1: note: 30 rows skipped in all", 0), 0u) << d.notes[20];
+  // Strict reads still refuse the log.
+  expect_error(text, 1002, 1, "time not strictly increasing: 970 s after 999 s");
+}
+
+// Issue 16: a lenient read never drops most of a file quietly. A clock reset that
+// would skip 100 of 250 rows (40 %) fails at the first of them, keeps no rows, has no
+// list of skipped rows, and names --rate as the fix.
+TEST(LenientRead, RefusesToDropMoreThanAFewPerCent) {
   std::string text = "t,p_mi\n";
   for (int k = 0; k < 100; ++k) text += std::to_string(k) + ",1\n";
   for (int k = 0; k < 150; ++k) text += std::to_string(k) + ",2\n";
   const auto d = read_lenient(text);
-  ASSERT_TRUE(d.ok()) << d.error->to_string();
-  EXPECT_EQ(d.rows(), 150u);
-  EXPECT_EQ(d.skipped_rows, 100u);
-  EXPECT_EQ(d.t[99], 99.0);
-  EXPECT_EQ(d.t[100], 100.0);
-  EXPECT_EQ(d.column(Signal::kPMi)[100], 2.0);
-  ASSERT_EQ(d.notes.size(), 21u) << "20 notes of their own, then one with the count";
-  EXPECT_EQ(d.notes[0].rfind("mem.csv:102:1: note: time not strictly increasing: 0 s after 99 s", 0), 0u) << d.notes[0];
-  EXPECT_EQ(d.notes[20].rfind("mem.csv:201:1: note: 100 rows skipped in all", 0), 0u) << d.notes[20];
-  // Strict reads still refuse the log.
-  expect_error(text, 102, 1, "time not strictly increasing: 0 s after 99 s");
+  ASSERT_FALSE(d.ok());
+  EXPECT_EQ(d.rows(), 0u);
+  EXPECT_TRUE(d.column(Signal::kPMi).empty());
+  EXPECT_EQ(d.error->line, 102u);
+  EXPECT_EQ(d.error->column, 1u);
+  EXPECT_NE(d.error->message.find("100 of 250 rows (40 %)"), std::string::npos) << d.error->message;
+  EXPECT_NE(d.error->message.find("--rate HZ"), std::string::npos) << d.error->message;
+  EXPECT_TRUE(d.notes.empty()) << d.notes.size() << " notes";
+  EXPECT_LT(d.error->to_string().size(), 300u);
+  // Up to 10 skipped rows are a glitch whatever the share: 10 of 20 rows is accepted.
+  std::string few = "t,p_mi\n";
+  for (int k = 0; k < 10; ++k) few += std::to_string(k) + ",1\n";
+  for (int k = 0; k < 10; ++k) few += "9,1\n";
+  const auto f = read_lenient(few);
+  ASSERT_TRUE(f.ok()) << f.error->to_string();
+  EXPECT_EQ(f.skipped_rows, 10u);
+}
+
+// The strict error for a time that does not increase names the fix for a rounded
+// time column.
+TEST(LogErrors, TimeNotIncreasingNamesTheRateOption) {
+  expect_error("t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "rebuild time from the row index with --rate HZ");
 }
 
 TEST(LenientRead, HeaderErrorsStillGiveNoRows) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/instrument_exports.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -112,6 +113,33 @@ TEST(LogStress, RandomMutationsNeverCrash) {
     }
   }
   EXPECT_GT(errors, 1000);  // the mutations do break most files
+}
+
+// Issue 16's layouts (units row above the names, a metadata block) mutated: the layout
+// detection and the sample-rate time keep the reader's guarantees.
+TEST(LogStress, RandomMutationsOfInstrumentExportsNeverCrash) {
+  const std::string bases[] = {hstmon_test::spider8_export(12), hstmon_test::hmg_export(8),
+                               hstmon_test::hmg_export(8, true)};
+  std::mt19937 rng(16u);
+  hh::ReadOptions rate;
+  rate.rate = 4800.0;
+  rate.column_map = {{"n CH=2", "w_m"}, {"P1", "p_mi"}, {"Time", "t"}};
+  rate.column_number_map = {{8, "p_pp"}};
+  hh::ReadOptions lenient;
+  lenient.lenient = true;
+  lenient.column_number_map = {{1, "t"}};
+  const std::size_t iterations = env_count("HSTMON_FUZZ_ITERATIONS", 4000) / 2;
+  for (const std::string& base : bases) {
+    for (std::size_t i = 0; i < iterations; ++i) {
+      const std::string text = mutate(base, rng);
+      check_log_result(hh::read_log_from_memory(text, "fuzz", rate), text, false);
+      check_log_result(hh::read_log_from_memory(text, "fuzz", lenient), text, true);
+      if (HasFatalFailure()) {
+        ADD_FAILURE() << "input: " << testing::PrintToString(text);
+        return;
+      }
+    }
+  }
 }
 
 TEST(LogStress, RandomMutationsOfParamsNeverCrash) {

@@ -115,6 +115,30 @@ TEST(IdentErrors, SingularDesign) {
   EXPECT_NE(r.error->find("singular design"), std::string::npos) << *r.error;
 }
 
+// Issue 16: with a kp per window there can be hundreds of parameters; the message names
+// a few and counts the rest (it was 77,774 characters long).
+TEST(IdentErrors, SingularDesignMessageStaysShort) {
+  std::vector<OperatingPoint> pts;
+  std::vector<std::string> settings;
+  std::array<double, 4> y{};
+  ASSERT_TRUE(thesis_steady_outputs(ThesisParams<double>{}, ThesisInputs<double>{}, y));
+  for (int k = 0; k < 300; ++k) {
+    OperatingPoint p;
+    p.source = "mem window " + std::to_string(k);
+    p.setting = static_cast<std::size_t>(k);
+    p.y = {NAN, NAN, y[2], y[3]};
+    p.n = 10;
+    p.ss = {0, 0, 9 * 25e6 * 1e12, 9 * 0.0036 * 1e12};  // noise so large no kp is determined
+    pts.push_back(p);
+    settings.push_back(p.source);
+  }
+  const auto r = fit_thesis_steady(pts, settings);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error->find("singular design"), std::string::npos) << *r.error;
+  EXPECT_LT(r.error->size(), 700u) << *r.error;
+  EXPECT_NE(r.error->find(" more"), std::string::npos) << *r.error;
+}
+
 TEST(IdentErrors, NaNs) {
   auto log = testing::steady_staircase_log(2);
   const auto w = find_steady_windows(log);

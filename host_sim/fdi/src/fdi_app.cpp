@@ -15,6 +15,7 @@
 #include <iostream>
 #include <string>
 
+#include "../../src/cli_validators.hpp"
 #include "fdi_report.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/crosscheck.hpp"
@@ -73,13 +74,13 @@ int main(int argc, char** argv) {
   fwd->add_flag("--json", json, "JSON output");
 
   CLI::App* check = app.add_subcommand("crosscheck", "TCG predictions against the nonlinear model");
-  check->add_option("--t-early", cc.t_early, "reference deviation read this long after the fault [s]")->check(CLI::PositiveNumber);
+  check->add_option("--t-early", cc.t_early, "reference deviation read this long after the fault [s]")->check(hstmon::cli::positive_number());
   check->add_flag("--json", json, "JSON output");
 
   CLI::App* header = app.add_subcommand("header", "write the constexpr signature table");
   header->add_option("--out", out, "output file, - for stdout")->required();
-  header->add_option("--sigma-p", sigma_p_bar, "pressure noise level [bar]")->check(CLI::PositiveNumber);
-  header->add_option("--sigma-w", so.sigma_speed_rpm, "speed noise level [rpm]")->check(CLI::PositiveNumber);
+  header->add_option("--sigma-p", sigma_p_bar, "pressure noise level [bar]")->check(hstmon::cli::positive_number());
+  header->add_option("--sigma-w", so.sigma_speed_rpm, "speed noise level [rpm]")->check(hstmon::cli::positive_number());
   header->add_option("--step", so.direction_step, "relative fault size for the direction vector")->check(CLI::Range(1e-6, 0.5));
   header->add_option("--order", so.max_order, "highest derivative order of the TCG")->check(CLI::Range(0, 12));
 

@@ -361,17 +361,24 @@ ThesisFitResult fit_thesis_steady(const std::vector<OperatingPoint>& points, con
     res.kp.push_back(std::exp(lm.x[2 + s]));
   }
   // Core parameters must be identifiable: otherwise the design is singular.
+  // With a kp per steady window there can be thousands: name a few, count the rest.
+  constexpr std::size_t kNamed = 4;
   std::string bad;
+  std::size_t n_bad = 0;
   for (const ParameterEstimate& e : res.params) {
-    if (e.status == ParamStatus::kNotIdentifiable) bad += (bad.empty() ? "" : ", ") + e.name + " (" + e.note + ")";
+    if (e.status != ParamStatus::kNotIdentifiable) continue;
+    if (++n_bad <= kNamed) bad += (bad.empty() ? "" : ", ") + e.name + " (" + e.note + ")";
   }
+  if (n_bad > kNamed) bad += fmt::format(" and {} more", n_bad - kNamed);
   if (!bad.empty() || st.rank < pb.layout.size()) {
     std::string combo;
+    std::size_t n_combo = 0;
     for (std::size_t j = 0; j < st.null_direction.size() && j < res.fitted.size(); ++j) {
-      if (std::fabs(st.null_direction[j]) > 0.1) {
+      if (std::fabs(st.null_direction[j]) > 0.1 && ++n_combo <= kNamed) {
         combo += fmt::format("{}{:+.2f}·ln {}", combo.empty() ? "" : " ", st.null_direction[j], res.fitted[j]);
       }
     }
+    if (n_combo > kNamed) combo += fmt::format(" and {} more terms", n_combo - kNamed);
     res.error = fmt::format("singular design: the data cannot determine {} (Jacobian rank {} of {}, condition {:.3g}; "
                             "least-determined combination {}). Record more loads or all four channels.",
                             bad.empty() ? "every parameter" : bad, st.rank, pb.layout.size(), st.condition, combo);

@@ -119,6 +119,10 @@ class Parser {
       out_.error = LogError{out_.path, 0, 0, "separator option must be ',', ';', tab or 0 (detect)"};
       return;
     }
+    if (!std::isfinite(opt_.rate) || opt_.rate < 0.0 || (opt_.rate > 0.0 && opt_.rate < kMinRate)) {
+      out_.error = LogError{out_.path, 0, 0, "sample rate option must be a finite rate in Hz (at least 1e-6), or 0"};
+      return;
+    }
     Line header;
     if (!next_content_line(header)) {
       if (out_.error) return;
@@ -129,6 +133,7 @@ class Parser {
       }
       return;
     }
+    if (preamble_layout(header)) return;
     out_.header_line = header.number;
     sep_ = opt_.separator != 0 ? opt_.separator : detect_separator(header);
     decimal_comma_ = sep_ != ',';
@@ -225,6 +230,112 @@ class Parser {
                          std::to_string(char_column(line.begin, pos)) + ": note: " + message);
   }
 
+  // ---- layout --------------------------------------------------------------------------
+
+  /// Layouts whose column names are not on the first line: a units row above the names
+  /// (HBM catman/Spider8 exports) or a block of metadata lines above the header (HYDAC
+  /// HMG exports, "key;value" lines). Looks at the lines before the first data row; when
+  /// neither layout fits, rewinds and returns false, and the first line is the header as
+  /// before (with a units row below it, or not). True when it read the log, ok or not.
+  bool preamble_layout(const Line& first) {
+    const char* const rewind_cur = cur_;
+    const std::size_t rewind_line = line_no_;
+    const auto rewind = [&] {
+      cur_ = rewind_cur;
+      line_no_ = rewind_line;
+      out_.error.reset();  // the normal path reports it again, in order
+      bad_ = nullptr;
+      return false;
+    };
+    std::vector<Line> block{first};
+    Line data;
+    bool found = false;
+    while (block.size() <= kMaxPreambleLines && next_content_line(data)) {
+      if (looks_numeric(data)) {
+        found = true;
+        break;
+      }
+      block.push_back(data);
+    }
+    const std::size_t n = block.size();
+    if (!found || n < 2) return rewind();
+    const char sep = opt_.separator != 0 ? opt_.separator : detect_separator(block.back());
+    const bool comma = sep != ',';
+    const std::vector<Field> data_fields = split_fields(data.begin, data.end, sep);
+    for (const Field& f : data_fields) {
+      if (!field_is_number(f.text, comma)) return rewind();
+    }
+    // A names or units row: one field per data field, none of them a number.
+    const auto fits = [&](const Line& l) {
+      return split_fields(l.begin, l.end, sep).size() == data_fields.size() && is_text_row(l, sep, comma);
+    };
+    if (!fits(block[n - 1])) return rewind();
+    const bool pair = fits(block[n - 2]);
+    const std::size_t score_last = unit_score(block[n - 1], sep);
+    const std::size_t score_prev = pair ? unit_score(block[n - 2], sep) : 0;
+    std::size_t names = n - 1;
+    std::optional<std::size_t> units;
+    if (pair && score_prev > score_last) {
+      units = n - 2;  // units above the names
+    } else if (n == 2) {
+      return rewind();  // names first: the usual layout
+    } else if (pair && score_last > score_prev) {
+      names = n - 2;
+      units = n - 1;
+    }
+    sep_ = sep;
+    decimal_comma_ = comma;
+    const std::size_t top = units ? std::min(names, *units) : names;
+    if (top > 0) {
+      const std::string lines = top == 1 ? "line " + std::to_string(block[0].number)
+                                         : "lines " + std::to_string(block[0].number) + "-" +
+                                               std::to_string(block[top - 1].number);
+      note(block[0], block[0].begin, lines + " above the column names taken as metadata, not columns");
+    }
+    out_.header_line = block[names].number;
+    if (!parse_header(block[names])) return true;
+    if (units && !apply_units_row(block[*units])) return true;
+    if (!resolve_columns()) return true;
+    parse_rows(data);
+    return true;
+  }
+
+  /// Only characters of numbers and separators, and a digit: a data row candidate.
+  static bool looks_numeric(const Line& line) noexcept {
+    bool digit = false;
+    for (const char* p = line.begin; p < line.end; ++p) {
+      const char c = *p;
+      if (c >= '0' && c <= '9') {
+        digit = true;
+      } else if (std::strchr(".,;+-eE \t", c) == nullptr || c == '\0') {
+        return false;
+      }
+    }
+    return digit;
+  }
+
+  /// Fields of a units row that name a unit: one this port converts, or a common
+  /// instrument unit it does not (a Spider8 channel left in volts). Tells a units row
+  /// from a names row.
+  static std::size_t unit_score(const Line& line, char sep) {
+    static constexpr std::string_view kOther[] = {"V", "mV", "A", "mA", "°C", "degC", "K", "l/min", "L/min",
+                                                  "N", "kN", "Nm", "mm", "m", "%", "Hz", "kg", "g"};
+    std::size_t score = 0;
+    for (const Field& f : split_fields(line.begin, line.end, sep)) {
+      std::string_view u = f.text;
+      if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
+        u = trim(u.substr(1, u.size() - 2));
+      }
+      if (u.empty() || u == "-") continue;
+      bool known = std::find(std::begin(kOther), std::end(kOther), u) != std::end(kOther);
+      for (Quantity q : {Quantity::kPressure, Quantity::kSpeed, Quantity::kTime, Quantity::kArea, Quantity::kKp}) {
+        known = known || parse_unit(q, u).ok();
+      }
+      if (known) ++score;
+    }
+    return score;
+  }
+
   // ---- header --------------------------------------------------------------------------
 
   static char detect_separator(const Line& header) noexcept {
@@ -268,8 +379,13 @@ class Parser {
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
         if (detail::iequals(cells_[i].name, cells_[j].name)) {
+          // Units taken for names ("V" twice): say so rather than only "duplicate".
+          const bool unit = unit_score(header, sep_) * 2 > cells_.size();
           fail(header, cells_[i].name_pos, "duplicate column name '" + printable(cells_[i].name) +
-                                               "' (also field " + std::to_string(j + 1) + ")");
+                                               "' (also field " + std::to_string(j + 1) + ")" +
+                                               (unit ? "; this line reads as a units row: the column names "
+                                                       "must be on the line right above or below it"
+                                                     : ""));
           return false;
         }
       }
@@ -279,12 +395,15 @@ class Parser {
 
   /// A units row: same line after the header, all fields non-numeric or empty, at least
   /// one non-empty.
-  bool is_units_row(const Line& line) const {
-    const std::vector<Field> fields = split_fields(line.begin, line.end, sep_);
+  bool is_units_row(const Line& line) const { return is_text_row(line, sep_, decimal_comma_); }
+
+  /// No field a number, at least one non-empty: a units or names row.
+  static bool is_text_row(const Line& line, char sep, bool decimal_comma) {
+    const std::vector<Field> fields = split_fields(line.begin, line.end, sep);
     bool any = false;
     for (const Field& f : fields) {
       if (f.text.empty()) continue;
-      if (field_is_number(f.text, decimal_comma_)) return false;
+      if (field_is_number(f.text, decimal_comma)) return false;
       any = true;
     }
     return any;
@@ -319,6 +438,24 @@ class Parser {
     return true;
   }
 
+  /// A column map key and a column name are the same ignoring ASCII case and the width
+  /// of blank runs: "Time Spider8_1 CH=1" names a Spider8's "Time  Spider8_1 CH=1".
+  static bool same_name(std::string_view key, std::string_view name) noexcept {
+    key = trim(key);
+    std::size_t i = 0, j = 0;
+    while (i < key.size() && j < name.size()) {
+      if (detail::is_blank(key[i]) && detail::is_blank(name[j])) {
+        while (i < key.size() && detail::is_blank(key[i])) ++i;
+        while (j < name.size() && detail::is_blank(name[j])) ++j;
+        continue;
+      }
+      if (!detail::iequals(key.substr(i, 1), name.substr(j, 1))) return false;
+      ++i;
+      ++j;
+    }
+    return i == key.size() && j == name.size();
+  }
+
   /// Maps header cells to signals and units; fills cols_ and out_.present.
   bool resolve_columns() {
     struct MapEntry {
@@ -330,14 +467,31 @@ class Parser {
     map.reserve(opt_.column_map.size());
     for (const auto& [k, v] : opt_.column_map) map.push_back({k, v, false});
 
+    for (const auto& [number, target] : opt_.column_number_map) {
+      if (number == 0 || number > cells_.size()) {
+        fail(header_, header_.begin, "column map entry '#" + std::to_string(number) + "' names column " +
+                                         std::to_string(number) + ", the header has " +
+                                         std::to_string(cells_.size()) + " (numbered from 1)");
+        return false;
+      }
+    }
+
     std::array<std::size_t, kSignalCount> field_of{};  // 1-based field giving each signal
+    std::size_t ignored = 0;                             // unknown columns noted so far
+    const HeaderCell* last_ignored = nullptr;
     cols_.resize(cells_.size());
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       const HeaderCell& cell = cells_[i];
       std::string_view target = cell.name;
       bool mapped = false;
+      // A column number names one column whatever its name; it wins over a name entry.
+      const auto by_number = opt_.column_number_map.find(i + 1);
+      if (by_number != opt_.column_number_map.end()) {
+        target = by_number->second;
+        mapped = true;
+      }
       for (MapEntry& e : map) {
-        if (detail::iequals(e.key, cell.name)) {
+        if (!mapped && same_name(e.key, cell.name)) {
           e.used = true;
           target = e.target;
           mapped = true;
@@ -353,7 +507,11 @@ class Parser {
                                            printable(target) + "', which is not a known signal");
           return false;
         }
-        note(header_, cell.name_pos, "column '" + printable(cell.name) + "' is not a known signal; ignored");
+        // A wide export would list every column: the first few, then a count.
+        if (++ignored <= kMaxColumnNotes) {
+          note(header_, cell.name_pos, "column '" + printable(cell.name) + "' is not a known signal; ignored");
+        }
+        last_ignored = &cell;
         continue;
       }
       const std::size_t k = index(*sig);
@@ -375,15 +533,27 @@ class Parser {
       ColumnSpec& c = cols_[i];
       c.factor = unit.conversion.factor;
       c.offset = unit.conversion.offset;
-      c.is_time = *sig == Signal::kT;
-      c.dst = c.is_time ? &out_.t : &out_.values[k];
+      // With a sample rate the time column only gives the start; its values need not increase.
+      c.is_time = *sig == Signal::kT && opt_.rate == 0.0;
+      c.dst = *sig == Signal::kT ? &out_.t : &out_.values[k];
+      if (*sig == Signal::kT) time_column_ = true;
       out_.present[k] = true;
       out_.source_units[k] = std::string(cell.unit);
       out_.source_columns[k] = i + 1;
     }
+    if (ignored > kMaxColumnNotes) {
+      note(header_, last_ignored->name_pos,
+           std::to_string(ignored) + " columns in all are not known signals and ignored (only the first " +
+               std::to_string(kMaxColumnNotes) + " have a note of their own)");
+    }
     if (field_of[index(Signal::kT)] == 0) {
-      fail(header_, header_.begin, "no time column 't' (name one 't', or map one with column_map)");
-      return false;
+      if (opt_.rate == 0.0) {
+        fail(header_, header_.begin,
+             "no time column 't' (name one 't', map one with --map COLUMN=t or '#N=t', or give the sample rate "
+             "with --rate HZ)");
+        return false;
+      }
+      out_.present[index(Signal::kT)] = true;  // time from the rate alone, starting at 0
     }
     for (const MapEntry& e : map) {
       if (!e.used) note(header_, header_.begin, "column map entry '" + printable(e.key) + "' matched no column");
@@ -504,7 +674,11 @@ class Parser {
   /// kMaxSkipNotes of them; the rest are counted in a closing note).
   void skip_row(const Line& line, const char* pos, double t) {
     trim_to_kept_rows();
-    ++skipped_;
+    if (skipped_++ == 0) {
+      first_skip_line_ = line.number;
+      first_skip_column_ = char_column(line.begin, pos);
+      notes_before_skips_ = out_.notes.size();
+    }
     last_skip_line_ = line.number;
     last_skip_column_ = char_column(line.begin, pos);
     if (skipped_ > kMaxSkipNotes) return;
@@ -604,7 +778,7 @@ class Parser {
           if (!opt_.lenient) {
             char msg[128];
             std::snprintf(msg, sizeof msg, "time not strictly increasing: %.9g s after %.9g s", si, last_t_);
-            fail(line, f, msg);
+            fail(line, f, std::string(msg) + kRateHint);
             return RowResult::kFailed;
           }
           stale_pos = f;
@@ -653,6 +827,10 @@ class Parser {
       }
       if (!next_content_line(line)) break;
     }
+    if (!out_.error && skipped_ > kFreeSkips && skipped_ * 100 > kMaxSkipPercent * (rows_ + skipped_)) {
+      refuse_lenient_skips();
+      return;
+    }
     if (skipped_ > kMaxSkipNotes) {
       out_.notes.push_back(out_.path + ':' + std::to_string(last_skip_line_) + ':' +
                            std::to_string(last_skip_column_) + ": note: " + std::to_string(skipped_) +
@@ -661,10 +839,80 @@ class Parser {
     }
     out_.skipped_rows = skipped_;
     if (out_.error) drop_rows_after_error();
+    if (opt_.rate > 0.0) rebuild_time();
+  }
+
+  /// A lenient read that would drop more than a few per cent of the rows: no glitch but
+  /// a time column that cannot be used (rounded coarser than the sample period, or a
+  /// clock reset). It fails at the first such row instead of losing most of the file.
+  void refuse_lenient_skips() {
+    out_.notes.resize(notes_before_skips_);  // the error says it; no list of rows
+    const std::size_t total = rows_ + skipped_;
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "time not strictly increasing in %zu of %zu rows (%.0f %%); a lenient read skips at most %zu %% "
+                  "(a time column rounded coarser than the sample period repeats timestamps: rebuild time from the "
+                  "row index with --rate HZ)",
+                  skipped_, total, 100.0 * static_cast<double>(skipped_) / static_cast<double>(total),
+                  kMaxSkipPercent);
+    fail_at(first_skip_line_, first_skip_column_, msg);
+    out_.skipped_rows = skipped_;
+    rows_ = 0;
+    trim_to_kept_rows();
+  }
+
+  /// Time from the sample rate: t0 + i/rate, t0 the first row's logged time (0 without a
+  /// time column). A logged time span that disagrees with the rate gets a note.
+  void rebuild_time() {
+    std::vector<double>& t = out_.t;
+    const double t0 = time_column_ && !t.empty() ? t.front() : 0.0;
+    const double rate = opt_.rate;
+    if (time_column_ && rows_ >= 2 && t.size() == rows_) {
+      const double logged = t.back() - t.front();
+      const double rebuilt = static_cast<double>(rows_ - 1) / rate;
+      // Rounding of the logged time (1 ms on a Spider8) and a few samples are no disagreement.
+      if (std::fabs(logged - rebuilt) > 0.02 * rebuilt + 2.0 / rate + 1e-3) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "the time column spans %.6g s, %zu rows at %.6g Hz span %.6g s: is the sample rate right?",
+                      logged, rows_, rate, rebuilt);
+        note(header_, header_.begin, msg);
+      }
+    }
+    t.resize(rows_);
+    for (std::size_t i = 0; i < rows_; ++i) {
+      t[i] = t0 + static_cast<double>(i) / rate;
+      // A huge start time swallows steps of 1/rate (1e20 s + 1 ms = 1e20 s).
+      if (i > 0 && !(t[i] > t[i - 1])) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "time from the sample rate does not increase: start time %.9g s is too large for steps of %.3g s",
+                      t0, 1.0 / rate);
+        if (!out_.error) fail_at(out_.header_line, 1, msg);
+        rows_ = i;
+        trim_to_kept_rows();
+        t.resize(rows_);
+        if (!opt_.lenient) rows_ = 0;
+        return;
+      }
+    }
   }
 
   /// Skipped rows that get a note of their own (a clock reset can skip thousands).
   static constexpr std::size_t kMaxSkipNotes = 20;
+  /// A lenient read fails when it would skip more than this share of the rows [%] ...
+  static constexpr std::size_t kMaxSkipPercent = 5;
+  /// ... and more than this many (a short log may have a glitch or two).
+  static constexpr std::size_t kFreeSkips = 10;
+  /// Unknown columns that get a note of their own (then one note with the count).
+  static constexpr std::size_t kMaxColumnNotes = 8;
+  /// Lines looked at for a units row above the names or a metadata block.
+  static constexpr std::size_t kMaxPreambleLines = 64;
+  /// Lowest sample rate option [Hz] (a smaller one is a unit mistake).
+  static constexpr double kMinRate = 1e-6;
+  /// Appended to "time not strictly increasing": the fix for a rounded time column.
+  static constexpr const char* kRateHint =
+      " (a time column rounded coarser than the sample period repeats timestamps: rebuild time from the row "
+      "index with --rate HZ)";
 
   const ReadOptions& opt_;
   LogData& out_;
@@ -685,6 +933,10 @@ class Parser {
   std::size_t skipped_ = 0;      ///< rows skipped (lenient, time not increasing)
   std::size_t last_skip_line_ = 0;
   std::size_t last_skip_column_ = 0;
+  std::size_t first_skip_line_ = 0;     ///< where a refused lenient read fails
+  std::size_t first_skip_column_ = 0;
+  std::size_t notes_before_skips_ = 0;  ///< notes before the first skip note
+  bool time_column_ = false;            ///< a column gives t (with a rate: its start)
 };
 
 }  // namespace

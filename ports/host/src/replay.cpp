@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "hstmon/generated/thesis_signatures.hpp"
@@ -99,8 +100,14 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     if (log.present[index(input_signals[i])]) {
       in.col[i] = log.values[index(input_signals[i])].data();
     } else {
-      res.notes.push_back(std::string(input_names[i]) + " not in log: held at the parameter value " +
-                          std::to_string(input_defaults[i]));
+      // In the units of the tables beside it: pressures in bar, kp in SI.
+      char value[64];
+      if (input_signals[i] == Signal::kKp) {
+        std::snprintf(value, sizeof value, "%.4g m3/(s*Pa^0.5)", input_defaults[i]);
+      } else {
+        std::snprintf(value, sizeof value, "%.4g bar", input_defaults[i] * 1e-5);
+      }
+      res.notes.push_back(std::string(input_names[i]) + " not in log: held at the parameter value " + value);
     }
   }
   const double* meas[4];
@@ -217,7 +224,11 @@ ReplayEvent to_replay_event(const MatchEvent<double>& e) {
   out.t = e.time;
   out.event = to_string(e.kind);
   out.consistent = e.consistent;
-  for (int j = 0; j < e.count; ++j) out.candidates.push_back({e.candidate[j].name, e.candidate[j].score});
+  // The matcher's cosine is negative when the residuals point away from a fault's
+  // direction: no match at all, so 0 (a printed "-0.3" read as a bug).
+  for (int j = 0; j < e.count; ++j) {
+    out.candidates.push_back({e.candidate[j].name, std::max(0.0, static_cast<double>(e.candidate[j].score))});
+  }
   return out;
 }
 

@@ -14,6 +14,13 @@
 ///    has one, else ','. Where the separator is not ',', a decimal comma is accepted;
 ///  - units row (HBM catman / Spider8 exports): a line right after the header whose
 ///    fields are all non-numeric or empty (at least one non-empty) gives the units;
+///  - or the units row right ABOVE the names (as a Spider8 writes it): of two such lines
+///    before the first data row, the one with more fields that are units (bar, s, V, …)
+///    is the units row;
+///  - metadata lines above the header (HYDAC HMG exports: "Device;HMG 4000", …): the
+///    header is the last line before the first data row with one non-numeric field per
+///    data field (with its units row next to it, if any); the lines above are noted once
+///    and ignored. Looked for up to 64 lines;
 ///  - data fields: decimal numbers (leading '+' and blanks around the number allowed).
 /// Errors (bad number, ragged row, unknown unit, time not strictly increasing, nan/inf,
 /// empty file, no data rows, NUL bytes or invalid UTF-8, duplicated or missing columns)
@@ -27,6 +34,13 @@
 /// time is skipped (the first 20 with a note each, then one closing note with the count;
 /// LogData::skipped_rows has it too). Any other bad row stops a lenient read there: the
 /// rows before it are kept and the error is set. Strict reads fail on all of these.
+/// A lenient read never drops most of a file quietly: when it would skip more than 5 %
+/// of the rows (and more than 10), it fails at the first skipped row, keeps no rows and
+/// names the sample rate option (ReadOptions::rate, `--rate HZ`) as the fix; so does the
+/// strict error for a time that does not increase.
+///
+/// Messages stay short: a field is quoted to at most 40 bytes, and unknown columns get
+/// a note each only for the first 8 (then one note with the count).
 ///
 /// Numbers are bit-identical to std::from_chars. The common row (plain numbers, no
 /// blanks) takes a fast path — field boundaries 16 bytes at a time, then the numbers —
@@ -54,8 +68,18 @@ struct ReadOptions {
   /// and the rows before it are kept (error is still set).
   bool lenient = false;
   /// Log column name → canonical signal name, e.g. {"Druck_A", "p_mi"}. Keys and
-  /// targets match ignoring ASCII case. A target of "" drops the column without a note.
+  /// targets match ignoring ASCII case (keys also the width of blank runs: "Time CH=1"
+  /// finds "Time  CH=1"). A target of "" drops the column without a note.
   std::map<std::string, std::string> column_map;
+  /// Column number (1-based, as in the header) → canonical signal name, e.g. {8, "p_pp"};
+  /// for names that repeat or are awkward to type. Wins over a column_map entry for the
+  /// same column; a number beyond the header's columns is an error.
+  std::map<std::size_t, std::string> column_number_map;
+  /// Sample rate [Hz]; 0 = time from the log's time column. > 0: time is rebuilt from
+  /// the row index, t = t0 + i/rate, t0 the first row's logged time (0 when no column
+  /// gives t); the logged time then need not increase (a Spider8 rounds it to 1 ms at
+  /// 4800 Hz), and a logged span that disagrees with the rate gets a note.
+  double rate = 0.0;
 };
 
 /// A log read into memory, column-major, in SI units.

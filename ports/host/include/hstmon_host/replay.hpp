@@ -74,7 +74,7 @@ struct TraceRow {
 /// A ranked fault hypothesis of an event.
 struct ReplayCandidate {
   std::string fault;   ///< "kp-", "sensor_p_pp", …
-  double score = 0.0;  ///< matcher score in [−1, 1] (higher is better) [-]
+  double score = 0.0;  ///< matcher score in [0, 1] (higher is better; the matcher's cosine, a negative one shown as 0) [-]
 };
 
 /// A matcher event: an episode detected, isolated, ambiguous, unexplained or cleared.

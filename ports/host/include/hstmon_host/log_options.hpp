@@ -1,0 +1,29 @@
+#pragma once
+/// @file log_options.hpp
+/// The log options of every command that reads a log (`--map`, `--separator`, `--rate`)
+/// as text → ReadOptions. One parser, so `replay`, `identify` and `gap` mean the same.
+
+#include <string>
+#include <string_view>
+
+#include "hstmon_host/log_reader.hpp"
+
+namespace hstmon::host {
+
+/// Adds one column map entry written `COLUMN=SIGNAL` to `options`:
+///  - `#N=SIGNAL` maps column N (1-based, as in the header), whatever its name;
+///  - otherwise the text is split at its LAST '=', so a name may hold '=':
+///    `p CH=8=p_pp` maps the column named `p CH=8` to p_pp.
+/// SIGNAL is a canonical name (t, p_mi, …; checked when the log is read). Returns "" on
+/// success, else why the entry was refused.
+std::string add_column_map(ReadOptions& options, std::string_view entry);
+
+/// Sets the field separator from `,`, `;`, `tab`, `\t` (the two characters) or a tab
+/// character. Returns "" on success, else why it was refused.
+std::string set_separator(ReadOptions& options, std::string_view text);
+
+/// Sets the sample rate [Hz] (ReadOptions::rate); must be finite and > 0. Returns ""
+/// on success, else why it was refused.
+std::string set_rate(ReadOptions& options, double rate_hz);
+
+}  // namespace hstmon::host

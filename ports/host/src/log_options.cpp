@@ -1,0 +1,47 @@
+#include "hstmon_host/log_options.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace hstmon::host {
+
+std::string add_column_map(ReadOptions& options, std::string_view entry) {
+  const std::string usage = "takes COLUMN=SIGNAL or '#N=SIGNAL' (e.g. Druck_A=p_mi, '#8=p_pp'), got '" +
+                            std::string(entry.substr(0, 60)) + (entry.size() > 60 ? "...'" : "'");
+  // The last '=': a Spider8 name such as "p CH=8" holds one itself.
+  const std::size_t eq = entry.rfind('=');
+  if (eq == std::string_view::npos || eq == 0 || eq + 1 == entry.size()) return usage;
+  const std::string_view key = entry.substr(0, eq);
+  const std::string target(entry.substr(eq + 1));
+  if (key.front() == '#') {
+    std::size_t n = 0;
+    const std::string_view digits = key.substr(1);
+    const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (digits.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() || n == 0) {
+      return "column number in '" + std::string(key.substr(0, 20)) + "' must be 1 or more (#1 is the first column)";
+    }
+    options.column_number_map[n] = target;
+    return {};
+  }
+  options.column_map[std::string(key)] = target;
+  return {};
+}
+
+std::string set_separator(ReadOptions& options, std::string_view text) {
+  if (text == "tab" || text == "\\t" || text == "\t") {
+    options.separator = '\t';
+  } else if (text == "," || text == ";") {
+    options.separator = text[0];
+  } else {
+    return "must be ',', ';' or 'tab', got '" + std::string(text.substr(0, 20)) + "'";
+  }
+  return {};
+}
+
+std::string set_rate(ReadOptions& options, double rate_hz) {
+  if (!std::isfinite(rate_hz) || !(rate_hz > 0.0)) return "must be a sample rate in Hz above 0";
+  options.rate = rate_hz;
+  return {};
+}
+
+}  // namespace hstmon::host
