@@ -6,7 +6,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"hstmon — hydrostatic transmission monitor (host tools)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "hstmon 0.1.0");
+  app.set_version_flag("--version", "hstmon " HSTMON_VERSION);  // project(VERSION) in CMakeLists.txt
   int exit_code = hstmon::cli::kExitOk;
   hstmon::cli::add_replay_command(app, exit_code);
   hstmon::cli::add_identify_command(app, exit_code);
