@@ -18,15 +18,13 @@ set(HSTMON_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hstmon CACHE STRING
 # Exported names: hstmon::core and hstmon::c_api, as the ALIAS targets of a source build.
 set_target_properties(hstmon_core PROPERTIES EXPORT_NAME core)
 set_target_properties(hstmon_c PROPERTIES EXPORT_NAME c_api)
-set(_hstmon_export_targets hstmon_core hstmon_c)
-# Bare-metal build: hstmon::c_api carries the CPU/ABI flags it was compiled with.
-if(TARGET hstmon_cpu_cm4f)
-  list(APPEND _hstmon_export_targets hstmon_cpu_cm4f)
-endif()
-
-install(TARGETS ${_hstmon_export_targets} EXPORT hstmonTargets
+install(TARGETS hstmon_core hstmon_c EXPORT hstmonTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Bare-metal build: hstmon::c_api carries the CPU/ABI flags it was compiled with.
+if(TARGET hstmon_cpu_cm4f)
+  install(TARGETS hstmon_cpu_cm4f EXPORT hstmonTargets)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   COMPONENT development)
 install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
