@@ -25,6 +25,11 @@
 #          from rest, ⌈ρ_rest·h/0.8⌉ = 22: what a non-adaptive observer must pay every tick
 # Also, informational: a 10 ms tick (PLC scan), ours against odeint's runge_kutta4 with the
 # same number of steps per tick (5 at the nominal point; one step would be unstable there).
+# The circuit engine (bench/count_engine_ticks.cpp): Observer<CircuitModel<T>> on
+# examples/circuits/thesis.json at 1 ms against Boost.Odeint's runge_kutta4 (one step per
+# tick) on the same engine model, and against the hand-written reduced model above:
+# printed, not gated (issue 14's 0.8x target for the engine is not met yet; --engine-strict
+# gates it).
 # Each tick is one out-of-line call. Only the N ticks are counted
 # (CALLGRIND_START/STOP_INSTRUMENTATION, --instr-atstart=no).
 #
@@ -41,6 +46,7 @@ annotate=0
 keep=0
 target=0.8
 strict=0
+engine_strict=0
 
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -51,6 +57,7 @@ while [[ $# -gt 0 ]]; do
     --keep) keep=1; shift ;;
     --target) target=${2:?}; shift 2 ;;
     --strict) strict=1; shift ;;
+    --engine-strict) engine_strict=1; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ {sub(/^# ?/, ""); print; next} NR > 1 {exit}' "$0"; exit 0 ;;
     -*) echo "unknown option: $1" >&2; exit 2 ;;
     *) build=$1; shift ;;
@@ -66,7 +73,7 @@ if [[ $do_build -eq 1 ]]; then
   if [[ ! -f "$build/CMakeCache.txt" ]]; then
     cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 2
   fi
-  cmake --build "$build" -j2 --target hstmon_count_ticks >/dev/null || exit 2
+  cmake --build "$build" -j2 --target hstmon_count_ticks hstmon_count_engine_ticks >/dev/null || exit 2
 fi
 bin="$build/bin/hstmon_count_ticks"
 [[ -x "$bin" ]] || { echo "$bin not found (build target hstmon_count_ticks)" >&2; exit 2; }
@@ -78,11 +85,11 @@ fi
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/hstmon_callgrind.XXXXXX")
 if [[ $keep -eq 0 ]]; then trap 'rm -rf "$tmp"' EXIT; fi
 
-# count VARIANT TICKS -> prints total instructions of the instrumented region
+# count VARIANT TICKS [BINARY] -> prints total instructions of the instrumented region
 count() {
-  local v=$1 n=$2 out="$tmp/callgrind.out.$1"
+  local v=$1 n=$2 out="$tmp/callgrind.out.$1" exe=${3:-$bin}
   if ! valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out" \
-        "$bin" "$v" "$n" >"$tmp/$v.log" 2>&1; then
+        "$exe" "$v" "$n" >"$tmp/$v.log" 2>&1; then
     echo "callgrind run of '$v' failed:" >&2; cat "$tmp/$v.log" >&2; exit 2
   fi
   local total
@@ -97,6 +104,13 @@ variants=(ours_double ours_float odeint_double odeint_float odeint_safe_double o
           ours_double_10ms ours_float_10ms odeint_double_10ms odeint_float_10ms)
 for v in "${variants[@]}"; do
   total=$(count "$v" "$ticks") || exit 2
+  per[$v]=$(awk -v t="$total" -v n="$ticks" 'BEGIN {printf "%.1f", t / n}')
+done
+engine_bin="$build/bin/hstmon_count_engine_ticks"
+engine_variants=()
+[[ -x "$engine_bin" ]] && engine_variants=(engine_double engine_float odeint_engine_double odeint_engine_float)
+for v in "${engine_variants[@]}"; do
+  total=$(count "$v" "$ticks" "$engine_bin") || exit 2
   per[$v]=$(awk -v t="$total" -v n="$ticks" 'BEGIN {printf "%.1f", t / n}')
 done
 if [[ $full -eq 1 ]]; then
@@ -125,6 +139,20 @@ for T in double float; do
   printf "$fmt" "10 ms tick: ours <$T>" "$o" "$(awk -v o="$o" -v b="$b" 'BEGIN {printf "%.3f", o / b}')" "" "" "(info)"
   printf "$fmt" "10 ms tick: odeint rk4 <$T>, 5 steps" "$b" "" "" "" ""
 done
+engine_missed=0
+if [[ ${#engine_variants[@]} -gt 0 ]]; then
+  echo
+  printf '%-38s %11s %11s %14s %6s\n' "circuit engine, thesis.json, 1 ms" instr/tick "vs odeint" "vs hand-written" result
+  for T in double float; do
+    e=${per[engine_$T]} b=${per[odeint_engine_$T]} h=${per[ours_$T]}
+    r=$(awk -v o="$e" -v b="$b" 'BEGIN {printf "%.3f", o / b}')
+    ok=$(awk -v r="$r" -v t="$target" 'BEGIN {print (r <= t) ? "PASS" : "MISS"}')
+    [[ $ok == PASS ]] || engine_missed=1
+    printf '%-38s %11s %11s %14s %6s\n' "Observer<CircuitModel<$T>>::step" "$e" "$r" \
+      "$(awk -v o="$e" -v h="$h" 'BEGIN {printf "%.1fx", o / h}')" "$ok"
+    printf '%-38s %11s\n' "odeint rk4 engine<$T>, naive" "$b"
+  done
+fi
 if [[ $full -eq 1 ]]; then
   printf '%-38s %11s %11s\n' "odeint rk4 full stiff, 286 steps" "${per[odeint_full]}" \
     "$(awk -v o="${per[ours_double]}" -v b="${per[odeint_full]}" 'BEGIN {printf "%.4f", o / b}')"
@@ -146,4 +174,5 @@ if [[ $annotate -eq 1 ]]; then
 fi
 if [[ $keep -eq 1 ]]; then echo "callgrind.out files kept in $tmp"; fi
 if [[ $missed -eq 1 && $strict -eq 1 ]]; then exit 1; fi
+if [[ $engine_missed -eq 1 && $engine_strict -eq 1 ]]; then exit 1; fi
 exit 0

@@ -1,5 +1,5 @@
 // `hstmon replay --circuit FILE LOG`: prints per-channel residual statistics of a circuit
-// log, in the shapes of the thesis replay (cli_replay.cpp) where they fit.
+// log and the monitor's diagnosis, in the shapes of the thesis replay (cli_replay.cpp).
 #include "cli_circuit_replay.hpp"
 
 #include <fmt/format.h>
@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_commands.hpp"
+#include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
@@ -43,6 +44,9 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                                {"tick_s", r.tick},
                                {"ticks", r.ticks},
                                {"start", to_string(r.start)},
+                               {"startup_hold_s", r.startup_hold},
+                               {"fault_table_rows", r.table_rows},
+                               {"undetectable", r.undetectable},
                                {"states", r.states},
                                {"stiff_nodes", r.stiff_nodes},
                                {"health", host::health_names(r.health)},
@@ -70,7 +74,9 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
     }
     fmt::print("{}\n", j.dump());
   }
-  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", "not_run"}, {"events", 0}}.dump());
+  for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
+  const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
+  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", status}, {"events", r.events.size()}}.dump());
 }
 
 void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
@@ -106,7 +112,18 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
   }
-  fmt::print("\n  diagnosis: not run (the fault matcher is thesis-only for now)\n");
+  if (r.table_rows == 0) {
+    fmt::print("\n  diagnosis: not run (no fault table)\n");
+  } else {
+    fmt::print("\n  fault table: {} hypotheses from the circuit's parameters and sensors (steady-state signatures)\n",
+               r.table_rows);
+    if (!r.undetectable.empty()) {
+      std::string joined;
+      for (const auto& n : r.undetectable) joined += (joined.empty() ? "" : ", ") + n;
+      fmt::print("  not detectable at the nominal inputs (no channel moves by 1 sigma at 30 %): {}\n", joined);
+    }
+    print_events(r.events, r.final_status);
+  }
   const auto names = host::health_names(r.health);
   if (names.empty()) {
     fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
@@ -134,6 +151,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   circuit_tools::CircuitReplayOptions o;
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  o.diagnose = a.diagnose;
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   if (a.json) {
     print_json(a, c, r);

@@ -1,6 +1,6 @@
 #pragma once
 // `hstmon replay --circuit FILE [--params FILE] LOG`: a log of any circuit file through
-// Observer<CircuitModel>, residuals only (circuit_replay.hpp).
+// the circuit's monitor (circuit_replay.hpp): residuals and the fault matcher.
 #include <string>
 
 namespace hstmon::cli {
@@ -13,6 +13,7 @@ struct CircuitReplayArgs {
   bool json = false;
   double tick = 0.0;         ///< [s]; 0 = the log's median period, at most 10 ms
   std::string init = "auto"; ///< auto | rest | steady
+  bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
 };
 
 /// Runs it and prints the result (human, or JSON lines); errors as file:line:column on

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_circuit_identify.hpp"
 #include "cli_commands.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -50,6 +51,8 @@ struct IdentifyArgs {
   double cd = 0.61;
   double rho = 870.0;
   bool studies = false;
+  std::string circuit;             // --circuit: run_circuit_identify instead (cli_circuit_identify.hpp)
+  std::vector<std::string> fit;
 };
 
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -426,7 +429,43 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--cd", args->cd, "discharge coefficient for the port areas")->capture_default_str();
   cmd->add_option("--rho", args->rho, "oil density [kg/m^3] for the port areas")->capture_default_str();
   cmd->add_flag("--studies", args->studies, "run the paper's parameter studies (Figs. 7-9) into --report DIR");
-  cmd->callback([args, &exit_code]() { exit_code = run_identify(*args); });
+  cmd->add_option("--circuit", args->circuit,
+                  "fit parameters of this circuit file (docs/circuits.md) to the logs' steady operating points; "
+                  "--prior is then its parameter file (default <stem>.params.json beside it)");
+  cmd->add_option("--fit", args->fit, "with --circuit: parameters to fit, by name (comma separated, repeatable)")
+      ->delimiter(',')
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->callback([args, cmd, &exit_code]() {
+    if (args->circuit.empty()) {
+      if (cmd->count("--fit") > 0) {
+        fmt::print(stderr, "hstmon identify: --fit goes with --circuit\n");
+        exit_code = kExitUsage;
+        return;
+      }
+      exit_code = run_identify(*args);
+      return;
+    }
+    for (const char* opt : {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
+                            "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
+                            "--studies"}) {
+      if (cmd->count(opt) > 0) {
+        fmt::print(stderr, "hstmon identify: {} does not go with --circuit\n", opt);
+        exit_code = kExitUsage;
+        return;
+      }
+    }
+    CircuitIdentifyArgs c;
+    c.logs = args->logs;
+    c.circuit = args->circuit;
+    c.params = args->prior;
+    c.fit = args->fit;
+    c.out = args->out;
+    c.json = args->json;
+    if (cmd->count("--min-duration") > 0) c.min_duration = args->min_duration;
+    exit_code = run_circuit_identify(c);
+  });
 }
 
 }  // namespace hstmon::cli

@@ -14,6 +14,7 @@
 
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
+#include "cli_events.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -64,12 +65,6 @@ struct Progress {
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-nlohmann::json event_json(const host::ReplayEvent& e) {
-  nlohmann::json cands = nlohmann::json::array();
-  for (const auto& c : e.candidates) cands.push_back({{"fault", c.fault}, {"score", c.score}});
-  return {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
-}
-
 void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
   nlohmann::json head = {{"type", "replay"},
                          {"log", a.log},
@@ -112,36 +107,6 @@ const char* start_words(InitialState k) {
   return "?";
 }
 
-// Candidates in words: "kp- (0.998), Pbp+ (0.71) and 3 more".
-std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
-  std::string out;
-  for (std::size_t j = 0; j < e.candidates.size() && j < show; ++j) {
-    out += fmt::format("{}{} ({:.3f})", j ? ", " : "", e.candidates[j].fault, e.candidates[j].score);
-  }
-  const std::size_t more = static_cast<std::size_t>(e.consistent) > show ? static_cast<std::size_t>(e.consistent) - show : 0;
-  if (more > 0) out += fmt::format(" and {} more", more);
-  return out;
-}
-
-void print_events(const host::ReplayResult& r) {
-  if (r.events.empty()) {
-    fmt::print("\n  diagnosis: no fault detected (status {})\n", r.final_status);
-    return;
-  }
-  fmt::print("\n  diagnosis (single-fault hypotheses, best first):\n");
-  for (const auto& e : r.events) {
-    if (e.event == "cleared") {
-      fmt::print("    t = {:>9.3f} s  cleared: residuals back within their bounds\n", e.t);
-    } else if (e.event == "isolated") {
-      fmt::print("    t = {:>9.3f} s  isolated: {}\n", e.t, candidate_list(e, 3));
-    } else if (e.event == "detected") {
-      fmt::print("    t = {:>9.3f} s  detected: {} hypotheses consistent so far: {}\n", e.t, e.consistent, candidate_list(e, 4));
-    } else {
-      fmt::print("    t = {:>9.3f} s  {}: {}\n", e.t, e.event, candidate_list(e, 4));
-    }
-  }
-  fmt::print("    status at the end of the log: {}\n", r.final_status);
-}
 
 void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   fmt::print("hstmon replay {}\n", a.log);
@@ -175,7 +140,7 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
   }
-  print_events(r);
+  print_events(r.events, r.final_status);
   const auto names = host::health_names(r.health);
   if (names.empty()) {
     fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
@@ -308,8 +273,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->add_option("--circuit", args->circuit,
-                  "Replay through the model of this circuit file (docs/circuits.md): residuals only; --params is then "
-                  "its parameter file (default: <stem>.params.json beside it)");
+                  "Replay through the monitor of this circuit file (docs/circuits.md): residuals and the fault matcher "
+                  "on the circuit's generated table; --params is then its parameter file (default: <stem>.params.json "
+                  "beside it)");
   cmd->callback([args, cmd, &exit_code]() {
     if (args->circuit.empty()) {
       exit_code = run_replay(*args);
@@ -329,6 +295,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     c.json = args->json;
     c.tick = args->tick;
     c.init = args->init;
+    c.diagnose = !args->no_diagnosis;
     exit_code = run_circuit_replay(c);
   });
 }

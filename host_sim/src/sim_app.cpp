@@ -60,6 +60,7 @@ struct Options {
   std::string circuit;
   std::string circuit_params;
   std::vector<std::string> steps;
+  std::vector<std::string> faults;
 };
 
 void list_all() {
@@ -218,13 +219,16 @@ int main(int argc, char** argv) {
   app.add_option("--circuit", o.circuit,
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
-                 "(default steady), --no-noise, --params, --step");
+                 "(default steady), --no-noise, --params, --step, --fault");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 (repeatable)");
+  app.add_option("--fault", o.faults,
+                 "with --circuit: parameter fault PARAM=FACTOR@T, the parameter times FACTOR from T on, e.g. "
+                 "Rmlkg=0.5@3 (repeatable)");
   CLI11_PARSE(app, argc, argv);
-  if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0)) {
-    std::cerr << "hstmon-sim: --params and --step go with --circuit\n";
+  if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0 || app.count("--fault") > 0)) {
+    std::cerr << "hstmon-sim: --params, --step and --fault go with --circuit\n";
     return 1;
   }
   if (!o.circuit.empty()) {
@@ -246,6 +250,7 @@ int main(int argc, char** argv) {
     c.start = app.count("--start") > 0 ? o.start : "steady";
     c.no_noise = o.no_noise;
     c.steps = o.steps;
+    c.faults = o.faults;
     return hstmon::sim_app::run_circuit_sim(c);
   }
   try {

@@ -40,6 +40,14 @@ int run_circuit_sim(const CircuitSimArgs& a) {
     }
     o.steps.push_back(st);
   }
+  for (const std::string& s : a.faults) {
+    circuit_tools::InputStep st;
+    if (auto err = circuit_tools::parse_param_fault(s, c.file, st)) {
+      std::cerr << "hstmon-sim: " << *err << '\n';
+      return 1;
+    }
+    o.steps.push_back(st);
+  }
   circuit_tools::CircuitLog log;
   try {
     log = circuit_tools::simulate_circuit(c, o);
@@ -53,6 +61,7 @@ int run_circuit_sim(const CircuitSimArgs& a) {
           ", " + shortest(o.duration) + " s at " + shortest(o.rate) + " Hz, seed " + std::to_string(o.seed) +
           (o.noise ? "" : ", no noise")};
   for (const std::string& s : a.steps) comments.push_back("step " + s);
+  for (const std::string& s : a.faults) comments.push_back("fault " + s);
   const std::string text = circuit_tools::circuit_log_text(c.file, log, comments);
   if (a.out == "-") {
     std::cout << text;

@@ -19,6 +19,7 @@ struct CircuitSimArgs {
   std::string start;                ///< "rest" | "steady" ("" = steady)
   bool no_noise = false;
   std::vector<std::string> steps;   ///< "INPUT=VALUE@T"
+  std::vector<std::string> faults;  ///< "PARAM=FACTOR@T"
 };
 
 /// Runs it. @return 0, 1 on a bad option, 2 on a bad circuit/parameter file (message

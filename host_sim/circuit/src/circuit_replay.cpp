@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <memory>
 
+#include <stdexcept>
+
+#include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/engine.hpp"
-#include "hstmon/observer.hpp"
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -14,7 +17,9 @@ namespace hstmon::circuit_tools {
 namespace {
 
 using Model = host::HostCircuitModel;
-using Obs = Observer<Model, false>;
+// 127 rows: every named parameter twice and every channel, for the host's capacity.
+using Mon = circuit::CircuitMonitor<double, host::CircuitCap, 127>;
+using Obs = Mon::Obs;
 
 double median_interval(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;
@@ -57,8 +62,6 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   res.clipped.assign(channels, 0);
   res.channels.assign(channels, host::ChannelStats{});
   res.rows = log.rows();
-  res.notes.push_back("residuals only: the fault matcher is thesis-only for now (no diagnosis for circuit " +
-                      c.file.name + ")");
   if (res.rows == 0) return res;
   const std::vector<double>& t = log.t;
   res.t_first = t.front();
@@ -110,26 +113,84 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   }
   res.states = model.n_states();
   res.stiff_nodes = model.n_stiff();
-  auto obs = std::make_unique<Obs>();
-  Obs::Config cfg;
-  cfg.tick = tick;
-  if (obs->configure(model, cfg) != Status::kOk) {
-    res.notes.push_back("invalid observer configuration: nothing replayed");
+
+  CircuitFaultTable table;
+  if (o.diagnose) {
+    try {
+      table = circuit_fault_table(c);
+      res.table_rows = table.rows.size();
+      res.undetectable = table.undetectable;
+      for (const auto& n : table.notes) res.notes.push_back("fault table: " + n);
+      if (table.rows.size() > 127) {
+        res.notes.push_back("fault table: " + std::to_string(table.rows.size()) + " rows, the first 127 used");
+        res.table_rows = 127;
+      }
+    } catch (const std::exception& e) {
+      res.notes.push_back(std::string(e.what()) + ": residuals only");
+    }
+  }
+  auto mon = std::make_unique<Mon>();
+  Mon::Config cfg;
+  cfg.observer.tick = tick;
+  for (int i = 0; i < Model::kOutputs; ++i) {
+    // A channel without a noise figure gets 1 % of its span (as the table's scaling).
+    const auto ch = static_cast<std::size_t>(i);
+    double sigma = 1.0, lo = -HUGE_VAL, hi = HUGE_VAL;
+    if (ch < channels) {
+      const host::CircuitSensor& s = c.file.sensors[ch];
+      const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
+      sigma = s.noise > 0.0 ? s.noise : 0.01 * span;
+      if (!(s.noise > 0.0)) {
+        res.notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " + number(sigma) +
+                            " " + host::circuit_si_unit(s.quantity));
+      }
+      lo = s.lo;
+      hi = s.hi;
+    }
+    cfg.evaluator.noise_sigma[i] = sigma;
+    cfg.sensors.noise[i] = sigma;
+    cfg.sensors.range_lo[i] = lo;
+    cfg.sensors.range_hi[i] = hi;
+  }
+  cfg.uncertainty = default_uncertainty(c.file);
+  // The matcher's magnitudes and direction are steady-state ones: it waits 3 slowest time
+  // constants of the circuit after detection (5 % of the transient left) and averages
+  // over one more — the thesis defaults (50 ms, 100 ms) where the circuit is faster.
+  {
+    Model at_first = model;
+    at_first.set_inputs(inputs_at(0));
+    Model::State xs;
+    const double rate = at_first.steady_state(xs) ? at_first.slowest_rate(xs) : 0.0;
+    if (rate > 0.0) {
+      cfg.matcher.settle_time = std::max(cfg.matcher.settle_time, 3.0 / rate);
+      cfg.matcher.average_time = std::max(cfg.matcher.average_time, 1.0 / rate);
+      res.notes.push_back("slowest time constant at the first row's inputs " + number(1.0 / rate) +
+                          " s: the matcher settles for " + number(cfg.matcher.settle_time) + " s and averages " +
+                          number(cfg.matcher.average_time) + " s");
+    }
+  }
+  if (mon->configure(model, cfg, table.rows.empty() ? nullptr : table.rows.data(),
+                     static_cast<int>(res.table_rows)) != Status::kOk) {
+    res.notes.push_back("invalid monitor configuration: nothing replayed");
     return res;
   }
+  const Obs& obs = mon->observer();
 
   const Model::Inputs u0 = inputs_at(0);
   Obs::Measurement m;
   // A reading at or beyond an end of its transmitter's range says only that the signal is
-  // there or beyond: it is not compared (counted in res.clipped).
+  // there or beyond: the monitor's sensor checks judge it, the statistics leave it out
+  // (counted in res.clipped; `compared` has the others).
+  std::uint8_t compared = 0;
   auto measurement_at = [&](std::size_t row) {
     m.valid = mask;
+    compared = mask;
     for (std::size_t ch = 0; ch < channels; ++ch) {
       const double y = meas[ch] ? meas[ch][row] : 0.0;
       m.y[static_cast<int>(ch)] = y;
       const host::CircuitSensor& s = c.file.sensors[ch];
       if (meas[ch] != nullptr && (y <= s.lo || y >= s.hi)) {
-        m.valid = static_cast<std::uint8_t>(m.valid & ~(1u << ch));
+        compared = static_cast<std::uint8_t>(compared & ~(1u << ch));
         ++res.clipped[ch];
       }
     }
@@ -137,46 +198,56 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   measurement_at(0);
   Status started = Status::kInvalidInputs;
   if (o.init == host::InitMode::kAuto) {
-    started = obs->reset_measured(u0, m, &res.start);
+    started = mon->reset_measured(u0, m, &res.start);
     if (started == Status::kOk && at_steady_within_noise(c, model, u0, m)) {
       // The readings' noise would otherwise be the initial error of a parallel model,
       // which a lightly damped circuit (a closed-loop HST) rings with for seconds.
-      started = obs->reset_steady(u0);
+      started = mon->reset_steady(u0);
       res.start = InitialState::kSteady;
       res.notes.push_back("first row within 3 sigma of the steady state on every channel: started there");
     }
   } else if (o.init == host::InitMode::kSteady) {
-    started = obs->reset_steady(u0);
+    started = mon->reset_steady(u0);
     res.start = InitialState::kSteady;
     if (started != Status::kOk) res.notes.push_back("no steady state for the first row's inputs: started at rest");
   }
   if (started != Status::kOk) {
-    (void)obs->reset_rest(u0);
+    (void)mon->reset_rest(u0);
     res.start = InitialState::kRest;
   }
+  res.startup_hold = mon->startup_hold();
 
   res.clipped.assign(channels, 0);  // the first row is counted again below
   Model::Inputs u_prev = u0;
   const Obs::Measurement none;
+  Mon::Event ev;
+  auto drain_events = [&] {
+    while (mon->pop_event(ev)) res.events.push_back(host::to_replay_event(ev));
+  };
   for (std::size_t k = 0; k < res.rows; ++k) {
     const double t_row = t[k] - res.t_first;
-    while (t_row - static_cast<double>(obs->ticks()) * tick > 0.5 * tick) {
-      res.health |= obs->step(u_prev, none);
-      res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs->substeps());
+    while (t_row - static_cast<double>(obs.ticks()) * tick > 0.5 * tick) {
+      mon->step(res.t_first + static_cast<double>(obs.ticks()) * tick, u_prev, none);
+      res.health |= mon->health();
+      res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     }
     const Model::Inputs u = inputs_at(k);
     measurement_at(k);
-    const std::uint32_t flags = obs->step(u, m);
+    mon->step(t[k], u, m);
+    drain_events();
+    const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;
-    res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs->substeps());
+    res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     u_prev = u;
-    const std::uint8_t rv = obs->residual_valid();
+    const unsigned rv = obs.residual_valid() & compared;
     for (std::size_t ch = 0; ch < channels; ++ch) {
-      if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs->residual()[static_cast<int>(ch)], t[k], k);
+      if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs.residual()[static_cast<int>(ch)], t[k], k);
     }
   }
-  res.ticks = obs->ticks();
+  drain_events();
+  res.ticks = obs.ticks();
+  res.final_status = to_string(mon->matcher().status());
   for (std::size_t ch = 0; ch < channels; ++ch) {
     if (res.clipped[ch] > 0) {
       res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +

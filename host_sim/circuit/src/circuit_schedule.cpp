@@ -34,6 +34,36 @@ std::optional<std::string> parse_input_step(std::string_view text, const host::C
   return std::nullopt;
 }
 
+std::optional<std::string> parse_param_fault(std::string_view text, const host::CircuitFile& c, InputStep& out) {
+  const std::size_t eq = text.find('=');
+  const std::size_t at = text.rfind('@');
+  if (eq == std::string_view::npos || at == std::string_view::npos || at < eq || eq == 0) {
+    return "--fault takes PARAM=FACTOR@T (e.g. Rmlkg=0.5@3), got '" + std::string(text) + "'";
+  }
+  const std::string name(text.substr(0, eq));
+  const int i = c.param_index(name);
+  if (i < 0 || c.params[static_cast<std::size_t>(i)].literal) {
+    std::string known;
+    for (const auto& p : c.params) {
+      if (!p.literal) known += (known.empty() ? "" : ", ") + p.name;
+    }
+    return "--fault: circuit " + c.name + " has no parameter '" + name + "' (parameters: " + known + ")";
+  }
+  double f = 0.0, t = 0.0;
+  const std::string_view fs = text.substr(eq + 1, at - eq - 1);
+  const std::string_view ts = text.substr(at + 1);
+  const auto rf = std::from_chars(fs.data(), fs.data() + fs.size(), f);
+  if (rf.ec != std::errc() || rf.ptr != fs.data() + fs.size() || !std::isfinite(f) || f <= 0.0) {
+    return "--fault " + std::string(text) + ": the factor between '=' and '@' must be a number > 0";
+  }
+  const auto rt = std::from_chars(ts.data(), ts.data() + ts.size(), t);
+  if (rt.ec != std::errc() || rt.ptr != ts.data() + ts.size() || !std::isfinite(t) || t < 0.0) {
+    return "--fault " + std::string(text) + ": the time after '@' must be seconds >= 0";
+  }
+  out = InputStep{t, -1, 0.0, i, f};
+  return std::nullopt;
+}
+
 void sort_steps(std::vector<InputStep>& steps) {
   std::stable_sort(steps.begin(), steps.end(), [](const InputStep& a, const InputStep& b) { return a.t < b.t; });
 }

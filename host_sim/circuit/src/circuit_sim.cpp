@@ -27,18 +27,27 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   host::HostCircuit desc = c.file.circuit;
   desc.stiff_mask = 0;  // the full equations: every volume a state
   Model::Inputs u = c.values.inputs;
+  Model::Params p = c.values.params;
+  bool params_changed = false;
   std::size_t next = 0;
   auto apply_steps_until = [&](double t) {
     bool changed = false;
     while (next < steps.size() && steps[next].t <= t + 1e-12) {
-      u.v[steps[next].input] = steps[next].value;
+      const InputStep& st = steps[next];
+      if (st.param >= 0) {
+        p.v[st.param] = c.values.params.v[st.param] * st.factor;
+        params_changed = true;
+      } else {
+        u.v[st.input] = st.value;
+      }
       ++next;
       changed = true;
     }
     return changed;
   };
   apply_steps_until(0.0);
-  Model full(desc, c.values.params, u);
+  params_changed = false;
+  Model full(desc, p, u);
   if (full.error() != circuit::CircuitError::kOk || !full.valid()) {
     throw std::runtime_error("circuit " + c.file.name + ": the values do not make a physical circuit");
   }
@@ -62,6 +71,8 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     return s;
   };
   auto restart = [&](double t) {
+    if (params_changed) full.set_params(p);
+    params_changed = false;
     full.set_inputs(u);
     if (!ref) return;
     ref->restart(

@@ -148,14 +148,17 @@ struct MatchEvent {
 /// @tparam Capacity         hypotheses (table rows) the object can hold, 1 … 127
 /// @tparam QueueDepth       events queued until popped (oldest dropped when full), 1 … 255
 /// @tparam EventCandidates  candidates an event carries (the rest: candidate()), 1 … 255
-template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8>
+/// @tparam Channels         measured channels of the table and the evaluator, 1 … 8
+template <typename T, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8, int Channels = kFdiChannels>
 class FaultMatcher {
  public:
   static_assert(Capacity >= 1 && Capacity <= 127, "hypothesis indices are stored in 8 bits");
   static_assert(QueueDepth >= 1 && QueueDepth <= 255, "queue indices are stored in 8 bits");
-  static constexpr int kChannels = kFdiChannels;
+  static constexpr int kChannels = Channels;
   static constexpr std::size_t kCap_ = static_cast<std::size_t>(Capacity);  ///< array extent
-  using Evaluator = ResidualEvaluator<T, kFdiChannels>;
+  static constexpr std::size_t kN_ = static_cast<std::size_t>(Channels);    ///< array extent
+  using Evaluator = ResidualEvaluator<T, Channels>;
+  using Signature = BasicFaultSignature<Channels>;  ///< a row of the table
   using Candidate = MatchCandidate<T>;
   using Event = MatchEvent<T, EventCandidates>;
   static constexpr int kQueueDepth = QueueDepth;  ///< events held until popped
@@ -190,7 +193,7 @@ class FaultMatcher {
   /// @param table  count rows, borrowed (must outlive the matcher); null only if count = 0
   /// @param count  rows in the table, 0 … Capacity
   /// @return       kOk, or kInvalidConfig (matcher unchanged)
-  Status configure(const FaultSignature* table, int count, const Config& c) noexcept {
+  Status configure(const Signature* table, int count, const Config& c) noexcept {
     const bool ok = table_ok(table, count) && nonneg(c.order_window) && nonneg(c.settle_time) &&
                     nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) &&
                     nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
@@ -205,12 +208,12 @@ class FaultMatcher {
   /// Takes a table, keeps the configuration (on a default-constructed matcher: Config{}),
   /// and resets.
   /// @return kOk, or kInvalidConfig (matcher unchanged)
-  Status set_table(const FaultSignature* table, int count) noexcept {
+  Status set_table(const Signature* table, int count) noexcept {
     if (!table_ok(table, count)) return Status::kInvalidConfig;
     table_ = table;
     count_ = count;
     for (int k = 0; k < count; ++k) {
-      const FaultSignature& f = table[k];
+      const Signature& f = table[k];
       int ch = -1;
       for (int i = 0; i < kChannels; ++i) {
         if (f.channel[i].magnitude != kQualZero) ch = (ch == -1) ? i : -2;
@@ -372,7 +375,7 @@ class FaultMatcher {
  private:
   static constexpr int kQueue = QueueDepth;
   static bool nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
-  static bool table_ok(const FaultSignature* table, int count) noexcept {
+  static bool table_ok(const Signature* table, int count) noexcept {
     return count >= 0 && count <= Capacity && (table != nullptr || count == 0);
   }
   static bool responds(const ChannelSignature& s) noexcept {
@@ -444,7 +447,7 @@ class FaultMatcher {
   }
 
   void live_vector(const Evaluator& ev) noexcept {
-    T d[kChannels];
+    T d[kN_];
     for (int i = 0; i < kChannels; ++i) d[i] = (ev.residual(i) - base_[i]) / ev.sigma(i);
     set_vector(d);
   }
@@ -457,7 +460,7 @@ class FaultMatcher {
 
   void finish_window(const Evaluator& ev) noexcept {
     window_done_ = true;
-    T d[kChannels];
+    T d[kN_];
     for (int i = 0; i < kChannels; ++i) {
       d[i] = n_[i] > 0 ? (sum_[i] / static_cast<T>(n_[i]) - base_[i]) / ev.sigma(i) : T(0);
     }
@@ -472,7 +475,7 @@ class FaultMatcher {
   }
 
   /// Norm of the row's direction over the channels without a sensor flag [-].
-  T dir_norm(const FaultSignature& f) const noexcept {
+  T dir_norm(const Signature& f) const noexcept {
     T s = T(0);
     for (int i = 0; i < kChannels; ++i) {
       if (((faulty_ >> i) & 1u) == 0) s += static_cast<T>(f.direction[i]) * static_cast<T>(f.direction[i]);
@@ -481,7 +484,7 @@ class FaultMatcher {
   }
 
   bool consistent(int k) const noexcept {
-    const FaultSignature& f = table_[k];
+    const Signature& f = table_[k];
     if (faulty_ != 0) return sensor_ch_[k] >= 0 && ((faulty_ >> sensor_ch_[k]) & 1u) != 0;
     const T dn = dir_norm(f);
     for (int i = 0; i < kChannels; ++i) {
@@ -519,7 +522,7 @@ class FaultMatcher {
     if (!(v_norm_ > T(0))) return T(0);
     const int s = sensor_ch_[k];
     if (s >= 0) return ((faulty_ >> s) & 1u) ? T(1) : std::fabs(v_[s]) / v_norm_;
-    const FaultSignature& f = table_[k];
+    const Signature& f = table_[k];
     const T dn = dir_norm(f);
     if (!(dn > T(0))) return T(0);
     T dot = T(0);
@@ -624,7 +627,7 @@ class FaultMatcher {
     ++ev_count_;
   }
 
-  const FaultSignature* table_ = nullptr;
+  const Signature* table_ = nullptr;
   int count_ = 0;
   Config cfg_{};
   static constexpr detail::MarginCosSin<T> kDefaultCosSin = detail::margin_cos_sin(kDefaultTieMargin);
@@ -638,12 +641,12 @@ class FaultMatcher {
   std::int8_t order_[kCap_] = {};   ///< consistent rows, best first
   std::int8_t sensor_ch_[kCap_] = {};  ///< channel of a sensor row, −1 for others
   int n_alive_ = 0;
-  ChannelSymbol sym_[kChannels]{};
-  T base_[kChannels] = {};   ///< residual baseline [channel unit]
-  std::uint32_t base_n_[kChannels] = {};
-  T sum_[kChannels] = {};    ///< window sum [channel unit]
-  std::uint32_t n_[kChannels] = {};
-  T v_[kChannels] = {};      ///< normalised deviation [-]
+  ChannelSymbol sym_[kN_]{};
+  T base_[kN_] = {};   ///< residual baseline [channel unit]
+  std::uint32_t base_n_[kN_] = {};
+  T sum_[kN_] = {};    ///< window sum [channel unit]
+  std::uint32_t n_[kN_] = {};
+  T v_[kN_] = {};      ///< normalised deviation [-]
   T v_norm_ = T(0);
   T t_det_ = T(0);           ///< [s]
   T t_active_ = T(0);        ///< last time a channel was in alarm or flagged [s]

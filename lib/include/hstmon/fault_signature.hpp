@@ -6,6 +6,7 @@
 /// signatures coincide. Tables are `constexpr` arrays of these aggregates, generated on
 /// the host (see docs/fdi.md) so they live in flash.
 
+#include <cstddef>
 #include <cstdint>
 
 namespace hstmon {
@@ -28,15 +29,21 @@ struct ChannelSignature {
   std::uint8_t order;     ///< integrations on the fastest causal path fault → channel (0 = instantaneous)
 };
 
-/// One single-fault hypothesis.
-struct FaultSignature {
-  const char* name;                          ///< "kp-", "Rbl+", "sensor_p_pp", …
-  bool sensor;                               ///< true for a sensor fault (one channel alone)
-  ChannelSignature channel[kFdiChannels];    ///< per channel, ThesisChannel order
+/// One single-fault hypothesis over N measured channels (a circuit's sensor channels in
+/// its order; the thesis rig's 4 in ThesisChannel order).
+template <int N>
+struct BasicFaultSignature {
+  static constexpr int kChannels = N;  ///< channels the row describes
+  const char* name;                    ///< "kp-", "Rbl+", "sensor_p_pp", …
+  bool sensor;                         ///< true for a sensor fault (one channel alone)
+  ChannelSignature channel[static_cast<std::size_t>(N)];       ///< per channel
   /// Unit vector of the steady-state residual for a small fault, each channel divided by
-  /// its noise level (Table 2.2, nominal point) [-]: the quantitative tie-break between
+  /// its noise level (at the nominal point) [-]: the quantitative tie-break between
   /// hypotheses with the same qualitative signature. All zero for sensor faults.
-  float direction[kFdiChannels];
+  float direction[static_cast<std::size_t>(N)];
 };
+
+/// A row of the thesis rig's table (4 channels: Pmi, Pmo, Ppp, ωm).
+using FaultSignature = BasicFaultSignature<kFdiChannels>;
 
 }  // namespace hstmon

@@ -21,6 +21,7 @@
 #include <cmath>
 
 #include "hstmon/fault_signature.hpp"
+#include "hstmon/model_bound.hpp"
 #include "hstmon/status.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
@@ -130,5 +131,15 @@ HSTMON_BOUND_PATH Status thesis_model_bound(const ThesisReducedModel<T>& model, 
   }
   return Status::kOk;
 }
+
+/// The thesis rig's model bound for the monitor (model_bound.hpp).
+template <typename T>
+struct ModelBound<ThesisReducedModel<T>> {
+  using Uncertainty = ThesisUncertainty<T>;  ///< relative uncertainty per parameter and logged input [-]
+  /// thesis_model_bound().
+  static Status compute(const ThesisReducedModel<T>& model, const Uncertainty& eps, T (&m)[kFdiChannels]) noexcept {
+    return thesis_model_bound(model, eps, m);
+  }
+};
 
 }  // namespace hstmon

@@ -30,6 +30,11 @@ struct ThesisInputs {
   T Ps = T(0);                ///< DCV return (tank) pressure [Pa]
   T Pbp = T(1.0e6);           ///< booster-pump pressure downstream of the PRV [Pa]
   T kp = T(4.41e-8);          ///< PRV orifice coefficient, Q = kp·√ΔP [m³/(s·√Pa)]
+
+  /// True when every input is equal (the monitor's test for an input change).
+  friend constexpr bool operator==(const ThesisInputs& a, const ThesisInputs& b) noexcept {
+    return a.Psupl == b.Psupl && a.Ps == b.Ps && a.Pbp == b.Pbp && a.kp == b.kp;
+  }
 };
 
 /// Full state of equations 2.5–2.8.

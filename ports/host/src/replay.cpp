@@ -53,15 +53,6 @@ using Model = ThesisReducedModel<double>;
 using Mon = Monitor<double>;
 using Obs = Mon::Obs;
 
-ReplayEvent to_replay_event(const Mon::Event& e) {
-  ReplayEvent out;
-  out.t = e.time;
-  out.event = to_string(e.kind);
-  out.consistent = e.consistent;
-  for (int j = 0; j < e.count; ++j) out.candidates.push_back({e.candidate[j].name, e.candidate[j].score});
-  return out;
-}
-
 // Median of the positive sample intervals; 0 for fewer than two rows.
 double median_interval(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;
@@ -219,6 +210,15 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   res.ticks = obs.ticks();
   res.final_status = to_string(mon.matcher().status());
   return res;
+}
+
+ReplayEvent to_replay_event(const MatchEvent<double>& e) {
+  ReplayEvent out;
+  out.t = e.time;
+  out.event = to_string(e.kind);
+  out.consistent = e.consistent;
+  for (int j = 0; j < e.count; ++j) out.candidates.push_back({e.candidate[j].name, e.candidate[j].score});
+  return out;
 }
 
 }  // namespace hstmon::host

@@ -1,15 +1,18 @@
 #pragma once
 /// @file circuit_replay.hpp
-/// Replays a circuit log through Observer<CircuitModel> (hstmon replay --circuit):
-/// residuals only. The observer ticks at a fixed rate, each log row one measurement,
+/// Replays a circuit log through the circuit's monitor (hstmon replay --circuit):
+/// circuit::CircuitMonitor — observer, sensor checks, residual evaluator with the model
+/// bound from the circuit's parameter uncertainty, and the fault matcher on the circuit's
+/// generated table (circuit_faults.hpp). The observer ticks at a fixed rate, each log row one measurement,
 /// inputs held from the last row, as the thesis replay (ports/host replay.hpp); it starts
 /// by hstmon::choose_initial_state (reset_measured) unless told otherwise, and then, when
 /// the first row lies within 3σ of the steady state's outputs on every channel (each with
 /// a sensor noise σ), at that steady state instead: a parallel model keeps the readings'
 /// noise as its initial error, and a lightly damped circuit rings with it. Stiff nodes are
-/// taken quasi-steady for the tick (circuit::auto_stiff_mask). The fault matcher is not
-/// run: it is thesis-only for now (a note says so). A reading at or beyond an end of its
-/// sensor's range is not compared (a clipped transmitter says only "there or beyond").
+/// taken quasi-steady for the tick (circuit::auto_stiff_mask). A reading at or beyond an
+/// end of its sensor's range goes to the monitor's sensor checks (saturation, loop break)
+/// but not into the residual statistics (a clipped transmitter says only "there or
+/// beyond").
 
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +30,7 @@ namespace hstmon::circuit_tools {
 struct CircuitReplayOptions {
   double tick = 0.0;                         ///< observer tick [s]; 0 = the log's median period, at most 10 ms
   host::InitMode init = host::InitMode::kAuto;
+  bool diagnose = true;                      ///< run the fault matcher (false: residuals only)
 };
 
 /// Result of a circuit replay; channels in the circuit's sensor order, SI units.
@@ -43,6 +47,11 @@ struct CircuitReplayResult {
   std::size_t unhealthy_rows = 0;
   std::uint32_t max_substeps = 0;
   InitialState start = InitialState::kRest;
+  double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
+  std::vector<host::ReplayEvent> events;      ///< matcher events in time order (if diagnose)
+  std::string final_status = "nominal";       ///< matcher status after the last row
+  std::size_t table_rows = 0;                 ///< hypotheses in the circuit's fault table (0: not run)
+  std::vector<std::string> undetectable;      ///< parameter faults without a row (no visible steady change)
   std::vector<std::string> notes;
 };
 

@@ -17,6 +17,8 @@
 /// two threads at once.
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -54,6 +56,14 @@ class CircuitModel {
   /// Input values by index (SI), held over a tick.
   struct Inputs {
     T v[kExtent<Cap::kInputs>]{};
+
+    /// True when every input is equal (the monitor's test for an input change).
+    friend bool operator==(const Inputs& a, const Inputs& b) noexcept {
+      for (int i = 0; i < Cap::kInputs; ++i) {
+        if (!(a.v[i] == b.v[i])) return false;
+      }
+      return true;
+    }
   };
 
   /// Gauss–Seidel sweeps and Newton iterations per node before a solve is declared failed.
@@ -225,6 +235,25 @@ class CircuitModel {
     for (int r = 0; r < n_states_; ++r) {
       for (int c = 0; c < n_states_; ++c) J(r, c) = jr[r][c];
     }
+  }
+
+  /// Slowest decay rate of the linearised dynamics at x [1/s]: min −Re λ over the
+  /// eigenvalues of jacobian(x); 0 when some mode does not decay (Re λ ≥ 0) or the
+  /// eigen-solve fails. The monitor's start-up hold-off is (1/rate)·ln D.
+  T slowest_rate(const State& x) const noexcept {
+    StateMatrix J;
+    jacobian(x, J);
+    // The unused rows and columns (n_states() < kStates) are zero: give them a mode
+    // faster than any of the used block's (Gershgorin: |λ| ≤ the largest row sum), so
+    // the slowest is the used block's.
+    T s = T(0);
+    for (int r = 0; r < n_states_; ++r) s = std::max(s, J.row(r).cwiseAbs().sum());
+    for (int r = n_states_; r < kStates; ++r) J(r, r) = -(T(1) + T(10) * s);
+    const Eigen::EigenSolver<StateMatrix> es(J, false);
+    if (es.info() != Eigen::Success) return T(0);
+    T rate = std::numeric_limits<T>::infinity();
+    for (int i = 0; i < kStates; ++i) rate = std::min(rate, -es.eigenvalues()[i].real());
+    return rate > T(0) && std::isfinite(rate) ? rate : T(0);
   }
 
   /// Local contraction factor of the quasi-steady solve at x [-]: the largest row sum

@@ -20,6 +20,10 @@ template <typename T>
 struct PtcConfig {
   T dt0 = T(1e-6);         ///< first pseudo time step [s]
   T dt_newton = T(1e4);    ///< Δt beyond which a small step means convergence [s]
+  /// A residual whose every unknown moves by less than this fraction of its envelope per
+  /// second is steady, whatever Δt [1/s] (floored at 64ε): near rounding the residual
+  /// flickers, the overshoot guard keeps cutting Δt, and dt_newton is never reached.
+  T rate_tol = T(1e-10);
   int max_iterations = 600;
 };
 
@@ -30,7 +34,8 @@ struct PtcConfig {
 /// @param scale  typical magnitude of each unknown [n] (its envelope), for the norms
 /// @param n      unknowns used, ≤ N
 /// @param u      in: start (rest); out: the steady state when true is returned
-/// @return       true on convergence (relative Newton step ≤ 64ε with Δt ≥ dt_newton)
+/// @return       true on convergence (relative Newton step ≤ 64ε with Δt ≥ dt_newton, or a
+///               residual rate ≤ rate_tol)
 template <typename T, std::size_t N, typename Eval>
 bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n, T (&u)[N],
                       const PtcConfig<T>& cfg = PtcConfig<T>{}) noexcept {
@@ -38,6 +43,7 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
   T dt = cfg.dt0;
   T prev_norm = T(-1);
   const T tol = T(64) * std::numeric_limits<T>::epsilon();
+  const T rate_tol = std::fmax(cfg.rate_tol, tol);
   for (int it = 0; it < cfg.max_iterations; ++it) {
     eval(u, g, J);
     T norm = T(0);
@@ -48,7 +54,7 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
       dt *= T(0.1);
       continue;
     }
-    if (norm == T(0)) return true;
+    if (norm <= rate_tol) return true;
     if (prev_norm > T(0)) {
       // A step that more than doubled the residual overshot (a valve's kink, a lightly
       // damped mode): back, and a quarter of the pseudo time.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hstmon/thesis_params.hpp"
+#include "hstmon/fault_matcher.hpp"
 #include "hstmon/initial_state.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/sensor_ranges.hpp"
@@ -112,6 +113,9 @@ struct ReplayResult {
 /// (read without error, or the valid prefix of a lenient read).
 ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
                     const ThesisInputs<double>& defaults, const ReplayOptions& options);
+
+/// A matcher event (any model's monitor, double) as a replay event.
+ReplayEvent to_replay_event(const MatchEvent<double>& e);
 
 /// Names of the four measured channels in output order: p_mi, p_mo, p_pp, w_m.
 extern const std::array<Signal, 4> kMeasuredSignals;

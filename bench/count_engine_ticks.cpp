@@ -1,0 +1,101 @@
+// Driver for scripts/count_instructions.sh, the circuit engine's rows: N ticks of one
+// variant between CALLGRIND_START_INSTRUMENTATION and CALLGRIND_STOP_INSTRUMENTATION
+// (see count_ticks.cpp for the method).
+//
+//   hstmon_count_engine_ticks <variant> [ticks]
+//   variants: engine_double engine_float   Observer<CircuitModel<T>> on thesis.json, 1 ms
+//             odeint_engine_double odeint_engine_float   Boost.Odeint runge_kutta4, one step
+//                                          per tick, on the same engine model
+//
+// Exit status 2 on bad usage or a circuit that does not load, 3 if the run left the
+// operating point.
+
+#include <valgrind/callgrind.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+#include "engine_workload.hpp"
+
+namespace {
+
+using hstmon_bench::EngineMeasurements;
+using hstmon_bench::ThesisCircuit;
+
+constexpr int kWarmup = 64;
+
+// One out-of-line call per tick, as in count_ticks.cpp.
+template <typename Sim, typename Inputs, typename Measurement>
+__attribute__((noinline)) void tick(Sim& sim, const Inputs& u, const Measurement& m) {
+  sim.step(u, m);
+}
+
+template <typename Sim, typename T>
+__attribute__((noinline)) void run(Sim& sim, const typename hstmon_bench::Engine<T>::Inputs& u0,
+                                   const EngineMeasurements<T>& table, std::uint64_t first, long n) {
+  typename hstmon_bench::Engine<T>::Inputs u = u0;
+  for (long k = 0; k < n; ++k) {
+    hstmon_bench::escape_engine(&u);  // inputs come from outside each tick
+    tick(sim, u, table[first + static_cast<std::uint64_t>(k)]);
+    hstmon_bench::escape_engine(&sim.residual());
+  }
+}
+
+template <typename Sim, typename T>
+void measure(Sim& sim, const typename hstmon_bench::Engine<T>::Inputs& u, const EngineMeasurements<T>& table, long n) {
+  run<Sim, T>(sim, u, table, 0, kWarmup);
+  CALLGRIND_START_INSTRUMENTATION;
+  run<Sim, T>(sim, u, table, kWarmup, n);
+  CALLGRIND_STOP_INSTRUMENTATION;
+}
+
+bool plausible(double w) { return std::isfinite(w) && w > 100.0 && w < 250.0; }
+
+template <typename T>
+int engine(const ThesisCircuit& c, long n) {
+  auto sim = hstmon_bench::make_engine_observer<T>(c, T(1e-3));
+  const EngineMeasurements<T> table(sim.estimate());
+  measure<decltype(sim), T>(sim, c.inputs_as<T>(), table, n);
+  const double w = static_cast<double>(sim.state()[1]);
+  std::printf("ticks=%ld substeps=%d health=0x%x w_m=%.6g\n", n, sim.substeps(), sim.last_health(), w);
+  return sim.last_health() == 0 && plausible(w) ? 0 : 3;
+}
+
+template <typename T>
+int odeint_engine(const ThesisCircuit& c, long n) {
+  hstmon_bench::OdeintEngine<T> sim(c, T(1e-3));
+  const EngineMeasurements<T> table(hstmon_bench::make_engine_observer<T>(c, T(1e-3)).estimate());
+  measure<decltype(sim), T>(sim, c.inputs_as<T>(), table, n);
+  const double w = static_cast<double>(sim.state()[1]);
+  std::printf("ticks=%ld rk4_steps=1 w_m=%.6g\n", n, w);
+  return plausible(w) ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || argc > 3) {
+    std::fprintf(stderr, "usage: %s <variant> [ticks]   (variants: see count_engine_ticks.cpp)\n", argv[0]);
+    return 2;
+  }
+  const long n = argc == 3 ? std::strtol(argv[2], nullptr, 10) : 10000;
+  if (n <= 0) {
+    std::fprintf(stderr, "ticks must be positive\n");
+    return 2;
+  }
+  try {
+    const ThesisCircuit c(HSTMON_SOURCE_DIR);
+    const char* v = argv[1];
+    if (std::strcmp(v, "engine_double") == 0) return engine<double>(c, n);
+    if (std::strcmp(v, "engine_float") == 0) return engine<float>(c, n);
+    if (std::strcmp(v, "odeint_engine_double") == 0) return odeint_engine<double>(c, n);
+    if (std::strcmp(v, "odeint_engine_float") == 0) return odeint_engine<float>(c, n);
+    std::fprintf(stderr, "unknown variant '%s'\n", v);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+  }
+  return 2;
+}

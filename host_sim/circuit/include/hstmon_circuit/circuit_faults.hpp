@@ -1,0 +1,59 @@
+#pragma once
+/// @file circuit_faults.hpp
+/// The fault table and the parameter uncertainty of any circuit, from its file and the
+/// engine — what the monitor of `hstmon replay --circuit` runs on.
+///
+/// Rows: `<parameter>+` and `<parameter>−` for every named parameter that moves a steady
+/// state (displacements, resistances, orifice coefficients and areas, frictions,
+/// torques, flows, pressures, fractions, speeds; not capacitances, volumes, inertias or
+/// the density, which Cd covers), then `<input>+` and `<input>−` for every logged input
+/// with a non-zero nominal value (the machine's true value is not the logged one: the
+/// thesis's kp− is a PRV blockage under an unchanged setting), then `sensor_<channel>` for
+/// every channel. A parameter
+/// row's signature is numeric, from steady-state solves of the engine at the nominal
+/// inputs: the magnitude on a channel is the sign of the change for a ±10 % and a ±30 %
+/// fault when both agree and the 30 % change is at least one noise σ, kQualZero when
+/// neither reaches one σ, else kQualAny; the direction is the noise-scaled 10 % change.
+/// Slopes are kQualAny and orders 0: the transient part of a signature comes from the
+/// circuit's temporal causal graph, which is not derived for circuit files yet. A fault
+/// that moves no channel by one σ even at ±30 % has no row (it is listed as
+/// undetectable at this operating point).
+
+#include <string>
+#include <vector>
+
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/fault_signature.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+
+namespace hstmon::circuit_tools {
+
+/// A circuit's fault table. Row names point into `names`, so the table moves but does
+/// not copy.
+struct CircuitFaultTable {
+  using Row = BasicFaultSignature<host::CircuitCap::kChannels>;
+  std::vector<std::string> names;         ///< one per row, in row order
+  std::vector<Row> rows;
+  std::vector<std::string> undetectable;  ///< faults without a row (see the file comment)
+  std::vector<std::string> notes;         ///< what was assumed (no steady state for a 30 % fault, …)
+
+  CircuitFaultTable() = default;
+  CircuitFaultTable(CircuitFaultTable&&) = default;
+  CircuitFaultTable& operator=(CircuitFaultTable&&) = default;
+  CircuitFaultTable(const CircuitFaultTable&) = delete;
+  CircuitFaultTable& operator=(const CircuitFaultTable&) = delete;
+};
+
+/// The relative uncertainty the monitor's model bound assumes: 2 % on every named
+/// parameter that moves a steady state (as for Table 2.2's regressed parameters), 0 on
+/// the rest and on literals.
+circuit::CircuitUncertainty<double, host::CircuitCap> default_uncertainty(const host::CircuitFile& f);
+
+/// True when parameter p can be a fault row / is uncertain (see the file comment).
+bool moves_steady_state(const host::CircuitParam& p);
+
+/// Builds the table for c at its nominal inputs (the parameter file's).
+/// @throws std::runtime_error when the circuit has no steady state at the nominal inputs
+CircuitFaultTable circuit_fault_table(const LoadedCircuit& c);
+
+}  // namespace hstmon::circuit_tools

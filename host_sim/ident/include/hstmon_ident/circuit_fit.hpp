@@ -1,0 +1,62 @@
+#pragma once
+/// @file circuit_fit.hpp
+/// `hstmon identify --circuit`: named parameters of any circuit fitted to the steady
+/// operating points of its logs, by Levenberg–Marquardt (least_squares.hpp) on the
+/// engine's steady states — the thesis's nonlinear regression (Table 2.2) for a circuit
+/// from a file.
+///
+/// Operating points: stretches of a log over which every logged input holds (within
+/// 0.5 % of its value, or exactly when it is 0), less their first 5 slowest time
+/// constants of the circuit at that point (the transient), at least `min_duration` long.
+/// Per point and measured channel the residual is (model − mean reading)/σ, σ the sensor's
+/// noise (1 % of the span without one). Parameters are fitted as ln(p/p₀), so they stay
+/// positive and their steps are relative; standard errors come from the linearised
+/// covariance at the optimum.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+
+namespace hstmon::ident {
+
+/// What to fit and how to find operating points.
+struct CircuitFitOptions {
+  std::vector<std::string> fit;   ///< names of the parameters to fit (named, not literal)
+  double min_duration = 0.2;      ///< shortest steady stretch after the settle time [s]
+};
+
+/// One operating point.
+struct CircuitOperatingPoint {
+  std::size_t log = 0;                ///< index in the logs given
+  double t0 = 0.0, t1 = 0.0;          ///< the averaged stretch [s]
+  std::size_t n = 0;                  ///< rows averaged
+  std::vector<double> inputs;         ///< the held inputs [SI], by input index
+  std::vector<double> mean;           ///< mean reading per channel [SI] (NaN where not logged)
+  std::vector<double> before, after;  ///< model − mean per channel, in σ, at the start and the fit
+};
+
+/// Result of fit_circuit().
+struct CircuitFitResult {
+  std::vector<CircuitOperatingPoint> points;
+  std::vector<std::string> names;        ///< fitted parameters
+  std::vector<double> start, value;      ///< their values before and after [SI]
+  std::vector<double> rel_se;            ///< standard error relative to the value [-]
+  double rms_before = 0.0, rms_after = 0.0;  ///< RMS of the residuals [σ]
+  std::string status;                    ///< the solver's stop reason
+  std::vector<std::string> notes;
+  std::optional<std::string> error;      ///< set when nothing could be fitted
+};
+
+/// Fits `o.fit` of circuit c to the operating points of `logs` (each read for c).
+CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
+                             const CircuitFitOptions& o);
+
+/// A parameter file for c (docs/circuits.md's format) with the values of c overridden
+/// by the fitted ones; every number in SI.
+std::string fitted_values_json(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r);
+
+}  // namespace hstmon::ident

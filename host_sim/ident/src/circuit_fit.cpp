@@ -1,0 +1,194 @@
+#include "hstmon_ident/circuit_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon_ident/least_squares.hpp"
+
+namespace hstmon::ident {
+
+namespace {
+
+using Model = host::HostCircuitModel;
+
+double sigma_of(const host::CircuitSensor& s) {
+  const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
+  return s.noise > 0.0 ? s.noise : 0.01 * span;
+}
+
+bool same_input(double a, double b) { return a == b || std::fabs(a - b) <= 0.005 * std::fabs(b); }
+
+// The operating points of one log: stretches of held inputs, less the settle time.
+void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit& desc, const circuit_tools::CircuitLog& log,
+                 std::size_t index, double min_duration, std::vector<CircuitOperatingPoint>& out) {
+  const std::size_t rows = log.rows();
+  const std::size_t n_in = c.file.inputs.size();
+  auto input_at = [&](std::size_t i, std::size_t row) {
+    return i < log.inputs.size() && log.inputs[i].size() == rows ? log.inputs[i][row] : c.values.inputs.v[i];
+  };
+  std::size_t start = 0;
+  while (start < rows) {
+    std::size_t end = start + 1;
+    while (end < rows) {
+      bool held = true;
+      for (std::size_t i = 0; i < n_in && held; ++i) held = same_input(input_at(i, end), input_at(i, start));
+      if (!held) break;
+      ++end;
+    }
+    Model::Inputs u = c.values.inputs;
+    for (std::size_t i = 0; i < n_in; ++i) u.v[i] = input_at(i, start);
+    const Model m(desc, c.values.params, u);
+    Model::State xs;
+    const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
+    const double settle = rate > 0.0 ? 5.0 / rate : HUGE_VAL;
+    const double t_from = log.t[start] + settle;
+    std::size_t first = start;
+    while (first < end && log.t[first] < t_from) ++first;
+    if (first < end && log.t[end - 1] - log.t[first] >= min_duration) {
+      CircuitOperatingPoint p;
+      p.log = index;
+      p.t0 = log.t[first];
+      p.t1 = log.t[end - 1];
+      p.n = end - first;
+      for (std::size_t i = 0; i < n_in; ++i) p.inputs.push_back(u.v[i]);
+      for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+        double mean = std::nan("");
+        if (ch < log.sensors.size() && log.sensors[ch].size() == rows) {
+          double s = 0.0;
+          for (std::size_t k = first; k < end; ++k) s += log.sensors[ch][k];
+          mean = s / static_cast<double>(p.n);
+        }
+        p.mean.push_back(mean);
+      }
+      out.push_back(std::move(p));
+    }
+    start = end;
+  }
+}
+
+}  // namespace
+
+CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
+                             const CircuitFitOptions& o) {
+  CircuitFitResult r;
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = 0;  // steady states do not depend on it
+  std::vector<int> idx;
+  for (const std::string& name : o.fit) {
+    const int k = c.file.param_index(name);
+    if (k < 0 || c.file.params[static_cast<std::size_t>(k)].literal) {
+      r.error = "circuit " + c.file.name + " has no named parameter '" + name + "'";
+      return r;
+    }
+    if (!(c.values.params.v[k] > 0.0)) {
+      r.error = "parameter " + name + " is not positive: it cannot be fitted as a logarithm";
+      return r;
+    }
+    idx.push_back(k);
+    r.names.push_back(name);
+    r.start.push_back(c.values.params.v[k]);
+  }
+  if (idx.empty()) {
+    r.error = "nothing to fit: name the parameters with --fit";
+    return r;
+  }
+  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, o.min_duration, r.points);
+  const std::size_t channels = c.file.sensors.size();
+  std::size_t m = 0;
+  for (const auto& p : r.points) {
+    for (double v : p.mean) m += std::isfinite(v) ? 1 : 0;
+  }
+  if (m < idx.size()) {
+    r.error = std::to_string(r.points.size()) + " operating point(s), " + std::to_string(m) +
+              " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit";
+    return r;
+  }
+  std::vector<double> sigma(channels);
+  for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sigma_of(c.file.sensors[ch]);
+
+  // Residuals (model − mean)/σ over every point and measured channel; per-point values
+  // optionally kept in `keep` (before/after).
+  auto residuals = [&](const std::vector<double>& x, std::vector<double>& res, bool keep_after, bool keep_before) {
+    Model::Params p = c.values.params;
+    for (std::size_t j = 0; j < idx.size(); ++j) p.v[idx[j]] = r.start[j] * std::exp(x[j]);
+    std::size_t k = 0;
+    for (auto& pt : r.points) {
+      Model::Inputs u = c.values.inputs;
+      for (std::size_t i = 0; i < pt.inputs.size(); ++i) u.v[i] = pt.inputs[i];
+      const Model model(desc, p, u);
+      Model::Output y;
+      if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
+      std::vector<double> per(channels, std::nan(""));
+      for (std::size_t ch = 0; ch < channels; ++ch) {
+        if (!std::isfinite(pt.mean[ch])) continue;
+        per[ch] = (y[static_cast<int>(ch)] - pt.mean[ch]) / sigma[ch];
+        res[k++] = per[ch];
+      }
+      if (keep_after) pt.after = per;
+      if (keep_before) pt.before = per;
+    }
+    return true;
+  };
+  const std::vector<double> x0(idx.size(), 0.0);
+  std::vector<double> res(m);
+  if (!residuals(x0, res, false, true)) {
+    r.error = "no steady state at some operating point with the starting values";
+    return r;
+  }
+  double ss = 0.0;
+  for (double v : res) ss += v * v;
+  r.rms_before = std::sqrt(ss / static_cast<double>(m));
+  const ResidualFn f = [&](const std::vector<double>& x, std::vector<double>& out) {
+    return residuals(x, out, false, false);
+  };
+  const LmResult lm = levenberg_marquardt(f, m, x0);
+  r.status = lm.status_text;
+  if (!lm.finite) {
+    r.error = "the fit did not reach finite values (" + lm.status_text + ")";
+    return r;
+  }
+  (void)residuals(lm.x, res, true, false);
+  r.rms_after = std::sqrt(lm.ssr / static_cast<double>(m));
+  for (std::size_t j = 0; j < idx.size(); ++j) r.value.push_back(r.start[j] * std::exp(lm.x[j]));
+  DenseMatrix jac;
+  const std::vector<double> steps(idx.size(), 1e-4);
+  r.rel_se.assign(idx.size(), std::nan(""));
+  if (m > idx.size() && central_jacobian(f, m, lm.x, steps, jac)) {
+    const LinearStats st = linear_stats(jac, lm.ssr / static_cast<double>(m - idx.size()));
+    for (std::size_t j = 0; j < idx.size(); ++j) r.rel_se[j] = st.se[j];  // d ln p = dp/p
+    // A condition beyond 1e6 (of the column-scaled Jacobian) is a direction the points
+    // do not see: the central differences leave its singular value at rounding, not 0.
+    if (st.rank < idx.size() || !(st.condition <= 1e6)) {
+      char cond[32];
+      std::snprintf(cond, sizeof cond, "%.3g", st.condition);
+      r.notes.push_back("the operating points do not tell the fitted parameters apart (condition " + std::string(cond) +
+                        "): add operating points or fit fewer; the values along that direction are not determined");
+    }
+  }
+  if (!lm.converged) r.notes.push_back("the solver stopped without converging: " + lm.status_text);
+  return r;
+}
+
+std::string fitted_values_json(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
+  for (std::size_t k = 0; k < c.file.params.size(); ++k) {
+    if (c.file.params[k].literal) continue;
+    params[c.file.params[k].name] = c.values.params.v[k];
+  }
+  for (std::size_t j = 0; j < r.names.size(); ++j) params[r.names[j]] = r.value[j];
+  nlohmann::ordered_json inputs = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < c.file.inputs.size(); ++i) inputs[c.file.inputs[i].name] = c.values.inputs.v[i];
+  std::string fitted;
+  for (const auto& n : r.names) fitted += (fitted.empty() ? "" : ", ") + n;
+  const nlohmann::ordered_json j = {{"circuit", c.file.name},
+                                    {"description", "hstmon identify --circuit: " + fitted + " fitted to " +
+                                                        std::to_string(r.points.size()) + " operating points; SI units"},
+                                    {"params", params},
+                                    {"inputs", inputs}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace hstmon::ident

@@ -1,0 +1,102 @@
+// `hstmon identify --circuit`: prints the operating points found, the fitted parameters
+// with their standard errors and the residuals before and after, in σ of each sensor.
+#include "cli_circuit_identify.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_commands.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_host/circuit_units.hpp"
+#include "hstmon_ident/circuit_fit.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
+  fmt::print("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit, a.logs.size(), r.points.size());
+  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
+  fmt::print("\n  {:<12} {:>14} {:>14} {:>10} {:>12}\n", "parameter", "start", "fitted", "change", "std. error");
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    const int k = c.file.param_index(r.names[j]);
+    const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
+    fmt::print("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   [{}]\n", r.names[j], r.start[j], r.value[j],
+               100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], unit);
+  }
+  fmt::print("\n  residual RMS (model − mean reading, in sensor σ): {:.3g} before, {:.3g} after ({})\n", r.rms_before,
+             r.rms_after, r.status);
+  if (!a.out.empty()) fmt::print("  parameter file written: {}\n", a.out);
+}
+
+void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
+  nlohmann::json params = nlohmann::json::array();
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    params.push_back({{"name", r.names[j]}, {"start", r.start[j]}, {"value", r.value[j]}, {"rel_se", num(r.rel_se[j])}});
+  }
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& p : r.points) {
+    nlohmann::json before = nlohmann::json::array(), after = nlohmann::json::array();
+    for (double v : p.before) before.push_back(num(v));
+    for (double v : p.after) after.push_back(num(v));
+    points.push_back({{"log", p.log}, {"t0", p.t0}, {"t1", p.t1}, {"rows", p.n}, {"before", before}, {"after", after}});
+  }
+  const nlohmann::json j = {{"type", "identify"},   {"circuit", c.file.name},  {"parameters", params},
+                            {"points", points},     {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
+                            {"status", r.status},   {"notes", r.notes}};
+  fmt::print("{}\n", j.dump());
+}
+
+}  // namespace
+
+int run_circuit_identify(const CircuitIdentifyArgs& a) {
+  if (a.logs.empty() || a.fit.empty()) {
+    fmt::print(stderr, "hstmon identify --circuit: give LOG files and --fit PARAM[,PARAM...]\n");
+    return kExitUsage;
+  }
+  circuit_tools::LoadedCircuit c;
+  if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return kExitBadInput;
+  }
+  std::vector<circuit_tools::CircuitLog> logs;
+  for (const std::string& path : a.logs) {
+    circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file);
+    for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
+    if (log.error) {
+      fmt::print(stderr, "{}\n", log.error->to_string());
+      return kExitBadInput;
+    }
+    logs.push_back(std::move(log));
+  }
+  ident::CircuitFitOptions o;
+  o.fit = a.fit;
+  o.min_duration = a.min_duration;
+  const ident::CircuitFitResult r = ident::fit_circuit(c, logs, o);
+  if (r.error) {
+    fmt::print(stderr, "hstmon identify --circuit {}: {}\n", a.circuit, *r.error);
+    return kExitBadInput;
+  }
+  if (!a.out.empty()) {
+    std::ofstream f(a.out);
+    f << ident::fitted_values_json(c, r);
+    if (!f) {
+      fmt::print(stderr, "hstmon identify: cannot write {}\n", a.out);
+      return kExitBadInput;
+    }
+  }
+  if (a.json) {
+    print_json(c, r);
+  } else {
+    print_human(a, c, r);
+  }
+  return kExitOk;
+}
+
+}  // namespace hstmon::cli

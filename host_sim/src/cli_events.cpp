@@ -1,0 +1,44 @@
+// The matcher's events as hstmon replay prints them (cli_events.hpp).
+#include "cli_events.hpp"
+
+#include <fmt/format.h>
+
+namespace hstmon::cli {
+
+nlohmann::json event_json(const host::ReplayEvent& e) {
+  nlohmann::json cands = nlohmann::json::array();
+  for (const auto& c : e.candidates) cands.push_back({{"fault", c.fault}, {"score", c.score}});
+  return {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
+}
+
+std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
+  std::string out;
+  for (std::size_t j = 0; j < e.candidates.size() && j < show; ++j) {
+    out += fmt::format("{}{} ({:.3f})", j ? ", " : "", e.candidates[j].fault, e.candidates[j].score);
+  }
+  const std::size_t more = static_cast<std::size_t>(e.consistent) > show ? static_cast<std::size_t>(e.consistent) - show : 0;
+  if (more > 0) out += fmt::format(" and {} more", more);
+  return out;
+}
+
+void print_events(const std::vector<host::ReplayEvent>& events, const std::string& final_status) {
+  if (events.empty()) {
+    fmt::print("\n  diagnosis: no fault detected (status {})\n", final_status);
+    return;
+  }
+  fmt::print("\n  diagnosis (single-fault hypotheses, best first):\n");
+  for (const auto& e : events) {
+    if (e.event == "cleared") {
+      fmt::print("    t = {:>9.3f} s  cleared: residuals back within their bounds\n", e.t);
+    } else if (e.event == "isolated") {
+      fmt::print("    t = {:>9.3f} s  isolated: {}\n", e.t, candidate_list(e, 3));
+    } else if (e.event == "detected") {
+      fmt::print("    t = {:>9.3f} s  detected: {} hypotheses consistent so far: {}\n", e.t, e.consistent, candidate_list(e, 4));
+    } else {
+      fmt::print("    t = {:>9.3f} s  {}: {}\n", e.t, e.event, candidate_list(e, 4));
+    }
+  }
+  fmt::print("    status at the end of the log: {}\n", final_status);
+}
+
+}  // namespace hstmon::cli

@@ -1,0 +1,18 @@
+#pragma once
+/// @file circuit_monitor.hpp
+/// The monitor of any circuit: ModelMonitor (model_monitor.hpp) on the engine's model
+/// (circuit_model.hpp) with its model bound (circuit_bound.hpp). Channels are the
+/// circuit's sensor channels in file order (Cap::kChannels of them in storage; the unused
+/// ones are never measured); fault tables are BasicFaultSignature<Cap::kChannels> rows.
+
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/circuit/circuit_model.hpp"
+#include "hstmon/model_monitor.hpp"
+
+namespace hstmon::circuit {
+
+/// The monitor of a circuit of capacity Cap in scalar T; see ModelMonitor for the sizes.
+template <typename T, class Cap = HostCapacity, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8>
+using CircuitMonitor = ModelMonitor<CircuitModel<T, Cap>, Capacity, QueueDepth, EventCandidates>;
+
+}  // namespace hstmon::circuit

@@ -1,0 +1,375 @@
+#pragma once
+/// @file model_monitor.hpp
+/// The whole monitor for any model in one object: observer (residuals), sensor checks,
+/// residual evaluator (thresholds from noise and parameter uncertainty, CUSUM) and the
+/// table-driven fault matcher. This is what firmware instantiates and what the host
+/// replay runs, so both go through the same code. The model is the thesis rig's
+/// hand-written one (monitor.hpp's Monitor) or a circuit from the engine
+/// (circuit/circuit_monitor.hpp); it satisfies model_concept.hpp and has a ModelBound
+/// (model_bound.hpp), steady_state() and slowest_rate(), and its Inputs compare with ==.
+///
+/// Each step(): observer tick → the model's own output variation (the transient
+/// allowance) → sensor checks on the raw sample → evaluator on the residuals (a saturated
+/// channel's only while above the model) → matcher. When the inputs change, the model
+/// bound (parameter-uncertainty part of the thresholds) is recomputed for the operating
+/// point they lead to: about 20 steady-state solves, so a few hundred microseconds on a
+/// Cortex-M4, once per change.
+///
+/// Transients are the model's business, not the sensors' (docs/fdi.md §9):
+///  - reset_measured() starts the observer where the first sample says (initial_state.hpp),
+///    and nothing is judged during the model's own start-up from there: a hold-off of
+///    (τ_m + τ_s)·ln D, τ_m the model's slowest time constant at the steady state for the
+///    inputs, τ_s the slowest transducer (Config::transducer_response), D the initial
+///    distance from that steady state in noise units;
+///  - each channel's bound is widened by transient_factor × the model's recent output
+///    variation (a leaky total variation with time constant τ_s, which bounds what a
+///    first-order transducer lag of up to τ_s can make of the model's own transient) plus
+///    half the learned ADC step; in steady operation the widening is 0.
+/// step() never allocates or throws.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "hstmon/fault_matcher.hpp"
+#include "hstmon/fault_signature.hpp"
+#include "hstmon/initial_state.hpp"
+#include "hstmon/model_bound.hpp"
+#include "hstmon/observer.hpp"
+#include "hstmon/residual_evaluator.hpp"
+#include "hstmon/sensor_check.hpp"
+#include "hstmon/status.hpp"
+
+#if defined(__GNUC__)
+#define HSTMON_RESET_PATH __attribute__((noinline, cold))
+#else
+#define HSTMON_RESET_PATH
+#endif
+
+namespace hstmon {
+
+/// @tparam ModelT  the model (see the file comment); its kOutputs are the channels
+/// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
+///   (table rows, queued events, candidates per event); firmware shrinks them (the C API
+///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
+/// @tparam UsualTick  the observer's usual tick (Observer); the C API turns it off so that
+///   it computes the firmware's bits on every target
+template <class ModelT, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
+          bool UsualTick = observer_detail::HasUsualTick<ModelT>::value>
+class ModelMonitor {
+ public:
+  using Model = ModelT;
+  using T = typename Model::Scalar;
+  static constexpr int kChannels = Model::kOutputs;  ///< measured channels (the model's outputs)
+  static constexpr std::size_t kN_ = static_cast<std::size_t>(kChannels);  ///< array extent
+  using Obs = Observer<Model, UsualTick>;
+  using Inputs = typename Model::Inputs;
+  using Evaluator = ResidualEvaluator<T, kChannels>;
+  using Sensors = SensorCheck<T, kChannels>;
+  using Matcher = FaultMatcher<T, Capacity, QueueDepth, EventCandidates, kChannels>;
+  using Signature = typename Matcher::Signature;  ///< a row of the fault table
+  using Uncertainty = typename ModelBound<Model>::Uncertainty;
+  using Measurement = typename Obs::Measurement;
+  using Event = typename Matcher::Event;
+
+  /// Configuration of the parts; each validated by its own configure().
+  struct Config {
+    typename Obs::Config observer{};          ///< tick, substeps, injection gain
+    typename Evaluator::Config evaluator{};   ///< noise σ per channel, CUSUM factors
+    typename Sensors::Config sensors{};       ///< transmitter ranges, stuck window
+    typename Matcher::Config matcher{};       ///< windows, tie margin, clear hold
+    Uncertainty uncertainty{};                ///< relative parameter uncertainty behind the model bound
+    /// Slowest transducer response the monitor must tolerate: first-order time constant
+    /// [s], ≥ 0. The transient allowance decays with it, and the start-up hold-off adds
+    /// it to the model's own time constant. 10 ms covers ordinary pressure transmitters
+    /// and speed pick-ups; 0 assumes perfect sensors.
+    T transducer_response = T(0.01);
+    /// Factor on the model's recent output variation that the residual may reach in a
+    /// transient [-], ≥ 1: 1 covers a first-order transducer lag exactly; the rest covers
+    /// the transient's share of the parameter error (±2 % moves an overshoot's size and
+    /// timing by a few per cent of the excursion) and the tick's input timing.
+    T transient_factor = T(1.5);
+    /// Upper limit of the start-up hold-off [s], > 0 (only reached when the model has
+    /// no stable operating point at the logged inputs).
+    T startup_hold_max = T(2);
+  };
+
+  ModelMonitor() noexcept = default;
+
+  /// Sets parameters, configuration and fault table, then resets at rest for the default
+  /// inputs. The table is borrowed and must outlive the monitor (a constexpr table does).
+  /// For a model built from its parameters alone (the thesis rig's).
+  /// @return kOk, kInvalidParams, kInvalidConfig, or the bound's kNoSteadyState
+  template <typename M = Model>
+  Status configure(const typename M::Params& params, const Config& c, const Signature* table, int count) noexcept {
+    if (!Model::params_valid(params)) return Status::kInvalidParams;
+    return configure(Model(params), c, table, count);
+  }
+
+  /// configure() with a model object: its parameters and description (a circuit model's)
+  /// as given; it is copied.
+  Status configure(const Model& model, const Config& c, const Signature* table, int count) noexcept {
+    if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
+          std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
+          c.startup_hold_max > T(0))) {
+      return Status::kInvalidConfig;
+    }
+    Status s = obs_.configure(model, c.observer);
+    if (s == Status::kOk) s = ev_.configure(c.evaluator);
+    if (s == Status::kOk) s = sensors_.configure(c.sensors);
+    if (s == Status::kOk) s = matcher_.configure(table, count, c.matcher);
+    if (s != Status::kOk) return s;
+    uncertainty_ = c.uncertainty;
+    transducer_tau_ = c.transducer_response;
+    transient_factor_ = c.transient_factor;
+    hold_max_ = c.startup_hold_max;
+    set_decay();
+    reset_rest_of_chain();
+    return Status::kOk;
+  }
+
+  /// New parameters, observer configuration and fault table; the evaluator, sensor checks
+  /// and matcher keep their other settings, and so do the uncertainty and the settle time
+  /// (on a default-constructed monitor: the defaults, i.e. configure() with Config{} but
+  /// c.observer = observer). Resets like configure(), and like reset_rest() forgets the
+  /// settling of the last input change. What the C API uses: no Config is
+  /// built, so a whole Config and the model are never on the stack together (the create
+  /// stack budget on the M4F), and no default configuration is materialised again (flash).
+  /// @return kOk, kInvalidParams, or kInvalidConfig
+  template <typename M = Model>
+  Status reconfigure(const typename M::Params& params, const typename Obs::Config& observer, const Signature* table,
+                     int count) noexcept {
+    Status s = obs_.configure(params, observer);
+    if (s == Status::kOk) s = matcher_.set_table(table, count);
+    if (s != Status::kOk) return s;
+    set_decay();
+    reset_rest_of_chain();
+    return Status::kOk;
+  }
+
+  /// Restarts from the first sample m under inputs u: the observer starts where the
+  /// measurements say (initial_state.hpp), and detection holds off while the model's own
+  /// start-up transient from there lasts (startup_hold()). The usual way to start.
+  /// @param how  out, optional: how the initial state was chosen
+  Status reset_measured(const Inputs& u, const Measurement& m, InitialState* how = nullptr) noexcept {
+    const Status s = obs_.reset_measured(u, m, how);
+    if (s == Status::kOk) reset_rest_of_chain();
+    return s;
+  }
+
+  /// Restarts at the steady state for inputs u (a log known to begin in operation).
+  Status reset_steady(const Inputs& u) noexcept {
+    const Status s = obs_.reset_steady(u);
+    if (s == Status::kOk) reset_rest_of_chain();
+    return s;
+  }
+
+  /// Restarts at rest for inputs u (a machine known to be at rest).
+  Status reset_rest(const Inputs& u) noexcept {
+    const Status s = obs_.reset_rest(u);
+    if (s == Status::kOk) reset_rest_of_chain();
+    return s;
+  }
+
+  /// One tick.
+  /// @param t  sample time [s] (for events; the model advances by the configured tick)
+  /// @param u  inputs held over the tick
+  /// @param m  raw measurement at t (m.valid = 0: no sample this tick, the model just advances)
+  /// @return   the matcher's status after the tick
+  MatchStatus step(T t, const Inputs& u, const Measurement& m) noexcept {
+    // Three frames in turn, none nested in another: the observer tick, the bound update
+    // on a tick whose inputs changed (the deepest stack of a step on the M4F), the rest.
+    if (observe(t, u, m)) update_bound();
+    return evaluate(t, m);
+  }
+
+  /// Oldest unread event; false when none.
+  bool pop_event(Event& e) noexcept { return matcher_.pop_event(e); }
+
+  const Obs& observer() const noexcept { return obs_; }
+  const Evaluator& evaluator() const noexcept { return ev_; }
+  const Sensors& sensors() const noexcept { return sensors_; }
+  const Matcher& matcher() const noexcept { return matcher_; }
+  /// Observer HealthFlag bits of the last tick (0 after a reset).
+  std::uint32_t health() const noexcept { return obs_.last_health(); }
+  /// The model bound in use, per channel [channel unit].
+  const T* model_bound() const noexcept { return bound_; }
+  /// The transient allowance of channel i at the last sample [channel unit]: the model's
+  /// own recent output variation times transient_factor, plus half the learned ADC step
+  /// (see the file comment).
+  T transient_allowance(int i) const noexcept { return transient_factor_ * peak_[i] + T(0.5) * sensors_.step(i); }
+  /// Start-up hold-off after the last reset [s]: no detection for this long after the
+  /// first step (see plan_startup).
+  T startup_hold() const noexcept { return hold_; }
+
+ private:
+  // Out of line and cold (size-optimised): one copy for reconfigure, reset_measured,
+  // reset_steady and reset_rest (flash); it runs once per reset.
+  HSTMON_RESET_PATH void reset_rest_of_chain() noexcept {
+    ev_.reset();
+    sensors_.reset();
+    matcher_.reset();
+    bound_valid_ = false;
+    for (int i = 0; i < kChannels; ++i) {
+      yprev_[i] = obs_.estimate()[i];
+      var_[i] = T(0);
+      gap_[i] = T(0);
+      peak_[i] = T(0);
+    }
+    plan_startup();
+    hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
+    settled_from_ = -std::numeric_limits<T>::infinity();
+  }
+
+  // Start-up hold-off: the time the model needs to come from its initial state to the
+  // steady state at the inputs to within noise. Linearised at that steady state, an
+  // initial distance of D noise units decays below one in τ·ln D, τ = 1/(slowest rate);
+  // a transducer of time constant τ_s behind it adds τ_s·ln D. Nothing measured can be
+  // judged before: the first sample of a start from rest reads the machine before the
+  // supply came on. When the inputs admit no steady state the cap applies.
+  HSTMON_RESET_PATH void plan_startup() noexcept {
+    const Model& model = obs_.model();
+    typename Model::State xs;
+    T hold = hold_max_;
+    if (model.steady_state(xs)) {
+      const T rate = model.slowest_rate(xs);
+      T d = T(1);
+      for (int i = 0; i < Model::kStates; ++i) {
+        const int ch = model.state_channel(i);
+        if (ch < 0) continue;  // not measured: its distance is not in noise units
+        const T di = std::fabs(xs[i] - obs_.state()[i]) / ev_.sigma(ch);
+        d = di > d ? di : d;
+      }
+      if (rate > T(0)) {
+        tau_m_ = T(1) / rate;
+        const T h = (tau_m_ + transducer_tau_) * std::log(d);
+        hold = h < hold_max_ ? h : hold_max_;
+      }
+    }
+    hold_ = hold;
+  }
+
+  // The transient allowance's per-tick decay e^(−h/τ_s) (0 for perfect sensors).
+  HSTMON_RESET_PATH void set_decay() noexcept {
+    decay_ = transducer_tau_ > T(0) ? std::exp(-obs_.config().tick / transducer_tau_) : T(0);
+  }
+
+  // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
+  // update runs. Returns true when the bound must be recomputed: first tick after a
+  // reset, or the inputs the observer took on changed.
+  HSTMON_NOINLINE bool observe(T t, const Inputs& u, const Measurement& m) noexcept {
+    // The observer holds the last good inputs when u is invalid, so a change is what it
+    // actually took on, not what was offered.
+    const Inputs before = obs_.model().inputs();
+    (void)obs_.step(u, m);
+    track_variation(m.valid != 0);
+    if (!(hold_until_ == hold_until_)) hold_until_ = t + hold_;
+    if (bound_valid_ && obs_.model().inputs() == before) return false;
+    if (bound_valid_) {
+      look_ahead();
+      // The pre-fault baseline restarts at the changed operating point once its
+      // transient has gone: 5 time constants of the model and the transducer.
+      matcher_.restart_baseline();
+      settled_from_ = t + T(5) * (tau_m_ + transducer_tau_);
+    }
+    return true;
+  }
+
+  // The model's own output variation: per channel a leaky total variation Σ|Δŷ| with the
+  // transducer's time constant (var_), and the undecayed sum since the last sample
+  // (gap_). A first-order transducer of time constant ≤ τ_s reads y_s − y =
+  // −∫ y'(t−s)·e^(−s/τ_s) ds, whose size var_ bounds; a sample taken after ticks without
+  // one may show the machine anywhere in between, which gap_ bounds. A sample's transient
+  // allowance is transient_factor times the larger of the two (peak_), plus half an ADC
+  // step (the reading's rounding, whatever the noise σ configured says) — computed only
+  // for a channel whose residual needs it (allowance()).
+  void track_variation(bool sampled) noexcept {
+    const auto& y = obs_.estimate();
+    for (int i = 0; i < kChannels; ++i) {
+      const T d = std::fabs(y[i] - yprev_[i]);
+      yprev_[i] = y[i];
+      const T v = var_[i] * decay_ + d;
+      const T g = gap_[i] + d;
+      var_[i] = v;
+      peak_[i] = v > g ? v : g;
+      gap_[i] = sampled ? T(0) : g;
+    }
+  }
+
+  // On an input change the logged change happened somewhere within the last sample
+  // interval, while the model takes it on from this tick: the machine may be one tick
+  // ahead, so the model's next-tick change counts now.
+  HSTMON_NOINLINE void look_ahead() noexcept {
+    const auto y = obs_.model().outputs(obs_.state());
+    for (int i = 0; i < kChannels; ++i) {
+      const T d = std::fabs(y[i] - yprev_[i]);
+      var_[i] += d;
+      gap_[i] += d;
+      peak_[i] += d;
+    }
+  }
+
+  // Sensor checks, residual evaluation and matching of the tick's residuals, in its own
+  // frame (see step).
+  HSTMON_NOINLINE MatchStatus evaluate(T t, const Measurement& m) noexcept {
+    if (m.valid == 0) return matcher_.status();
+    // A reading at a transmitter's live zero is a loop break only where the model,
+    // allowed its error (bound, allowance and the CUSUM threshold), says the channel
+    // cannot be there; asked only for a channel off the sensor check's fast path.
+    const auto model_say = [this](int i, T& e, T& s) noexcept {
+      e = obs_.estimate()[i];
+      s = ev_.bound(i) + transient_allowance(i) + ev_.threshold(i);
+    };
+    const std::uint8_t sensor_mask = sensors_.update(t, m.y.data(), m.valid, model_say);
+    // Start-up: the model's transient from its initial state is still running, so
+    // nothing is judged; flags that persist (a loop break, a stuck channel) are reported
+    // once it is over.
+    if (t < hold_until_) return matcher_.status();  // a hold of 0 judges the first sample
+    // A saturated reading is clipped at the range end, so the true residual is at least r:
+    // r > 0 is evidence of a rise (a lower bound), r ≤ 0 none — the evaluator then holds
+    // that channel (statistics and alarm) as if it were not sampled.
+    const std::uint8_t saturated = sensors_.saturated();
+    unsigned used = obs_.residual_valid();
+    if (saturated != 0) {
+      for (int i = 0; i < kChannels; ++i) {
+        if (!(obs_.residual()[i] > T(0))) used &= ~(saturated & (1u << i));
+      }
+    }
+    ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used),
+               [this](int i) noexcept { return transient_allowance(i); });
+    return matcher_.update(t, ev_, sensor_mask, saturated, t >= settled_from_);
+  }
+
+  // Keeps the last good bound when the changed operating point has no steady state.
+  void update_bound() noexcept {
+    T m[kN_];
+    if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m) == Status::kOk) {
+      for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
+      (void)ev_.set_model_bound(bound_);
+    }
+    bound_valid_ = true;
+  }
+
+  Obs obs_{};
+  Evaluator ev_{};
+  Sensors sensors_{};
+  Matcher matcher_{};
+  Uncertainty uncertainty_{};
+  T bound_[kN_] = {};
+  T yprev_[kN_] = {};  ///< ŷ of the previous tick [channel unit]
+  T var_[kN_] = {};    ///< leaky total variation of ŷ [channel unit]
+  T gap_[kN_] = {};    ///< total variation of ŷ since the last sample [channel unit]
+  T peak_[kN_] = {};   ///< max(var_, gap_) at the last tick [channel unit]
+  T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
+  T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
+  T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
+  T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
+  T hold_ = T(0);               ///< start-up hold-off [s]
+  T hold_until_ = T(0);         ///< no judgement before this time [s]; NaN until the first step
+  T tau_m_ = T(0);              ///< model's slowest time constant at the last reset's steady state [s]
+  T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
+  bool bound_valid_ = false;
+};
+
+}  // namespace hstmon

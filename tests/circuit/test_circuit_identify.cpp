@@ -1,0 +1,100 @@
+// hstmon identify --circuit's fit (hstmon_ident circuit_fit.hpp) on logs of host_sim's
+// reference: parameters changed in the simulated machine are recovered from its steady
+// operating points; what the points cannot tell apart is said, not guessed; the
+// parameter file it writes reads back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_host/circuit_values.hpp"
+#include "hstmon_ident/circuit_fit.hpp"
+
+namespace {
+
+namespace ct = hstmon::circuit_tools;
+namespace id = hstmon::ident;
+
+ct::LoadedCircuit load(const std::string& name) {
+  ct::LoadedCircuit c;
+  const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + name + ".json", "", c);
+  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
+  return c;
+}
+
+// A log of the machine c with parameters scaled as given, inputs stepped as given.
+ct::CircuitLog machine_log(const ct::LoadedCircuit& c, const std::vector<std::pair<std::string, double>>& scale,
+                           const std::vector<std::string>& steps, double duration) {
+  ct::LoadedCircuit m;
+  m.file = c.file;
+  m.values = c.values;
+  for (const auto& [name, f] : scale) m.values.params.v[c.file.param_index(name)] *= f;
+  ct::CircuitSimOptions o;
+  o.duration = duration;
+  o.rate = 200.0;
+  o.seed = 3;
+  for (const auto& s : steps) {
+    ct::InputStep st;
+    const auto err = ct::parse_input_step(s, c.file, st);
+    EXPECT_FALSE(err.has_value()) << *err;
+    o.steps.push_back(st);
+  }
+  return ct::simulate_circuit(m, o);
+}
+
+TEST(CircuitIdentify, RecoversChangedParametersOfThePaperRig) {
+  const ct::LoadedCircuit c = load("paper");
+  const auto log = machine_log(c, {{"Rmlkg", 0.8}, {"Rfric", 1.25}},
+                               {"A_prv=2.5 mm2@4", "A_prv=3 mm2@8", "A_prv=4.5 mm2@12", "A_dcv=4 mm2@16"}, 20.0);
+  id::CircuitFitOptions o;
+  o.fit = {"Rmlkg", "Rfric"};
+  const id::CircuitFitResult r = id::fit_circuit(c, {log}, o);
+  ASSERT_FALSE(r.error.has_value()) << *r.error;
+  EXPECT_EQ(r.points.size(), 5u);
+  ASSERT_EQ(r.value.size(), 2u);
+  EXPECT_NEAR(r.value[0] / c.values.params.v[c.file.param_index("Rmlkg")], 0.8, 0.005);
+  EXPECT_NEAR(r.value[1] / c.values.params.v[c.file.param_index("Rfric")], 1.25, 0.005);
+  EXPECT_GT(r.rms_before, 20.0);
+  EXPECT_LT(r.rms_after, 1.0);  // down to the noise of the means
+  EXPECT_TRUE(r.notes.empty()) << r.notes.front();
+
+  // The file it writes is a parameter file of the circuit with the fitted values.
+  const std::string text = id::fitted_values_json(c, r);
+  const auto back = hstmon::host::parse_circuit_values_json(text, "fit.json", c.file);
+  ASSERT_TRUE(back.ok()) << back.error->to_string();
+  EXPECT_EQ(back.values->params.v[c.file.param_index("Rmlkg")], r.value[0]);
+  EXPECT_EQ(back.values->params.v[c.file.param_index("Dm")], c.values.params.v[c.file.param_index("Dm")]);
+}
+
+TEST(CircuitIdentify, SaysWhenThePointsCannotTellParametersApart) {
+  // Paper rig: both orifices' coefficient is Cd·A·√(2/ρ), so Cd and ρ enter only as Cd/√ρ.
+  const ct::LoadedCircuit c = load("paper");
+  const auto log = machine_log(c, {{"Cd", 0.95}}, {"A_prv=2.5 mm2@4", "A_prv=4 mm2@8"}, 12.0);
+  id::CircuitFitOptions o;
+  o.fit = {"Cd", "rho"};
+  const id::CircuitFitResult r = id::fit_circuit(c, {log}, o);
+  ASSERT_FALSE(r.error.has_value()) << *r.error;
+  bool said = false;
+  for (const auto& n : r.notes) said = said || n.find("do not tell") != std::string::npos;
+  EXPECT_TRUE(said);
+  // What the points do determine, Cd/√ρ, is right.
+  const double ratio = (r.value[0] / c.values.params.v[c.file.param_index("Cd")]) /
+                       std::sqrt(r.value[1] / c.values.params.v[c.file.param_index("rho")]);
+  EXPECT_NEAR(ratio, 0.95, 0.005);
+}
+
+TEST(CircuitIdentify, RefusesUnknownOrLiteralNames) {
+  const ct::LoadedCircuit c = load("paper");
+  id::CircuitFitOptions o;
+  o.fit = {"Rnope"};
+  const id::CircuitFitResult r = id::fit_circuit(c, {}, o);
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_NE(r.error->find("Rnope"), std::string::npos);
+  o.fit = {};
+  EXPECT_TRUE(id::fit_circuit(c, {}, o).error.has_value());
+}
+
+}  // namespace
