@@ -5,7 +5,9 @@
 #      budget overrun as on a build or run failure), and the host observer tick's
 #      instructions against Boost.Odeint's (callgrind; fails above 0.8x the naive one);
 #   3. the host debug build (warnings are errors) and the whole host suite with CTest,
-#      which includes the firmware image under qemu-system-arm compared with the host;
+#      which includes the firmware image under qemu-system-arm compared with the host,
+#      the replay goldens (tests/goldens) and the consumer projects (tests/consumers:
+#      find_package after cmake --install, add_subdirectory, pkg-config, Cortex-M4F);
 #   4. the whole host suite again under AddressSanitizer + UndefinedBehaviorSanitizer
 #      (scripts/sanitizers.sh);
 #   5. a short libFuzzer run of each fuzz target from the committed corpora

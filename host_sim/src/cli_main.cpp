@@ -8,7 +8,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"hstmon — hydrostatic transmission monitor (host tools)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "hstmon 0.1.0");
+  app.set_version_flag("--version", "hstmon " HSTMON_VERSION);  // project(VERSION) in CMakeLists.txt
   // Command-line errors in the style of every other hstmon error ("who: error: what").
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return fmt::format("hstmon: error: {}\nRun with --help for more information.\n", hstmon::cli::capped(e.what()));

@@ -1,0 +1,61 @@
+# Install rules and the exported package (docs/packaging.md). Included by the top-level
+# CMakeLists when HSTMON_INSTALL is on (the default when hstmon is the top-level project).
+#
+#   include/            core headers (lib/include) and hstmon_c.h
+#   lib/libhstmon_c.a   the C API
+#   lib/cmake/hstmon/   hstmonConfig.cmake, hstmonConfigVersion.cmake, hstmonTargets*.cmake
+#   lib/pkgconfig/      hstmon-c.pc (the C API for Make/Meson/plain-C builds)
+#   bin/                hstmon, hstmon-sim, hstmon-fdi, hstmon-gap-synth (host builds)
+#
+# Components: `development` (all but the programs) and `programs`, so a firmware team can
+# install the headers and the library alone: cmake --install B --component development.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(HSTMON_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hstmon CACHE STRING
+  "Where hstmonConfig.cmake is installed, relative to the prefix")
+
+# Exported names: hstmon::core and hstmon::c_api, as the ALIAS targets of a source build.
+set_target_properties(hstmon_core PROPERTIES EXPORT_NAME core)
+set_target_properties(hstmon_c PROPERTIES EXPORT_NAME c_api)
+install(TARGETS hstmon_core hstmon_c EXPORT hstmonTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Bare-metal build: hstmon::c_api carries the CPU/ABI flags it was compiled with.
+if(TARGET hstmon_cpu_cm4f)
+  install(TARGETS hstmon_cpu_cm4f EXPORT hstmonTargets)
+endif()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  COMPONENT development)
+install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  COMPONENT development)
+install(EXPORT hstmonTargets NAMESPACE hstmon:: DESTINATION ${HSTMON_INSTALL_CMAKEDIR}
+  COMPONENT development)
+
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/install/hstmonConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/hstmonConfig.cmake INSTALL_DESTINATION ${HSTMON_INSTALL_CMAKEDIR})
+# SameMajorVersion: 0.x and 1.x are different APIs; not ARCH_INDEPENDENT, since the C API
+# is a compiled library (a 32-bit Cortex-M package does not satisfy a 64-bit host build).
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/hstmonConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/hstmonConfig.cmake ${PROJECT_BINARY_DIR}/hstmonConfigVersion.cmake
+  DESTINATION ${HSTMON_INSTALL_CMAKEDIR} COMPONENT development)
+
+# pkg-config: the prefix is found relative to the .pc file, so an installed tree can be
+# moved (or unpacked from an archive) without editing it.
+file(RELATIVE_PATH HSTMON_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+string(REGEX REPLACE "/$" "" HSTMON_PC_TO_PREFIX "${HSTMON_PC_TO_PREFIX}")
+configure_file(${CMAKE_CURRENT_LIST_DIR}/install/hstmon-c.pc.in ${PROJECT_BINARY_DIR}/hstmon-c.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/hstmon-c.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
+  COMPONENT development)
+
+# Host programs, where this build has them.
+set(_hstmon_programs)
+foreach(program hstmon hstmon-sim hstmon-fdi hstmon-gap-synth)
+  if(TARGET ${program})
+    list(APPEND _hstmon_programs ${program})
+  endif()
+endforeach()
+if(_hstmon_programs)
+  install(TARGETS ${_hstmon_programs} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT programs)
+endif()
