@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   cmake g++ make              # toolchain
   pkg-config                  # the C-API consumer test (tests/consumers/pkg_config.sh)
+  dpkg-dev                    # dpkg-shlibdeps: the .deb's dependencies (scripts/release.sh)
   libeigen3-dev               # fixed-size linear algebra in lib/; fitting on the host
   libboost-dev                # Boost.Odeint: stiff reference solver (rosenbrock4), RK4 benchmark
   libcli11-dev                # command-line parsing of hstmon / hstmon-sim
