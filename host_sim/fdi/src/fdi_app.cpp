@@ -6,6 +6,8 @@
 ///   hstmon-fdi forward kp- [--order N] [--linearised] [--json]  predicted signature
 ///   hstmon-fdi crosscheck [--t-early S] [--json]     TCG vs the nonlinear model
 ///   hstmon-fdi header --out FILE [--sigma-p BAR] [--sigma-w RPM] [--step F] [--order N]
+///   hstmon-fdi isolability --circuit FILE [--params FILE] [--json]   any circuit: detectability, classes
+///   hstmon-fdi sensors --circuit FILE [--params FILE] [--json]       any circuit: added sensors ranked
 /// backward and graph default to the linearised graph of Fig. 2.14 (the thesis's TCG);
 /// tree and forward default to Fig. 2.3's parameters (kp, kfi, kfo), the names of the catalogue.
 
@@ -16,6 +18,7 @@
 #include <string>
 
 #include "../../src/cli_validators.hpp"
+#include "fdi_circuit.hpp"
 #include "fdi_report.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/crosscheck.hpp"
@@ -84,8 +87,19 @@ int main(int argc, char** argv) {
   header->add_option("--step", so.direction_step, "relative fault size for the direction vector")->check(CLI::Range(1e-6, 0.5));
   header->add_option("--order", so.max_order, "highest derivative order of the TCG")->check(CLI::Range(0, 12));
 
+  std::string circuit, circuit_params;
+  CLI::App* iso = app.add_subcommand("isolability", "any circuit file: which faults its sensors detect and tell apart");
+  CLI::App* place = app.add_subcommand("sensors", "any circuit file: which added sensor tells most faults apart");
+  for (CLI::App* sub : {iso, place}) {
+    sub->add_option("--circuit", circuit, "circuit file (docs/circuits.md)")->required();
+    sub->add_option("--params", circuit_params, "its parameter file (default <stem>.params.json beside it)");
+    sub->add_flag("--json", json, "JSON output");
+  }
+
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*iso) return hstmon::fdi::run_isolability(circuit, circuit_params, json);
+    if (*place) return hstmon::fdi::run_sensor_placement(circuit, circuit_params, json);
     if (*graph) {
       const CausalGraph g = thesis_tcg(valves(!nonlinear));
       std::cout << (json ? json_edges(g).dump(2) + "\n" : markdown_edges(g));

@@ -1,0 +1,212 @@
+#include "hstmon_circuit/circuit_isolability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "hstmon/fault_signature.hpp"
+
+namespace hstmon::circuit_tools {
+
+namespace {
+
+using Row = CircuitFaultTable::Row;
+constexpr int kN = Row::kChannels;
+constexpr double kParallel = 1.0 - 1e-6;
+constexpr double kWeak = 0.98;
+
+// Opposite signs contradict, and so does a structural 0 (the fault cannot move the
+// channel at all: its direction there is exactly 0, a leak on a pump's delivery) against a
+// ±. A 0 that is only small (below 1σ at 30 %) is what a smaller fault of the other kind
+// shows (the matcher's soft rule): it tells nothing apart.
+bool consistent(const Row& a, const Row& b) {
+  auto sign = [](int m) { return m == kQualPlus || m == kQualMinus; };
+  auto structural_zero = [](const Row& r, int i) { return r.channel[i].magnitude == kQualZero && r.direction[i] == 0.0f; };
+  for (int i = 0; i < kN; ++i) {
+    const int x = a.channel[i].magnitude, y = b.channel[i].magnitude;
+    if ((x == kQualPlus && y == kQualMinus) || (x == kQualMinus && y == kQualPlus)) return false;
+    if ((structural_zero(a, i) && sign(y)) || (structural_zero(b, i) && sign(x))) return false;
+  }
+  return true;
+}
+
+double cosine(const Row& a, const Row& b) {
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (int i = 0; i < kN; ++i) {
+    const double x = static_cast<double>(a.direction[i]), y = static_cast<double>(b.direction[i]);
+    ab += x * y;
+    aa += x * x;
+    bb += y * y;
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : 0.0;
+}
+
+// The one channel a row moves, or −1 (none or several).
+int only_channel(const Row& r) {
+  int ch = -1;
+  for (int i = 0; i < kN; ++i) {
+    if (r.channel[i].magnitude == kQualZero) continue;
+    if (ch >= 0) return -1;
+    ch = i;
+  }
+  return ch;
+}
+
+// 0 not isolable, 2 weakly, 1 isolable.
+int relation(const Row& a, const Row& b) {
+  if (a.sensor || b.sensor) {
+    const Row& s = a.sensor ? a : b;
+    const Row& f = a.sensor ? b : a;
+    if (f.sensor) return 1;  // two sensors: different channels
+    return only_channel(f) >= 0 && only_channel(f) == only_channel(s) ? 0 : 1;
+  }
+  if (!consistent(a, b)) return 1;
+  const double c = cosine(a, b);
+  return c >= kParallel ? 0 : (c >= kWeak ? 2 : 1);
+}
+
+std::vector<std::vector<std::string>> classes_of(const std::vector<std::string>& names,
+                                                  const std::vector<std::vector<int>>& m) {
+  const std::size_t n = names.size();
+  std::vector<int> label(n, -1);
+  std::vector<std::vector<std::string>> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (label[i] >= 0) continue;
+    std::vector<std::size_t> stack = {i}, members;
+    label[i] = static_cast<int>(out.size());
+    while (!stack.empty()) {
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      members.push_back(k);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (label[j] < 0 && m[k][j] == 0) {
+          label[j] = label[i];
+          stack.push_back(j);
+        }
+      }
+    }
+    std::vector<std::string> cls;
+    std::sort(members.begin(), members.end());
+    for (std::size_t k : members) cls.push_back(names[k]);
+    out.push_back(cls);
+  }
+  std::vector<std::vector<std::string>> big;
+  for (auto& c : out) {
+    if (c.size() >= 2) big.push_back(std::move(c));
+  }
+  return big;
+}
+
+double typical_sigma(const LoadedCircuit& c, host::CircuitQuantity q, double fallback) {
+  for (const auto& s : c.file.sensors) {
+    if (s.quantity == q && s.noise > 0.0) return s.noise;
+  }
+  return fallback;
+}
+
+}  // namespace
+
+Isolability circuit_isolability(const CircuitFaultTable& t) {
+  Isolability r;
+  const std::size_t n = t.rows.size();
+  for (const auto& row : t.rows) r.faults.emplace_back(row.name);
+  r.isolable.assign(n, std::vector<int>(n, 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    r.isolable[i][i] = 0;
+    for (std::size_t j = i + 1; j < n; ++j) r.isolable[i][j] = r.isolable[j][i] = relation(t.rows[i], t.rows[j]);
+  }
+  r.classes = classes_of(r.faults, r.isolable);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (r.isolable[i][j] == 2) r.weak.emplace_back(r.faults[i], r.faults[j]);
+    }
+  }
+  r.undetectable = t.undetectable;
+  return r;
+}
+
+std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c) {
+  const Isolability today = circuit_isolability(circuit_fault_table(c));
+  const host::HostCircuit& d = c.file.circuit;
+  std::vector<SensorCandidate> out;
+  if (d.n_channels >= host::CircuitCap::kChannels) return out;
+  const host::HostCircuitModel m(d, c.values.params, c.values.inputs);
+  struct Try {
+    std::string name;
+    circuit::Channel ch;
+    host::CircuitQuantity q;
+    double sigma;
+  };
+  std::vector<Try> tries;
+  auto measured = [&](circuit::ChannelKind k, int index) {
+    for (int i = 0; i < d.n_channels; ++i) {
+      if (d.channels[i].kind == k && d.channels[i].index == index) return true;
+    }
+    return false;
+  };
+  const double sp = typical_sigma(c, host::CircuitQuantity::kPressure, 0.01 * m.pressure_envelope());
+  const double sw = typical_sigma(c, host::CircuitQuantity::kSpeed, 0.01 * m.speed_envelope());
+  const double sq = typical_sigma(c, host::CircuitQuantity::kFlow, 1e-6);
+  for (int i = 0; i < d.n_nodes; ++i) {
+    if (d.nodes[i].kind != circuit::NodeKind::kVolume || measured(circuit::ChannelKind::kPressure, i)) continue;
+    tries.push_back({"p(" + c.file.nodes[static_cast<std::size_t>(i)] + ")",
+                     {circuit::ChannelKind::kPressure, static_cast<std::uint8_t>(i)}, host::CircuitQuantity::kPressure, sp});
+  }
+  for (int s = 0; s < d.n_shafts; ++s) {
+    if (d.shafts[s].driven || measured(circuit::ChannelKind::kSpeed, s)) continue;
+    tries.push_back({"w(" + c.file.shafts[static_cast<std::size_t>(s)] + ")",
+                     {circuit::ChannelKind::kSpeed, static_cast<std::uint8_t>(s)}, host::CircuitQuantity::kSpeed, sw});
+  }
+  for (int e = 0; e < d.n_elements; ++e) {
+    if (!circuit::has_ports(d.elements[e].kind) || measured(circuit::ChannelKind::kFlow, e)) continue;
+    tries.push_back({"q(" + c.file.elements[static_cast<std::size_t>(e)] + ")",
+                     {circuit::ChannelKind::kFlow, static_cast<std::uint8_t>(e)}, host::CircuitQuantity::kFlow, sq});
+  }
+  for (const Try& t : tries) {
+    LoadedCircuit a = c;
+    a.file.circuit.channels[a.file.circuit.n_channels++] = t.ch;
+    host::CircuitSensor s;
+    s.name = t.name;
+    s.quantity = t.q;
+    s.noise = t.sigma;
+    s.lo = -HUGE_VAL;
+    s.hi = HUGE_VAL;
+    a.file.sensors.push_back(s);
+    Isolability with;
+    try {
+      with = circuit_isolability(circuit_fault_table(a));
+    } catch (const std::exception&) {
+      continue;
+    }
+    SensorCandidate sc;
+    sc.name = t.name;
+    sc.classes = with.classes;
+    // A class of today is split when its members are no longer all in one class.
+    auto class_of = [&](const std::string& f) -> int {
+      for (std::size_t k = 0; k < with.classes.size(); ++k) {
+        if (std::find(with.classes[k].begin(), with.classes[k].end(), f) != with.classes[k].end()) return static_cast<int>(k);
+      }
+      return -1;
+    };
+    for (const auto& cls : today.classes) {
+      std::set<int> where;
+      for (const auto& f : cls) where.insert(class_of(f));
+      if (where.size() > 1 || where.count(-1) > 0) ++sc.classes_split;
+    }
+    for (const auto& f : today.undetectable) {
+      if (std::find(with.undetectable.begin(), with.undetectable.end(), f) == with.undetectable.end()) ++sc.made_detectable;
+    }
+    for (const auto& w : today.weak) {
+      if (std::find(with.weak.begin(), with.weak.end(), w) == with.weak.end()) ++sc.weak_cleared;
+    }
+    out.push_back(std::move(sc));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const SensorCandidate& a, const SensorCandidate& b) {
+    if (a.classes_split != b.classes_split) return a.classes_split > b.classes_split;
+    if (a.made_detectable != b.made_detectable) return a.made_detectable > b.made_detectable;
+    return a.weak_cleared > b.weak_cleared;
+  });
+  return out;
+}
+
+}  // namespace hstmon::circuit_tools
