@@ -10,7 +10,7 @@
 #include "hstmon_host/replay.hpp"
 #include "hstmon_sim/log_layout.hpp"
 #include "hstmon_sim/measure.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/thesis_scenarios.hpp"
 
 namespace {

@@ -13,7 +13,7 @@
 #include "hstmon_sim/measure.hpp"
 #include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/rig_run.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "../support/replay_events.hpp"
 
 namespace {

@@ -10,8 +10,8 @@
 
 #include "hstmon/thesis_reduced.hpp"
 #include "hstmon_host/log_reader.hpp"
-#include "hstmon_sim/sensor_chain.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/thesis_scenarios.hpp"
 
 namespace hstmon::ident::testing {

@@ -8,7 +8,7 @@
 #include "hstmon_ident/paper_tables.hpp"
 #include "hstmon_ident/port_area.hpp"
 #include "hstmon_ident/pump_curve_fit.hpp"
-#include "hstmon_sim/gaussian.hpp"
+#include "hstmon_sensors/gaussian.hpp"
 
 namespace hstmon::ident {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include "hstmon_sim/gaussian.hpp"
-#include "hstmon_sim/sensor_chain.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/gaussian.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 
 namespace hstmon::sim {
 namespace {

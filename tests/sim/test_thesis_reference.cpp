@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "hstmon/thesis_model.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/simulate.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 #include "hstmon_sim/thesis_scenarios.hpp"

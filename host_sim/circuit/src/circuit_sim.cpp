@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/stiff_integrator.hpp"
 
 namespace hstmon::circuit_tools {

@@ -1,8 +1,8 @@
 /// @file plots.cpp
-/// gnuplot x–y plots (through hstmon_sim/gnuplot.hpp).
+/// gnuplot x–y plots (through hstmon_plot/gnuplot.hpp).
 #include "hstmon_ident/plots.hpp"
 
-#include "hstmon_sim/gnuplot.hpp"
+#include "hstmon_plot/gnuplot.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>

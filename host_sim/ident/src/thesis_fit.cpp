@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "hstmon/thesis_reduced.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 
 namespace hstmon::ident {
 

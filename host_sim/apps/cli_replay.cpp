@@ -21,7 +21,7 @@
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
-#include "residual_plot.hpp"
+#include "hstmon_plot/residual_plot.hpp"
 
 namespace hstmon::cli {
 

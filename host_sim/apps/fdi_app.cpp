@@ -17,7 +17,7 @@
 #include <iostream>
 #include <string>
 
-#include "../../src/cli_validators.hpp"
+#include "cli_validators.hpp"
 #include "fdi_circuit.hpp"
 #include "fdi_report.hpp"
 #include "hstmon_fdi/backward.hpp"

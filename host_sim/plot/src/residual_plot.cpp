@@ -1,6 +1,6 @@
-#include "residual_plot.hpp"
+#include "hstmon_plot/residual_plot.hpp"
 
-#include "hstmon_sim/gnuplot.hpp"
+#include "hstmon_plot/gnuplot.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>

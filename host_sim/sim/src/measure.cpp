@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "hstmon_sim/paper_reference.hpp"
-#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
 namespace hstmon::sim {

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "hstmon_sim/gaussian.hpp"
+#include "hstmon_sensors/gaussian.hpp"
 
 namespace hstmon::sim {
 

@@ -1,5 +1,5 @@
 /// @file sensor_presets.cpp
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 
 #include <cmath>
 #include <limits>

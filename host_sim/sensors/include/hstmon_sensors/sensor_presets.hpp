@@ -28,7 +28,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 
 namespace hstmon::sim {
 

@@ -1,5 +1,5 @@
 /// @file gnuplot.cpp
-#include "hstmon_sim/gnuplot.hpp"
+#include "hstmon_plot/gnuplot.hpp"
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 /// @file gaussian.cpp
-#include "hstmon_sim/gaussian.hpp"
+#include "hstmon_sensors/gaussian.hpp"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file sim.hpp
 /// Umbrella header of the host reference simulator (namespace hstmon::sim).
-#include "hstmon_sim/gaussian.hpp"
+#include "hstmon_sensors/gaussian.hpp"
 #include "hstmon_sim/load_profile.hpp"
 #include "hstmon_sim/log_layout.hpp"
 #include "hstmon_sim/machine_error.hpp"
@@ -12,8 +12,8 @@
 #include "hstmon_sim/reference_tolerances.hpp"
 #include "hstmon_sim/rig_run.hpp"
 #include "hstmon_sim/scenario.hpp"
-#include "hstmon_sim/sensor_chain.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/simulate.hpp"
 #include "hstmon_sim/stiff_integrator.hpp"
 #include "hstmon_sim/thesis_reference.hpp"

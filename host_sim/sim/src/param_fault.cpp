@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "hstmon/thesis_reduced.hpp"
-#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
 namespace hstmon::sim {

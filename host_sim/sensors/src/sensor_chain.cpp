@@ -1,5 +1,5 @@
 /// @file sensor_chain.cpp
-#include "hstmon_sim/sensor_chain.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 
 #include <cmath>
 #include <stdexcept>

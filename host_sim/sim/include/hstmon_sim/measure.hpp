@@ -14,7 +14,7 @@
 
 #include "hstmon_sim/paper_scenarios.hpp"
 #include "hstmon_sim/reference_tolerances.hpp"
-#include "hstmon_sim/sensor_presets.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/thesis_scenarios.hpp"
 
 namespace hstmon::sim {
