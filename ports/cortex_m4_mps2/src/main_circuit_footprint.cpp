@@ -85,6 +85,22 @@ __attribute__((noinline)) std::uint32_t empty_step(const Inputs& u, const Meas& 
 
 using StepFn = std::uint32_t (*)(const Inputs&, const Meas&);
 
+// Where a tick goes: kTicks model evaluations, plain (an RK4 stage) and with the
+// observer's Jacobian and spectral-radius check (a tick's first evaluation).
+__attribute__((noinline)) std::uint32_t time_evaluations(bool with_jacobian) {
+  const auto& model = obs.model();
+  const auto x = obs.state();
+  CircuitFwObserver::Output y;
+  float rho = 0.0f;
+  bool ok = true;
+  const std::uint32_t a = cycles_now();
+  for (int k = 0; k < kTicks; ++k) {
+    const auto d = with_jacobian ? model.tick_derivative(x, 800.0f, y, rho, ok) : model.derivative(x);
+    sink = static_cast<std::uint32_t>(d[0] > 0.0f);
+  }
+  return cycles_elapsed(a, cycles_now());
+}
+
 // SysTick counts for kTicks calls of f; each channel alternates around the nominal
 // outputs by 50 Pa (pressures, flows) or 0.05 rad/s (speeds), as main_footprint.c.
 __attribute__((noinline)) std::uint32_t time_ticks(StepFn f, const Inputs& u, Meas& m) {
@@ -133,12 +149,18 @@ int main() {
   const std::uint32_t counts_step = time_ticks(engine_step, u, m);
   const auto stack_step = static_cast<std::uint32_t>(sp_main - stack_low_water());
   const std::uint32_t counts_empty = time_ticks(empty_step, u, m);
+  const std::uint32_t counts_derivative = time_evaluations(false);
+  const std::uint32_t counts_tick_derivative = time_evaluations(true);
   put_uint("observer_bytes", static_cast<std::uint32_t>(sizeof obs));
+  // What the monitor's model bound (circuit_bound.hpp) copies onto the stack.
+  put_uint("model_bytes", static_cast<std::uint32_t>(sizeof(hstmon::fw::CircuitFwModel)));
   put_uint("states", static_cast<std::uint32_t>(obs.model().n_states()));
   put_uint("stiff_nodes", static_cast<std::uint32_t>(obs.model().n_stiff()));
   put_uint("ticks", kTicks);
   put_uint("counts_step_loop", counts_step);
   put_uint("counts_empty_loop", counts_empty);
+  put_uint("counts_derivative_loop", counts_derivative);
+  put_uint("counts_tick_derivative_loop", counts_tick_derivative);
   put_uint("health", obs.health());
   put_uint("max_substeps", obs.substeps());
   put_uint("stack_setup_bytes", stack_setup);
