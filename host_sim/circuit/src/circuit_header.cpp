@@ -99,6 +99,8 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   const int cap_in = n_in < 2 ? 2 : n_in + (n_in % 2);
   const int cap_p = n_p < 1 ? 1 : n_p;
   const int cap_s = check.n_states() < 1 ? 1 : check.n_states();
+  const int unknowns = check.n_states() + check.n_stiff();  // volume nodes + free shafts
+  const int cap_u = unknowns < cap_s ? cap_s : unknowns;
   const circuit::CircuitUncertainty<double, host::CircuitCap> eps = default_uncertainty(f);
 
   std::string h;
@@ -124,10 +126,11 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("/// Capacity: " + std::to_string(desc.n_nodes) + " nodes, " + std::to_string(desc.n_shafts) + " shafts, " +
        std::to_string(desc.n_elements) + " elements, " + std::to_string(n_ch) + " channels, " + std::to_string(cap_in) +
        " inputs (" + std::to_string(n_in) + " used), " + std::to_string(cap_p) + " parameters, " +
-       std::to_string(cap_s) + " states (" + std::to_string(check.n_stiff()) + " stiff nodes quasi-steady).");
+       std::to_string(cap_s) + " states (" + std::to_string(check.n_stiff()) + " stiff nodes quasi-steady), " +
+       std::to_string(cap_u) + " unknowns.");
   line("using Cap = circuit::Capacity<" + std::to_string(desc.n_nodes) + ", " + std::to_string(desc.n_shafts) + ", " +
        std::to_string(desc.n_elements) + ", " + std::to_string(n_ch) + ", " + std::to_string(cap_in) + ", " +
-       std::to_string(cap_p) + ", " + std::to_string(cap_s) + ">;");
+       std::to_string(cap_p) + ", " + std::to_string(cap_s) + ", " + std::to_string(cap_u) + ">;");
   line("");
   line("/// The description; stiff_mask from circuit::auto_stiff_mask<double> at kTick.");
   line("inline constexpr circuit::Circuit<Cap> kCircuit = {");

@@ -16,8 +16,8 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Observer tick the stiff mask was chosen for [s].
 inline constexpr double kTick = 0.001;
 
-/// Capacity: 7 nodes, 1 shafts, 10 elements, 4 channels, 4 inputs (4 used), 15 parameters, 2 states (2 stiff nodes quasi-steady).
-using Cap = circuit::Capacity<7, 1, 10, 4, 4, 15, 2>;
+/// Capacity: 7 nodes, 1 shafts, 10 elements, 4 channels, 4 inputs (4 used), 15 parameters, 2 states (2 stiff nodes quasi-steady), 4 unknowns.
+using Cap = circuit::Capacity<7, 1, 10, 4, 4, 15, 2, 4>;
 
 /// The description; stiff_mask from circuit::auto_stiff_mask<double> at kTick.
 inline constexpr circuit::Circuit<Cap> kCircuit = {
