@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     --log) log="$(realpath "$2")"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
     replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace) image="$1"; shift ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "firmware.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
