@@ -341,7 +341,8 @@ class CircuitModel {
     return true;
   }
 
-  /// steady_state() as the full vector z (stiff nodes included) [Pa, rad/s].
+  /// steady_state() as the full vector z (stiff nodes included) [Pa, rad/s]; on failure z
+  /// holds the solve's last iterate.
   bool steady_full(T (&z)[kExtent<kZ>]) const noexcept {
     if (c_ == nullptr || !values_ok_) return false;
     for (int k = 0; k < kZ; ++k) z[k] = rest_z_[k];
@@ -352,14 +353,12 @@ class CircuitModel {
       mass[k] = T(1) / inv_mass_[zk];
       scale[k] = zk < kNodes ? p_env_ : w_env_;
     }
-    T zz[kExtent<kZ>];
-    for (int k = 0; k < kZ; ++k) zz[k] = z[k];
+    // z itself is the solve's full vector (its fixed entries stay the rest ones), and only
+    // the unknowns' rows are evaluated: no kZ-sized copies on the stack (firmware).
     auto eval = [&](const T(&uu)[kExtent<kU>], T(&g)[kExtent<kU>], T(&J)[kExtent<kU>][kExtent<kU>]) {
-      for (int k = 0; k < n_unknowns_; ++k) zz[unknown_z_[k]] = uu[k];
-      T gz[kExtent<kZ>];
-      net(zz, gz);
-      for (int r = 0; r < n_unknowns_; ++r) g[r] = gz[unknown_z_[r]];
-      unknowns_jacobian(zz, J);
+      for (int k = 0; k < n_unknowns_; ++k) z[unknown_z_[k]] = uu[k];
+      unknowns_net(z, g);
+      unknowns_jacobian(z, J);
     };
     if (!pseudo_transient(eval, mass, scale, n_unknowns_, u)) return false;
     for (int k = 0; k < n_unknowns_; ++k) z[unknown_z_[k]] = u[k];
@@ -429,6 +428,28 @@ class CircuitModel {
           J[sz][el.b] += db;
         }
         J[sz][sz] += dw;
+      }
+    }
+  }
+
+  /// net()'s rows of the unknowns only, in unknown order [m³/s, N·m]: the same values bit
+  /// for bit (each row accumulates in the same element order).
+  void unknowns_net(const T (&z)[kExtent<kZ>], T (&g)[kExtent<kU>]) const noexcept {
+    for (int r = 0; r < n_unknowns_; ++r) g[r] = T(0);
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      if (has_ports(el.kind)) {
+        const T q = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w).q;
+        if (unknown_of_z_[el.a] >= 0) g[unknown_of_z_[el.a]] -= q;
+        if (unknown_of_z_[el.b] >= 0) g[unknown_of_z_[el.b]] += q;
+      }
+      if (has_shaft(el.kind) && unknown_of_z_[kNodes + el.shaft] >= 0) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+        g[unknown_of_z_[kNodes + el.shaft]] += element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
       }
     }
   }
