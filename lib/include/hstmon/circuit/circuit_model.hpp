@@ -128,6 +128,22 @@ class CircuitModel {
       }
     }
     inc_start_[c.n_nodes] = static_cast<std::uint16_t>(k);
+    // Per element, the unknown index of each port and of its shaft (−1: fixed), and per
+    // shaft its torque elements in element order (the Jacobian's and rates' loops).
+    int t = 0;
+    for (int e = 0; e < c.n_elements; ++e) {
+      const Element& el = c.elements[e];
+      el_unknown_[e][0] = has_ports(el.kind) ? unknown_of_z_[el.a] : std::int8_t{-1};
+      el_unknown_[e][1] = has_ports(el.kind) ? unknown_of_z_[el.b] : std::int8_t{-1};
+      el_unknown_[e][2] = el.shaft >= 0 ? unknown_of_z_[kNodes + el.shaft] : std::int8_t{-1};
+    }
+    for (int sh = 0; sh < c.n_shafts; ++sh) {
+      shaft_start_[sh] = static_cast<std::uint8_t>(t);
+      for (int e = 0; e < c.n_elements; ++e) {
+        if (has_shaft(c.elements[e].kind) && c.elements[e].shaft == sh) shaft_inc_[t++] = static_cast<std::uint8_t>(e);
+      }
+    }
+    shaft_start_[c.n_shafts] = static_cast<std::uint8_t>(t);
     set_inputs(u_);
     return error_;
   }
@@ -462,40 +478,36 @@ class CircuitModel {
       for (int c = 0; c < n_unknowns_; ++c) J[r][c] = T(0);
     }
     if (c_ == nullptr) return;
-    // J[row(zr)][col(zc)] op= v where both are unknowns.
-    auto sub = [&](int zr, int zc, T v) {
-      const int r = unknown_of_z_[zr], c = unknown_of_z_[zc];
-      if (r >= 0 && c >= 0) J[r][c] -= v;
-    };
-    auto add = [&](int zr, int zc, T v) {
-      const int r = unknown_of_z_[zr], c = unknown_of_z_[zc];
-      if (r >= 0 && c >= 0) J[r][c] += v;
-    };
     for (int e = 0; e < c_->n_elements; ++e) {
       const Element& el = c_->elements[e];
-      const int sz = kNodes + el.shaft;
-      const T w = el.shaft >= 0 ? z[sz] : T(0);
-      if (has_ports(el.kind)) {
+      const int ua = el_unknown_[e][0], ub = el_unknown_[e][1], us = el_unknown_[e][2];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      // Flow rows a and b (only where an unknown): an element between fixed ends adds nothing.
+      if (has_ports(el.kind) && (ua >= 0 || ub >= 0)) {
         const Flow<T> f = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w);
-        sub(el.a, el.a, f.dpa);
-        sub(el.a, el.b, f.dpb);
-        add(el.b, el.a, f.dpa);
-        add(el.b, el.b, f.dpb);
-        if (el.shaft >= 0) {
-          sub(el.a, sz, f.dw);
-          add(el.b, sz, f.dw);
+        if (ua >= 0) {
+          J[ua][ua] -= f.dpa;
+          if (ub >= 0) J[ua][ub] -= f.dpb;
+        }
+        if (ub >= 0) {
+          if (ua >= 0) J[ub][ua] += f.dpa;
+          J[ub][ub] += f.dpb;
+        }
+        if (el.shaft >= 0 && us >= 0) {
+          if (ua >= 0) J[ua][us] -= f.dw;
+          if (ub >= 0) J[ub][us] += f.dw;
         }
       }
-      if (has_shaft(el.kind)) {
+      if (has_shaft(el.kind) && us >= 0) {
         T da, db, dw;
         const T pa = has_ports(el.kind) ? z[el.a] : T(0);
         const T pb = has_ports(el.kind) ? z[el.b] : T(0);
         (void)element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
         if (has_ports(el.kind)) {
-          add(sz, el.a, da);
-          add(sz, el.b, db);
+          if (ua >= 0) J[us][ua] += da;
+          if (ub >= 0) J[us][ub] += db;
         }
-        add(sz, sz, dw);
+        J[us][us] += dw;
       }
     }
   }
@@ -779,9 +791,9 @@ class CircuitModel {
           }
         }
       } else {
-        for (int e = 0; e < c_->n_elements; ++e) {
+        for (int k = shaft_start_[zs - kNodes]; k < shaft_start_[zs - kNodes + 1]; ++k) {
+          const int e = shaft_inc_[k];
           const Element& el = c_->elements[e];
-          if (!has_shaft(el.kind) || kNodes + el.shaft != zs) continue;
           T da, db, dw;
           const T pa = has_ports(el.kind) ? z[el.a] : T(0);
           const T pb = has_ports(el.kind) ? z[el.b] : T(0);
@@ -867,6 +879,9 @@ class CircuitModel {
   std::int8_t state_of_z_[kExtent<kZ>]{};
   std::int8_t unknown_of_z_[kExtent<kZ>]{};  ///< index among the unknowns, or −1 (boundary, driven shaft)
   std::uint8_t stiff_u_[kExtent<kU>]{};       ///< unknown index of the j-th stiff node
+  std::int8_t el_unknown_[kExtent<kElements>][3]{};  ///< unknown index of port a, port b, shaft (−1 fixed)
+  std::uint8_t shaft_start_[kExtent<Cap::kShafts + 1>]{};  ///< shaft s's torque elements: shaft_inc_[start[s], start[s+1])
+  std::uint8_t shaft_inc_[kExtent<kElements>]{};
   std::uint8_t state_u_[kExtent<kStates>]{};  ///< unknown index of state s
   std::uint8_t z_of_state_[kExtent<kStates>]{};
   std::uint8_t stiff_[kExtent<kNodes>]{};
