@@ -41,7 +41,7 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
                       const PtcConfig<T>& cfg = PtcConfig<T>{}) noexcept {
   // The Newton matrix is built in J's storage: J is evaluated afresh at the top of every
   // iteration, so one N × N array serves both (firmware stack).
-  T g[N], J[N][N], d[N], u_prev[N];
+  T g[N], J[N][N], d[N], u_prev[N]{};  // u_prev zeroed: GCC cannot see it is set before use
   T dt = cfg.dt0;
   T prev_norm = T(-1);
   const T tol = T(64) * std::numeric_limits<T>::epsilon();
