@@ -8,7 +8,10 @@
 # IMAGE: replay (default; the JSON lines of `hstmon replay --json` for the embedded log),
 #        replay_trace (plus one %a line of residuals per row), footprint, footprint_empty
 #        (run with -icount shift=0: 1 instruction = 1 ns of virtual time), heap_probe
-#        (must FAIL to link: checks the no-heap rule; exit 0 when it does fail).
+#        (must FAIL to link: checks the no-heap rule; exit 0 when it does fail),
+#        circuit_footprint, circuit_footprint_empty (the circuit engine on the generated
+#        circuit header, -icount as footprint), circuit_replay_trace (the embedded log
+#        through the engine: one %a residual line per row and a digest).
 # Defaults: build dir build/firmware-arm, log examples/prv_blockage.csv, timeout 300 s.
 # Exit status: the image's; 124 on timeout; 2 on a bad command line or build failure.
 set -euo pipefail
@@ -24,8 +27,8 @@ while [ $# -gt 0 ]; do
     --no-build) do_build=0; shift ;;
     --log) log="$(realpath "$2")"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
-    replay|replay_trace|footprint|footprint_empty|heap_probe) image="$1"; shift ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace) image="$1"; shift ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "firmware.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -51,7 +54,8 @@ if [ "$do_build" = 1 ]; then
     exit 2
   fi
   cmake --build "$build" -j2 --target hstmon_fw_replay hstmon_fw_replay_trace hstmon_fw_footprint \
-    hstmon_fw_footprint_empty >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
+    hstmon_fw_footprint_empty hstmon_fw_circuit_footprint hstmon_fw_circuit_footprint_empty \
+    hstmon_fw_circuit_replay_trace >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
 fi
 
 elf="$build/bin/hstmon_fw_$image.elf"
@@ -63,7 +67,7 @@ trap 'rm -f "$tmp"' EXIT
 qemu=(qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none
       -chardev "file,id=semihost,path=$tmp"
       -semihosting-config enable=on,target=native,chardev=semihost -kernel "$elf")
-case "$image" in footprint*) qemu+=(-icount shift=0) ;; esac
+case "$image" in footprint*|circuit_footprint*) qemu+=(-icount shift=0) ;; esac
 rc=0
 timeout "$timeout_s" "${qemu[@]}" </dev/null || rc=$?
 cat "$tmp"

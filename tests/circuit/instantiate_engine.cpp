@@ -2,6 +2,7 @@
 // firmware flags (-fno-exceptions -fno-rtti, the strict warning set), so the engine's
 // headers stay firmware-clean although the circuit tests themselves are host code.
 #include "hstmon/circuit/engine.hpp"
+#include "hstmon/generated/thesis_circuit.hpp"
 #include "hstmon/observer.hpp"
 
 namespace hstmon::circuit {
@@ -9,6 +10,8 @@ using FirmwareThesisCap = Capacity<7, 1, 10, 4, 4, 16, 2>;  // thesis.json: 7 no
 template class CircuitModel<float, HostCapacity>;
 template class CircuitModel<double, HostCapacity>;
 template class CircuitModel<float, FirmwareThesisCap>;
+// The firmware's own: thesis.json's generated header, its tight capacity.
+template class CircuitModel<float, generated::thesis_circuit::Cap>;
 template std::uint32_t auto_stiff_mask<float, HostCapacity>(const Circuit<HostCapacity>&,
                                                            const CircuitModel<float, HostCapacity>::Params&,
                                                            const CircuitModel<float, HostCapacity>::Inputs&, float,
@@ -38,4 +41,16 @@ template std::uint32_t use_observer(const hstmon::circuit::CircuitModel<double, 
 template std::uint32_t use_observer(
     const hstmon::circuit::CircuitModel<float, hstmon::circuit::FirmwareThesisCap>&,
     const hstmon::circuit::CircuitModel<float, hstmon::circuit::FirmwareThesisCap>::Inputs&);
+
+// The firmware's observer set-up: bound in place to the generated constexpr description.
+std::uint32_t use_generated_observer();
+std::uint32_t use_generated_observer() {
+  namespace gen = generated::thesis_circuit;
+  using M = CircuitModel<float, gen::Cap>;
+  hstmon::Observer<M, false> o;
+  M::Params p;
+  for (int i = 0; i < gen::Cap::kParams; ++i) p.v[i] = static_cast<float>(gen::kParams[i]);
+  (void)o.configure(gen::kCircuit, p, hstmon::Observer<M, false>::Config{});
+  return o.step(M::Inputs{}, hstmon::Observer<M, false>::Measurement{});
+}
 }  // namespace hstmon::circuit

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One firmware test case (registered by CMakeLists.txt in this folder). Environment:
 #   FW_SRC (repo root), FW_BUILD (cross build dir), FW_LOG (embedded log), FW_OUT (scratch
-#   dir), FW_HOST (host float replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional),
+#   dir), FW_HOST (host float replay), FW_CIRCUIT_HOST (host float circuit-engine replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional),
 #   FW_MIN_EVENTS (matcher events the log must give; 2 for the default prv_blockage.csv).
 # Exit 77 = skipped (no cross toolchain / no qemu / no CLI in this build).
 set -euo pipefail
@@ -47,6 +47,17 @@ case "$case_name" in
       echo "bit-exact: $(grep -c '^trace' "$out.host.txt") rows, $(grep residual_digest "$out.host.txt")"
     else
       echo "firmware and host float differ:"; diff "$out.qemu.txt" "$out.host.txt" | head -20; exit 1
+    fi ;;
+  circuit_bitexact)   # the circuit engine (generated header): Cortex-M4F vs host float, every row in %a
+    need_cross
+    fw circuit_replay_trace --no-build >"$out.qemu.txt"
+    "$FW_CIRCUIT_HOST" >"$out.host.txt"
+    rows=$(grep -c '^trace' "$out.host.txt" || true)
+    [ "$rows" -gt 0 ] || { echo "circuit replay traced no row"; exit 1; }
+    if cmp -s "$out.qemu.txt" "$out.host.txt"; then
+      echo "bit-exact: $rows rows, $(grep residual_digest "$out.host.txt")"
+    else
+      echo "circuit engine: firmware and host float differ:"; diff "$out.qemu.txt" "$out.host.txt" | head -20; exit 1
     fi ;;
   footprint)          # budgets: flash, RAM, stack, instructions per tick, heap
     need_cross

@@ -156,6 +156,24 @@ class Observer {
     return Status::kOk;
   }
 
+  /// configure(Model(d, p), cfg) for a model bound to a description (the circuit
+  /// engine): the observer's own model binds d and takes p in place, so firmware builds no
+  /// model on its stack. d is kept by pointer and must outlive the observer (flash).
+  /// Needs Model::bind, set_params and valid() (a template: asked only of such models).
+  /// @return kOk, kInvalidParams (d rejected, or values not physical) or kInvalidConfig;
+  ///         on kInvalidParams the observer's model is left unbound
+  template <typename M = Model>
+  Status configure(const typename M::Description& d, const typename M::Params& p, const Config& cfg) noexcept {
+    if (!M::params_valid(p)) return Status::kInvalidParams;
+    if (!config_ok(cfg)) return Status::kInvalidConfig;
+    model_.set_inputs(Inputs{});
+    model_.set_params(p);
+    // bind's error type value-initialised is its kOk.
+    if (model_.bind(d) != decltype(model_.bind(d)){} || !model_.valid()) return Status::kInvalidParams;
+    apply(cfg);
+    return Status::kOk;
+  }
+
   /// Restarts from state x0 at t = 0 with the latched health cleared.
   void reset(const State& x0) noexcept {
     s_.reset(x0);

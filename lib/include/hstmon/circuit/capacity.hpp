@@ -21,7 +21,11 @@ inline constexpr std::size_t kExtent = static_cast<std::size_t>(N);
 /// @tparam Inputs    named inputs; even, so the observer can compare them a 64-bit word at a time
 /// @tparam Params    named and literal parameters (≤ 255: referenced by 8-bit index)
 /// @tparam States    states the model integrates: volume nodes not taken quasi-steady + free shafts
-template <int Nodes, int Shafts, int Elements, int Channels, int Inputs, int Params, int States = Nodes + Shafts>
+/// @tparam Unknowns  volume nodes + free shafts (states and quasi-steady nodes): sizes the
+///                   Jacobian and steady-state scratch, so a tight value keeps them off the
+///                   boundaries' rows (firmware stack)
+template <int Nodes, int Shafts, int Elements, int Channels, int Inputs, int Params, int States = Nodes + Shafts,
+          int Unknowns = Nodes + Shafts>
 struct Capacity {
   static constexpr int kNodes = Nodes;
   static constexpr int kShafts = Shafts;
@@ -30,12 +34,14 @@ struct Capacity {
   static constexpr int kInputs = Inputs;
   static constexpr int kParams = Params;
   static constexpr int kStates = States;
+  static constexpr int kUnknowns = Unknowns;
   static_assert(Nodes >= 1 && Nodes <= 32, "the stiff-node set is a 32-bit mask");
   static_assert(Shafts >= 0 && Elements >= 1 && Elements <= 255, "elements are referenced by 8-bit index");
   static_assert(Channels >= 1 && Channels <= 8, "the observer's channel masks are 8 bits wide");
   static_assert(Inputs >= 2 && Inputs % 2 == 0 && Inputs <= 254, "inputs: even (word-wise compare), 8-bit index");
   static_assert(Params >= 1 && Params <= 255, "parameters are referenced by 8-bit index");
   static_assert(States >= 1 && States <= Nodes + Shafts, "states: at most one per node and shaft");
+  static_assert(Unknowns >= States && Unknowns <= Nodes + Shafts, "unknowns: the states and the stiff nodes");
 };
 
 /// What the host tools build with: room for the shipped circuits and a user's machine of

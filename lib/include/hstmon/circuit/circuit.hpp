@@ -138,7 +138,7 @@ enum class CircuitError : std::uint8_t {
   kBadShaft,        ///< an element's shaft is missing or not a shaft
   kMissingNumber,   ///< a required number is not given (K or β and V, J, k or A·Cd·ρ, ...)
   kStiffNotVolume,  ///< the stiff mask names a boundary or an unused node
-  kTooManyStates,   ///< more states than Cap::kStates
+  kTooManyStates,   ///< more states than Cap::kStates, or more unknowns than Cap::kUnknowns
   kBadChannel,      ///< a channel names no node, shaft or element
   kNoEnvelope,      ///< pressure_max or speed_max missing
   kUnbound,         ///< the model has not been given a description

@@ -44,6 +44,9 @@ class CircuitModel {
   static constexpr int kElements = Cap::kElements;
   /// Size of the full unknown space: every node, then every shaft.
   static constexpr int kZ = Cap::kNodes + Cap::kShafts;
+  /// Room for the unknowns (volume nodes and free shafts): the Jacobian's and the
+  /// steady-state solve's scratch is kU × kU, not kZ × kZ (no rows for boundaries).
+  static constexpr int kU = Cap::kUnknowns;
   using State = Eigen::Matrix<T, kStates, 1>;
   using Output = Eigen::Matrix<T, kOutputs, 1>;
   using StateMatrix = Eigen::Matrix<T, kStates, kStates>;
@@ -89,9 +92,10 @@ class CircuitModel {
     error_ = validate(c);
     if (error_ != CircuitError::kOk) return error_;
     c_ = &c;
-    for (int k = 0; k < kZ; ++k) state_of_z_[k] = -1;
+    for (int k = 0; k < kZ; ++k) state_of_z_[k] = unknown_of_z_[k] = -1;
     for (int i = 0; i < c.n_nodes; ++i) {
       if (c.nodes[i].kind != NodeKind::kVolume) continue;
+      unknown_of_z_[i] = static_cast<std::int8_t>(n_unknowns_);
       unknown_z_[n_unknowns_++] = static_cast<std::uint8_t>(i);
       if (((c.stiff_mask >> i) & 1u) != 0) {
         stiff_[n_stiff_++] = static_cast<std::uint8_t>(i);
@@ -103,10 +107,13 @@ class CircuitModel {
     for (int s = 0; s < c.n_shafts; ++s) {
       if (c.shafts[s].driven) continue;
       const int z = kNodes + s;
+      unknown_of_z_[z] = static_cast<std::int8_t>(n_unknowns_);
       unknown_z_[n_unknowns_++] = static_cast<std::uint8_t>(z);
       state_of_z_[z] = static_cast<std::int8_t>(n_states_);
       z_of_state_[n_states_++] = static_cast<std::uint8_t>(z);
     }
+    for (int j = 0; j < n_stiff_; ++j) stiff_u_[j] = static_cast<std::uint8_t>(unknown_of_z_[stiff_[j]]);
+    for (int k = 0; k < n_states_; ++k) state_u_[k] = static_cast<std::uint8_t>(unknown_of_z_[z_of_state_[k]]);
     // Incidence lists (node → elements with a port on it), compressed rows.
     int k = 0;
     stiff_coupled_ = false;
@@ -121,6 +128,22 @@ class CircuitModel {
       }
     }
     inc_start_[c.n_nodes] = static_cast<std::uint16_t>(k);
+    // Per element, the unknown index of each port and of its shaft (−1: fixed), and per
+    // shaft its torque elements in element order (the Jacobian's and rates' loops).
+    int t = 0;
+    for (int e = 0; e < c.n_elements; ++e) {
+      const Element& el = c.elements[e];
+      el_unknown_[e][0] = has_ports(el.kind) ? unknown_of_z_[el.a] : std::int8_t{-1};
+      el_unknown_[e][1] = has_ports(el.kind) ? unknown_of_z_[el.b] : std::int8_t{-1};
+      el_unknown_[e][2] = el.shaft >= 0 ? unknown_of_z_[kNodes + el.shaft] : std::int8_t{-1};
+    }
+    for (int sh = 0; sh < c.n_shafts; ++sh) {
+      shaft_start_[sh] = static_cast<std::uint8_t>(t);
+      for (int e = 0; e < c.n_elements; ++e) {
+        if (has_shaft(c.elements[e].kind) && c.elements[e].shaft == sh) shaft_inc_[t++] = static_cast<std::uint8_t>(e);
+      }
+    }
+    shaft_start_[c.n_shafts] = static_cast<std::uint8_t>(t);
     set_inputs(u_);
     return error_;
   }
@@ -334,28 +357,24 @@ class CircuitModel {
     return true;
   }
 
-  /// steady_state() as the full vector z (stiff nodes included) [Pa, rad/s].
+  /// steady_state() as the full vector z (stiff nodes included) [Pa, rad/s]; on failure z
+  /// holds the solve's last iterate.
   bool steady_full(T (&z)[kExtent<kZ>]) const noexcept {
     if (c_ == nullptr || !values_ok_) return false;
     for (int k = 0; k < kZ; ++k) z[k] = rest_z_[k];
-    T u[kExtent<kZ>], mass[kExtent<kZ>], scale[kExtent<kZ>];
+    T u[kExtent<kU>], mass[kExtent<kU>], scale[kExtent<kU>];
     for (int k = 0; k < n_unknowns_; ++k) {
       const int zk = unknown_z_[k];
       u[k] = z[zk];
       mass[k] = T(1) / inv_mass_[zk];
       scale[k] = zk < kNodes ? p_env_ : w_env_;
     }
-    T zz[kExtent<kZ>];
-    for (int k = 0; k < kZ; ++k) zz[k] = z[k];
-    auto eval = [&](const T(&uu)[kExtent<kZ>], T(&g)[kExtent<kZ>], T(&J)[kExtent<kZ>][kExtent<kZ>]) {
-      for (int k = 0; k < n_unknowns_; ++k) zz[unknown_z_[k]] = uu[k];
-      T gz[kExtent<kZ>], jz[kExtent<kZ>][kExtent<kZ>];
-      net(zz, gz);
-      full_jacobian(zz, jz);
-      for (int r = 0; r < n_unknowns_; ++r) {
-        g[r] = gz[unknown_z_[r]];
-        for (int c = 0; c < n_unknowns_; ++c) J[r][c] = jz[unknown_z_[r]][unknown_z_[c]];
-      }
+    // z itself is the solve's full vector (its fixed entries stay the rest ones), and only
+    // the unknowns' rows are evaluated: no kZ-sized copies on the stack (firmware).
+    auto eval = [&](const T(&uu)[kExtent<kU>], T(&g)[kExtent<kU>], T(&J)[kExtent<kU>][kExtent<kU>]) {
+      for (int k = 0; k < n_unknowns_; ++k) z[unknown_z_[k]] = uu[k];
+      unknowns_net(z, g);
+      unknowns_jacobian(z, J);
     };
     if (!pseudo_transient(eval, mass, scale, n_unknowns_, u)) return false;
     for (int k = 0; k < n_unknowns_; ++k) z[unknown_z_[k]] = u[k];
@@ -425,6 +444,70 @@ class CircuitModel {
           J[sz][el.b] += db;
         }
         J[sz][sz] += dw;
+      }
+    }
+  }
+
+  /// net()'s rows of the unknowns only, in unknown order [m³/s, N·m]: the same values bit
+  /// for bit (each row accumulates in the same element order).
+  void unknowns_net(const T (&z)[kExtent<kZ>], T (&g)[kExtent<kU>]) const noexcept {
+    for (int r = 0; r < n_unknowns_; ++r) g[r] = T(0);
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      if (has_ports(el.kind)) {
+        const T q = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w).q;
+        if (unknown_of_z_[el.a] >= 0) g[unknown_of_z_[el.a]] -= q;
+        if (unknown_of_z_[el.b] >= 0) g[unknown_of_z_[el.b]] += q;
+      }
+      if (has_shaft(el.kind) && unknown_of_z_[kNodes + el.shaft] >= 0) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+        g[unknown_of_z_[kNodes + el.shaft]] += element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
+      }
+    }
+  }
+
+  /// full_jacobian's rows and columns of the unknowns only, in unknown order (volume
+  /// nodes, then free shafts): J[r][c] = ∂(net of unknown r)/∂(unknown c) at z. The same
+  /// values bit for bit (each entry accumulates in the same element order).
+  void unknowns_jacobian(const T (&z)[kExtent<kZ>], T (&J)[kExtent<kU>][kExtent<kU>]) const noexcept {
+    for (int r = 0; r < n_unknowns_; ++r) {
+      for (int c = 0; c < n_unknowns_; ++c) J[r][c] = T(0);
+    }
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const int ua = el_unknown_[e][0], ub = el_unknown_[e][1], us = el_unknown_[e][2];
+      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+      // Flow rows a and b (only where an unknown): an element between fixed ends adds nothing.
+      if (has_ports(el.kind) && (ua >= 0 || ub >= 0)) {
+        const Flow<T> f = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w);
+        if (ua >= 0) {
+          J[ua][ua] -= f.dpa;
+          if (ub >= 0) J[ua][ub] -= f.dpb;
+        }
+        if (ub >= 0) {
+          if (ua >= 0) J[ub][ua] += f.dpa;
+          J[ub][ub] += f.dpb;
+        }
+        if (el.shaft >= 0 && us >= 0) {
+          if (ua >= 0) J[ua][us] -= f.dw;
+          if (ub >= 0) J[ub][us] += f.dw;
+        }
+      }
+      if (has_shaft(el.kind) && us >= 0) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+        (void)element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
+        if (has_ports(el.kind)) {
+          if (ua >= 0) J[us][ua] += da;
+          if (ub >= 0) J[us][ub] += db;
+        }
+        J[us][us] += dw;
       }
     }
   }
@@ -688,11 +771,37 @@ class CircuitModel {
     return conv;
   }
 
+  /// The states' rates [Pa/s, rad/s²]: net()'s rows of the states only, each summed in
+  /// net()'s element order (so the same bits), without the boundaries' and stiff nodes'.
   State rates(const T (&z)[kExtent<kZ>]) const noexcept {
-    T g[kExtent<kZ>];
-    net(z, g);
     State d = State::Zero();
-    for (int s = 0; s < n_states_; ++s) d[s] = inv_mass_[z_of_state_[s]] * g[z_of_state_[s]];
+    for (int s = 0; s < n_states_; ++s) {
+      const int zs = z_of_state_[s];
+      T g = T(0);
+      if (zs < kNodes) {
+        for (int k = inc_start_[zs]; k < inc_start_[zs + 1]; ++k) {
+          const int e = inc_[k];
+          const Element& el = c_->elements[e];
+          const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
+          const T q = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w).q;
+          if (el.a == zs) {
+            g -= q;
+          } else {
+            g += q;
+          }
+        }
+      } else {
+        for (int k = shaft_start_[zs - kNodes]; k < shaft_start_[zs - kNodes + 1]; ++k) {
+          const int e = shaft_inc_[k];
+          const Element& el = c_->elements[e];
+          T da, db, dw;
+          const T pa = has_ports(el.kind) ? z[el.a] : T(0);
+          const T pb = has_ports(el.kind) ? z[el.b] : T(0);
+          g += element_torque(el.kind, coef_[e], pa, pb, z[zs], da, db, dw);
+        }
+      }
+      d[s] = inv_mass_[zs] * g;
+    }
     return d;
   }
 
@@ -718,43 +827,43 @@ class CircuitModel {
   /// contraction factor q of the stiff block. G_aa is strictly diagonally dominant
   /// wherever the solve contracts, so it is eliminated without pivoting.
   void reduced_jacobian(const T (&z)[kExtent<kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
-    T G[kExtent<kZ>][kExtent<kZ>];
-    full_jacobian(z, G);
+    // Only the unknowns' rows and columns (kU × kU, not kZ × kZ), and the elimination in
+    // place on the stiff rows (G_aa, G_ax), which nothing reads afterwards: firmware stack.
+    T G[kExtent<kU>][kExtent<kU>];
+    unknowns_jacobian(z, G);
     q = T(0);
     const int n = n_states_;
     const int m = n_stiff_;
-    T A[kExtent<kNodes>][kExtent<kNodes>];
-    T X[kExtent<kNodes>][kExtent<kStates>];
+    const std::uint8_t* ia = stiff_u_;  // stiff node a's row/column in G
+    const std::uint8_t* ix = state_u_;  // state s's row/column in G
     for (int a = 0; a < m; ++a) {
       T off = T(0);
       for (int b = 0; b < m; ++b) {
-        A[a][b] = G[stiff_[a]][stiff_[b]];
-        if (b != a) off += std::fabs(A[a][b]);
+        if (b != a) off += std::fabs(G[ia[a]][ia[b]]);
       }
-      q = std::fmax(q, off / std::fabs(A[a][a]));
-      for (int s = 0; s < n; ++s) X[a][s] = G[stiff_[a]][z_of_state_[s]];
+      q = std::fmax(q, off / std::fabs(G[ia[a]][ia[a]]));
     }
     for (int k = 0; k < m; ++k) {
-      const T inv = T(1) / A[k][k];
+      const T inv = T(1) / G[ia[k]][ia[k]];
       for (int r = k + 1; r < m; ++r) {
-        const T f = A[r][k] * inv;
+        const T f = G[ia[r]][ia[k]] * inv;
         if (f == T(0)) continue;
-        for (int c = k + 1; c < m; ++c) A[r][c] -= f * A[k][c];
-        for (int s = 0; s < n; ++s) X[r][s] -= f * X[k][s];
+        for (int c = k + 1; c < m; ++c) G[ia[r]][ia[c]] -= f * G[ia[k]][ia[c]];
+        for (int s = 0; s < n; ++s) G[ia[r]][ix[s]] -= f * G[ia[k]][ix[s]];
       }
     }
     for (int k = m - 1; k >= 0; --k) {
       for (int s = 0; s < n; ++s) {
-        T v = X[k][s];
-        for (int c = k + 1; c < m; ++c) v -= A[k][c] * X[c][s];
-        X[k][s] = v / A[k][k];
+        T v = G[ia[k]][ix[s]];
+        for (int c = k + 1; c < m; ++c) v -= G[ia[k]][ia[c]] * G[ia[c]][ix[s]];
+        G[ia[k]][ix[s]] = v / G[ia[k]][ia[k]];
       }
     }
     for (int r = 0; r < n; ++r) {
       const int zr = z_of_state_[r];
       for (int s = 0; s < n; ++s) {
-        T v = G[zr][z_of_state_[s]];
-        for (int a = 0; a < m; ++a) v -= G[zr][stiff_[a]] * X[a][s];
+        T v = G[ix[r]][ix[s]];
+        for (int a = 0; a < m; ++a) v -= G[ix[r]][ia[a]] * G[ia[a]][ix[s]];
         jr[r][s] = inv_mass_[zr] * v;
       }
     }
@@ -768,9 +877,15 @@ class CircuitModel {
   bool stiff_coupled_ = false;
   bool values_ok_ = false;
   std::int8_t state_of_z_[kExtent<kZ>]{};
+  std::int8_t unknown_of_z_[kExtent<kZ>]{};  ///< index among the unknowns, or −1 (boundary, driven shaft)
+  std::uint8_t stiff_u_[kExtent<kU>]{};       ///< unknown index of the j-th stiff node
+  std::int8_t el_unknown_[kExtent<kElements>][3]{};  ///< unknown index of port a, port b, shaft (−1 fixed)
+  std::uint8_t shaft_start_[kExtent<Cap::kShafts + 1>]{};  ///< shaft s's torque elements: shaft_inc_[start[s], start[s+1])
+  std::uint8_t shaft_inc_[kExtent<kElements>]{};
+  std::uint8_t state_u_[kExtent<kStates>]{};  ///< unknown index of state s
   std::uint8_t z_of_state_[kExtent<kStates>]{};
   std::uint8_t stiff_[kExtent<kNodes>]{};
-  std::uint8_t unknown_z_[kExtent<kZ>]{};
+  std::uint8_t unknown_z_[kExtent<kU>]{};
   std::uint16_t inc_start_[kExtent<kNodes + 1>]{};
   std::uint8_t inc_[kExtent<2 * kElements>]{};
   Coeffs<T> coef_[kExtent<kElements>]{};

@@ -87,7 +87,10 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
     const T r = std::fabs(J[0][0]);
     return r <= rho_max ? T(0) : r;
   }
-  if (n == 2) return radius_2x2(J[0][0], J[0][1], J[1][0], J[1][1], rho_max);
+  // A one-state capacity (N = 1) has no 2 × 2 case (n ≤ N): not even compiled there.
+  if constexpr (N >= 2) {
+    if (n == 2) return radius_2x2(J[0][0], J[0][1], J[1][0], J[1][1], rho_max);
+  }
   T v[N], w[N];
   for (int i = 0; i < n; ++i) v[i] = T(1);
   T best = std::numeric_limits<T>::infinity();

@@ -39,7 +39,9 @@ struct PtcConfig {
 template <typename T, std::size_t N, typename Eval>
 bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n, T (&u)[N],
                       const PtcConfig<T>& cfg = PtcConfig<T>{}) noexcept {
-  T g[N], J[N][N], A[N][N], d[N], u_prev[N];
+  // The Newton matrix is built in J's storage: J is evaluated afresh at the top of every
+  // iteration, so one N × N array serves both (firmware stack).
+  T g[N], J[N][N], d[N], u_prev[N]{};  // u_prev zeroed: GCC cannot see it is set before use
   T dt = cfg.dt0;
   T prev_norm = T(-1);
   const T tol = T(64) * std::numeric_limits<T>::epsilon();
@@ -73,11 +75,11 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
     }
     prev_norm = norm;
     for (int r = 0; r < n; ++r) {
-      for (int c = 0; c < n; ++c) A[r][c] = -J[r][c];
-      A[r][r] += mass[r] / dt;
+      for (int c = 0; c < n; ++c) J[r][c] = -J[r][c];
+      J[r][r] += mass[r] / dt;
       d[r] = g[r];
     }
-    if (!solve_dense(A, d, n)) {
+    if (!solve_dense(J, d, n)) {
       dt *= T(0.1);
       continue;
     }

@@ -99,6 +99,10 @@ constexpr CircuitError validate(const Circuit<Cap>& c) noexcept {
     if (h.kind == ChannelKind::kFlow && !has_ports(c.elements[h.index].kind)) return CircuitError::kBadChannel;
   }
   if (state_count(c) > Cap::kStates) return CircuitError::kTooManyStates;
+  int unknowns = 0;  // volume nodes and free shafts
+  for (int i = 0; i < c.n_nodes; ++i) unknowns += c.nodes[i].kind == NodeKind::kVolume ? 1 : 0;
+  for (int s = 0; s < c.n_shafts; ++s) unknowns += c.shafts[s].driven ? 0 : 1;
+  if (unknowns > Cap::kUnknowns) return CircuitError::kTooManyStates;
   return CircuitError::kOk;
 }
 

@@ -1,0 +1,172 @@
+// Footprint image of the circuit engine: Observer<CircuitModel<float, Cap>> for the circuit
+// generated at build time (fw_circuit.hpp; default thesis.json at 1 ms), measured as
+// main_footprint.c measures the C API's monitor. Built twice — HSTMON_FW_WITH_ENGINE=1 and
+// =0 — so that the difference of the two images' sizes is what the engine costs in flash
+// and RAM (scripts/footprint.sh). With the engine, under `qemu -icount shift=0`:
+//  - instructions per observer step at the nominal operating point (steady state for the
+//    generated nominal inputs), the generated tick, all channels measured with ±σ-sized
+//    alternating noise (SysTick calibrated on a loop of known length, loop overhead
+//    measured with an empty function and subtracted);
+//  - stack depth below main's frame (painting): configure + reset_steady, and the steps.
+// Prints one JSON line {"type":"circuit_footprint",…}; exit status 0 (10, 11: setup failed).
+#include <cstdint>
+
+#include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/semihosting.h"
+
+#ifndef HSTMON_FW_WITH_ENGINE
+#define HSTMON_FW_WITH_ENGINE 1
+#endif
+
+#if HSTMON_FW_WITH_ENGINE
+#include "fw_circuit.hpp"
+#endif
+
+namespace {
+
+constexpr int kTicks = 2000;
+constexpr std::uint32_t kCalibLoop = 100000;
+
+char line[512];
+volatile std::uint32_t sink;  // keeps results observable (in both images)
+unsigned pos;
+
+void put(const char* s) {
+  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
+  line[pos] = '\0';
+}
+
+void put_uint(const char* key, std::uint32_t v) {
+  char tmp[12];
+  int n = 0;
+  put(pos > 1u ? ",\"" : "\"");
+  put(key);
+  put("\":");
+  do {
+    tmp[n++] = static_cast<char>('0' + static_cast<int>(v % 10u));
+    v /= 10u;
+  } while (v != 0u);
+  while (n > 0) {
+    const char c[2] = {tmp[--n], '\0'};
+    put(c);
+  }
+}
+
+#if HSTMON_FW_WITH_ENGINE
+using hstmon::fw::CircuitFwObserver;
+using Meas = CircuitFwObserver::Measurement;
+using Inputs = CircuitFwObserver::Inputs;
+
+CircuitFwObserver obs;  // the engine's RAM (static: no heap, not on the stack)
+
+extern "C" std::uint32_t __stack_limit__[];
+constexpr std::uint32_t kPaint = 0xA5A5A5A5u;
+
+// Fills the unused stack below this function's frame with a pattern.
+__attribute__((noinline)) void paint_stack() {
+  std::uint32_t* sp;
+  __asm volatile("mov %0, sp" : "=r"(sp));
+  for (volatile std::uint32_t* p = __stack_limit__; p < sp - 16; ++p) *p = kPaint;
+}
+
+// Lowest stack address written since paint_stack().
+std::uintptr_t stack_low_water() {
+  const std::uint32_t* p = __stack_limit__;
+  while (*p == kPaint) ++p;
+  return reinterpret_cast<std::uintptr_t>(p);
+}
+
+__attribute__((noinline)) std::uint32_t engine_step(const Inputs& u, const Meas& m) { return obs.step(u, m); }
+
+__attribute__((noinline)) std::uint32_t empty_step(const Inputs& u, const Meas& m) {
+  __asm volatile("" ::"r"(&u), "r"(&m) : "memory");
+  return 0u;
+}
+
+using StepFn = std::uint32_t (*)(const Inputs&, const Meas&);
+
+// Where a tick goes: kTicks model evaluations, plain (an RK4 stage) and with the
+// observer's Jacobian and spectral-radius check (a tick's first evaluation).
+__attribute__((noinline)) std::uint32_t time_evaluations(bool with_jacobian) {
+  const auto& model = obs.model();
+  const auto x = obs.state();
+  CircuitFwObserver::Output y;
+  float rho = 0.0f;
+  bool ok = true;
+  const std::uint32_t a = cycles_now();
+  for (int k = 0; k < kTicks; ++k) {
+    const auto d = with_jacobian ? model.tick_derivative(x, 800.0f, y, rho, ok) : model.derivative(x);
+    sink = static_cast<std::uint32_t>(d[0] > 0.0f);
+  }
+  return cycles_elapsed(a, cycles_now());
+}
+
+// SysTick counts for kTicks calls of f; each channel alternates around the nominal
+// outputs by 50 Pa (pressures, flows) or 0.05 rad/s (speeds), as main_footprint.c.
+__attribute__((noinline)) std::uint32_t time_ticks(StepFn f, const Inputs& u, Meas& m) {
+  namespace gen = hstmon::fw::gen;
+  const Meas base = m;
+  const std::uint32_t a = cycles_now();
+  for (int k = 0; k < kTicks; ++k) {
+    const float d = (k & 1) ? 1.0f : -1.0f;
+    for (int c = 0; c < CircuitFwObserver::kOutputs; ++c) {
+      const bool speed = gen::kCircuit.channels[c].kind == hstmon::circuit::ChannelKind::kSpeed;
+      m.y[c] = base.y[c] + (speed ? 0.05f : 50.0f) * d;
+    }
+    sink = f(u, m);
+  }
+  const std::uint32_t b = cycles_now();
+  m = base;
+  return cycles_elapsed(a, b);
+}
+#endif
+
+}  // namespace
+
+int main() {
+  cycles_start();
+  // Two loop lengths: the difference removes the fixed cost of the call and reads.
+  const std::uint32_t c1 = cycles_known_loop(kCalibLoop);
+  const std::uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
+  put("{\"type\":\"circuit_footprint\"");
+  put_uint("with_engine", HSTMON_FW_WITH_ENGINE);
+  put_uint("calib_instructions", 2u * kCalibLoop);
+  put_uint("calib_counts", c2 - c1);
+  sink = c2 - c1;
+#if HSTMON_FW_WITH_ENGINE
+  std::uintptr_t sp_main;
+  __asm volatile("mov %0, sp" : "=r"(sp_main));
+  paint_stack();
+  if (hstmon::fw::configure_circuit_observer(obs) != hstmon::Status::kOk) semihost_exit(10);
+  const Inputs u = hstmon::fw::circuit_inputs();
+  if (obs.reset_steady(u) != hstmon::Status::kOk) semihost_exit(11);
+  const auto stack_setup = static_cast<std::uint32_t>(sp_main - stack_low_water());
+  Meas m;
+  m.y = obs.estimate();
+  m.valid = static_cast<std::uint8_t>((1u << obs.model().n_outputs()) - 1u);
+  paint_stack();
+  sink = obs.step(u, m);  // the first step (the quasi-steady solve's warm start settles)
+  const std::uint32_t counts_step = time_ticks(engine_step, u, m);
+  const auto stack_step = static_cast<std::uint32_t>(sp_main - stack_low_water());
+  const std::uint32_t counts_empty = time_ticks(empty_step, u, m);
+  const std::uint32_t counts_derivative = time_evaluations(false);
+  const std::uint32_t counts_tick_derivative = time_evaluations(true);
+  put_uint("observer_bytes", static_cast<std::uint32_t>(sizeof obs));
+  // What the monitor's model bound (circuit_bound.hpp) copies onto the stack.
+  put_uint("model_bytes", static_cast<std::uint32_t>(sizeof(hstmon::fw::CircuitFwModel)));
+  put_uint("states", static_cast<std::uint32_t>(obs.model().n_states()));
+  put_uint("stiff_nodes", static_cast<std::uint32_t>(obs.model().n_stiff()));
+  put_uint("ticks", kTicks);
+  put_uint("counts_step_loop", counts_step);
+  put_uint("counts_empty_loop", counts_empty);
+  put_uint("counts_derivative_loop", counts_derivative);
+  put_uint("counts_tick_derivative_loop", counts_tick_derivative);
+  put_uint("health", obs.health());
+  put_uint("max_substeps", obs.substeps());
+  put_uint("stack_setup_bytes", stack_setup);
+  put_uint("stack_step_bytes", stack_step);
+#endif
+  put("}\n");
+  semihost_write0(line);
+  return 0;
+}
