@@ -1,7 +1,7 @@
 # Install rules and the exported package (docs/packaging.md). Included by the top-level
 # CMakeLists when HSTMON_INSTALL is on (the default when hstmon is the top-level project).
 #
-#   include/            core headers (lib/include) and hstmon_c.h
+#   include/            core and engine headers (lib/include, lib/circuit/include), hstmon_c.h
 #   lib/libhstmon_c.a   the C API
 #   lib/cmake/hstmon/   hstmonConfig.cmake, hstmonConfigVersion.cmake, hstmonTargets*.cmake
 #   lib/pkgconfig/      hstmon-c.pc (the C API for Make/Meson/plain-C builds)
@@ -15,18 +15,20 @@ include(CMakePackageConfigHelpers)
 set(HSTMON_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hstmon CACHE STRING
   "Where hstmonConfig.cmake is installed, relative to the prefix")
 
-# Exported names: hstmon::core and hstmon::c_api, as the ALIAS targets of a source build.
+# Exported names: hstmon::core, hstmon::circuit and hstmon::c_api, as the ALIAS targets of a
+# source build.
 set_target_properties(hstmon_core PROPERTIES EXPORT_NAME core)
+set_target_properties(hstmon_circuit PROPERTIES EXPORT_NAME circuit)
 set_target_properties(hstmon_c PROPERTIES EXPORT_NAME c_api)
-install(TARGETS hstmon_core hstmon_c EXPORT hstmonTargets
+install(TARGETS hstmon_core hstmon_circuit hstmon_c EXPORT hstmonTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Bare-metal build: hstmon::c_api carries the CPU/ABI flags it was compiled with.
 if(TARGET hstmon_cpu_cm4f)
   install(TARGETS hstmon_cpu_cm4f EXPORT hstmonTargets)
 endif()
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  COMPONENT development)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ ${PROJECT_SOURCE_DIR}/lib/circuit/include/
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
 install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   COMPONENT development)
 install(EXPORT hstmonTargets NAMESPACE hstmon:: DESTINATION ${HSTMON_INSTALL_CMAKEDIR}

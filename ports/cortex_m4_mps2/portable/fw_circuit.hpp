@@ -1,7 +1,7 @@
 #pragma once
 /// @file fw_circuit.hpp
 /// The circuit engine in firmware: the circuit comes from a header generated at build time
-/// (hstmon-circuit-header; default lib/include/hstmon/generated/thesis_circuit.hpp), and
+/// (hstmon-circuit-header; default lib/circuit/include/hstmon/generated/thesis_circuit.hpp), and
 /// the float Observer<CircuitModel> runs it. Portable (no registers, no libc I/O, no
 /// heap): the Cortex-M4F images and a host float build compile the same code, so their
 /// residuals can be compared bit for bit (tests/firmware, firmware.circuit_bitexact).
