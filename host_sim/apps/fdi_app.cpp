@@ -8,6 +8,7 @@
 ///   hstmon-fdi header --out FILE [--sigma-p BAR] [--sigma-w RPM] [--step F] [--order N]
 ///   hstmon-fdi isolability --circuit FILE [--params FILE] [--json]   any circuit: detectability, classes
 ///   hstmon-fdi sensors --circuit FILE [--params FILE] [--json]       any circuit: added sensors ranked
+///   hstmon-fdi table --circuit FILE [--params FILE] --name NAME --out FILE  any circuit: constexpr fault table
 /// backward and graph default to the linearised graph of Fig. 2.14 (the thesis's TCG);
 /// tree and forward default to Fig. 2.3's parameters (kp, kfi, kfo), the names of the catalogue.
 
@@ -90,7 +91,11 @@ int main(int argc, char** argv) {
   std::string circuit, circuit_params;
   CLI::App* iso = app.add_subcommand("isolability", "any circuit file: which faults its sensors detect and tell apart");
   CLI::App* place = app.add_subcommand("sensors", "any circuit file: which added sensor tells most faults apart");
-  for (CLI::App* sub : {iso, place}) {
+  std::string table_name;
+  CLI::App* table = app.add_subcommand("table", "any circuit file: its fault table as a constexpr header for firmware");
+  table->add_option("--name", table_name, "namespace hstmon::generated::NAME (a C++ identifier)")->required();
+  table->add_option("--out", out, "output file, - for stdout")->required();
+  for (CLI::App* sub : {iso, place, table}) {
     sub->add_option("--circuit", circuit, "circuit file (docs/circuits.md)")->required();
     sub->add_option("--params", circuit_params, "its parameter file (default <stem>.params.json beside it)");
     sub->add_flag("--json", json, "JSON output");
@@ -100,6 +105,7 @@ int main(int argc, char** argv) {
   try {
     if (*iso) return hstmon::fdi::run_isolability(circuit, circuit_params, json);
     if (*place) return hstmon::fdi::run_sensor_placement(circuit, circuit_params, json);
+    if (*table) return hstmon::fdi::run_table_header(circuit, circuit_params, table_name, out);
     if (*graph) {
       const CausalGraph g = thesis_tcg(valves(!nonlinear));
       std::cout << (json ? json_edges(g).dump(2) + "\n" : markdown_edges(g));

@@ -1,10 +1,14 @@
 #include "fdi_circuit.hpp"
 
+#include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_table_header.hpp"
 
 namespace hstmon::fdi {
 
@@ -84,6 +88,31 @@ int run_sensor_placement(const std::string& circuit, const std::string& params, 
     for (const auto& cls : s.classes) left.push_back("{" + joined(cls) + "}");
     std::cout << "| " << s.name << " | " << s.classes_split << " | " << s.made_detectable << " | " << s.weak_cleared
               << " | " << (left.empty() ? "none" : joined(left, " ")) << " |\n";
+  }
+  return 0;
+}
+
+int run_table_header(const std::string& circuit, const std::string& params, const std::string& name,
+                     const std::string& out) {
+  bool ident = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+  for (char ch : name) ident = ident && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_');
+  if (!ident) {
+    std::cerr << "hstmon-fdi table: error: --name must be a C++ identifier, got '" << name << "'\n";
+    return 1;
+  }
+  circuit_tools::LoadedCircuit c;
+  if (!load(circuit, params, c)) return 2;
+  std::string source = std::filesystem::path(circuit).filename().string();
+  if (!c.params_path.empty()) source += " with " + std::filesystem::path(c.params_path).filename().string();
+  const std::string text = circuit_tools::circuit_table_header(c, circuit_tools::circuit_fault_table(c), name, source);
+  if (out == "-") {
+    std::cout << text;
+    return 0;
+  }
+  std::ofstream f(out, std::ios::binary);
+  if (!(f << text)) {
+    std::cerr << "hstmon-fdi table: error: cannot write " << out << '\n';
+    return 1;
   }
   return 0;
 }

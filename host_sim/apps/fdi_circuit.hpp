@@ -1,6 +1,6 @@
 #pragma once
-// hstmon-fdi isolability|sensors --circuit FILE: detectability, isolability classes and
-// sensor placement of any circuit (hstmon_circuit circuit_isolability.hpp), as text or JSON.
+// hstmon-fdi isolability|sensors|table --circuit FILE: detectability, isolability classes,
+// sensor placement and the constexpr fault table of any circuit (hstmon_circuit circuit_isolability.hpp), as text or JSON.
 #include <string>
 
 namespace hstmon::fdi {
@@ -10,5 +10,10 @@ int run_isolability(const std::string& circuit, const std::string& params, bool 
 
 /// Prints the added sensors ranked; @return 0, or 2 for a bad circuit file
 int run_sensor_placement(const std::string& circuit, const std::string& params, bool json);
+
+/// Writes the circuit's fault table as a constexpr header (out "-" = stdout);
+/// @return 0, 1 for a bad name or an unwritable file, 2 for a bad circuit file
+int run_table_header(const std::string& circuit, const std::string& params, const std::string& name,
+                     const std::string& out);
 
 }  // namespace hstmon::fdi

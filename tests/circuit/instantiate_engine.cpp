@@ -2,6 +2,10 @@
 // firmware flags (-fno-exceptions -fno-rtti, the strict warning set), so the engine's
 // headers stay firmware-clean although the circuit tests themselves are host code.
 #include "hstmon/circuit/engine.hpp"
+#include "hstmon/fault_matcher.hpp"
+#include "hstmon/generated/closed_loop_hst_signatures.hpp"
+#include "hstmon/generated/paper_signatures.hpp"
+#include "hstmon/generated/test_stand_signatures.hpp"
 #include "hstmon/generated/thesis_circuit.hpp"
 #include "hstmon/observer.hpp"
 
@@ -54,3 +58,13 @@ std::uint32_t use_generated_observer() {
   return o.step(M::Inputs{}, hstmon::Observer<M, false>::Measurement{});
 }
 }  // namespace hstmon::circuit
+
+// The shipped circuits' generated fault tables, with a matcher of their channel count, under
+// the firmware flags: what a firmware monitor of those circuits compiles.
+namespace hstmon {
+template class FaultMatcher<float, 64, 2, 1, generated::paper_signatures::kChannels>;
+template class FaultMatcher<float, 64, 2, 1, generated::test_stand_signatures::kChannels>;
+static_assert(generated::paper_signatures::kSignatureCount > generated::paper_signatures::kChannels,
+              "parameter rows besides the sensor rows");
+static_assert(generated::closed_loop_hst_signatures::kSignatureCount <= 64, "fits the matcher above");
+}  // namespace hstmon
