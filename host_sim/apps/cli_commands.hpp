@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <initializer_list>
 #include <string>
 
 #include "hstmon_host/params_file.hpp"
@@ -26,6 +27,18 @@ inline bool read_params_option(const std::string& path, host::ParamsFileResult& 
   if (!pf.error) return true;
   fmt::print(stderr, "{}\n", pf.error->to_string());
   return false;
+}
+
+/// With --circuit: the first of `options` given on cmd is refused ("hstmon CMD: error: OPT
+/// does not go with --circuit (yet)"); returns false then, the command exits kExitUsage.
+inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<const char*> options) {
+  for (const char* opt : options) {
+    if (cmd.count(opt) > 0) {
+      fmt::print(stderr, "hstmon {}: error: {} does not go with --circuit (yet)\n", cmd.get_name(), opt);
+      return false;
+    }
+  }
+  return true;
 }
 
 /// `hstmon replay LOG ...`

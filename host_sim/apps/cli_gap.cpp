@@ -103,13 +103,10 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       exit_code = run_gap_command(*args);
       return;
     }
-    for (const char* opt : {"--report", "--refit-nominal", "--effects", "--max-step", "--map", "--separator", "--lenient",
-                            "--rate"}) {
-      if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon gap: error: {} does not go with --circuit (yet)\n", opt);
-        exit_code = kExitUsage;
-        return;
-      }
+    if (!refuse_with_circuit(*cmd, {"--report", "--refit-nominal", "--effects", "--max-step", "--map", "--separator", "--lenient",
+                            "--rate"})) {
+      exit_code = kExitUsage;
+      return;
     }
     CircuitGapArgs c;
     c.circuit = args->circuit;

@@ -449,14 +449,11 @@ void add_identify_command(CLI::App& app, int& exit_code) {
       exit_code = run_identify(*args);
       return;
     }
-    for (const char* opt : {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
+    if (!refuse_with_circuit(*cmd, {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
                             "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
-                            "--studies", "--map", "--separator", "--lenient", "--rate"}) {
-      if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon identify: error: {} does not go with --circuit (yet)\n", opt);
-        exit_code = kExitUsage;
-        return;
-      }
+                            "--studies", "--map", "--separator", "--lenient", "--rate"})) {
+      exit_code = kExitUsage;
+      return;
     }
     CircuitIdentifyArgs c;
     c.logs = args->logs;

@@ -62,8 +62,6 @@ struct Progress {
   }
 };
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
   nlohmann::json head = {{"type", "replay"},
                          {"log", a.log},
@@ -83,14 +81,7 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
     const auto& s = r.channels[static_cast<std::size_t>(c)];
     nlohmann::json j = {{"type", "residual"}, {"channel", kDisplay[c].name}, {"unit", c == 3 ? "rad/s" : "Pa"},
                         {"measured", r.measured[static_cast<std::size_t>(c)]}, {"n", s.n}};
-    if (s.n > 0) {
-      j["mean"] = number_or_null(s.mean());
-      j["rms"] = number_or_null(s.rms());
-      j["max_abs"] = number_or_null(s.max_abs);
-      j["max"] = number_or_null(s.max_signed);
-      j["t_max"] = s.t_max;
-      j["noise"] = number_or_null(s.noise());
-    }
+    add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
@@ -258,12 +249,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       exit_code = run_replay(*args);
       return;
     }
-    for (const char* opt : {"--plot", "--map", "--separator", "--lenient", "--rate"}) {
-      if (cmd->count(opt) > 0) {
-        fmt::print(stderr, "hstmon replay: error: {} does not go with --circuit (yet)\n", opt);
-        exit_code = kExitUsage;
-        return;
-      }
+    if (!refuse_with_circuit(*cmd, {"--plot", "--map", "--separator", "--lenient", "--rate"})) {
+      exit_code = kExitUsage;
+      return;
     }
     CircuitReplayArgs c;
     c.log = args->log;
