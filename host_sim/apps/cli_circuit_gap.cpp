@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_commands.hpp"
+#include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_gap/circuit_gap.hpp"
@@ -16,8 +17,6 @@
 namespace hstmon::cli {
 
 namespace {
-
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 const char* unit_of(const circuit_tools::LoadedCircuit& c, const gap::CircuitEffect& e) {
   switch (e.kind) {
@@ -61,14 +60,14 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   }
   if (a.json) {
     nlohmann::json where = nlohmann::json::object();
-    for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = num(r.mean_fit[ch]);
+    for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = number_or_null(r.mean_fit[ch]);
     nlohmann::json ranked = nlohmann::json::array();
     for (const auto& e : r.ranked) {
-      ranked.push_back({{"effect", e.effect.name}, {"magnitude", num(e.magnitude)}, {"unit", unit_of(c, e.effect)},
-                        {"rms_fit", num(e.rms_fit)}, {"rms_check", num(e.rms_check)}});
+      ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", unit_of(c, e.effect)},
+                        {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)}});
     }
     const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
-                              {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", num(r.rms_check)},
+                              {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", number_or_null(r.rms_check)},
                               {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict}};
     fmt::print("{}\n", j.dump());
     return kExitOk;

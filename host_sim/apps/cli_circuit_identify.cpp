@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_commands.hpp"
+#include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_host/circuit_units.hpp"
@@ -17,8 +18,6 @@
 namespace hstmon::cli {
 
 namespace {
-
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   fmt::print("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit, a.logs.size(), r.points.size());
@@ -38,13 +37,13 @@ void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircui
 void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   nlohmann::json params = nlohmann::json::array();
   for (std::size_t j = 0; j < r.names.size(); ++j) {
-    params.push_back({{"name", r.names[j]}, {"start", r.start[j]}, {"value", r.value[j]}, {"rel_se", num(r.rel_se[j])}});
+    params.push_back({{"name", r.names[j]}, {"start", r.start[j]}, {"value", r.value[j]}, {"rel_se", number_or_null(r.rel_se[j])}});
   }
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : r.points) {
     nlohmann::json before = nlohmann::json::array(), after = nlohmann::json::array();
-    for (double v : p.before) before.push_back(num(v));
-    for (double v : p.after) after.push_back(num(v));
+    for (double v : p.before) before.push_back(number_or_null(v));
+    for (double v : p.after) after.push_back(number_or_null(v));
     points.push_back({{"log", p.log}, {"t0", p.t0}, {"t1", p.t1}, {"rows", p.n}, {"before", before}, {"after", after}});
   }
   const nlohmann::json j = {{"type", "identify"},   {"circuit", c.file.name},  {"parameters", params},

@@ -22,8 +22,6 @@ namespace {
 using circuit_tools::CircuitReplayResult;
 using circuit_tools::LoadedCircuit;
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 const char* start_words(InitialState k) {
   switch (k) {
     case InitialState::kMeasured: return "from the measured state";
@@ -65,14 +63,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                         {"sensor_noise", sensor.noise},
                         {"clipped_rows", r.clipped[ch]},
                         {"n", s.n}};
-    if (s.n > 0) {
-      j["mean"] = number_or_null(s.mean());
-      j["rms"] = number_or_null(s.rms());
-      j["max_abs"] = number_or_null(s.max_abs);
-      j["max"] = number_or_null(s.max_signed);
-      j["t_max"] = s.t_max;
-      j["noise"] = number_or_null(s.noise());
-    }
+    add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());

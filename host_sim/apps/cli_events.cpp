@@ -3,7 +3,21 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace hstmon::cli {
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void add_residual_stats(nlohmann::json& j, const host::ChannelStats& s) {
+  if (s.n == 0) return;
+  j["mean"] = number_or_null(s.mean());
+  j["rms"] = number_or_null(s.rms());
+  j["max_abs"] = number_or_null(s.max_abs);
+  j["max"] = number_or_null(s.max_signed);
+  j["t_max"] = s.t_max;
+  j["noise"] = number_or_null(s.noise());
+}
 
 nlohmann::json event_json(const host::ReplayEvent& e) {
   nlohmann::json cands = nlohmann::json::array();

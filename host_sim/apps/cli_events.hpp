@@ -1,6 +1,7 @@
 #pragma once
-// The matcher's events as `hstmon replay` prints them, for the thesis rig and for any
-// circuit alike: JSON lines and the human diagnosis block.
+// What `hstmon replay` prints for the thesis rig and for any circuit alike: the matcher's
+// events (JSON lines and the human diagnosis block) and a channel's residual statistics;
+// and the JSON number every hstmon command writes (null for NaN or infinity).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -10,6 +11,13 @@
 #include "hstmon_host/replay.hpp"
 
 namespace hstmon::cli {
+
+/// v as a JSON number, or null when it is not finite (JSON has no NaN or infinity).
+nlohmann::json number_or_null(double v);
+
+/// Adds a channel's residual statistics to j (when s has samples): mean, rms, max_abs,
+/// max, t_max, noise [SI].
+void add_residual_stats(nlohmann::json& j, const host::ChannelStats& s);
 
 /// One event as a JSON line object: {"type":"event","t",...,"candidates":[{fault,score}]}.
 nlohmann::json event_json(const host::ReplayEvent& e);
