@@ -392,28 +392,7 @@ class CircuitModel {
     return x;
   }
 
-  /// Net inflow into each node [m³/s] and net torque on each shaft [N·m] at z.
-  void net(const T (&z)[kExtent<kZ>], T (&g)[kExtent<kZ>]) const noexcept {
-    for (int k = 0; k < kZ; ++k) g[k] = T(0);
-    if (c_ == nullptr) return;
-    for (int e = 0; e < c_->n_elements; ++e) {
-      const Element& el = c_->elements[e];
-      const T w = el.shaft >= 0 ? z[kNodes + el.shaft] : T(0);
-      if (has_ports(el.kind)) {
-        const T q = element_flow(el.kind, coef_[e], z[el.a], z[el.b], w).q;
-        g[el.a] -= q;
-        g[el.b] += q;
-      }
-      if (has_shaft(el.kind)) {
-        T da, db, dw;
-        const T pa = has_ports(el.kind) ? z[el.a] : T(0);
-        const T pb = has_ports(el.kind) ? z[el.b] : T(0);
-        g[kNodes + el.shaft] += element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
-      }
-    }
-  }
-
-  /// ∂(net)/∂z at z, dense [kExtent<kZ>][kExtent<kZ>] (rows: node flows, shaft torques).
+  /// ∂(net inflow, net torque)/∂z at z, dense [kExtent<kZ>][kExtent<kZ>] (rows: node flows, shaft torques).
   void full_jacobian(const T (&z)[kExtent<kZ>], T (&J)[kExtent<kZ>][kExtent<kZ>]) const noexcept {
     for (int r = 0; r < kZ; ++r) {
       for (int c = 0; c < kZ; ++c) J[r][c] = T(0);
@@ -448,8 +427,8 @@ class CircuitModel {
     }
   }
 
-  /// net()'s rows of the unknowns only, in unknown order [m³/s, N·m]: the same values bit
-  /// for bit (each row accumulates in the same element order).
+  /// Net inflow into each unknown node [m³/s] and net torque on each free shaft [N·m] at z,
+  /// in unknown order, each row accumulated in element order.
   void unknowns_net(const T (&z)[kExtent<kZ>], T (&g)[kExtent<kU>]) const noexcept {
     for (int r = 0; r < n_unknowns_; ++r) g[r] = T(0);
     if (c_ == nullptr) return;
@@ -771,8 +750,8 @@ class CircuitModel {
     return conv;
   }
 
-  /// The states' rates [Pa/s, rad/s²]: net()'s rows of the states only, each summed in
-  /// net()'s element order (so the same bits), without the boundaries' and stiff nodes'.
+  /// The states' rates [Pa/s, rad/s²]: unknowns_net()'s rows of the states only, each summed
+  /// in element order (so the same bits), without the stiff nodes'.
   State rates(const T (&z)[kExtent<kZ>]) const noexcept {
     State d = State::Zero();
     for (int s = 0; s < n_states_; ++s) {
