@@ -28,6 +28,11 @@ std::int8_t sign_of(double v) { return v > 0.0 ? std::int8_t{kQualPlus} : std::i
 
 }  // namespace
 
+double sensor_sigma(const host::CircuitSensor& s) {
+  const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
+  return s.noise > 0.0 ? s.noise : 0.01 * span;
+}
+
 bool moves_steady_state(const host::CircuitParam& p) {
   if (p.literal) return false;
   switch (p.quantity) {
@@ -53,13 +58,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
   desc.stiff_mask = 0;  // the full equations: steady states do not depend on it
   const std::size_t channels = c.file.sensors.size();
   std::vector<double> sigma(channels);
-  for (std::size_t ch = 0; ch < channels; ++ch) {
-    // A channel without a noise figure is scaled as if its σ were 1 % of its full scale
-    // (or 1 SI unit without a range): the direction needs a scale, the sign does not.
-    const host::CircuitSensor& s = c.file.sensors[ch];
-    const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
-    sigma[ch] = s.noise > 0.0 ? s.noise : 0.01 * span;
-  }
+  for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sensor_sigma(c.file.sensors[ch]);
   const Model::Inputs& u = c.values.inputs;
   double z0[kN];
   if (!scaled_steady(desc, c.values.params, u, sigma, z0)) {

@@ -133,13 +133,11 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   Mon::Config cfg;
   cfg.observer.tick = tick;
   for (int i = 0; i < Model::kOutputs; ++i) {
-    // A channel without a noise figure gets 1 % of its span (as the table's scaling).
     const auto ch = static_cast<std::size_t>(i);
     double sigma = 1.0, lo = -HUGE_VAL, hi = HUGE_VAL;
     if (ch < channels) {
       const host::CircuitSensor& s = c.file.sensors[ch];
-      const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
-      sigma = s.noise > 0.0 ? s.noise : 0.01 * span;
+      sigma = sensor_sigma(s);
       if (!(s.noise > 0.0)) {
         res.notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " + number(sigma) +
                             " " + host::circuit_si_unit(s.quantity));

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_ident/least_squares.hpp"
 
 namespace hstmon::ident {
@@ -13,11 +14,6 @@ namespace hstmon::ident {
 namespace {
 
 using Model = host::HostCircuitModel;
-
-double sigma_of(const host::CircuitSensor& s) {
-  const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
-  return s.noise > 0.0 ? s.noise : 0.01 * span;
-}
 
 bool same_input(double a, double b) { return a == b || std::fabs(a - b) <= 0.005 * std::fabs(b); }
 
@@ -93,7 +89,8 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
     Model::Output y;
     if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
     for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
-      if (std::isfinite(pt.mean[ch])) res.push_back((y[static_cast<int>(ch)] - pt.mean[ch]) / sigma_of(c.file.sensors[ch]));
+      if (!std::isfinite(pt.mean[ch])) continue;
+      res.push_back((y[static_cast<int>(ch)] - pt.mean[ch]) / circuit_tools::sensor_sigma(c.file.sensors[ch]));
     }
   }
   return true;
@@ -102,8 +99,6 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o) {
   CircuitFitResult r;
-  host::HostCircuit desc = c.file.circuit;
-  desc.stiff_mask = 0;  // steady states do not depend on it
   std::vector<int> idx;
   for (const std::string& name : o.fit) {
     const int k = c.file.param_index(name);
@@ -134,51 +129,41 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
               " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit";
     return r;
   }
-  std::vector<double> sigma(channels);
-  for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sigma_of(c.file.sensors[ch]);
-
-  // Residuals (model − mean)/σ over every point and measured channel; per-point values
-  // optionally kept in `keep` (before/after).
-  auto residuals = [&](const std::vector<double>& x, std::vector<double>& res, bool keep_after, bool keep_before) {
+  // Residuals (model − mean)/σ at every point and measured channel for the fitted
+  // ln(p/p₀) x (circuit_point_residuals), and the same spread back per point and channel.
+  auto residuals = [&](const std::vector<double>& x, std::vector<double>& res) {
     Model::Params p = c.values.params;
     for (std::size_t j = 0; j < idx.size(); ++j) p.v[idx[j]] = r.start[j] * std::exp(x[j]);
+    return circuit_point_residuals(c, p, r.points, res);
+  };
+  auto per_point = [&](const std::vector<double>& res, std::vector<double> CircuitOperatingPoint::*field) {
     std::size_t k = 0;
     for (auto& pt : r.points) {
-      Model::Inputs u = c.values.inputs;
-      for (std::size_t i = 0; i < pt.inputs.size(); ++i) u.v[i] = pt.inputs[i];
-      const Model model(desc, p, u);
-      Model::Output y;
-      if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
       std::vector<double> per(channels, std::nan(""));
       for (std::size_t ch = 0; ch < channels; ++ch) {
-        if (!std::isfinite(pt.mean[ch])) continue;
-        per[ch] = (y[static_cast<int>(ch)] - pt.mean[ch]) / sigma[ch];
-        res[k++] = per[ch];
+        if (std::isfinite(pt.mean[ch])) per[ch] = res[k++];
       }
-      if (keep_after) pt.after = per;
-      if (keep_before) pt.before = per;
+      pt.*field = std::move(per);
     }
-    return true;
   };
   const std::vector<double> x0(idx.size(), 0.0);
   std::vector<double> res(m);
-  if (!residuals(x0, res, false, true)) {
+  if (!residuals(x0, res)) {
     r.error = "no steady state at some operating point with the starting values";
     return r;
   }
+  per_point(res, &CircuitOperatingPoint::before);
   double ss = 0.0;
   for (double v : res) ss += v * v;
   r.rms_before = std::sqrt(ss / static_cast<double>(m));
-  const ResidualFn f = [&](const std::vector<double>& x, std::vector<double>& out) {
-    return residuals(x, out, false, false);
-  };
+  const ResidualFn f = [&](const std::vector<double>& x, std::vector<double>& out) { return residuals(x, out); };
   const LmResult lm = levenberg_marquardt(f, m, x0);
   r.status = lm.status_text;
   if (!lm.finite) {
     r.error = "the fit did not reach finite values (" + lm.status_text + ")";
     return r;
   }
-  (void)residuals(lm.x, res, true, false);
+  if (residuals(lm.x, res)) per_point(res, &CircuitOperatingPoint::after);
   r.rms_after = std::sqrt(lm.ssr / static_cast<double>(m));
   for (std::size_t j = 0; j < idx.size(); ++j) r.value.push_back(r.start[j] * std::exp(lm.x[j]));
   DenseMatrix jac;

@@ -44,6 +44,11 @@ struct CircuitFaultTable {
   CircuitFaultTable& operator=(const CircuitFaultTable&) = delete;
 };
 
+/// The noise σ the circuit tools judge sensor s by [SI]: its `noise`, or, without one, 1 %
+/// of its range (of 100 SI units without a range) — the fault table's directions, the
+/// monitor's thresholds and the fits' weights need a scale; a sign does not.
+double sensor_sigma(const host::CircuitSensor& s);
+
 /// The relative uncertainty the monitor's model bound assumes: 2 % on every named
 /// parameter that moves a steady state (as for Table 2.2's regressed parameters), 0 on
 /// the rest and on literals.
