@@ -71,12 +71,14 @@ int run_gap_command(const GapArgs& a) {
     fmt::print("hstmon gap --fit {} --check {}\n\n{}", a.fit, a.check, gap::to_text(r));
   }
   if (!a.report.empty()) {
-    const std::string err = gap::write_report(r, a.report, a.fit, a.check);
+    std::string plot_warning;
+    const std::string err = gap::write_report(r, a.report, a.fit, a.check, &plot_warning);
     if (!err.empty()) {
       fmt::print(stderr, "hstmon gap: error: report: {}\n", err);
       return kExitBadInput;
     }
-    if (!a.json) fmt::print("report: {}/report.md\n", a.report);
+    if (!plot_warning.empty()) fmt::print(stderr, "hstmon gap: warning: report without plots: {}\n", plot_warning);
+    if (!a.json) fmt::print("report: {0}/report.md, {0}/report.html\n", a.report);
   }
   return kExitOk;
 }
@@ -91,7 +93,7 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--check", args->check, "withheld log to judge the fitted effects on")->required();
   add_log_options(*cmd, args->io, "nominal parameter file (default Table 2.2)");
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
-  cmd->add_option("--report", args->report, "directory for report.md and PNG plots");
+  cmd->add_option("--report", args->report, "directory for report.md, report.html (one self-contained page) and PNG plots");
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
   cmd->add_option("--effects", args->effects, "restrict the library to these effects (names)");
   cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();

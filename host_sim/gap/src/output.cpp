@@ -1,6 +1,7 @@
 /// @file output.cpp
-/// JSON, text and Markdown/gnuplot report of a GapResult.
+/// JSON, text, and the Markdown + HTML report (gnuplot figures) of a GapResult.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include <sstream>
 
 #include "hstmon_gap/gap.hpp"
+#include "hstmon_plot/gnuplot.hpp"
+#include "hstmon_plot/html_report.hpp"
 
 namespace hstmon::gap {
 
@@ -245,14 +248,149 @@ std::string to_text(const GapResult& r) {
   return o.str();
 }
 
+namespace {
+
+using sim::gnuplot_quote;
+
+std::string range(const sim::AxisRange& a) { return sfmt("[%.9g:%.9g]", a.lo, a.hi); }
+
+sim::VerdictTone verdict_tone(const std::string& verdict) {
+  if (verdict == "no_significant_gap" || verdict == "explained" || verdict == "explained_by_pair") {
+    return sim::VerdictTone::kGood;
+  }
+  if (verdict == "partly_explained") return sim::VerdictTone::kWarning;
+  return sim::VerdictTone::kBad;
+}
+
+// The per-channel table of one log's residual for the HTML page.
+void where_table(sim::HtmlReport& page, const Where& w) {
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    const auto& s = w.channels[c];
+    if (!s.present) continue;
+    rows.push_back({channel_names()[c], c == 3 ? "rad/s" : "Pa", sfmt("%.4g", s.mean), sfmt("%.4g", s.rms),
+                    sfmt("%.4g", s.noise), sfmt("%.3g", s.rms_w)});
+  }
+  page.table({"channel", "unit", "mean", "RMS", "noise", "RMS/noise"}, rows);
+}
+
+// The three figures (gnuplot script, run once). Display units: bar, rpm; kp in 1e-8 SI.
+std::string plot_script(const GapResult& r, const std::filesystem::path& dir, const bool present[kChannels]) {
+  namespace fs = std::filesystem;
+  const char* units[kChannels] = {"bar", "bar", "bar", "rpm"};
+  const double scale[kChannels] = {1e-5, 1e-5, 1e-5, 60.0 / (2.0 * M_PI)};
+  const double floor[kChannels] = {0.1, 0.1, 0.1, 1.0};  // narrowest y range [display unit]
+  const std::string fit = gnuplot_quote((dir / "fit.dat").string());
+  const std::string check = gnuplot_quote((dir / "check.dat").string());
+  auto column = [&](const std::vector<std::array<double, kChannels>>& v, std::size_t c) {
+    std::vector<double> out;
+    out.reserve(v.size());
+    for (const auto& x : v) out.push_back(x[c] * scale[c]);
+    return out;
+  };
+  auto difference = [](std::vector<double> a, const std::vector<double>& b) {
+    for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) a[k] -= b[k];
+    return a;
+  };
+  auto append = [](std::vector<double> a, const std::vector<double>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  std::vector<double> kp;
+  for (double v : r.kp_fit) kp.push_back(v * 1e8);
+  for (double v : r.kp_check) kp.push_back(v * 1e8);
+  const sim::AxisRange kp_range = sim::readable_range(kp, 0.1);
+  double kp_max = 0.0;
+  for (double v : kp) kp_max = std::max(kp_max, v);
+  const std::string kp_label = "kp [1e-8 m^3/(s Pa^0.5)]";
+  // A panel for a channel the logs do not have: says so instead of drawing nothing or zeros.
+  auto absent = [&](std::size_t c) {
+    return sfmt("unset border\nunset tics\nunset grid\nset label 1 '%s is not in the logs' at graph 0.5,0.5 center\n"
+                "set xrange [0:1]\nset yrange [0:1]\nplot NaN notitle\nunset label 1\nset border\nset tics\nset grid\n",
+                channel_names()[c]);
+  };
+
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 1200,900 noenhanced font 'sans,10'\nset grid\nset datafile missing 'nan'\n";
+  // 1. residual over time (fit log), load regime (kp) shaded on the second axis.
+  gp << "set output " << gnuplot_quote((dir / "residual_time.png").string()) << "\n";
+  gp << "set multiplot layout 4,1 title 'Residual over time, fit log (data - nominal model)' margins 0.08,0.92,0.06,0.9 spacing 0,0.05\n";
+  gp << "set y2tics\nset y2label " << gnuplot_quote(kp_label) << "\nset y2range [0:" << sfmt("%.9g", kp_max > 0 ? 1.1 * kp_max : 1.0) << "]\n";
+  const sim::AxisRange t_fit = r.t_fit.size() > 1 && r.t_fit.back() > r.t_fit.front()
+                                   ? sim::AxisRange{r.t_fit.front(), r.t_fit.back()} : sim::readable_range(r.t_fit, 1.0);
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    gp << (c + 1 == kChannels ? "set xlabel 't [s]'\n" : "unset xlabel\n");
+    if (!present[c]) {
+      gp << "unset y2tics\nunset y2label\n" << absent(c) << "set y2tics\nset y2label " << gnuplot_quote(kp_label) << "\n";
+      continue;
+    }
+    gp << "set xrange " << range(t_fit) << "\n";
+    const auto res = difference(column(r.data_fit, c), column(r.nominal_fit, c));
+    gp << "set ylabel '" << channel_names()[c] << " [" << units[c] << "]'\nset yrange " << range(sim::readable_range(res, floor[c])) << "\n";
+    if (c == 0) gp << "set key at screen 0.92,0.975 right top horizontal maxrows 1\n";
+    gp << "plot " << fit << " u 1:($2*1e8) axes x1y2 w filledcurves x1 lc rgb '#e0e0f0' " << (c == 0 ? "t 'kp (load regime, right axis)'" : "notitle")
+       << ", '' u 1:($" << 3 + c << "-$" << 7 + c << ") w l lc rgb 'red' " << (c == 0 ? "t 'residual (fit log)'" : "notitle") << "\n";
+    if (c == 0) gp << "unset key\n";
+  }
+  gp << "unset multiplot\nunset y2tics\nunset y2label\nset y2range [*:*]\n";
+  // 2. residual vs load.
+  gp << "set output " << gnuplot_quote((dir / "residual_vs_load.png").string()) << "\n";
+  gp << "set multiplot layout 2,2 title 'Residual vs load (data - nominal model)' margins 0.08,0.98,0.07,0.9 spacing 0.08,0.1\n";
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    if (!present[c]) {
+      gp << "unset xlabel\nunset ylabel\n" << absent(c);
+      continue;
+    }
+    const auto res = append(difference(column(r.data_fit, c), column(r.nominal_fit, c)),
+                            difference(column(r.data_check, c), column(r.nominal_check, c)));
+    gp << "set xlabel " << gnuplot_quote(kp_label) << "\nset xrange " << range(kp_range) << "\n";
+    gp << "set ylabel 'residual " << channel_names()[c] << " [" << units[c] << "]'\nset yrange "
+       << range(sim::readable_range(res, floor[c])) << "\n";
+    if (c == 0) gp << "set key at screen 0.98,0.975 right top horizontal maxrows 1\n";
+    gp << "plot " << fit << " u ($2*1e8):($" << 3 + c << "-$" << 7 + c << ") w p pt 7 ps 0.3 " << (c == 0 ? "t 'fit log'" : "notitle")
+       << ", " << check << " u ($2*1e8):($" << 3 + c << "-$" << 7 + c << ") w p pt 7 ps 0.3 " << (c == 0 ? "t 'check log'" : "notitle") << "\n";
+    if (c == 0) gp << "unset key\n";
+  }
+  gp << "unset multiplot\n";
+  // 3. before/after on the check log for the top-ranked effect.
+  const std::string best = r.ranking.empty() ? std::string("nominal") : r.ranking.front().name;
+  gp << "set output " << gnuplot_quote((dir / "before_after.png").string()) << "\n";
+  gp << "set multiplot layout 4,1 title " << gnuplot_quote("Check log: data, nominal model and the model with " + best)
+     << " margins 0.08,0.98,0.06,0.9 spacing 0,0.05\n";
+  const sim::AxisRange t_check = r.t_check.size() > 1 && r.t_check.back() > r.t_check.front()
+                                     ? sim::AxisRange{r.t_check.front(), r.t_check.back()} : sim::readable_range(r.t_check, 1.0);
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    gp << (c + 1 == kChannels ? "set xlabel 't [s]'\n" : "unset xlabel\n");
+    if (!present[c]) {
+      gp << absent(c);
+      continue;
+    }
+    const auto all = append(append(column(r.data_check, c), column(r.nominal_check, c)), column(r.best_check, c));
+    double level = 0.0;
+    for (double v : all) {
+      if (std::isfinite(v)) level = std::max(level, std::fabs(v));
+    }
+    gp << "set xrange " << range(t_check) << "\nset ylabel '" << channel_names()[c] << " [" << units[c] << "]'\nset yrange "
+       << range(sim::readable_range(all, std::max(floor[c], 0.02 * level))) << "\n";
+    if (c == 0) gp << "set key at screen 0.98,0.975 right top horizontal maxrows 1\n";
+    gp << "plot " << check << " u 1:" << 3 + c << " w l lc rgb 'gray' " << (c == 0 ? "t 'data'" : "notitle") << ", '' u 1:"
+       << 7 + c << " w l lc rgb 'red' " << (c == 0 ? "t 'nominal model'" : "notitle") << ", '' u 1:" << 11 + c
+       << " w l lc rgb 'blue' " << (c == 0 ? "t " + gnuplot_quote(best) : std::string("notitle")) << "\n";
+    if (c == 0) gp << "unset key\n";
+  }
+  gp << "unset multiplot\n";
+  return gp.str();
+}
+
+}  // namespace
+
 std::string write_report(const GapResult& r, const std::string& dir, const std::string& fit_name,
-                         const std::string& check_name) {
+                         const std::string& check_name, std::string* plot_warning) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return "cannot create " + dir + ": " + ec.message();
   if (!r.ok) return r.error;
-  const char* units[kChannels] = {"bar", "bar", "bar", "rpm"};
   const double scale[kChannels] = {1e-5, 1e-5, 1e-5, 60.0 / (2.0 * M_PI)};
   // Data file: t kp data[4] nominal[4] best[4] for the check log; t kp data nominal for the fit log.
   {
@@ -273,51 +411,64 @@ std::string write_report(const GapResult& r, const std::string& dir, const std::
       g << '\n';
     }
   }
-  std::ostringstream gp;
-  gp << "set terminal pngcairo size 1200,900 noenhanced\nset grid\n";
-  // 1. residual over time (fit log), transient/regime shading via kp on a second axis.
-  gp << "set output '" << (fs::path(dir) / "residual_time.png").string() << "'\nset multiplot layout 4,1\n";
-  for (int c = 0; c < kChannels; ++c) {
-    gp << "set ylabel '" << channel_names()[static_cast<std::size_t>(c)] << " [" << units[c] << "]'\nset y2tics\n"
-       << "set y2label 'kp'\nplot '" << (fs::path(dir) / "fit.dat").string() << "' u 1:2 axes x1y2 w filledcurves x1 lc rgb '#e0e0f0' t 'kp (load regime)', '' u 1:($"
-       << 3 + c << "-$" << 7 + c << ") w l lc rgb 'red' t 'residual (fit log)'\n";
-  }
-  gp << "unset multiplot\nunset y2tics\nunset y2label\n";
-  // 2. residual vs load.
-  gp << "set output '" << (fs::path(dir) / "residual_vs_load.png").string() << "'\nset multiplot layout 2,2\n";
-  for (int c = 0; c < kChannels; ++c) {
-    gp << "set xlabel 'kp'\nset ylabel 'residual " << channel_names()[static_cast<std::size_t>(c)] << " [" << units[c]
-       << "]'\nplot '" << (fs::path(dir) / "fit.dat").string() << "' u 2:($" << 3 + c << "-$" << 7 + c
-       << ") w p pt 7 ps 0.3 t 'fit log', '" << (fs::path(dir) / "check.dat").string() << "' u 2:($" << 3 + c << "-$"
-       << 7 + c << ") w p pt 7 ps 0.3 t 'check log'\n";
-  }
-  gp << "unset multiplot\nunset xlabel\n";
-  // 3. before/after on the check log for the top-ranked effect.
-  gp << "set output '" << (fs::path(dir) / "before_after.png").string() << "'\nset multiplot layout 4,1\n";
-  for (int c = 0; c < kChannels; ++c) {
-    gp << "set ylabel '" << channel_names()[static_cast<std::size_t>(c)] << " [" << units[c] << "]'\nplot '"
-       << (fs::path(dir) / "check.dat").string() << "' u 1:" << 3 + c << " w l lc rgb 'gray' t 'data', '' u 1:"
-       << 7 + c << " w l lc rgb 'red' t 'nominal model', '' u 1:" << 11 + c << " w l lc rgb 'blue' t '"
-       << (r.ranking.empty() ? std::string("nominal") : r.ranking.front().name) << "'\n";
-  }
-  gp << "unset multiplot\n";
+  bool present[kChannels];
+  for (std::size_t c = 0; c < kChannels; ++c) present[c] = r.where_fit.channels[c].present && r.where_check.channels[c].present;
+  const std::string script = plot_script(r, fs::path(dir), present);
   {
-    std::ofstream f(fs::path(dir) / "plots.gp");
-    f << gp.str();
+    std::ofstream f(fs::path(dir) / "plots.gp");  // kept, so the plots can be restyled by hand
+    f << script;
   }
-  const std::string cmd = "gnuplot '" + (fs::path(dir) / "plots.gp").string() + "' 2>/dev/null";
-  const int rc = std::system(cmd.c_str());
+  const std::string plot_error = sim::run_gnuplot(script);
+  struct Figure {
+    const char* file;
+    const char* title;
+  };
+  const Figure figures[3] = {{"residual_time.png", "Where: residual over time (fit log; shaded: kp)"},
+                             {"residual_vs_load.png", "Residual vs load"},
+                             {"before_after.png", "Before / after on the check log (top-ranked effect)"}};
+  const std::string text = to_text(r);
   std::ofstream md(fs::path(dir) / "report.md");
   md << "# hstmon gap report\n\nFit log: `" << fit_name << "`; check log: `" << check_name << "`.\n\n";
-  md << "**Verdict:** " << r.verdict_text << "\n\n## Summary\n\n```\n" << to_text(r) << "```\n\n";
-  if (rc == 0) {
-    md << "## Where: residual over time (fit log; shaded: kp)\n\n![](residual_time.png)\n\n"
-       << "## Residual vs load\n\n![](residual_vs_load.png)\n\n"
-       << "## Before / after on the check log (top-ranked effect)\n\n![](before_after.png)\n";
+  md << "**Verdict:** " << r.verdict_text << "\n\n## Summary\n\n```\n" << text << "```\n\n";
+  if (plot_error.empty()) {
+    for (const auto& f : figures) md << "## " << f.title << "\n\n![](" << f.file << ")\n\n";
   } else {
-    md << "(gnuplot not available: no plots; data in fit.dat / check.dat, script plots.gp)\n";
+    md << "(no plots: " << plot_error << "; data in fit.dat / check.dat, script plots.gp)\n";
   }
-  return {};
+
+  sim::HtmlReport page("hstmon gap report");
+  page.verdict(r.verdict_text, verdict_tone(r.verdict));
+  page.paragraph("Fit log: " + fit_name + "; check log: " + check_name + ".");
+  page.heading("Residual of the nominal model, check log (SI units)");
+  where_table(page, r.where_check);
+  page.heading("Residual of the nominal model, fit log (SI units)");
+  where_table(page, r.where_fit);
+  if (!r.ranking.empty()) {
+    page.heading("Ranking (fitted on the fit log, judged on the check log)");
+    std::vector<std::vector<std::string>> rows;
+    int i = 0;
+    for (const auto& f : r.ranking) {
+      std::string params;
+      for (const auto& p : f.params) {
+        params += sfmt("%s%s.%s = %.4g ± %.2g %s%s", params.empty() ? "" : "; ", p.effect.c_str(), p.name.c_str(), p.value,
+                       p.se, p.unit.c_str(), p.identified ? "" : " (not identified)");
+      }
+      rows.push_back({sfmt("%d. %s", ++i, f.name.c_str()), sfmt("%.1f %%", 100 * f.shrink_check), sfmt("%.4g", f.delta_bic_fit), params});
+    }
+    page.table({"effect", "shrink (check log)", "ΔBIC (fit log)", "parameters"}, rows);
+  }
+  for (const auto& f : figures) {
+    page.heading(f.title);
+    if (plot_error.empty()) {
+      page.image((fs::path(dir) / f.file).string(), f.title);
+    } else {
+      page.paragraph("no plot: " + plot_error);
+    }
+  }
+  page.heading("Full text report");
+  page.preformatted(text);
+  if (plot_warning != nullptr) *plot_warning = plot_error;
+  return page.write((fs::path(dir) / "report.html").string());
 }
 
 }  // namespace hstmon::gap

@@ -1,3 +1,8 @@
+/// @file residual_plot.cpp
+/// The replay's figure: per channel, measured and model (left) and the residual (right).
+/// One key for the whole figure, in the band above the panels (never over the data, never
+/// repeated); a channel the log does not have gets its model only and a note where its
+/// residual would be; every y range is readable even when the signal is flat.
 #include "hstmon_plot/residual_plot.hpp"
 
 #include "hstmon_plot/gnuplot.hpp"
@@ -5,9 +10,11 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include <unistd.h>
 
@@ -18,9 +25,29 @@ namespace {
 struct Panel {
   const char* name;
   const char* unit;
-  double scale;  // SI → display
+  double scale;      // SI → display
+  double min_span;   // narrowest y range shown [display unit]: below a sensor's resolution
 };
-const Panel kPanels[4] = {{"Pmi", "bar", 1e-5}, {"Pmo", "bar", 1e-5}, {"Ppp", "bar", 1e-5}, {"ωm", "rpm", 60.0 / (2.0 * M_PI)}};
+const Panel kPanels[4] = {{"Pmi", "bar", 1e-5, 0.1},
+                          {"Pmo", "bar", 1e-5, 0.1},
+                          {"Ppp", "bar", 1e-5, 0.1},
+                          {"ωm", "rpm", 60.0 / (2.0 * M_PI), 1.0}};
+
+const char* const kMeasuredColour = "#888888";
+const char* const kModelColour = "#1f77b4";
+const char* const kResidualColour = "#d62728";
+
+std::string range(const sim::AxisRange& r) { return fmt::format("[{:.9g}:{:.9g}]", r.lo, r.hi); }
+
+// A signal panel's narrowest range: the unit's floor, or 2 % of the level (a flat 1700 rpm
+// gets ±17 rpm, as gnuplot itself would, without its warning).
+double signal_span(const std::vector<double>& v, double floor) {
+  double level = 0.0;
+  for (double x : v) {
+    if (std::isfinite(x)) level = std::max(level, std::fabs(x));
+  }
+  return std::max(floor, 0.02 * level);
+}
 
 }  // namespace
 
@@ -31,6 +58,9 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
 
   namespace fs = std::filesystem;
   const fs::path data = fs::temp_directory_path() / fmt::format("hstmon-plot-{}.dat", static_cast<long>(::getpid()));
+  // Per channel, display-unit columns for the ranges: measured, model, residual.
+  std::vector<double> cols[4][3];
+  std::vector<double> t;
   {
     auto out = fmt::output_file(data.string());
     // Thin very long traces to ~20 000 points: the plot cannot show more.
@@ -38,35 +68,67 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
     for (std::size_t i = 0; i < result.trace.size(); i += stride) {
       const auto& r = result.trace[i];
       out.print("{:.9g}", r.t);
-      for (int c = 0; c < 4; ++c) {
+      t.push_back(r.t);
+      for (std::size_t c = 0; c < 4; ++c) {
         const double s = kPanels[c].scale;
-        out.print(" {:.9g} {:.9g} {:.9g}", r.y[c] * s, r.y_hat[c] * s, r.r[c] * s);
+        const double v[3] = {r.y[c] * s, r.y_hat[c] * s, r.r[c] * s};
+        out.print(" {:.9g} {:.9g} {:.9g}", v[0], v[1], v[2]);
+        for (int k = 0; k < 3; ++k) cols[c][k].push_back(v[k]);
       }
       out.print("\n");
     }
   }
-  std::string script = fmt::format("set terminal {}\nset output '{}'\nset datafile missing 'nan'\n", terminal, path);
-  script += fmt::format("set multiplot layout 4,2 title '{}'\nset grid\nset key top right opaque\n", title);
-  for (int c = 0; c < 4; ++c) {
-    const int col = 2 + 3 * c;
-    if (!result.measured[static_cast<std::size_t>(c)]) {
-      script += fmt::format("set title '{} (not measured)'\nset xlabel 't [s]'\nset ylabel '{}'\n", kPanels[c].name, kPanels[c].unit);
-      script += fmt::format("plot '{}' using 1:{} with lines lw 1.5 title 'model'\n", data.string(), col + 1);
-      script += "set title ''\nunset key\nplot 0 notitle\nset key top right\n";
+  bool any_measured = false;
+  for (bool m : result.measured) any_measured = any_measured || m;
+
+  const std::string file = sim::gnuplot_quote(data.string());
+  std::string script = fmt::format("set terminal {}\nset output {}\nset datafile missing 'nan'\n", terminal,
+                                   sim::gnuplot_quote(path));
+  // Fixed margins leave the top band for the figure's title and its one key.
+  script += fmt::format("set multiplot layout 4,2 title {} margins 0.06,0.98,0.05,0.9 spacing 0.07,0.085\n",
+                        sim::gnuplot_quote(title));
+  const sim::AxisRange span_t = t.back() > t.front() ? sim::AxisRange{t.front(), t.back()} : sim::readable_range(t, 1.0);
+  script += fmt::format("set grid\nset xlabel 't [s]'\nset xrange {}\n", range(span_t));
+  for (std::size_t c = 0; c < 4; ++c) {
+    const int col = 2 + 3 * static_cast<int>(c);
+    const Panel& p = kPanels[c];
+    const bool measured = result.measured[c];
+    std::vector<double> both = cols[c][1];
+    if (measured) both.insert(both.end(), cols[c][0].begin(), cols[c][0].end());
+    script += fmt::format("set ylabel '{}'\nset yrange {}\n", p.unit, range(sim::readable_range(both, signal_span(both, p.min_span))));
+    script += measured ? fmt::format("set title '{} measured and model'\n", p.name)
+                       : fmt::format("set title '{} model (not in the log)'\n", p.name);
+    std::string plot = "plot ";
+    if (measured) {
+      plot += fmt::format("{} using 1:{} with lines lc rgb '{}' notitle, ", file, col, kMeasuredColour);
+    }
+    plot += fmt::format("{} using 1:{} with lines lw 1.5 lc rgb '{}' notitle", file, col + 1, kModelColour);
+    if (c == 0) {
+      // The figure's key: drawn once, from the first panel, as entries of no data.
+      script += "set key at screen 0.98,0.975 right top horizontal maxrows 1 samplen 3 spacing 1.2\n";
+      if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'measured'", kMeasuredColour);
+      plot += fmt::format(", NaN with lines lw 1.5 lc rgb '{}' title 'model'", kModelColour);
+      if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'residual (measured − model)'", kResidualColour);
+    }
+    script += plot + "\n";
+    if (c == 0) script += "unset key\n";
+    if (!measured) {
+      // No residual without a measurement: an empty slot that says so, not a zero line.
+      script += "set title ''\nunset border\nunset tics\nunset grid\nunset xlabel\nunset ylabel\n";
+      script += fmt::format("set label 1 '{} is not in the log: no residual' at graph 0.5,0.5 center\n", p.name);
+      script += "set yrange [0:1]\nplot NaN notitle\nunset label 1\nset border\nset tics\nset grid\nset xlabel 't [s]'\n";
       continue;
     }
-    script += fmt::format("set title '{} measured and model'\nset xlabel 't [s]'\nset ylabel '{}'\n", kPanels[c].name, kPanels[c].unit);
-    script += fmt::format("plot '{0}' using 1:{1} with lines lc rgb '#888888' title 'measured', '{0}' using 1:{2} with lines lw 1.5 lc rgb '#1f77b4' title 'model'\n",
-                          data.string(), col, col + 1);
-    script += fmt::format("set title '{} residual (measured − model)'\nset ylabel '{}'\n", kPanels[c].name, kPanels[c].unit);
-    script += fmt::format("plot '{}' using 1:{} with lines lc rgb '#d62728' title 'residual'\n", data.string(), col + 2);
+    script += fmt::format("set title '{} residual (measured − model)'\nset yrange {}\n", p.name,
+                          range(sim::readable_range(cols[c][2], p.min_span)));
+    script += fmt::format("plot {} using 1:{} with lines lc rgb '{}' notitle\n", file, col + 2, kResidualColour);
   }
   script += "unset multiplot\n";
 
   const std::string err = sim::run_gnuplot(script);
   std::error_code ec;
   fs::remove(data, ec);
-  return err.empty() ? err : err + " writing " + path;
+  return err.empty() ? err : err + " (writing " + path + ")";
 }
 
 }  // namespace hstmon::cli

@@ -131,8 +131,13 @@ std::string to_json(const GapResult& r, int indent = -1);
 /// Human-readable summary.
 std::string to_text(const GapResult& r);
 
-/// Markdown report with gnuplot PNG plots in `dir` (created). Returns "" or an error.
+/// The report in `dir` (created): report.md, and report.html (one self-contained page,
+/// the verdict first, tables and the PNG plots embedded), the plots as PNG files, their
+/// data (fit.dat, check.dat) and gnuplot script (plots.gp).
+/// @param plot_warning  out, when given: why the plots are missing (gnuplot absent or
+///                      failed; the reports say so too), else empty
+/// @return "" or an error (the directory or a file could not be written)
 std::string write_report(const GapResult& r, const std::string& dir, const std::string& fit_name,
-                         const std::string& check_name);
+                         const std::string& check_name, std::string* plot_warning = nullptr);
 
 }  // namespace hstmon::gap
