@@ -16,6 +16,7 @@
 
 #include "cli_circuit_identify.hpp"
 #include "cli_commands.hpp"
+#include "cli_identify_html.hpp"
 #include "cli_log_options.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -59,10 +60,12 @@ struct IdentifyArgs {
 
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-// Appends to the report text and echoes it to stdout unless JSON is on.
+// Appends to the report text and echoes it to stdout unless JSON is on; collects the plots
+// for report.html.
 struct Report {
   bool quiet = false;
   std::string text;
+  std::vector<ReportFigure> figures;
   template <typename... A>
   void operator()(fmt::format_string<A...> f, A&&... a) {
     const std::string s = fmt::format(f, std::forward<A>(a)...);
@@ -71,8 +74,12 @@ struct Report {
   }
 };
 
-void plot_or_warn(const std::string& err) {
-  if (!err.empty()) fmt::print(stderr, "hstmon identify: warning: {}\n", err);
+void plot_or_warn(Report& rep, const std::string& file, const std::string& caption, const std::string& err) {
+  if (err.empty()) {
+    rep.figures.push_back({file, caption});
+  } else {
+    fmt::print(stderr, "hstmon identify: warning: {}\n", err);
+  }
 }
 
 int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
@@ -242,9 +249,9 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
         model.y.push_back(fit.predicted[w][c] * 1e-5);
       }
       if (meas.x.empty()) continue;
-      plot_or_warn(id::plot_xy(a.report + "/validation_" + std::string(kCh[c]) + ".svg",
-                               fmt::format("{}: experiment and model at steady state", kCh[c]), "speed [rpm]",
-                               fmt::format("{} [bar]", kCh[c]), {meas, model}));
+      const std::string file = a.report + "/validation_" + std::string(kCh[c]) + ".svg";
+      const std::string title = fmt::format("{}: experiment and model at steady state", kCh[c]);
+      plot_or_warn(rep, file, title, id::plot_xy(file, title, "speed [rpm]", fmt::format("{} [bar]", kCh[c]), {meas, model}));
     }
   }
   return kExitOk;
@@ -291,8 +298,8 @@ int run_paper(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
         model.x.push_back(p * 1e-5);
         model.y.push_back(c.flow(p) * 6e4);
       }
-      plot_or_warn(id::plot_xy(a.report + "/pump_curve.svg", "Pump B flow vs pressure (Fig. 3/4)", "P [bar]", "Q [l/min]",
-                               {data, model}));
+      const std::string file = a.report + "/pump_curve.svg", title = "Pump B flow vs pressure (Fig. 3/4)";
+      plot_or_warn(rep, file, title, id::plot_xy(file, title, "P [bar]", "Q [l/min]", {data, model}));
     }
   }
   for (int kind = 0; kind < 2; ++kind) {
@@ -328,9 +335,9 @@ int run_paper(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
     }
     jpaper[kind == 0 ? "dcv" : "prv"] = ja;
     if (!a.report.empty()) {
-      plot_or_warn(id::plot_xy(a.report + (kind == 0 ? "/dcv_port_areas.svg" : "/prv_port_areas.svg"),
-                               fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == 0 ? 5 : 6),
-                               "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series));
+      const std::string file = a.report + (kind == 0 ? "/dcv_port_areas.svg" : "/prv_port_areas.svg");
+      const std::string title = fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == 0 ? 5 : 6);
+      plot_or_warn(rep, file, title, id::plot_xy(file, title, "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series));
     }
   }
   js["paper"] = jpaper;
@@ -361,7 +368,9 @@ void run_studies(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
       series.push_back(std::move(ps));
     }
     jst.push_back({{"name", s.name}, {"output", s.output}, {"curves", jc}});
-    plot_or_warn(id::plot_xy(a.report + "/" + s.name + ".svg", s.title, "t [s]",
+    const std::string file = a.report + "/" + s.name + ".svg";
+    plot_or_warn(rep, file, s.title,
+                 id::plot_xy(file, s.title, "t [s]",
                              fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series));
   }
   js["studies"] = jst;
@@ -400,6 +409,10 @@ int run_identify(const IdentifyArgs& a) {
   if (!a.report.empty()) {
     std::ofstream(a.report + "/report.txt") << rep.text;
     std::ofstream(a.report + "/report.json") << js.dump(2) << "\n";
+    if (const std::string err = write_identify_html(a.report + "/report.html", js, rep.text, rep.figures); !err.empty()) {
+      fmt::print(stderr, "hstmon identify: error: {}\n", err);
+      return kExitBadInput;
+    }
   }
   return kExitOk;
 }
@@ -414,7 +427,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "parameter file to write (JSON, read by replay --params)");
   cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
   cmd->add_flag("--json", args->json, "print the results as JSON instead of the human report");
-  cmd->add_option("--report", args->report, "directory for report.txt, report.json and SVG plots");
+  cmd->add_option("--report", args->report, "directory for report.txt, report.json, report.html (one self-contained page) and SVG plots");
   add_log_options(*cmd, args->io, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)",
                   "--params,--prior");
   cmd->add_option("--min-duration", args->min_duration, "shortest steady window [s]")->capture_default_str();

@@ -305,7 +305,7 @@ std::string plot_script(const GapResult& r, const std::filesystem::path& dir, co
   const std::string kp_label = "kp [1e-8 m^3/(s Pa^0.5)]";
   // A panel for a channel the logs do not have: says so instead of drawing nothing or zeros.
   auto absent = [&](std::size_t c) {
-    return sfmt("unset border\nunset tics\nunset grid\nset label 1 '%s is not in the logs' at graph 0.5,0.5 center\n"
+    return sfmt("unset border\nunset tics\nunset grid\nunset xlabel\nunset ylabel\nset label 1 '%s is not in the logs' at graph 0.5,0.5 center\n"
                 "set xrange [0:1]\nset yrange [0:1]\nplot NaN notitle\nunset label 1\nset border\nset tics\nset grid\n",
                 channel_names()[c]);
   };

@@ -8,6 +8,8 @@
 #include <fmt/os.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -15,11 +17,19 @@
 namespace hstmon::ident {
 
 namespace {
-std::string quote(std::string s) {
-  for (auto& c : s) {
-    if (c == '\'') c = '"';
+// A range over every series' values on one axis, at least 2 % of their level wide (a flat
+// curve gets a readable axis, and gnuplot no empty-range warning).
+std::string axis_range(const std::vector<PlotSeries>& series, bool y) {
+  std::vector<double> v;
+  double level = 0.0;
+  for (const auto& s : series) {
+    for (double x : y ? s.y : s.x) {
+      v.push_back(x);
+      if (std::isfinite(x)) level = std::max(level, std::fabs(x));
+    }
   }
-  return s;
+  const sim::AxisRange r = sim::readable_range(v, level > 0.0 ? 0.02 * level : 1.0);
+  return fmt::format("[{:.9g}:{:.9g}]", r.lo, r.hi);
 }
 }  // namespace
 
@@ -38,11 +48,13 @@ std::string plot_xy(const std::string& path, const std::string& title, const std
       out.print("\n\n");
     }
   }
-  std::string script = fmt::format("set terminal {}\nset output '{}'\nset grid\nset key bottom right opaque\n", terminal, path);
-  script += fmt::format("set title '{}'\nset xlabel '{}'\nset ylabel '{}'\nplot ", quote(title), quote(xlabel), quote(ylabel));
+  // The key below the plot: never over the data.
+  std::string script = fmt::format("set terminal {}\nset output {}\nset grid\nset key below\n", terminal, sim::gnuplot_quote(path));
+  script += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\nset xrange {}\nset yrange {}\nplot ", sim::gnuplot_quote(title),
+                        sim::gnuplot_quote(xlabel), sim::gnuplot_quote(ylabel), axis_range(series, false), axis_range(series, true));
   for (std::size_t k = 0; k < series.size(); ++k) {
-    script += fmt::format("{}'{}' index {} using 1:2 with {} title '{}'", k ? ", " : "", data.string(), k,
-                          series[k].points ? "points pt 7 ps 0.6" : "lines lw 1.8", quote(series[k].label));
+    script += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", " : "", sim::gnuplot_quote(data.string()), k,
+                          series[k].points ? "points pt 7 ps 0.6" : "lines lw 1.8", sim::gnuplot_quote(series[k].label));
   }
   script += "\n";
   const std::string err = sim::run_gnuplot(script);

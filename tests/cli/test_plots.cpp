@@ -1,0 +1,176 @@
+// Plots an engineer can trust (issue 16, item 4), one test per problem found:
+// file names with '_' print as written, a flat signal (one load, no noise) gets a readable
+// axis, gnuplot's warnings never reach the user and a failed plot is one line, the figure
+// has one key (not one per panel), an unmeasured channel is drawn as model only with no
+// residual; and the helpers behind them (ranges, quoting, HTML escaping, base64).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "hstmon_plot/gnuplot.hpp"
+#include "hstmon_plot/html_report.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+fs::path dir() {
+  const fs::path d = fs::temp_directory_path() / ("hstmon_plots_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const fs::path err = dir() / "stderr.txt";
+  const std::string cmd = std::string("'") + HSTMON_CLI + "' " + args + " 2>'" + err.string() + "'";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::ifstream in(err);
+  r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return r;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  return n;
+}
+
+// One load, no noise: every channel exactly flat (the steady state of Table 2.2 at kp0),
+// in a file whose name has underscores. `with_speed` false drops the w_m column.
+fs::path flat_log(const std::string& name, bool with_speed) {
+  const fs::path p = dir() / name;
+  std::ofstream f(p);
+  f << "t[s],p_sup[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar]" << (with_speed ? ",w_m[rpm]" : "") << "\n";
+  for (int k = 0; k < 300; ++k) {
+    f << 0.01 * k << ",35,4.41e-8,33.12079052,1.879209336,171.0822092" << (with_speed ? ",1677.684372" : "") << "\n";
+  }
+  return p;
+}
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+TEST(Plots, FlatSingleLoadLogGivesReadableAxesAndNoGnuplotWarnings) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path log = flat_log("single_load_no_noise.csv", true);
+  const fs::path svg = dir() / "flat.svg";
+  const CliRun r = run("replay '" + log.string() + "' --no-diagnosis --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err, "") << "gnuplot's warnings (e.g. empty y range) must not reach the user";
+  const std::string s = read(svg);
+  // Every tick label is a short plain number: no 1e-9 scale, no ×10⁻⁹ from a degenerate range.
+  const std::regex tick("<text> ?(-?[0-9][^<]*)</text>");
+  int ticks = 0;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), tick); it != std::sregex_iterator(); ++it) {
+    const std::string label = (*it)[1];
+    ++ticks;
+    EXPECT_EQ(label.find_first_of("ex"), std::string::npos) << "unreadable tick label " << label;
+    EXPECT_LE(label.size(), 6u) << "tick label " << label;
+  }
+  EXPECT_GT(ticks, 40) << "the plot should have labelled axes";
+}
+
+TEST(Plots, FileNamesWithUnderscoresPrintAsWritten) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path log = flat_log("m_bias_p_mi.csv", true);
+  const fs::path svg = dir() / "names.svg";
+  ASSERT_EQ(run("replay '" + log.string() + "' --no-diagnosis --plot '" + svg.string() + "'").exit_code, 0);
+  // Enhanced text would split "m_bias_p_mi" into subscript <tspan>s.
+  EXPECT_NE(read(svg).find("m_bias_p_mi.csv</text>"), std::string::npos);
+}
+
+TEST(Plots, OneKeyForTheFigureNotOnePerPanel) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path svg = dir() / "key.svg";
+  ASSERT_EQ(run("replay '" + flat_log("key_log.csv", true).string() + "' --no-diagnosis --plot '" + svg.string() + "'").exit_code, 0);
+  const std::string s = read(svg);
+  EXPECT_EQ(count(s, "<text>measured</text>"), 1u);
+  EXPECT_EQ(count(s, "<text>model</text>"), 1u);
+  EXPECT_EQ(count(s, "<text>residual (measured − model)</text>"), 1u);
+}
+
+TEST(Plots, UnmeasuredChannelIsModelOnlyAndHasNoResidual) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path svg = dir() / "no_speed.svg";
+  const CliRun r = run("replay '" + flat_log("no_speed.csv", false).string() + "' --no-diagnosis --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::string s = read(svg);
+  EXPECT_NE(s.find("<text>ωm model (not in the log)</text>"), std::string::npos);
+  EXPECT_NE(s.find("<text>ωm is not in the log: no residual</text>"), std::string::npos);
+  EXPECT_EQ(s.find("ωm residual"), std::string::npos) << "no residual panel for a channel the log lacks";
+  EXPECT_NE(s.find("<text>Ppp residual (measured − model)</text>"), std::string::npos);
+}
+
+TEST(Plots, FailedPlotIsOneLineNamingTheFile) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const CliRun r = run("replay '" + flat_log("fail_log.csv", true).string() + "' --no-diagnosis --plot /nonexistent_dir/out.svg");
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("hstmon replay: error: plot: gnuplot failed", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent_dir/out.svg"), std::string::npos) << r.err;
+}
+
+TEST(PlotHelpers, ReadableRangeWidensFlatDataAndKeepsEveryValue) {
+  const hstmon::sim::AxisRange flat = hstmon::sim::readable_range({171.08, 171.08, 171.08}, 0.1);
+  EXPECT_NEAR(flat.hi - flat.lo, 0.1, 1e-12);
+  EXPECT_NEAR(0.5 * (flat.lo + flat.hi), 171.08, 1e-9);
+  const hstmon::sim::AxisRange tiny = hstmon::sim::readable_range({1.5e-9, 1.5e-9 + 1e-15}, 0.1);
+  EXPECT_NEAR(tiny.hi - tiny.lo, 0.1, 1e-12);
+  const hstmon::sim::AxisRange wide = hstmon::sim::readable_range({-3.0, NAN, 7.0, INFINITY}, 0.1);
+  EXPECT_LT(wide.lo, -3.0);
+  EXPECT_GT(wide.hi, 7.0);
+  EXPECT_NEAR(wide.hi - wide.lo, 11.0, 1e-12);  // 5 % margin each side
+  const hstmon::sim::AxisRange none = hstmon::sim::readable_range({NAN}, 2.0);
+  EXPECT_EQ(none.lo, -1.0);
+  EXPECT_EQ(none.hi, 1.0);
+}
+
+TEST(PlotHelpers, QuotingAndEscaping) {
+  EXPECT_EQ(hstmon::sim::gnuplot_quote("it's m_b.csv"), "'it''s m_b.csv'");
+  EXPECT_EQ(hstmon::sim::html_escape("<a href=\"x\">'&'</a>"), "&lt;a href=&quot;x&quot;&gt;&#39;&amp;&#39;&lt;/a&gt;");
+  EXPECT_EQ(hstmon::sim::base64(""), "");
+  EXPECT_EQ(hstmon::sim::base64("f"), "Zg==");
+  EXPECT_EQ(hstmon::sim::base64("fo"), "Zm8=");
+  EXPECT_EQ(hstmon::sim::base64("foo"), "Zm9v");
+  EXPECT_EQ(hstmon::sim::base64(std::string("\xff\x00\x80", 3)), "/wCA");
+}
+
+TEST(PlotHelpers, HtmlPutsTheVerdictFirstAndEscapesText) {
+  hstmon::sim::HtmlReport page("report <1>");
+  page.heading("tables");
+  page.table({"a", "b"}, {{"x<y", "1"}});
+  const std::string missing = page.image((dir() / "absent.png").string(), "absent plot");
+  page.verdict("explained & done", hstmon::sim::VerdictTone::kGood);
+  const std::string html = page.html();
+  EXPECT_FALSE(missing.empty());
+  EXPECT_NE(html.find("<title>report &lt;1&gt;</title>"), std::string::npos);
+  EXPECT_LT(html.find("explained &amp; done"), html.find("<h2>tables</h2>")) << "the verdict comes first";
+  EXPECT_NE(html.find("<td class=\"text\">x&lt;y</td>"), std::string::npos);
+  EXPECT_NE(html.find("class=\"missing\""), std::string::npos) << "a missing plot is said, not silently left out";
+}
+
+}  // namespace
