@@ -353,9 +353,13 @@ std::string plot_script(const GapResult& r, const std::filesystem::path& dir, co
   }
   gp << "unset multiplot\n";
   // 3. before/after on the check log for the top-ranked effect.
-  const std::string best = r.ranking.empty() ? std::string("nominal") : r.ranking.front().name;
+  // Without a ranked effect there is no "after": data and nominal model only.
+  const bool ranked = !r.ranking.empty();
+  const std::string best = ranked ? r.ranking.front().name : std::string();
   gp << "set output " << gnuplot_quote((dir / "before_after.png").string()) << "\n";
-  gp << "set multiplot layout 4,1 title " << gnuplot_quote("Check log: data, nominal model and the model with " + best)
+  gp << "set multiplot layout 4,1 title "
+     << gnuplot_quote(ranked ? "Check log: data, nominal model and the model with " + best
+                             : std::string("Check log: data and nominal model (no effect ranked)"))
      << " margins 0.08,0.98,0.06,0.9 spacing 0,0.05\n";
   const sim::AxisRange t_check = r.t_check.size() > 1 && r.t_check.back() > r.t_check.front()
                                      ? sim::AxisRange{r.t_check.front(), r.t_check.back()} : sim::readable_range(r.t_check, 1.0);
@@ -365,7 +369,8 @@ std::string plot_script(const GapResult& r, const std::filesystem::path& dir, co
       gp << absent(c);
       continue;
     }
-    const auto all = append(append(column(r.data_check, c), column(r.nominal_check, c)), column(r.best_check, c));
+    const auto all = append(append(column(r.data_check, c), column(r.nominal_check, c)),
+                            ranked ? column(r.best_check, c) : std::vector<double>());
     double level = 0.0;
     for (double v : all) {
       if (std::isfinite(v)) level = std::max(level, std::fabs(v));
@@ -374,8 +379,9 @@ std::string plot_script(const GapResult& r, const std::filesystem::path& dir, co
        << range(sim::readable_range(all, std::max(floor[c], 0.02 * level))) << "\n";
     if (c == 0) gp << "set key at screen 0.98,0.975 right top horizontal maxrows 1\n";
     gp << "plot " << check << " u 1:" << 3 + c << " w l lc rgb 'gray' " << (c == 0 ? "t 'data'" : "notitle") << ", '' u 1:"
-       << 7 + c << " w l lc rgb 'red' " << (c == 0 ? "t 'nominal model'" : "notitle") << ", '' u 1:" << 11 + c
-       << " w l lc rgb 'blue' " << (c == 0 ? "t " + gnuplot_quote(best) : std::string("notitle")) << "\n";
+       << 7 + c << " w l lc rgb 'red' " << (c == 0 ? "t 'nominal model'" : "notitle");
+    if (ranked) gp << ", '' u 1:" << 11 + c << " w l lc rgb 'blue' " << (c == 0 ? "t " + gnuplot_quote(best) : std::string("notitle"));
+    gp << "\n";
     if (c == 0) gp << "unset key\n";
   }
   gp << "unset multiplot\n";

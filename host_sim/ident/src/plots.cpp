@@ -48,8 +48,8 @@ std::string plot_xy(const std::string& path, const std::string& title, const std
       out.print("\n\n");
     }
   }
-  // The key below the plot: never over the data.
-  std::string script = fmt::format("set terminal {}\nset output {}\nset grid\nset key below\n", terminal, sim::gnuplot_quote(path));
+  // The key right of the plot: never over the data, nor over the axis labels.
+  std::string script = fmt::format("set terminal {}\nset output {}\nset grid\nset key outside right top vertical\n", terminal, sim::gnuplot_quote(path));
   script += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\nset xrange {}\nset yrange {}\nplot ", sim::gnuplot_quote(title),
                         sim::gnuplot_quote(xlabel), sim::gnuplot_quote(ylabel), axis_range(series, false), axis_range(series, true));
   for (std::size_t k = 0; k < series.size(); ++k) {

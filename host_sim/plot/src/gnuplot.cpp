@@ -42,7 +42,7 @@ std::string failure_line(const std::string& err) {
 std::string gnuplot_terminal(const std::string& path, int width, int height, std::string& terminal) {
   const std::string size = " size " + std::to_string(width) + "," + std::to_string(height);
   if (ends_with(path, ".svg")) {
-    terminal = "svg" + size + " dynamic noenhanced font 'sans,11'";
+    terminal = "svg" + size + " fixed noenhanced font 'sans,11'";
   } else if (ends_with(path, ".png")) {
     terminal = "pngcairo" + size + " noenhanced font 'sans,10'";
   } else {

@@ -9,8 +9,9 @@
 
 namespace hstmon::sim {
 
-/// gnuplot terminal for an output file: "svg …" for .svg, "pngcairo …" for .png, both
-/// `noenhanced` so that text prints as written (`m_bias_p_mi.csv` is no subscript).
+/// gnuplot terminal for an output file: "svg …" for .svg (fixed size, so an <img> of it in
+/// an HTML report has one), "pngcairo …" for .png; both `noenhanced`, so that text prints
+/// as written (`m_bias_p_mi.csv` is no subscript).
 /// @param path      output file
 /// @param width     image width [px]
 /// @param height    image height [px]
