@@ -14,6 +14,8 @@ packages=(
   nlohmann-json3-dev          # parameter files and --json output
   libfmt-dev                  # formatting of reports and CSV output
   gnuplot-nox                 # residual plots (--plot)
+  chromium                    # headless render of the HTML reports in tests/cli/test_report_html
+  libpng-dev                  # that test reads chromium's screenshot to check it is not blank
   libgtest-dev                # unit tests
   libbenchmark-dev            # benchmarks
   valgrind                    # instruction counts (callgrind)

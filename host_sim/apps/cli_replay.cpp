@@ -16,6 +16,7 @@
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "cli_log_options.hpp"
+#include "cli_replay_report.hpp"
 #include "cli_validators.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
@@ -33,6 +34,7 @@ struct ReplayArgs {
   bool json = false;
   std::string residuals_csv;
   std::string plot;
+  std::string report;  // --report DIR (cli_replay_report.hpp)
   double tick = 0.0;
   std::string init = "auto";
   bool no_progress = false;
@@ -188,7 +190,7 @@ int run_replay(const ReplayArgs& a) {
   host::ReplayOptions opt;
   opt.tick = a.tick;
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
-  opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
+  opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   opt.diagnose = !a.no_diagnosis;
   if (pf.sensors) opt.sensors = *pf.sensors;
   Progress progress;
@@ -221,6 +223,16 @@ int run_replay(const ReplayArgs& a) {
       fmt::print("  plot written to {}\n", a.plot);
     }
   }
+  if (!a.report.empty()) {
+    std::string plot_warning;
+    if (const std::string err = write_replay_report(a.report, a.log, r, !a.no_diagnosis, plot_warning); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
+      rc = kExitBadInput;
+    } else {
+      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
+      if (!a.json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", a.report);
+    }
+  }
   return rc;
 }
 
@@ -233,6 +245,8 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "One JSON object per line instead of the human summary");
   cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
+  cmd->add_option("--report", args->report,
+                  "Write report.md and report.html (one self-contained page: verdict, residuals, events, plot) to this directory");
   cmd->add_option("--tick", args->tick, "Observer tick [s] (default: the log's sample period, at most 0.01)")
       ->check(positive_number());
   cmd->add_option("--init", args->init, "Initial state: auto (from the first row's measurements), rest or steady")
@@ -249,7 +263,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       exit_code = run_replay(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--plot", "--map", "--separator", "--lenient", "--rate"})) {
+    if (!refuse_with_circuit(*cmd, {"--plot", "--report", "--map", "--separator", "--lenient", "--rate"})) {
       exit_code = kExitUsage;
       return;
     }

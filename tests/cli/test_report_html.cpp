@@ -1,4 +1,4 @@
-// The HTML reports of `gap --report` and `identify --report`, rendered headlessly by
+// The HTML reports of `gap`, `replay` and `identify --report`, rendered headlessly by
 // Debian's chromium: the page loads, the verdict comes first, every plot is embedded,
 // decodes and is not blank, nothing is fetched from outside the file, and a screenshot of
 // the page is not blank. Exit 77 (CTest: skipped) only when chromium is not installed.
@@ -176,6 +176,11 @@ int main() {
             gap_dir.string() + "'") == 0,
         "hstmon gap --report");
   check_page(chromium, gap_dir, 3, "gap");
+
+  const fs::path replay_dir = dir / "replay";
+  check(run(cli + " replay '" + HSTMON_SOURCE_DIR + "/examples/prv_blockage_das.csv' --report '" + replay_dir.string() + "'") == 0,
+        "hstmon replay --report");
+  check_page(chromium, replay_dir, 1, "replay");
 
   const fs::path id_dir = dir / "identify";
   check(run(cli + " identify '" + HSTMON_SOURCE_DIR + "/examples/prv_staircase_das.csv' --assume-steady --out '" +

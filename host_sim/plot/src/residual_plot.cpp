@@ -2,7 +2,8 @@
 /// The replay's figure: per channel, measured and model (left) and the residual (right).
 /// One key for the whole figure, in the band above the panels (never over the data, never
 /// repeated); a channel the log does not have gets its model only and a note where its
-/// residual would be; every y range is readable even when the signal is flat.
+/// residual would be; every y range is readable even when the signal is flat, and a
+/// residual's range is not set by the model's start-up transient.
 #include "hstmon_plot/residual_plot.hpp"
 
 #include "hstmon_plot/gnuplot.hpp"
@@ -105,10 +106,10 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
     plot += fmt::format("{} using 1:{} with lines lw 1.5 lc rgb '{}' notitle", file, col + 1, kModelColour);
     if (c == 0) {
       // The figure's key: drawn once, from the first panel, as entries of no data.
-      script += "set key at screen 0.98,0.975 right top horizontal maxrows 1 samplen 3 spacing 1.2\n";
+      script += "set key at screen 0.98,0.975 right top horizontal samplen 3 spacing 1.2\n";
       if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'measured'", kMeasuredColour);
       plot += fmt::format(", NaN with lines lw 1.5 lc rgb '{}' title 'model'", kModelColour);
-      if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'residual (measured − model)'", kResidualColour);
+      if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'residual'", kResidualColour);
     }
     script += plot + "\n";
     if (c == 0) script += "unset key\n";
@@ -119,8 +120,17 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
       script += "set yrange [0:1]\nplot NaN notitle\nunset label 1\nset border\nset tics\nset grid\nset xlabel 't [s]'\n";
       continue;
     }
-    script += fmt::format("set title '{} residual (measured − model)'\nset yrange {}\n", p.name,
-                          range(sim::readable_range(cols[c][2], p.min_span)));
+    // The model's own start-up transient (the hold-off, when detection waits) would set
+    // the scale and flatten the rest: the range covers what comes after it, and says so.
+    std::vector<double> after_hold;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (t[i] >= result.t_first + result.startup_hold) after_hold.push_back(cols[c][2][i]);
+    }
+    const sim::AxisRange all = sim::readable_range(cols[c][2], p.min_span);
+    const sim::AxisRange shown = after_hold.empty() ? all : sim::readable_range(after_hold, p.min_span);
+    const bool clipped = shown.lo > all.lo || shown.hi < all.hi;
+    script += fmt::format("set title '{} residual (measured − model){}'\nset yrange {}\n", p.name,
+                          clipped ? ", start-up transient off scale" : "", range(shown));
     script += fmt::format("plot {} using 1:{} with lines lc rgb '{}' notitle\n", file, col + 2, kResidualColour);
   }
   script += "unset multiplot\n";
