@@ -72,6 +72,15 @@ fs::path flat_log(const std::string& name, bool with_speed) {
   return p;
 }
 
+// The logs and plots of this process go when its tests are done.
+struct RemoveTempDir : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir(), ec);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kRemoveTempDir = ::testing::AddGlobalTestEnvironment(new RemoveTempDir);
+
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 TEST(Plots, FlatSingleLoadLogGivesReadableAxesAndNoGnuplotWarnings) {
