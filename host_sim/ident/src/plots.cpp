@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 #include <fmt/os.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +38,7 @@ std::string plot_xy(const std::string& path, const std::string& title, const std
   if (std::string err = sim::gnuplot_terminal(path, 1000, 650, terminal); !err.empty()) return err;
   if (series.empty()) return "nothing to plot";
   namespace fs = std::filesystem;
-  const fs::path data =
-      fs::temp_directory_path() / fmt::format("hstmon-ident-{}-{}.dat", static_cast<long>(::getpid()), fs::path(path).stem().string());
+  const fs::path data = sim::gnuplot_temp_file("ident-" + fs::path(path).stem().string(), "dat");
   {
     auto out = fmt::output_file(data.string());
     for (const auto& s : series) {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -83,12 +84,17 @@ AxisRange readable_range(const std::vector<double>& values, double min_span) {
   return {lo, hi};
 }
 
+std::string gnuplot_temp_file(const std::string& stem, const std::string& ext) {
+  static std::atomic<unsigned> counter{0};
+  return (std::filesystem::temp_directory_path() /
+          fmt::format("hstmon-{}-{}-{}.{}", stem, static_cast<long>(::getpid()), ++counter, ext))
+      .string();
+}
+
 std::string run_gnuplot(const std::string& script) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return "gnuplot not found (apt-get install gnuplot-nox)";
   namespace fs = std::filesystem;
-  static int calls = 0;
-  const fs::path err_file =
-      fs::temp_directory_path() / fmt::format("hstmon-gnuplot-{}-{}.err", static_cast<long>(::getpid()), ++calls);
+  const fs::path err_file = gnuplot_temp_file("gnuplot", "err");
   const std::string cmd = "gnuplot 2>'" + err_file.string() + "'";
   FILE* gp = popen(cmd.c_str(), "w");
   if (gp == nullptr) return "could not start gnuplot";

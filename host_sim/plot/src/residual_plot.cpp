@@ -17,7 +17,6 @@
 #include <filesystem>
 #include <vector>
 
-#include <unistd.h>
 
 namespace hstmon::cli {
 
@@ -58,7 +57,7 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
   if (result.trace.empty()) return "nothing to plot";
 
   namespace fs = std::filesystem;
-  const fs::path data = fs::temp_directory_path() / fmt::format("hstmon-plot-{}.dat", static_cast<long>(::getpid()));
+  const fs::path data = sim::gnuplot_temp_file("plot", "dat");
   // Per channel, display-unit columns for the ranges: measured, model, residual.
   std::vector<double> cols[4][3];
   std::vector<double> t;

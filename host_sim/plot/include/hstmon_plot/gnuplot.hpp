@@ -36,6 +36,12 @@ struct AxisRange {
 /// @return          the range; [-min_span/2, min_span/2] when no value is finite
 AxisRange readable_range(const std::vector<double>& values, double min_span);
 
+/// A temporary file name for gnuplot's data or messages, unique in this process (pid and
+/// a counter), so plots written at the same time never share one.
+/// @param stem  what it holds, e.g. "plot"; the name ends in `.<ext>`
+/// @param ext   extension without the dot
+std::string gnuplot_temp_file(const std::string& stem, const std::string& ext);
+
 /// Runs `script` with gnuplot (the script's own `set output` decides the file). gnuplot's
 /// warnings never reach the terminal: its stderr is captured and only a failure is reported.
 /// @return empty on success, else one line: why (gnuplot missing, could not start, or
