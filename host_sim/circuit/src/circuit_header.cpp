@@ -192,6 +192,8 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kInputs[" + std::to_string(cap_in) + "] = " +
        list(n_in, [&](int i) { return num(c.values.inputs.v[i]); }, cap_in - n_in) + ";");
   names("kInputNames", n_in, cap_in, [&](std::size_t i) { return f.inputs[i].name; });
+  line("/// Log column of each input (matched without regard to case, as the host reader does).");
+  names("kInputColumns", n_in, cap_in, [&](std::size_t i) { return f.inputs[i].column; });
   line("/// Sensor noise standard deviation per channel [SI]; 0 where the file gives none.");
   line("inline constexpr double kNoiseSigma[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].noise); }) + ";");
@@ -201,6 +203,8 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kRangeHi[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].hi); }) + ";");
   names("kChannelNames", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].name; });
+  line("/// Log column of each channel (matched without regard to case).");
+  names("kChannelColumns", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].column; });
   line("");
   line("}  // namespace hstmon::generated::" + o.name);
   return h;
