@@ -74,6 +74,7 @@ TEST(GeneratedHeader, IsTheCircuitFile) {
   for (int i = 0; i < d.n_inputs; ++i) {
     EXPECT_EQ(gen::kInputs[i], f.c.values.inputs.v[i]);
     EXPECT_EQ(std::string(gen::kInputNames[i]), f.c.file.inputs[static_cast<std::size_t>(i)].name);
+    EXPECT_EQ(std::string(gen::kInputColumns[i]), f.c.file.inputs[static_cast<std::size_t>(i)].column);
   }
   for (int ch = 0; ch < d.n_channels; ++ch) {
     const auto& s = f.c.file.sensors[static_cast<std::size_t>(ch)];
@@ -81,6 +82,7 @@ TEST(GeneratedHeader, IsTheCircuitFile) {
     EXPECT_EQ(gen::kRangeLo[ch], s.lo);
     EXPECT_EQ(gen::kRangeHi[ch], s.hi);
     EXPECT_EQ(std::string(gen::kChannelNames[ch]), s.name);
+    EXPECT_EQ(std::string(gen::kChannelColumns[ch]), s.column);
   }
   // The capacity is tight: the states and unknowns of this circuit, nothing more.
   const FwModel m(gen::kCircuit, FwModel::Params{}, FwModel::Inputs{});
