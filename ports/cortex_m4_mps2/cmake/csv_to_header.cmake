@@ -49,8 +49,12 @@ foreach(col IN LISTS cols)
     # so its SI factor comes from the units a circuit log uses; 0 = unit not stated or not
     # known here (the circuit replay refuses such a column, naming it; the thesis replay
     # ignores it, as the host reader does).
-    set(known_units Pa hPa kPa bar mbar MPa rad/s rpm 1/min m2 mm2 m3/s s ms -)
-    set(known_scale 1.0 1e2 1e3 1e5 1e2 1e6 1.0 0.10471975511965977 0.10471975511965977 1.0 1e-6 1.0 1.0 1e-3 1.0)
+    # (Factors as the host's unit tables compute them, written to round-trip: 1e-3/60.0 is
+    # 1.6666666666666667e-05.)
+    set(known_units Pa hPa kPa bar mbar MPa rad/s rpm 1/min m2 mm2 m3/s m^3/s L/min lpm L/s cm3/s
+      N*m Nm kN*m s ms - %)
+    set(known_scale 1.0 1e2 1e3 1e5 1e2 1e6 1.0 0.10471975511965977 0.10471975511965977 1.0 1e-6 1.0 1.0
+      1.6666666666666667e-05 1.6666666666666667e-05 1e-3 1e-6 1.0 1.0 1e3 1.0 1e-3 1.0 0.01)
     list(FIND known_units "${unit}" u)
     if(u EQUAL -1)
       set(scale "0.0")

@@ -68,23 +68,42 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
     error_line(line, "no time column (t[s]) or no data row in the embedded log", nullptr, nullptr);
     return ~0u;
   }
+  if (!(log.scale[t_col] > 0.0)) {  // "t" is s when bare; a bare "time" is not known here
+    error_line(line, "time column without a known unit (write t[s])", columns.name[t_col], columns.unit[t_col]);
+    return ~0u;
+  }
   int in_col[gen::Cap::kInputs];
   int ch_col[kCh];
   for (int& c : in_col) c = -1;
   for (int& c : ch_col) c = -1;
   for (int i = 0; i < n_in; ++i) in_col[i] = find_column(log, columns, gen::kInputColumns[i]);
   for (int i = 0; i < n_ch; ++i) ch_col[i] = find_column(log, columns, gen::kChannelColumns[i]);
-  for (int c = 0; c < log.cols && c < kMaxCols; ++c) {
-    bool mapped = c == t_col;
-    for (int i = 0; i < n_in; ++i) mapped = mapped || in_col[i] == c;
-    for (int i = 0; i < n_ch; ++i) mapped = mapped || ch_col[i] == c;
-    if (mapped && !(log.scale[c] > 0.0)) {
-      error_line(line, "unit not stated or not known to the firmware's log converter (csv_to_header.cmake)",
-                 columns.name[c], columns.unit[c]);
+  // SI factor of a mapped column: its stated unit's, else the circuit file's unit's (as
+  // the host reader takes it); 0 when the stated unit is not one csv_to_header knows.
+  double in_scale[gen::Cap::kInputs] = {};
+  double ch_scale[kCh] = {};
+  auto scale_of = [&](int c, double file_unit) noexcept {
+    return columns.unit[c][0] == '\0' ? file_unit : log.scale[c];
+  };
+  for (int i = 0; i < n_in; ++i) {
+    if (in_col[i] >= 0) in_scale[i] = scale_of(in_col[i], gen::kInputUnitScale[i]);
+  }
+  for (int i = 0; i < n_ch; ++i) {
+    if (ch_col[i] >= 0) ch_scale[i] = scale_of(ch_col[i], gen::kChannelUnitScale[i]);
+  }
+  for (int i = 0; i < n_in + n_ch; ++i) {
+    const int c = i < n_in ? in_col[i] : ch_col[i - n_in];
+    const double f = i < n_in ? in_scale[i] : ch_scale[i - n_in];
+    if (c >= 0 && !(f > 0.0)) {
+      error_line(line, "unit not known to the firmware's log converter (csv_to_header.cmake)", columns.name[c],
+                 columns.unit[c]);
       return ~0u;
     }
   }
-  auto at = [&](std::size_t k, int c) noexcept { return log.data[k * stride + static_cast<std::size_t>(c)] * log.scale[c]; };
+  auto value = [&](std::size_t k, int c, double scale) noexcept {
+    return log.data[k * stride + static_cast<std::size_t>(c)] * scale;
+  };
+  auto at = [&](std::size_t k, int c) noexcept { return value(k, c, log.scale[c]); };
   const std::size_t rows = log.rows;
   const double t_first = at(0, t_col);
   const double t_last = at(rows - 1, t_col);
@@ -101,7 +120,7 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
   auto inputs_at = [&](std::size_t k) noexcept {
     Inputs u = nominal;
     for (int i = 0; i < n_in; ++i) {
-      if (in_col[i] >= 0) u.v[i] = static_cast<float>(at(k, in_col[i]));
+      if (in_col[i] >= 0) u.v[i] = static_cast<float>(value(k, in_col[i], in_scale[i]));
     }
     return u;
   };
@@ -118,7 +137,7 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
     m.valid = mask;
     compared = mask;
     for (int i = 0; i < n_ch; ++i) {
-      const double y = ch_col[i] >= 0 ? at(k, ch_col[i]) : 0.0;
+      const double y = ch_col[i] >= 0 ? value(k, ch_col[i], ch_scale[i]) : 0.0;
       m.y[i] = static_cast<float>(y);
       if (ch_col[i] >= 0 && (y <= gen::kRangeLo[i] || y >= gen::kRangeHi[i])) {
         compared = static_cast<std::uint8_t>(compared & ~(1u << i));

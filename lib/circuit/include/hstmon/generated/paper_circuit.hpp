@@ -61,6 +61,8 @@ inline constexpr double kInputs[2] = {4.9999999999999996e-06, 3.5249999999999997
 inline constexpr const char* const kInputNames[2] = {"A_dcv", "A_prv"};
 /// Log column of each input (matched without regard to case, as the host reader does).
 inline constexpr const char* const kInputColumns[2] = {"a_dcv", "a_prv"};
+/// SI factor of each input column whose log header states no unit (the circuit file's unit).
+inline constexpr double kInputUnitScale[2] = {9.9999999999999995e-07, 9.9999999999999995e-07};
 /// Sensor noise standard deviation per channel [SI]; 0 where the file gives none.
 inline constexpr double kNoiseSigma[4] = {5000.0, 5000.0, 5000.0, 0.052359877559829883};
 /// Transmitter range per channel [SI]; ±kInf where the file gives none.
@@ -69,5 +71,7 @@ inline constexpr double kRangeHi[4] = {25000000.0, 25000000.0, 25000000.0, 523.5
 inline constexpr const char* const kChannelNames[4] = {"p_s", "p_mi", "p_pp", "w_m"};
 /// Log column of each channel (matched without regard to case).
 inline constexpr const char* const kChannelColumns[4] = {"p_s", "p_mi", "p_pp", "w_m"};
+/// SI factor of each channel column whose log header states no unit (the circuit file's unit).
+inline constexpr double kChannelUnitScale[4] = {100000.0, 100000.0, 100000.0, 0.10471975511965977};
 
 }  // namespace hstmon::generated::paper_circuit
