@@ -74,7 +74,7 @@ trap 'rm -f "$tmp"' EXIT
 qemu=(qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none
       -chardev "file,id=semihost,path=$tmp"
       -semihosting-config enable=on,target=native,chardev=semihost -kernel "$elf")
-case "$image" in footprint*|circuit_footprint*) qemu+=(-icount shift=0) ;; esac
+case "$image" in footprint*|circuit_footprint*|circuit_monitor) qemu+=(-icount shift=0) ;; esac
 rc=0
 timeout "$timeout_s" "${qemu[@]}" </dev/null || rc=$?
 cat "$tmp"

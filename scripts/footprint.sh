@@ -120,7 +120,9 @@ row "heap: malloc/_sbrk/new symbols in image" "$c_heap" "" 0
 # replaying its embedded log. Reported, not gated: the image carries the replay's JSON
 # output and statistics (double) besides the monitor. Flash: the image minus the circuit
 # empty image minus the embedded log; RAM: data + bss minus the stack reserve; stack: the
-# whole replay by painting, below main's frame.
+# whole replay by painting, below main's frame; instructions: the whole replay (setup,
+# monitor, statistics and output included, so a bound on the monitor's) per tick, qemu
+# -icount as above.
 mon_json="$(fw circuit_monitor --no-build | grep '"type":"circuit_monitor_footprint"')" ||
   { echo "footprint.sh: circuit monitor image failed" >&2; exit 2; }
 mfield() { echo "$mon_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
@@ -140,5 +142,8 @@ printf "  %-44s %8s %-6s\n" "stack, whole replay (painting)" "$(mfield stack_byt
 msu="$(find "$build" -path '*hstmon_fw_circuit_monitor.dir*' -name 'fw_circuit_monitor.cpp.su' | head -1)"
 printf "  %-44s %8s %-6s\n" "  of which the replay loop's frame (.su)" \
   "$(awk -F'\t' '/circuit_monitor_replay/ { if ($2 > m) m = $2 } END { print m + 0 }' "$msu")" "B"
+printf "  %-44s %8s %-6s\n" "instructions per tick, whole replay (bound)" \
+  "$(awk -v s="$(mfield counts_replay)" -v ci="$(mfield calib_instructions)" -v cc="$(mfield calib_counts)" \
+    -v n="$(mfield ticks)" 'BEGIN { printf "%.0f", s * ci / cc / n }')" "instr"
 row "heap: malloc/_sbrk/new symbols in image" "$m_heap" "" 0
 exit $fail
