@@ -3,7 +3,7 @@
 # QEMU's mps2-an386 with semihosting; the image's output goes to stdout, its exit status
 # is this script's.
 #
-#   scripts/firmware.sh [IMAGE] [--build-dir DIR] [--no-build] [--log CSV] [--timeout S]
+#   scripts/firmware.sh [IMAGE] [--build-dir DIR] [--no-build] [--log CSV] [--monitor-log CSV] [--timeout S]
 #
 # IMAGE: replay (default; the JSON lines of `hstmon replay --json` for the embedded log),
 #        replay_trace (plus one %a line of residuals per row), footprint, footprint_empty
@@ -11,8 +11,12 @@
 #        (must FAIL to link: checks the no-heap rule; exit 0 when it does fail),
 #        circuit_footprint, circuit_footprint_empty (the circuit engine on the generated
 #        circuit header, -icount as footprint), circuit_replay_trace (the embedded log
-#        through the engine: one %a residual line per row and a digest).
-# Defaults: build dir build/firmware-arm, log examples/prv_blockage.csv, timeout 300 s.
+#        through the engine: one %a residual line per row and a digest), circuit_monitor
+#        (a circuit's whole monitor on its generated circuit header and fault table over
+#        --monitor-log: the JSON lines of `hstmon replay --circuit --json` and one %a
+#        residual line per row).
+# Defaults: build dir build/firmware-arm, log examples/prv_blockage.csv, monitor log
+# examples/circuits/paper_dm_fault.csv, timeout 300 s.
 # Exit status: the image's; 124 on timeout; 2 on a bad command line or build failure.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -20,15 +24,17 @@ image=replay
 build="$root/build/firmware-arm"
 do_build=1
 log=""
+monitor_log=""
 timeout_s=300
 while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) build="$2"; shift 2 ;;
     --no-build) do_build=0; shift ;;
     --log) log="$(realpath "$2")"; shift 2 ;;
+    --monitor-log) monitor_log="$(realpath "$2")"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
-    replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace) image="$1"; shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace|circuit_monitor) image="$1"; shift ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) echo "firmware.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -40,6 +46,7 @@ if [ "$do_build" = 1 ]; then
   cfg=(-S "$root" -B "$build" --toolchain "$root/toolchains/arm-none-eabi.cmake"
        -DCMAKE_BUILD_TYPE=Release -DHSTMON_WERROR=ON)
   [ -n "$log" ] && cfg+=("-DHSTMON_FW_LOG=$log")
+  [ -n "$monitor_log" ] && cfg+=("-DHSTMON_FW_MONITOR_LOG=$monitor_log")
   cmake "${cfg[@]}" >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 2; }
   if [ "$image" = heap_probe ]; then
     if cmake --build "$build" --target hstmon_fw_heap_probe -j2 >"$build.heap_probe.log" 2>&1; then
@@ -55,7 +62,7 @@ if [ "$do_build" = 1 ]; then
   fi
   cmake --build "$build" -j2 --target hstmon_fw_replay hstmon_fw_replay_trace hstmon_fw_footprint \
     hstmon_fw_footprint_empty hstmon_fw_circuit_footprint hstmon_fw_circuit_footprint_empty \
-    hstmon_fw_circuit_replay_trace >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
+    hstmon_fw_circuit_replay_trace hstmon_fw_circuit_monitor >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
 fi
 
 elf="$build/bin/hstmon_fw_$image.elf"
@@ -67,7 +74,7 @@ trap 'rm -f "$tmp"' EXIT
 qemu=(qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none
       -chardev "file,id=semihost,path=$tmp"
       -semihosting-config enable=on,target=native,chardev=semihost -kernel "$elf")
-case "$image" in footprint*|circuit_footprint*) qemu+=(-icount shift=0) ;; esac
+case "$image" in footprint*|circuit_footprint*|circuit_monitor) qemu+=(-icount shift=0) ;; esac
 rc=0
 timeout "$timeout_s" "${qemu[@]}" </dev/null || rc=$?
 cat "$tmp"

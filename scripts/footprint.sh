@@ -17,6 +17,7 @@
 # of a fault episode (neither is a per-tick cost at the nominal point).
 # Then the circuit engine on the generated circuit header (issue 14; main_circuit_footprint.cpp):
 # flash, RAM, setup stack and heap gated; instructions per tick and step stack reported, not gated while over.
+# Then a circuit's whole monitor (issue 15; main_circuit_monitor.cpp): flash, RAM, stack reported, heap gated.
 #   scripts/footprint.sh [--build-dir DIR] [--no-build]
 # Exit status: 0 all budgets met; 1 a budget exceeded; 2 build or run failure.
 set -euo pipefail
@@ -27,7 +28,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) build="$2"; shift 2 ;;
     --no-build) no_build=(--no-build); shift ;;
-    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "footprint.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -113,4 +114,36 @@ soft_row "stack, step (painting, incl. timing loop)" "$(cfield stack_step_bytes)
 soft_row "instructions per tick (qemu icount)" "$c_instr" "instr" "$max_instr"
 printf "  %-44s %8s %-6s\n" "  RK4 substeps of the measured ticks" "$(cfield max_substeps)" ""
 row "heap: malloc/_sbrk/new symbols in image" "$c_heap" "" 0
+
+# A circuit's whole monitor (issue 15; main_circuit_monitor.cpp): CircuitMonitor<float> on
+# the generated circuit header and fault table (default paper.json at 5 ms, 28 rows),
+# replaying its embedded log. Reported, not gated: the image carries the replay's JSON
+# output and statistics (double) besides the monitor. Flash: the image minus the circuit
+# empty image minus the embedded log; RAM: data + bss minus the stack reserve; stack: the
+# whole replay by painting, below main's frame; instructions: the whole replay (setup,
+# monitor, statistics and output included, so a bound on the monitor's) per tick, qemu
+# -icount as above.
+mon_json="$(fw circuit_monitor --no-build | grep '"type":"circuit_monitor_footprint"')" ||
+  { echo "footprint.sh: circuit monitor image failed" >&2; exit 2; }
+mfield() { echo "$mon_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+melf="$build/bin/hstmon_fw_circuit_monitor.elf"
+read -r t1 d1 b1 _ < <(arm-none-eabi-size "$melf" | awk 'NR==2{print $1,$2,$3}')
+sym() { arm-none-eabi-nm "$melf" | awk -v n="$1" '$3==n{print $1}'; }
+stack_reserve=$(( 16#$(sym __stack_top__) - 16#$(sym __stack_limit__) ))
+m_flash=$(( (t1 + d1) - (t0 + d0) - $(mfield log_bytes) ))
+m_ram=$(( d1 + b1 - stack_reserve ))
+m_heap=$(arm-none-eabi-nm "$melf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+echo "circuit monitor: CircuitMonitor<float> + generated fault table, replaying the embedded log, Cortex-M4F, -O2 (reported)"
+printf "  %-44s %8s %-6s\n" "flash (image − empty − embedded log)" "$m_flash" "B"
+printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$m_ram" "B"
+printf "  %-44s %8s %-6s\n" "  of which the monitor object (static)" "$(mfield monitor_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "  and the setup's model scratch (static)" "$(mfield model_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "stack, whole replay (painting)" "$(mfield stack_bytes)" "B"
+msu="$(find "$build" -path '*hstmon_fw_circuit_monitor.dir*' -name 'fw_circuit_monitor.cpp.su' | head -1)"
+printf "  %-44s %8s %-6s\n" "  of which the replay loop's frame (.su)" \
+  "$(awk -F'\t' '/circuit_monitor_replay/ { if ($2 > m) m = $2 } END { print m + 0 }' "$msu")" "B"
+printf "  %-44s %8s %-6s\n" "instructions per tick, whole replay (bound)" \
+  "$(awk -v s="$(mfield counts_replay)" -v ci="$(mfield calib_instructions)" -v cc="$(mfield calib_counts)" \
+    -v n="$(mfield ticks)" 'BEGIN { printf "%.0f", s * ci / cc / n }')" "instr"
+row "heap: malloc/_sbrk/new symbols in image" "$m_heap" "" 0
 exit $fail

@@ -12,6 +12,7 @@
 #include "hstmon/generated/thesis_circuit.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_host/circuit_units.hpp"
 
 namespace {
 
@@ -74,6 +75,9 @@ TEST(GeneratedHeader, IsTheCircuitFile) {
   for (int i = 0; i < d.n_inputs; ++i) {
     EXPECT_EQ(gen::kInputs[i], f.c.values.inputs.v[i]);
     EXPECT_EQ(std::string(gen::kInputNames[i]), f.c.file.inputs[static_cast<std::size_t>(i)].name);
+    EXPECT_EQ(std::string(gen::kInputColumns[i]), f.c.file.inputs[static_cast<std::size_t>(i)].column);
+    const auto& in = f.c.file.inputs[static_cast<std::size_t>(i)];
+    EXPECT_EQ(gen::kInputUnitScale[i], hstmon::host::parse_circuit_unit(in.quantity, in.unit).conversion.factor);
   }
   for (int ch = 0; ch < d.n_channels; ++ch) {
     const auto& s = f.c.file.sensors[static_cast<std::size_t>(ch)];
@@ -81,6 +85,8 @@ TEST(GeneratedHeader, IsTheCircuitFile) {
     EXPECT_EQ(gen::kRangeLo[ch], s.lo);
     EXPECT_EQ(gen::kRangeHi[ch], s.hi);
     EXPECT_EQ(std::string(gen::kChannelNames[ch]), s.name);
+    EXPECT_EQ(std::string(gen::kChannelColumns[ch]), s.column);
+    EXPECT_EQ(gen::kChannelUnitScale[ch], hstmon::host::parse_circuit_unit(s.quantity, s.unit).conversion.factor);
   }
   // The capacity is tight: the states and unknowns of this circuit, nothing more.
   const FwModel m(gen::kCircuit, FwModel::Params{}, FwModel::Inputs{});

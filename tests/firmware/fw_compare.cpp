@@ -1,7 +1,8 @@
 // Compares two outputs of `hstmon replay --json` (or of the firmware replay): same
 // header counts (rows, ticks, tick, start, health, unhealthy rows, max substeps), and per
 // channel the same n and residual statistics within a tolerance:
-//   |a − b| ≤ rel·max(|a|, |b|) + abs_c,  abs_c = --abs-pa [Pa] or --abs-rad [rad/s],
+//   |a − b| ≤ rel·max(|a|, |b|) + abs_c,  abs_c = --abs-pa [Pa], --abs-rad [rad/s] or
+//   --abs-other [SI] for any other unit (a circuit's flow channels; default 1e-9),
 // and the same time of the peak unless the two peaks' sizes are within that tolerance
 // of the other build's (two near-equal peaks may swap).
 // Matcher events ("type":"event" lines, in order) must agree exactly but for the scores:
@@ -10,7 +11,8 @@
 // (absolute). The "diagnosis" lines must agree (status, events). A "firmware" line, if
 // present, must report no events dropped and no event whose stored part differed from
 // the printed ranking.
-//   hstmon_fw_compare A.jsonl B.jsonl [--rel R] [--abs-pa P] [--abs-rad W] [--score S]
+// The channels are those of the files (the thesis's four, or a circuit's), the same in both.
+//   hstmon_fw_compare A.jsonl B.jsonl [--rel R] [--abs-pa P] [--abs-rad W] [--abs-other X] [--score S]
 //                     [--min-events N]
 // --min-events: fewer events than N is a failure too (the log must exercise the matcher).
 // Exit status: 0 agree, 1 differ (each difference printed), 2 usage or unreadable input.
@@ -49,7 +51,7 @@ bool load(const char* path, Parsed& p) {
     if (j["type"] == "diagnosis") p.diagnosis = j;
     if (j["type"] == "firmware") p.firmware = j;
   }
-  return !p.header.is_null() && p.channels.size() == 4;
+  return !p.header.is_null() && !p.channels.empty();
 }
 
 }  // namespace
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s A.jsonl B.jsonl [--rel R] [--abs-pa P] [--abs-rad W]\n", argv[0]);
     return 2;
   }
-  double rel = 1e-4, abs_pa = 1.0, abs_rad = 1e-4, score_tol = 1e-4;
+  double rel = 1e-4, abs_pa = 1.0, abs_rad = 1e-4, abs_other = 1e-9, score_tol = 1e-4;
   long min_events = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
@@ -67,14 +69,19 @@ int main(int argc, char** argv) {
     if (k == "--rel") rel = v;
     else if (k == "--abs-pa") abs_pa = v;
     else if (k == "--abs-rad") abs_rad = v;
+    else if (k == "--abs-other") abs_other = v;
     else if (k == "--score") score_tol = v;
     else if (k == "--min-events") min_events = std::atol(argv[i + 1]);
     else { std::fprintf(stderr, "unknown option %s\n", k.c_str()); return 2; }
   }
   Parsed a, b;
   if (!load(argv[1], a) || !load(argv[2], b)) {
-    std::fprintf(stderr, "cannot read a replay header and 4 residual lines from %s and %s\n", argv[1], argv[2]);
+    std::fprintf(stderr, "cannot read a replay header and residual lines from %s and %s\n", argv[1], argv[2]);
     return 2;
+  }
+  if (a.channels.size() != b.channels.size()) {
+    std::printf("channels: %zu vs %zu\n", a.channels.size(), b.channels.size());
+    return 1;
   }
   int bad = 0;
   for (const char* k : {"rows", "ticks", "start", "health", "unhealthy_rows", "max_substeps"}) {
@@ -91,6 +98,11 @@ int main(int argc, char** argv) {
   }
   double worst = 0.0;
   for (auto& [name, ja] : a.channels) {
+    if (b.channels.count(name) == 0) {
+      std::printf("%s: only in %s\n", name.c_str(), argv[1]);
+      ++bad;
+      continue;
+    }
     const json& jb = b.channels[name];
     if (ja["n"] != jb["n"] || ja["measured"] != jb["measured"]) {
       std::printf("%s: n/measured %s/%s vs %s/%s\n", name.c_str(), ja["n"].dump().c_str(), ja["measured"].dump().c_str(),
@@ -99,7 +111,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (!ja.contains("mean")) continue;
-    const double abs_c = ja["unit"] == "Pa" ? abs_pa : abs_rad;
+    const double abs_c = ja["unit"] == "Pa" ? abs_pa : (ja["unit"] == "rad/s" ? abs_rad : abs_other);
     for (const char* k : {"mean", "rms", "max_abs", "max", "noise"}) {
       const double x = ja[k].get<double>(), y = jb[k].get<double>();
       const double tol = rel * std::fmax(std::fabs(x), std::fabs(y)) + abs_c;

@@ -2,7 +2,10 @@
 # One firmware test case (registered by CMakeLists.txt in this folder). Environment:
 #   FW_SRC (repo root), FW_BUILD (cross build dir), FW_LOG (embedded log), FW_OUT (scratch
 #   dir), FW_HOST (host float replay), FW_CIRCUIT_HOST (host float circuit-engine replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional),
-#   FW_MIN_EVENTS (matcher events the log must give; 2 for the default prv_blockage.csv).
+#   FW_MIN_EVENTS (matcher events the log must give; 2 for the default prv_blockage.csv),
+#   FW_MONITOR_HOST (host float circuit monitor), FW_MONITOR_LOG (its embedded log),
+#   FW_MONITOR_CIRCUIT_FILE (the circuit file the CLI replays it with), FW_MONITOR_EXPECT
+#   (the fault the default monitor log injects: an isolated event must name it first).
 # Exit 77 = skipped (no cross toolchain / no qemu / no CLI in this build).
 set -euo pipefail
 case_name="$1"
@@ -22,7 +25,16 @@ need_cli() {
   [ -n "${HSTMON_CLI:-}" ] && [ -x "$HSTMON_CLI" ] || { echo "skipped: hstmon CLI not built"; exit 77; }
   "$HSTMON_CLI" replay --json --no-progress "$FW_LOG" >"$out.cli.jsonl"
 }
-fw() { "$FW_SRC/scripts/firmware.sh" "$@" --build-dir "$FW_BUILD" --log "$FW_LOG"; }
+fw() { "$FW_SRC/scripts/firmware.sh" "$@" --build-dir "$FW_BUILD" --log "$FW_LOG" --monitor-log "$FW_MONITOR_LOG"; }
+# The circuit monitor's output must not be vacuous: a detection, and an isolation whose
+# best candidate is the injected fault (when the log is the default one, which says which).
+monitor_not_vacuous() {
+  grep -q '"event":"detected"' "$1" || { echo "no detected event in $1"; exit 1; }
+  if [ -n "${FW_MONITOR_EXPECT:-}" ]; then
+    grep -q "^{\"candidates\":\[{\"fault\":\"$FW_MONITOR_EXPECT\".*\"event\":\"isolated\"" "$1" ||
+      { echo "no isolated event naming $FW_MONITOR_EXPECT first in $1"; exit 1; }
+  fi
+}
 
 case "$case_name" in
   host_float_vs_cli)  # the portable loop in float (host) vs the double CLI
@@ -59,6 +71,24 @@ case "$case_name" in
     else
       echo "circuit engine: firmware and host float differ:"; diff "$out.qemu.txt" "$out.host.txt" | head -20; exit 1
     fi ;;
+  circuit_monitor_bitexact)  # a circuit's whole monitor: Cortex-M4F vs host float, every line (events, %a residuals)
+    need_cross
+    fw circuit_monitor --no-build | grep -v '"type":"circuit_monitor_footprint"' >"$out.qemu.txt"
+    "$FW_MONITOR_HOST" >"$out.host.txt"
+    monitor_not_vacuous "$out.host.txt"
+    if cmp -s "$out.qemu.txt" "$out.host.txt"; then
+      echo "bit-exact: $(grep -c '^trace' "$out.host.txt") rows, $(grep -c '"type":"event"' "$out.host.txt") events," \
+        "$(grep residual_digest "$out.host.txt")"
+    else
+      echo "circuit monitor: firmware and host float differ:"; diff "$out.qemu.txt" "$out.host.txt" | head -20; exit 1
+    fi ;;
+  circuit_monitor_vs_cli)    # the Cortex-M4F circuit monitor vs `hstmon replay --circuit --json` (double)
+    need_cross
+    [ -n "${HSTMON_CLI:-}" ] && [ -x "$HSTMON_CLI" ] || { echo "skipped: hstmon CLI not built"; exit 77; }
+    "$HSTMON_CLI" replay --circuit "$FW_MONITOR_CIRCUIT_FILE" "$FW_MONITOR_LOG" --json --no-progress >"$out.cli.jsonl"
+    fw circuit_monitor --no-build >"$out.fw.jsonl"
+    monitor_not_vacuous "$out.fw.jsonl"
+    "$FW_COMPARE" "$out.cli.jsonl" "$out.fw.jsonl" "${tol[@]}" --min-events 2 ;;
   footprint)          # budgets: flash, RAM, stack, instructions per tick, heap
     need_cross
     "$FW_SRC/scripts/footprint.sh" --build-dir "$FW_BUILD" --no-build ;;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <stdexcept>
 
+#include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -28,10 +29,7 @@ std::int8_t sign_of(double v) { return v > 0.0 ? std::int8_t{kQualPlus} : std::i
 
 }  // namespace
 
-double sensor_sigma(const host::CircuitSensor& s) {
-  const double span = std::isfinite(s.hi - s.lo) ? s.hi - s.lo : 100.0;
-  return s.noise > 0.0 ? s.noise : 0.01 * span;
-}
+double sensor_sigma(const host::CircuitSensor& s) { return circuit::sensor_sigma(s.noise, s.lo, s.hi); }
 
 bool moves_steady_state(const host::CircuitParam& p) {
   if (p.literal) return false;

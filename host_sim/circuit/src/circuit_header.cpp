@@ -6,6 +6,7 @@
 
 #include "hstmon/circuit/stiffness.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -192,6 +193,19 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kInputs[" + std::to_string(cap_in) + "] = " +
        list(n_in, [&](int i) { return num(c.values.inputs.v[i]); }, cap_in - n_in) + ";");
   names("kInputNames", n_in, cap_in, [&](std::size_t i) { return f.inputs[i].name; });
+  // SI per unit of the unit a column is read in when the log's header states none.
+  auto default_scale = [](host::CircuitQuantity q, const std::string& unit) {
+    const host::UnitResult u = host::parse_circuit_unit(q, unit);
+    return u.ok() ? u.conversion.factor : 1.0;
+  };
+  line("/// Log column of each input (matched without regard to case, as the host reader does).");
+  names("kInputColumns", n_in, cap_in, [&](std::size_t i) { return f.inputs[i].column; });
+  line("/// SI factor of each input column whose log header states no unit (the circuit file's unit).");
+  line("inline constexpr double kInputUnitScale[" + std::to_string(cap_in) + "] = " +
+       list(n_in, [&](int i) {
+         const auto& in = f.inputs[static_cast<std::size_t>(i)];
+         return num(default_scale(in.quantity, in.unit));
+       }, cap_in - n_in) + ";");
   line("/// Sensor noise standard deviation per channel [SI]; 0 where the file gives none.");
   line("inline constexpr double kNoiseSigma[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].noise); }) + ";");
@@ -201,6 +215,14 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kRangeHi[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].hi); }) + ";");
   names("kChannelNames", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].name; });
+  line("/// Log column of each channel (matched without regard to case).");
+  names("kChannelColumns", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].column; });
+  line("/// SI factor of each channel column whose log header states no unit (the circuit file's unit).");
+  line("inline constexpr double kChannelUnitScale[" + std::to_string(n_ch) + "] = " +
+       list(n_ch, [&](int i) {
+         const auto& sn = f.sensors[static_cast<std::size_t>(i)];
+         return num(default_scale(sn.quantity, sn.unit));
+       }) + ";");
   line("");
   line("}  // namespace hstmon::generated::" + o.name);
   return h;

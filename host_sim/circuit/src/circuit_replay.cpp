@@ -9,6 +9,7 @@
 
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/engine.hpp"
+#include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
@@ -33,24 +34,6 @@ std::string number(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", v);
   return b;
-}
-
-// True when every channel of m is measured with a noise σ > 0 and lies within 3σ of the
-// outputs at the steady state for inputs u.
-bool at_steady_within_noise(const LoadedCircuit& c, Model model, const Model::Inputs& u, const Obs::Measurement& m) {
-  const std::size_t channels = c.file.sensors.size();
-  if (channels == 0) return false;
-  model.set_inputs(u);
-  Model::State xs;
-  if (!model.steady_state(xs)) return false;
-  const Model::Output ys = model.outputs(xs);
-  for (std::size_t ch = 0; ch < channels; ++ch) {
-    const int i = static_cast<int>(ch);
-    const double sigma = c.file.sensors[ch].noise;
-    if ((m.valid & (1u << ch)) == 0 || !(sigma > 0.0)) return false;
-    if (!(std::fabs(m.y[i] - ys[i]) <= 3.0 * sigma)) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -151,17 +134,12 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     cfg.sensors.range_hi[i] = hi;
   }
   cfg.uncertainty = default_uncertainty(c.file);
-  // The matcher's magnitudes and direction are steady-state ones: it waits 3 slowest time
-  // constants of the circuit after detection (5 % of the transient left) and averages
-  // over one more — the thesis defaults (50 ms, 100 ms) where the circuit is faster.
+  // The matcher's magnitudes and direction are steady-state ones: its windows follow the
+  // slowest time constant (circuit::widen_matcher_windows, shared with the firmware).
   {
-    Model at_first = model;
-    at_first.set_inputs(inputs_at(0));
-    Model::State xs;
-    const double rate = at_first.steady_state(xs) ? at_first.slowest_rate(xs) : 0.0;
+    Model scratch = model;
+    const double rate = circuit::widen_matcher_windows(scratch, inputs_at(0), cfg.matcher);
     if (rate > 0.0) {
-      cfg.matcher.settle_time = std::max(cfg.matcher.settle_time, 3.0 / rate);
-      cfg.matcher.average_time = std::max(cfg.matcher.average_time, 1.0 / rate);
       res.notes.push_back("slowest time constant at the first row's inputs " + number(1.0 / rate) +
                           " s: the matcher settles for " + number(cfg.matcher.settle_time) + " s and averages " +
                           number(cfg.matcher.average_time) + " s");
@@ -197,7 +175,13 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   Status started = Status::kInvalidInputs;
   if (o.init == host::InitMode::kAuto) {
     started = mon->reset_measured(u0, m, &res.start);
-    if (started == Status::kOk && at_steady_within_noise(c, model, u0, m)) {
+    double noise[Model::kOutputs] = {};
+    for (std::size_t ch = 0; ch < channels && ch < static_cast<std::size_t>(Model::kOutputs); ++ch) {
+      noise[ch] = c.file.sensors[ch].noise;
+    }
+    Model scratch = model;
+    if (started == Status::kOk &&
+        circuit::at_steady_within_noise(scratch, u0, m.y, m.valid, noise, static_cast<int>(channels))) {
       // The readings' noise would otherwise be the initial error of a parallel model,
       // which a lightly damped circuit (a closed-loop HST) rings with for seconds.
       started = mon->reset_steady(u0);

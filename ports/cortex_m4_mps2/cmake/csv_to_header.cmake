@@ -28,6 +28,8 @@ string(STRIP "${body}" body)
 set(names t p_sup p_s p_bp kp p_mi p_mo p_pp w_m)
 string(REPLACE "," ";" cols "${header}")
 set(sig_list "")
+set(name_list "")
+set(unit_list "")
 set(scale_list "")
 set(ncols 0)
 foreach(col IN LISTS cols)
@@ -43,7 +45,22 @@ foreach(col IN LISTS cols)
   string(TOLOWER "${name}" name)
   list(FIND names "${name}" sig)
   if(sig EQUAL -1)
-    set(scale "1.0")  # column ignored by the replay (as the host reader ignores it)
+    # Not a thesis signal: a circuit replay may still map it by name (fw_circuit_monitor),
+    # so its SI factor comes from the units a circuit log uses; 0 = unit not stated or not
+    # known here (the circuit replay refuses such a column, naming it; the thesis replay
+    # ignores it, as the host reader does).
+    # (Factors as the host's unit tables compute them, written to round-trip: 1e-3/60.0 is
+    # 1.6666666666666667e-05.)
+    set(known_units Pa hPa kPa bar mbar MPa rad/s rpm 1/min m2 mm2 m3/s m^3/s L/min lpm L/s cm3/s
+      N*m Nm kN*m s ms - %)
+    set(known_scale 1.0 1e2 1e3 1e5 1e2 1e6 1.0 0.10471975511965977 0.10471975511965977 1.0 1e-6 1.0 1.0
+      1.6666666666666667e-05 1.6666666666666667e-05 1e-3 1e-6 1.0 1.0 1e3 1.0 1e-3 1.0 0.01)
+    list(FIND known_units "${unit}" u)
+    if(u EQUAL -1)
+      set(scale "0.0")
+    else()
+      list(GET known_scale ${u} scale)
+    endif()
   elseif(name STREQUAL "t")
     if(unit STREQUAL "" OR unit STREQUAL "s")
       set(scale "1.0")
@@ -75,12 +92,16 @@ foreach(col IN LISTS cols)
       message(FATAL_ERROR "csv_to_header: ${CSV}: pressure unit '${unit}' not supported here")
     endif()
   endif()
+  list(APPEND name_list "\"${name}\"")
+  list(APPEND unit_list "\"${unit}\"")
   list(APPEND sig_list "${sig}")
   list(APPEND scale_list "${scale}")
   math(EXPR ncols "${ncols} + 1")
 endforeach()
 list(JOIN sig_list ", " sig_text)
 list(JOIN scale_list ", " scale_text)
+list(JOIN name_list ", " name_text)
+list(JOIN unit_list ", " unit_text)
 
 # Rows: each line becomes {a, b, …},
 string(REGEX MATCHALL "\n" newlines "${body}")
@@ -100,7 +121,11 @@ inline constexpr int kCols = ${ncols};
 inline constexpr std::size_t kRows = ${nrows};
 /// LogSignal per column (-1: column not used).
 inline constexpr std::int8_t kSignal[kCols] = {${sig_text}};
-/// SI factor per column (value as written × factor = SI).
+/// Column names as in the header, lower case, without the unit.
+inline constexpr const char* const kColumn[kCols] = {${name_text}};
+/// Units as written in the header (\"\" where none).
+inline constexpr const char* const kUnit[kCols] = {${unit_text}};
+/// SI factor per column (value as written × factor = SI; 0 = unit not known here).
 inline constexpr double kScale[kCols] = {${scale_text}};
 /// Row-major, values as written in the log.
 inline constexpr double kData[kRows][kCols] = {

@@ -2,6 +2,8 @@
 // host; keep it free of anything either side lacks (no <cstdio>, no heap, no exceptions).
 #include "fw_replay.hpp"
 
+#include "fw_json.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -21,67 +23,20 @@ hstmon_monitor_storage g_storage;
 /// Candidates printed per event: as many as the host's events carry (MatchEvent<double>).
 constexpr int kPrintCandidates = 8;
 
-/// One JSON line at a time, assembled in a fixed buffer and handed to the sink.
-class Line {
- public:
-  explicit Line(Sink out) noexcept : out_(out) {}
-  Line& raw(const char* s) noexcept {
-    while (*s != '\0' && n_ + 1 < sizeof(buf_)) buf_[n_++] = *s++;
-    buf_[n_] = '\0';
-    return *this;
-  }
-  Line& key(const char* k) noexcept {
-    raw(first_ ? "\"" : ",\"").raw(k).raw("\":");
-    first_ = false;
-    return *this;
-  }
-  Line& str(const char* k, const char* v) noexcept { return key(k).raw("\"").raw(v).raw("\""); }
-  Line& num(const char* k, double v) noexcept {
-    char b[32];
-    format_double(b, v);
-    return key(k).raw(b);
-  }
-  Line& uint(const char* k, std::uint64_t v) noexcept {
-    char b[24];
-    format_uint(b, v);
-    return key(k).raw(b);
-  }
-  Line& boolean(const char* k, bool v) noexcept { return key(k).raw(v ? "true" : "false"); }
-  /// Closes the object and hands the line to the sink.
-  void end() noexcept { raw("}\n").flush(); }
-  /// Hands the buffer to the sink as it is (for non-JSON lines).
-  void flush() noexcept {
-    out_(buf_);
-    n_ = 0;
-    first_ = true;
-    buf_[0] = '\0';
-  }
-  Line& begin() noexcept { return raw("{"); }
-  /// The next key is the first of a nested object (no comma before it).
-  Line& first_key() noexcept {
-    first_ = true;
-    return *this;
-  }
+constexpr const char* kChannelName[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
+constexpr const char* kInputNote[4] = {"p_sup (Psupl)", "p_s (Ps)", "p_bp (Pbp)", "kp"};
 
- private:
-  Sink out_;
-  char buf_[640] = {};  // an event line with 8 candidates is ≈ 450 characters
-  std::size_t n_ = 0;
-  bool first_ = true;
-};
+// FNV-1a 64 over bytes: a cheap, exact fingerprint of every residual of the replay.
+void fnv1a(std::uint64_t& h, const void* p, std::size_t n) noexcept {
+  const auto* b = static_cast<const unsigned char*>(p);
+  for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
+}
 
-/// Residual statistics of one channel; the fields and formulas of host::ChannelStats.
-struct Stats {
-  std::uint64_t n = 0, n_diff = 0;
-  double sum = 0, sumsq = 0, max_abs = 0, max_signed = 0, t_max = 0, sumsq_diff = 0, last = 0;
-  double mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
-  double rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
-  double noise() const noexcept { return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0; }
-};
+}  // namespace
 
-/// Median of up to 63 strided sample intervals, rounded to 1 ns, capped at 10 ms: the host
-/// rule (replay.cpp samples up to 4096 intervals) on a bounded sample, identical on the
-/// uniformly sampled logs hstmon-sim writes.
+// Median of up to 63 strided sample intervals, rounded to 1 ns, capped at 10 ms: the host
+// rule (replay.cpp samples up to 4096 intervals) on a bounded sample, identical on the
+// uniformly sampled logs hstmon-sim writes.
 double log_tick(const LogView& log, int t_col) noexcept {
   if (log.rows < 2) return 1e-3;
   constexpr std::size_t kMax = 63;
@@ -102,17 +57,6 @@ double log_tick(const LogView& log, int t_col) noexcept {
   const double r = std::round(med * 1e9) * 1e-9;
   return r < 10e-3 ? r : 10e-3;
 }
-
-constexpr const char* kChannelName[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
-constexpr const char* kInputNote[4] = {"p_sup (Psupl)", "p_s (Ps)", "p_bp (Pbp)", "kp"};
-
-// FNV-1a 64 over bytes: a cheap, exact fingerprint of every residual of the replay.
-void fnv1a(std::uint64_t& h, const void* p, std::size_t n) noexcept {
-  const auto* b = static_cast<const unsigned char*>(p);
-  for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
-}
-
-}  // namespace
 
 int format_uint(char* buf, std::uint64_t v) noexcept {
   char tmp[24];
@@ -325,21 +269,7 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
       fnv1a(digest, &flags, sizeof flags);
       for (int c = 0; c < 4; ++c) {
         if (!(rv & (1u << c))) continue;
-        Stats& sc = st[c];
-        const double rc = static_cast<double>(r[c]);
-        if (sc.n > 0) {
-          sc.sumsq_diff += (rc - sc.last) * (rc - sc.last);
-          ++sc.n_diff;
-        }
-        sc.last = rc;
-        ++sc.n;
-        sc.sum += rc;
-        sc.sumsq += rc * rc;
-        if (std::fabs(rc) > sc.max_abs) {
-          sc.max_abs = std::fabs(rc);
-          sc.max_signed = rc;
-          sc.t_max = at(k, kSigT);
-        }
+        st[c].add(static_cast<double>(r[c]), at(k, kSigT));
       }
       if (opt.trace) {
         char b[40];
@@ -361,10 +291,8 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
   line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
       .num("t_last", t_last).num("tick_s", tick).uint("ticks", rep.ticks).str("start", start == HSTMON_START_MEASURED ? "measured" : (start == HSTMON_START_STEADY ? "steady" : "rest"));
   line.key("health").raw("[");
-  static const char* const kHealthNames[] = {"input_non_finite", "measurement_non_finite", "substeps_clipped",
-                                             "state_non_finite", "state_out_of_bounds", "algebraic_diverged"};
   bool first = true;
-  for (int b = 0; b < 6; ++b) {
+  for (int b = 0; b < kHealthNameCount; ++b) {
     if (health & (1u << b)) {
       line.raw(first ? "\"" : ",\"").raw(kHealthNames[b]).raw("\"");
       first = false;

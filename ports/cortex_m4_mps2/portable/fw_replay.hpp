@@ -61,6 +61,11 @@ struct ReplayOptions {
 /// @return the observer's HealthFlag bits OR-ed over the replay (~0 if the monitor could not be created)
 std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt = {}) noexcept;
 
+/// The log's sampling interval as the host replay takes it for its tick [s]: the median
+/// of up to 63 strided intervals of column t_col, rounded to 1 ns, capped at 10 ms (1 ms
+/// for fewer than 2 rows). Identical to the host's on uniformly sampled logs.
+double log_tick(const LogView& log, int t_col) noexcept;
+
 /// Text helpers shared with the port's mains (bounded; never allocate).
 /// Formats v with 12 significant digits ("-4.15101234567e+04"); "null" if not finite.
 /// @return characters written (buf always NUL-terminated; needs ≥ 24 bytes)

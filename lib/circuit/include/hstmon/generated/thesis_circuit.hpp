@@ -64,11 +64,19 @@ inline constexpr double kUncertainty[15] = {0.02, 0.02, 0.02, 0.02, 0.02, 0.02, 
 /// Nominal inputs by index [SI] (unused capacity 0).
 inline constexpr double kInputs[4] = {3500000.0, 0.0, 1000000.0, 4.4099999999999998e-08};
 inline constexpr const char* const kInputNames[4] = {"Psupl", "Ps", "Pbp", "kp"};
+/// Log column of each input (matched without regard to case, as the host reader does).
+inline constexpr const char* const kInputColumns[4] = {"p_sup", "p_s", "p_bp", "kp"};
+/// SI factor of each input column whose log header states no unit (the circuit file's unit).
+inline constexpr double kInputUnitScale[4] = {1.0, 1.0, 1.0, 1.0};
 /// Sensor noise standard deviation per channel [SI]; 0 where the file gives none.
 inline constexpr double kNoiseSigma[4] = {5000.0, 5000.0, 5000.0, 0.052359877559829883};
 /// Transmitter range per channel [SI]; ±kInf where the file gives none.
 inline constexpr double kRangeLo[4] = {0.0, 0.0, 0.0, -kInf};
 inline constexpr double kRangeHi[4] = {40000000.0, 40000000.0, 40000000.0, kInf};
 inline constexpr const char* const kChannelNames[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
+/// Log column of each channel (matched without regard to case).
+inline constexpr const char* const kChannelColumns[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
+/// SI factor of each channel column whose log header states no unit (the circuit file's unit).
+inline constexpr double kChannelUnitScale[4] = {100000.0, 100000.0, 100000.0, 0.10471975511965977};
 
 }  // namespace hstmon::generated::thesis_circuit

@@ -1,0 +1,73 @@
+#pragma once
+/// @file monitor_setup.hpp
+/// The settings a circuit's monitor derives from the circuit and the first log row, in
+/// one place for the host replay (`hstmon replay --circuit`) and the firmware's
+/// (ports/cortex_m4_mps2/portable/fw_circuit_monitor.cpp), so the two configure the same
+/// monitor: the noise σ of a channel, the matcher's settle and average windows from the
+/// slowest time constant, and the choice to start at the steady state. Templates on the
+/// model (CircuitModel<T, Cap>); no heap, no exceptions.
+
+#include <cmath>
+
+namespace hstmon::circuit {
+
+/// The noise σ the monitor assumes for a sensor [channel SI unit]: its stated noise, else
+/// 1 % of its range (of 100 when the range is unbounded).
+/// @param noise  stated noise standard deviation [SI], ≤ 0 or NaN = not stated
+/// @param lo, hi transmitter range [SI], ±inf when not stated
+template <typename T>
+T sensor_sigma(T noise, T lo, T hi) noexcept {
+  const T span = std::isfinite(hi - lo) ? hi - lo : T(100);
+  return noise > T(0) ? noise : T(0.01) * span;
+}
+
+/// Widens the matcher's windows to the circuit's slowest time constant at the steady
+/// state for inputs u: it settles 3 time constants after a detection (5 % of the
+/// transient left) and averages over one more; where the circuit is faster, the given
+/// windows (the thesis defaults, 50 ms and 100 ms) stay. Magnitudes and directions in the
+/// fault table are steady-state ones, hence the wait.
+/// @param model   the circuit's model; left with inputs u (a scratch copy on the host; firmware
+///                passes a static one, so no model is copied onto its stack)
+/// @param matcher matcher configuration with settle_time and average_time [s], changed in place
+/// @return the slowest rate [1/s], 0 when there is no steady state at u (windows unchanged)
+template <class Model, class MatcherConfig>
+typename Model::Scalar widen_matcher_windows(Model& model, const typename Model::Inputs& u,
+                                             MatcherConfig& matcher) noexcept {
+  using T = typename Model::Scalar;
+  model.set_inputs(u);
+  typename Model::State xs;
+  const T rate = model.steady_state(xs) ? model.slowest_rate(xs) : T(0);
+  if (rate > T(0)) {
+    matcher.settle_time = std::fmax(matcher.settle_time, T(3) / rate);
+    matcher.average_time = std::fmax(matcher.average_time, T(1) / rate);
+  }
+  return rate > T(0) ? rate : T(0);
+}
+
+/// True when each of the first `channels` channels is measured (bit in valid) with a
+/// stated noise σ > 0 and reads within 3σ of the model's output at the steady state for
+/// inputs u: then a replay starts at that steady state, since the readings' noise would
+/// otherwise be the initial error of a parallel model (a lightly damped circuit rings
+/// with it for seconds).
+/// @param model  the circuit's model; left with inputs u (see widen_matcher_windows)
+/// @param noise  stated noise σ per channel [channel SI unit]
+/// @param y      readings per channel [channel SI unit]
+/// @param valid  bit ch set: channel ch was read
+template <class Model>
+bool at_steady_within_noise(Model& model, const typename Model::Inputs& u, const typename Model::Output& y,
+                            unsigned valid, const typename Model::Scalar* noise, int channels) noexcept {
+  using T = typename Model::Scalar;
+  if (channels <= 0) return false;
+  model.set_inputs(u);
+  typename Model::State xs;
+  if (!model.steady_state(xs)) return false;
+  const typename Model::Output ys = model.outputs(xs);
+  for (int ch = 0; ch < channels; ++ch) {
+    const T sigma = noise[ch];
+    if ((valid & (1u << ch)) == 0 || !(sigma > T(0))) return false;
+    if (!(std::fabs(y[ch] - ys[ch]) <= T(3) * sigma)) return false;
+  }
+  return true;
+}
+
+}  // namespace hstmon::circuit

@@ -1,0 +1,95 @@
+#pragma once
+/// @file fw_json.hpp
+/// Pieces of the firmware replays' output, shared by fw_replay.cpp (the thesis monitor)
+/// and fw_circuit_monitor.cpp (a circuit's): a bounded JSON line builder and the
+/// per-channel residual statistics of the host replay. Portable, no heap, no I/O.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "fw_replay.hpp"
+
+namespace hstmon::fw {
+
+/// Names of the observer's HealthFlag bits 0 … 5, as host::health_names prints them.
+inline constexpr const char* const kHealthNames[] = {"input_non_finite",  "measurement_non_finite",
+                                                     "substeps_clipped",  "state_non_finite",
+                                                     "state_out_of_bounds", "algebraic_diverged"};
+inline constexpr int kHealthNameCount = static_cast<int>(sizeof kHealthNames / sizeof kHealthNames[0]);
+
+/// One JSON line at a time, assembled in a fixed buffer and handed to the sink.
+class Line {
+ public:
+  explicit Line(Sink out) noexcept : out_(out) {}
+  Line& raw(const char* s) noexcept {
+    while (*s != '\0' && n_ + 1 < sizeof(buf_)) buf_[n_++] = *s++;
+    buf_[n_] = '\0';
+    return *this;
+  }
+  Line& key(const char* k) noexcept {
+    raw(first_ ? "\"" : ",\"").raw(k).raw("\":");
+    first_ = false;
+    return *this;
+  }
+  Line& str(const char* k, const char* v) noexcept { return key(k).raw("\"").raw(v).raw("\""); }
+  Line& num(const char* k, double v) noexcept {
+    char b[32];
+    format_double(b, v);
+    return key(k).raw(b);
+  }
+  Line& uint(const char* k, std::uint64_t v) noexcept {
+    char b[24];
+    format_uint(b, v);
+    return key(k).raw(b);
+  }
+  Line& boolean(const char* k, bool v) noexcept { return key(k).raw(v ? "true" : "false"); }
+  /// Closes the object and hands the line to the sink.
+  void end() noexcept { raw("}\n").flush(); }
+  /// Hands the buffer to the sink as it is (for non-JSON lines).
+  void flush() noexcept {
+    out_(buf_);
+    n_ = 0;
+    first_ = true;
+    buf_[0] = '\0';
+  }
+  Line& begin() noexcept { return raw("{"); }
+  /// The next key is the first of a nested object (no comma before it).
+  Line& first_key() noexcept {
+    first_ = true;
+    return *this;
+  }
+
+ private:
+  Sink out_;
+  char buf_[640] = {};  // an event line with 8 candidates is ≈ 450 characters
+  std::size_t n_ = 0;
+  bool first_ = true;
+};
+
+/// Residual statistics of one channel; the fields and formulas of host::ChannelStats.
+struct Stats {
+  std::uint64_t n = 0, n_diff = 0;
+  double sum = 0, sumsq = 0, max_abs = 0, max_signed = 0, t_max = 0, sumsq_diff = 0, last = 0;
+  /// Counts residual r [SI] of the row at log time t [s].
+  void add(double r, double t) noexcept {
+    if (n > 0) {
+      sumsq_diff += (r - last) * (r - last);
+      ++n_diff;
+    }
+    last = r;
+    ++n;
+    sum += r;
+    sumsq += r * r;
+    if (std::fabs(r) > max_abs) {
+      max_abs = std::fabs(r);
+      max_signed = r;
+      t_max = t;
+    }
+  }
+  double mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
+  double rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
+  double noise() const noexcept { return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0; }
+};
+
+}  // namespace hstmon::fw
