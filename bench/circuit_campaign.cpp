@@ -9,13 +9,14 @@
 //
 // Conditions: start at the steady state or from rest (inputs on at the first sample), at
 // 1 kHz and 100 Hz. Every run has a machine 2 % off the file's values (each parameter the
-// monitor treats as uncertain, uniform ±2 %, new per run) and load steps: every 2 s one of
+// monitor treats as uncertain, uniform ±2 %, new per run) and load steps: every 2 s (6 τ
+// where longer: a steady-state signature needs 4 τ to be read) one of
 // the logged inputs with a non-zero nominal value moves to nominal × U[0.8, 1.25]
 // (fractions kept within ±1). The sensors are the circuit file's (white noise, range
 // clipping; no lag, no ADC: the circuit simulator has none yet).
 //
-// Faults (5 s runs, fault at 2.5 s, after the start-up hold-off of every shipped circuit):
-// every row of the circuit's fault table —
+// Faults (fault at 2.5 s or 3 τ, runs 2.5 s or 6 τ longer, τ the circuit's slowest time
+// constant at its nominal inputs): every row of the circuit's fault table —
 //   <param>±: the machine's parameter × (1 ± M) from t_f (M = 0.3 by default);
 //   <input>±: the true input × (1 ± M) from t_f, the log keeps the setting;
 //   sensor_<ch>: a bias of 5 % of the range (or 20 σ without a range) from t_f.
@@ -23,7 +24,7 @@
 //
 // Scored: a `detected` before t_f (fault runs) or anywhere (nominal) is a false alarm;
 // a fault run is detected when a `detected` comes at or after t_f; "in set" = the truth
-// is among the candidates of the last decision (isolated / ambiguous / unexplained) after
+// is among the candidates of the last event (detected / isolated / ambiguous) with candidates after
 // t_f — the rule of ../shared/validation/score_monitor.py.
 #include <fmt/format.h>
 
@@ -63,9 +64,30 @@ const std::vector<Condition> kConditions = {
     {"steady 1 kHz", false, 1000.0}, {"rest 1 kHz", true, 1000.0}, {"steady 100 Hz", false, 100.0},
     {"rest 100 Hz", true, 100.0}};
 
-constexpr double kTf = 2.5;         // fault time [s]
-constexpr double kRun = 5.0;        // fault run length [s]
 constexpr double kSegment = 100.0;  // nominal segment [s]
+
+// Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
+// longer (a start from rest has settled); the run 2.5 s beyond, or 6 τ where longer
+// (detection, then the matcher's settle of 3 τ and window of τ, as replay_circuit sets them).
+struct Timing {
+  double t_fault = 2.5, run = 5.0, tau = 0.0;
+  double load_period = 2.0;  // [s] between load steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
+};
+
+Timing timing(const LoadedCircuit& c) {
+  Timing tm;
+  const hstmon::host::HostCircuitModel m(c.file.circuit, c.values.params, c.values.inputs);
+  hstmon::host::HostCircuitModel::State xs;
+  const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
+  if (rate > 0.0) {
+    tm.tau = 1.0 / rate;
+    tm.t_fault = std::max(2.5, 3.0 * tm.tau);
+    tm.run = tm.t_fault + std::max(2.5, 6.0 * tm.tau);
+    tm.load_period = std::max(2.0, 6.0 * tm.tau);
+  }
+  return tm;
+}
+Timing g_timing;
 
 // What one campaign run injects.
 struct Fault {
@@ -79,9 +101,9 @@ struct RunResult {
   int alarms = 0;           // detected events in a nominal run
   bool detected = false;    // detected at or after t_f
   double delay = NAN;       // [s]
-  bool in_set = false;      // truth among the last decision's candidates
-  bool best = false;        // truth the last decision's best
-  std::string last;         // the last decision, for --verbose
+  bool in_set = false;      // truth among the last scored event's candidates
+  bool best = false;        // truth that event's best
+  std::string last;         // that event, for --verbose
   std::string error;
 };
 
@@ -95,7 +117,7 @@ LoadedCircuit machine(const LoadedCircuit& c, std::mt19937_64& rng) {
   return m;
 }
 
-// Load steps every 2 s from 1 s: one input with a non-zero nominal value, nominal × U[0.8, 1.25].
+// Load steps every load period from 1 s: one input with a non-zero nominal value, nominal × U[0.8, 1.25].
 std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::mt19937_64& rng) {
   std::vector<int> movable;
   for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
@@ -105,7 +127,7 @@ std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::
   if (movable.empty()) return steps;
   std::uniform_int_distribution<std::size_t> pick(0, movable.size() - 1);
   std::uniform_real_distribution<double> level(0.8, 1.25);
-  for (double t = 1.0; t < duration; t += 2.0) {
+  for (double t = 1.0; t < duration; t += g_timing.load_period) {
     InputStep s;
     s.t = t;
     s.input = movable[pick(rng)];
@@ -121,9 +143,10 @@ double sensor_bias(const hstmon::host::CircuitSensor& s) {
   return 20.0 * hstmon::circuit_tools::sensor_sigma(s);
 }
 
-bool is_decision(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "unexplained"; }
+// score_monitor.py's events: the last of these with candidates is the answer.
+bool is_scored(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "detected"; }
 
-// --dump: the folder where the log of every fault run that misses is written.
+// --dump: the folder where the log of every run that misses, or nominal run that alarms, is written.
 std::string g_dump_dir;
 
 RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f, double duration, std::uint64_t seed) {
@@ -139,7 +162,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   const bool faulted = !f.name.empty();
   if (f.param >= 0) {
     InputStep s;
-    s.t = kTf;
+    s.t = g_timing.t_fault;
     s.param = f.param;
     s.factor = f.factor;
     so.steps.push_back(s);
@@ -149,13 +172,13 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
     // a step at t_f holding the setting then in force.
     double setting = c.values.inputs.v[f.input];
     for (const InputStep& s : so.steps) {
-      if (s.input == f.input && s.t <= kTf) setting = s.value;
+      if (s.input == f.input && s.t <= g_timing.t_fault) setting = s.value;
     }
     for (InputStep& s : so.steps) {
-      if (s.input == f.input && s.t > kTf) s.value *= f.factor;
+      if (s.input == f.input && s.t > g_timing.t_fault) s.value *= f.factor;
     }
     InputStep s;
-    s.t = kTf;
+    s.t = g_timing.t_fault;
     s.input = f.input;
     s.value = setting * f.factor;
     so.steps.push_back(s);
@@ -169,7 +192,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
     return r;
   }
   for (std::size_t k = 0; k < log.rows(); ++k) {
-    if (log.t[k] < kTf - 1e-12) continue;
+    if (log.t[k] < g_timing.t_fault - 1e-12) continue;
     if (f.input >= 0 && !log.inputs[f.input].empty()) log.inputs[f.input][k] /= f.factor;  // the setting
     if (f.channel >= 0 && !log.sensors[f.channel].empty()) log.sensors[f.channel][k] += sensor_bias(c.file.sensors[f.channel]);
   }
@@ -178,15 +201,15 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   const hstmon::host::ReplayEvent* last = nullptr;
   for (const auto& e : res.events) {
     if (e.event == "detected") {
-      if (!faulted || e.t < kTf) {
+      if (!faulted || e.t < g_timing.t_fault) {
         r.early = true;
         ++r.alarms;
       } else if (!r.detected) {
         r.detected = true;
-        r.delay = e.t - kTf;
+        r.delay = e.t - g_timing.t_fault;
       }
     }
-    if (faulted && e.t >= kTf && is_decision(e.event)) last = &e;
+    if (faulted && e.t >= g_timing.t_fault && is_scored(e.event) && !e.candidates.empty()) last = &e;
   }
   if (last != nullptr) {
     r.last = fmt::format("{} at {:.3f} s:", last->event, last->t);
@@ -199,9 +222,10 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
       }
     }
   }
-  if (!g_dump_dir.empty() && faulted && (!r.detected || !r.in_set || r.early)) {
-    std::ofstream(fmt::format("{}/{}_{}.csv", g_dump_dir, f.name, seed))
-        << hstmon::circuit_tools::circuit_log_text(c.file, log, {fmt::format("{} at {} s, {}, seed {}", f.name, kTf, cond.name, seed)});
+  if (!g_dump_dir.empty() && (faulted ? !r.detected || !r.in_set || r.early : r.alarms > 0)) {
+    const std::string what = faulted ? fmt::format("{} at {} s", f.name, g_timing.t_fault) : "nominal";
+    std::ofstream(fmt::format("{}/{}_{}.csv", g_dump_dir, faulted ? f.name : "nominal", seed))
+        << hstmon::circuit_tools::circuit_log_text(c.file, log, {fmt::format("{}, {}, seed {}", what, cond.name, seed)});
   }
   return r;
 }
@@ -252,7 +276,7 @@ int main(int argc, char** argv) {
   app.add_option("--magnitude", magnitude, "parameter / input fault size M: factor 1 ± M")->check(CLI::Range(0.01, 0.9));
   app.add_option("--jobs", jobs, "threads")->check(CLI::PositiveNumber);
   app.add_flag("--json", json, "one JSON object with the figures");
-  app.add_option("--dump", g_dump_dir, "write the log of every fault run that misses into this existing folder");
+  app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
   app.add_flag("--verbose", verbose, "print every fault run whose truth is not in the reported set");
   CLI11_PARSE(app, argc, argv);
 
@@ -270,6 +294,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  g_timing = timing(c);
   std::vector<Job> work;
   const int n_cond = static_cast<int>(kConditions.size());
   for (int ci = 0; ci < n_cond; ++ci) {
@@ -289,7 +314,7 @@ int main(int argc, char** argv) {
         const Job& w = work[i];
         const Fault nominal;
         const Fault& f = w.fault >= 0 ? faults[static_cast<std::size_t>(w.fault)] : nominal;
-        results[i] = run_one(c, kConditions[static_cast<std::size_t>(w.condition)], f, w.fault >= 0 ? kRun : kSegment, w.seed);
+        results[i] = run_one(c, kConditions[static_cast<std::size_t>(w.condition)], f, w.fault >= 0 ? g_timing.run : kSegment, w.seed);
       }
     });
   }
@@ -326,6 +351,7 @@ int main(int argc, char** argv) {
       t->best += r.detected && r.best ? 1 : 0;
       if (r.detected) t->delay_sum += r.delay;
     }
+    if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
     if (verbose && r.error.empty() && (!r.detected || !r.in_set || r.early))
       fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
                  kConditions[static_cast<std::size_t>(w.condition)].name, r.detected, r.early, r.last.empty() ? "no decision" : r.last);
@@ -341,6 +367,8 @@ int main(int argc, char** argv) {
   }
   fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, circuit,
              faults.size(), 100.0 * magnitude, seeds, kConditions.size());
+  fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
+             g_timing.t_fault, g_timing.run, g_timing.load_period);
   if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
   fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best", "delay ms", "early");
   for (const auto& [name, t] : by_fault) {

@@ -151,6 +151,14 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     cfg.sensors.range_hi[i] = hi;
   }
   cfg.uncertainty = default_uncertainty(c.file);
+  // A circuit file says nothing of its damping: allow the model's whole transient after
+  // an input step as model error (ModelMonitor::Config::model_transient), which decays
+  // with the circuit's slowest time constant — milliseconds for a PRV-loaded rig, a second
+  // for a lightly damped closed circuit ringing at a few hertz.
+  cfg.model_transient = 1.0;
+  // Likewise its signatures: a channel that moved no further than the model bound after
+  // a fault is read as unchanged (FaultMatcher::Config::k_zero_bound).
+  cfg.matcher.k_zero_bound = 1.0;
   // The matcher's magnitudes and direction are steady-state ones: it waits 3 slowest time
   // constants of the circuit after detection (5 % of the transient left) and averages
   // over one more — the thesis defaults (50 ms, 100 ms) where the circuit is faster.
