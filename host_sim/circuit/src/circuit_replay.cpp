@@ -134,6 +134,9 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     cfg.sensors.range_hi[i] = hi;
   }
   cfg.uncertainty = default_uncertainty(c.file);
+  // What a circuit file does not say (its damping, how far a fault moves the model error)
+  // the monitor allows for (circuit::set_circuit_allowances, shared with the firmware).
+  circuit::set_circuit_allowances(cfg);
   // The matcher's magnitudes and direction are steady-state ones: its windows follow the
   // slowest time constant (circuit::widen_matcher_windows, shared with the firmware).
   {

@@ -180,6 +180,12 @@ class FaultMatcher {
     T average_time = T(0.1);
     T k_zero = T(3);      ///< dead band of the magnitude symbol on the baseline-relative mean [σ], ≥ 0
     T k_expect = T(6);    ///< predicted deviation above which an observed 0 contradicts ± [σ], ≥ 0
+    /// Share of the evaluator's model bound added to the magnitude's dead band [-], ≥ 0;
+    /// 0 = k_zero·σ alone. A fault that moves the machine's operating point (an input
+    /// fault, a displacement) also moves the model error that the baseline removed, by up
+    /// to the bound: 1 reads a channel that moved no further than that as unchanged, and
+    /// lets a row predict that much more on a channel read as unchanged (k_expect).
+    T k_zero_bound = T(0);
     T tie_margin = kDefaultTieMargin;  ///< angle lead of the best candidate needed to isolate [rad], ≥ 0
     T clear_hold = T(0.5);   ///< quiet time that ends an episode [s], ≥ 0
     /// Samples of the running mean that tracks each residual's pre-fault baseline while
@@ -195,7 +201,7 @@ class FaultMatcher {
   /// @return       kOk, or kInvalidConfig (matcher unchanged)
   Status configure(const Signature* table, int count, const Config& c) noexcept {
     const bool ok = table_ok(table, count) && nonneg(c.order_window) && nonneg(c.settle_time) &&
-                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) &&
+                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) && nonneg(c.k_zero_bound) &&
                     nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
     if (!ok) return Status::kInvalidConfig;
     cfg_ = c;
@@ -390,6 +396,7 @@ class FaultMatcher {
       sum_[i] = T(0);
       n_[i] = 0;
       v_[i] = T(0);
+      widen_[i] = T(0);
     }
     v_norm_ = T(0);
     n_alive_ = 0;
@@ -469,7 +476,8 @@ class FaultMatcher {
       if (n_[i] == 0 || ((faulty_ >> i) & 1u) != 0) continue;
       // Saturated: the window mean is below the truth (clipped samples, and the evaluator
       // skips those below the model), so only '+' is known.
-      const std::int8_t q = qual_sign(d[i], cfg_.k_zero);
+      widen_[i] = cfg_.k_zero_bound > T(0) ? cfg_.k_zero_bound * ev.bound(i) / ev.sigma(i) : T(0);
+      const std::int8_t q = qual_sign(d[i], cfg_.k_zero + widen_[i]);
       if (((masked_ >> i) & 1u) == 0 || q == kQualPlus) sym_[i].magnitude = q;
     }
   }
@@ -494,7 +502,7 @@ class FaultMatcher {
         // Observed 0 where ± is predicted: a contradiction only if the row, scaled to
         // the observed deviation, predicts a visible change on this channel.
         const bool soft = sym_[i].magnitude == kQualZero && dn > T(0) &&
-                          std::fabs(static_cast<T>(f.direction[i])) / dn * v_norm_ <= cfg_.k_expect;
+                          std::fabs(static_cast<T>(f.direction[i])) / dn * v_norm_ <= cfg_.k_expect + widen_[i];
         if (!soft) return false;
       }
     }
@@ -647,6 +655,7 @@ class FaultMatcher {
   T sum_[kN_] = {};    ///< window sum [channel unit]
   std::uint32_t n_[kN_] = {};
   T v_[kN_] = {};      ///< normalised deviation [-]
+  T widen_[kN_] = {};  ///< Config::k_zero_bound × model bound / σ: the window's widening of k_zero and k_expect [σ]
   T v_norm_ = T(0);
   T t_det_ = T(0);           ///< [s]
   T t_active_ = T(0);        ///< last time a channel was in alarm or flagged [s]

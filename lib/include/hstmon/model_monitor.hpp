@@ -93,6 +93,16 @@ class ModelMonitor {
     /// Upper limit of the start-up hold-off [s], > 0 (only reached when the model has
     /// no stable operating point at the logged inputs).
     T startup_hold_max = T(2);
+    /// Share of the model's own transient that the residual may reach [-], ≥ 0; 0 = off.
+    /// The transient is the model's distance from its steady state at the current inputs,
+    /// held as an envelope that decays with the model's slowest time constant. The
+    /// parameter uncertainty moves a lightly damped mode's frequency by about as much, so
+    /// after an input step model and machine ring out of phase by δ·ω·t of the envelope;
+    /// 1 covers that up to a radian. It matters where the slowest mode rings long against
+    /// the sample period (a closed-circuit HST: line volumes against the motor's inertia);
+    /// where transients die within milliseconds (the thesis rig) 0 loses nothing and
+    /// costs no steady solve per input change.
+    T model_transient = T(0);
   };
 
   ModelMonitor() noexcept = default;
@@ -112,7 +122,7 @@ class ModelMonitor {
   Status configure(const Model& model, const Config& c, const Signature* table, int count) noexcept {
     if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
           std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
-          c.startup_hold_max > T(0))) {
+          c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0))) {
       return Status::kInvalidConfig;
     }
     Status s = obs_.configure(model, c.observer);
@@ -124,6 +134,7 @@ class ModelMonitor {
     transducer_tau_ = c.transducer_response;
     transient_factor_ = c.transient_factor;
     hold_max_ = c.startup_hold_max;
+    model_transient_ = c.model_transient;
     set_decay();
     reset_rest_of_chain();
     return Status::kOk;
@@ -198,7 +209,9 @@ class ModelMonitor {
   /// The transient allowance of channel i at the last sample [channel unit]: the model's
   /// own recent output variation times transient_factor, plus half the learned ADC step
   /// (see the file comment).
-  T transient_allowance(int i) const noexcept { return transient_factor_ * peak_[i] + T(0.5) * sensors_.step(i); }
+  T transient_allowance(int i) const noexcept {
+    return transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
+  }
   /// Start-up hold-off after the last reset [s]: no detection for this long after the
   /// first step (see plan_startup).
   T startup_hold() const noexcept { return hold_; }
@@ -216,7 +229,9 @@ class ModelMonitor {
       var_[i] = T(0);
       gap_[i] = T(0);
       peak_[i] = T(0);
+      env_[i] = T(0);
     }
+    steady_ok_ = false;
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
     settled_from_ = -std::numeric_limits<T>::infinity();
@@ -246,8 +261,19 @@ class ModelMonitor {
         const T h = (tau_m_ + transducer_tau_) * std::log(d);
         hold = h < hold_max_ ? h : hold_max_;
       }
+      if (model_transient_ > T(0)) set_steady_outputs(xs);
     }
     hold_ = hold;
+    env_decay_ = tau_m_ > T(0) ? std::exp(-obs_.config().tick / tau_m_) : T(0);
+  }
+
+  // The model transient's reference: the outputs at the steady state xs of the current
+  // inputs. Out of line, as refresh_steady_outputs: a monitor without the model transient
+  // (the thesis firmware's) keeps its reset and bound frames as they were.
+  HSTMON_NOINLINE void set_steady_outputs(const typename Model::State& xs) noexcept {
+    const auto y = obs_.model().outputs(xs);
+    for (int i = 0; i < kChannels; ++i) y_steady_[i] = y[i];
+    steady_ok_ = true;
   }
 
   // The transient allowance's per-tick decay e^(−h/τ_s) (0 for perfect sensors).
@@ -295,6 +321,13 @@ class ModelMonitor {
       peak_[i] = v > g ? v : g;
       gap_[i] = sampled ? T(0) : g;
     }
+    if (model_transient_ > T(0) && steady_ok_) {
+      for (int i = 0; i < kChannels; ++i) {
+        const T e = env_[i] * env_decay_;
+        const T d = std::fabs(y[i] - y_steady_[i]);
+        env_[i] = d > e ? d : e;
+      }
+    }
   }
 
   // On an input change the logged change happened somewhere within the last sample
@@ -341,14 +374,22 @@ class ModelMonitor {
     return matcher_.update(t, ev_, sensor_mask, saturated, t >= settled_from_);
   }
 
-  // Keeps the last good bound when the changed operating point has no steady state.
+  // Keeps the last good bound when the changed operating point has no steady state, and
+  // the last steady outputs for the model transient's envelope likewise.
   void update_bound() noexcept {
+    if (model_transient_ > T(0)) refresh_steady_outputs();
     T m[kN_];
     if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m) == Status::kOk) {
       for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
       (void)ev_.set_model_bound(bound_);
     }
     bound_valid_ = true;
+  }
+
+  // set_steady_outputs at the current inputs' steady state, if they have one.
+  HSTMON_NOINLINE void refresh_steady_outputs() noexcept {
+    typename Model::State xs;
+    if (obs_.model().steady_state(xs)) set_steady_outputs(xs);
   }
 
   Obs obs_{};
@@ -361,15 +402,20 @@ class ModelMonitor {
   T var_[kN_] = {};    ///< leaky total variation of ŷ [channel unit]
   T gap_[kN_] = {};    ///< total variation of ŷ since the last sample [channel unit]
   T peak_[kN_] = {};   ///< max(var_, gap_) at the last tick [channel unit]
+  T y_steady_[kN_] = {};  ///< outputs at the steady state of the current inputs [channel unit]
+  T env_[kN_] = {};       ///< envelope of |ŷ − y_steady_|, decaying with τ_m [channel unit]
   T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
+  T model_transient_ = T(0);    ///< Config::model_transient [-]
+  T env_decay_ = T(0);          ///< e^(−tick/τ_m) [-]
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]
   T hold_until_ = T(0);         ///< no judgement before this time [s]; NaN until the first step
   T tau_m_ = T(0);              ///< model's slowest time constant at the last reset's steady state [s]
   T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
   bool bound_valid_ = false;
+  bool steady_ok_ = false;      ///< y_steady_ holds the current inputs' steady outputs
 };
 
 }  // namespace hstmon

@@ -28,12 +28,12 @@ extern "C" {
 #endif
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
- *  (checked at compile time in hstmon_c.cpp): 1168 on 32-bit targets (the monitor's
- *  size on the Cortex-M4F), 1216 on 64-bit hosts (8-byte pointers, padding). */
+ *  (checked at compile time in hstmon_c.cpp): 1232 on 32-bit targets (the monitor's
+ *  size on the Cortex-M4F), 1280 on 64-bit hosts (8-byte pointers, padding). */
 #if UINTPTR_MAX > 0xFFFFFFFFu
-#define HSTMON_MONITOR_STORAGE_BYTES 1216u
+#define HSTMON_MONITOR_STORAGE_BYTES 1280u
 #else
-#define HSTMON_MONITOR_STORAGE_BYTES 1168u
+#define HSTMON_MONITOR_STORAGE_BYTES 1232u
 #endif
 /** Alignment the monitor buffer needs [bytes]: 16 for Eigen's vectorised fixed-size types
  *  on SSE/NEON hosts (4 would do on Cortex-M4, which has no SIMD unit Eigen uses). */

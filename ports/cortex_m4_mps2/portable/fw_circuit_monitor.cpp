@@ -166,6 +166,7 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
     noise[i] = static_cast<float>(gen::kNoiseSigma[i]);
   }
   for (int p = 0; p < gen::Cap::kParams; ++p) cfg.uncertainty.rel[p] = static_cast<float>(gen::kUncertainty[p]);
+  circuit::set_circuit_allowances(cfg);
   (void)circuit::widen_matcher_windows(g_model, inputs_at(0), cfg.matcher);
   g_model.set_inputs(nominal);
   if (mon.configure(g_model, cfg, sig::kSignatures, sig::kSignatureCount) != Status::kOk) {

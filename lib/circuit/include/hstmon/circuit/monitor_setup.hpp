@@ -3,8 +3,9 @@
 /// The settings a circuit's monitor derives from the circuit and the first log row, in
 /// one place for the host replay (`hstmon replay --circuit`) and the firmware's
 /// (ports/cortex_m4_mps2/portable/fw_circuit_monitor.cpp), so the two configure the same
-/// monitor: the noise σ of a channel, the matcher's settle and average windows from the
-/// slowest time constant, and the choice to start at the steady state. Templates on the
+/// monitor: the noise σ of a channel, the allowances for what a circuit file does not say,
+/// the matcher's settle and average windows from the slowest time constant, and the
+/// choice to start at the steady state. Templates on the
 /// model (CircuitModel<T, Cap>); no heap, no exceptions.
 
 #include <cmath>
@@ -19,6 +20,23 @@ template <typename T>
 T sensor_sigma(T noise, T lo, T hi) noexcept {
   const T span = std::isfinite(hi - lo) ? hi - lo : T(100);
   return noise > T(0) ? noise : T(0.01) * span;
+}
+
+/// What a circuit file does not say, allowed for in the monitor's configuration:
+///  - its damping: the model's whole transient after an input step counts as model error
+///    (ModelMonitor::Config::model_transient = 1), decaying with the circuit's slowest time
+///    constant — milliseconds for a PRV-loaded rig, a second for a lightly damped closed
+///    circuit ringing at a few hertz;
+///  - how far a fault moves the model error with the operating point: a channel that moved
+///    no further than the model bound reads as unchanged in a signature
+///    (FaultMatcher::Config::k_zero_bound = 1).
+/// The thesis rig's monitor (Monitor<T>) keeps both off: its transients are milliseconds
+/// long and its table and thresholds are validated as they are.
+/// @param cfg  a ModelMonitor configuration, changed in place
+template <class MonitorConfig>
+void set_circuit_allowances(MonitorConfig& cfg) noexcept {
+  cfg.model_transient = 1;
+  cfg.matcher.k_zero_bound = 1;
 }
 
 /// Widens the matcher's windows to the circuit's slowest time constant at the steady

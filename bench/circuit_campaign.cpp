@@ -1,0 +1,388 @@
+// Fault campaign for any circuit file (issue 15; docs/fault_campaign.md, "Any circuit"):
+// synthetic logs of the circuit from host_sim's stiff reference (hstmon-sim --circuit's
+// simulate_circuit), replayed exactly as `hstmon replay --circuit` does (replay_circuit:
+// the circuit's monitor and its generated fault table), scored as the thesis campaign
+// scores. A benchmark program, not a test: nothing in CI runs it.
+//
+//   hstmon_circuit_campaign --circuit F [--params P] [--hours H] [--seeds N] [--jobs N]
+//                           [--magnitude M] [--json] [--verbose]
+//
+// Conditions: start at the steady state or from rest (inputs on at the first sample), at
+// 1 kHz and 100 Hz. Every run has a machine 2 % off the file's values (each parameter the
+// monitor treats as uncertain, uniform ±2 %, new per run) and load steps: every 2 s (6 τ
+// where longer: a steady-state signature needs 4 τ to be read) one of
+// the logged inputs with a non-zero nominal value moves to nominal × U[0.8, 1.25]
+// (fractions kept within ±1). The sensors are the circuit file's (white noise, range
+// clipping; no lag, no ADC: the circuit simulator has none yet).
+//
+// Faults (fault at 2.5 s or 3 τ, runs 2.5 s or 6 τ longer, τ the circuit's slowest time
+// constant at its nominal inputs): every row of the circuit's fault table —
+//   <param>±: the machine's parameter × (1 ± M) from t_f (M = 0.3 by default);
+//   <input>±: the true input × (1 ± M) from t_f, the log keeps the setting;
+//   sensor_<ch>: a bias of 5 % of the range (or 20 σ without a range) from t_f.
+// Nominal: segments of 100 s with the same load steps, hours split over the conditions.
+//
+// Scored: a `detected` before t_f (fault runs) or anywhere (nominal) is a false alarm;
+// a fault run is detected when a `detected` comes at or after t_f; "in set" = the truth
+// is among the candidates of the last event (detected / isolated / ambiguous) with candidates after
+// t_f — the rule of ../shared/validation/score_monitor.py.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_circuit/circuit_sim.hpp"
+
+namespace {
+
+using hstmon::circuit_tools::CircuitLog;
+using hstmon::circuit_tools::CircuitReplayOptions;
+using hstmon::circuit_tools::CircuitSimOptions;
+using hstmon::circuit_tools::InputStep;
+using hstmon::circuit_tools::LoadedCircuit;
+
+struct Condition {
+  std::string name;
+  bool from_rest = false;
+  double rate = 1000.0;  // [Hz]
+};
+
+const std::vector<Condition> kConditions = {
+    {"steady 1 kHz", false, 1000.0}, {"rest 1 kHz", true, 1000.0}, {"steady 100 Hz", false, 100.0},
+    {"rest 100 Hz", true, 100.0}};
+
+constexpr double kSegment = 100.0;  // nominal segment [s]
+
+// Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
+// longer (a start from rest has settled); the run 2.5 s beyond, or 6 τ where longer
+// (detection, then the matcher's settle of 3 τ and window of τ, as replay_circuit sets them).
+struct Timing {
+  double t_fault = 2.5, run = 5.0, tau = 0.0;
+  double load_period = 2.0;  // [s] between load steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
+};
+
+Timing timing(const LoadedCircuit& c) {
+  Timing tm;
+  const hstmon::host::HostCircuitModel m(c.file.circuit, c.values.params, c.values.inputs);
+  hstmon::host::HostCircuitModel::State xs;
+  const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
+  if (rate > 0.0) {
+    tm.tau = 1.0 / rate;
+    tm.t_fault = std::max(2.5, 3.0 * tm.tau);
+    tm.run = tm.t_fault + std::max(2.5, 6.0 * tm.tau);
+    tm.load_period = std::max(2.0, 6.0 * tm.tau);
+  }
+  return tm;
+}
+Timing g_timing;
+
+// What one campaign run injects.
+struct Fault {
+  std::string name;  // the table row's name ("" = nominal)
+  int param = -1, input = -1, channel = -1;
+  double factor = 1.0;  // parameter or true-input factor
+};
+
+struct RunResult {
+  bool early = false;       // detected before t_f (any time on a nominal run)
+  int alarms = 0;           // detected events in a nominal run
+  bool detected = false;    // detected at or after t_f
+  double delay = NAN;       // [s]
+  bool in_set = false;      // truth among the last scored event's candidates
+  bool best = false;        // truth that event's best
+  std::string last;         // that event, for --verbose
+  std::string error;
+};
+
+// The machine for one run: the file's values with every uncertain parameter ±2 %.
+LoadedCircuit machine(const LoadedCircuit& c, std::mt19937_64& rng) {
+  LoadedCircuit m = c;
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for (std::size_t p = 0; p < c.file.params.size(); ++p) {
+    if (hstmon::circuit_tools::moves_steady_state(c.file.params[p])) m.values.params.v[p] *= 1.0 + u(rng);
+  }
+  return m;
+}
+
+// Load steps every load period from 1 s: one input with a non-zero nominal value, nominal × U[0.8, 1.25].
+std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::mt19937_64& rng) {
+  std::vector<int> movable;
+  for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
+    if (c.values.inputs.v[i] != 0.0) movable.push_back(static_cast<int>(i));
+  }
+  std::vector<InputStep> steps;
+  if (movable.empty()) return steps;
+  std::uniform_int_distribution<std::size_t> pick(0, movable.size() - 1);
+  std::uniform_real_distribution<double> level(0.8, 1.25);
+  for (double t = 1.0; t < duration; t += g_timing.load_period) {
+    InputStep s;
+    s.t = t;
+    s.input = movable[pick(rng)];
+    s.value = c.values.inputs.v[s.input] * level(rng);
+    if (c.file.inputs[s.input].quantity == hstmon::host::CircuitQuantity::kFraction) s.value = std::clamp(s.value, -1.0, 1.0);
+    steps.push_back(s);
+  }
+  return steps;
+}
+
+double sensor_bias(const hstmon::host::CircuitSensor& s) {
+  if (std::isfinite(s.lo) && std::isfinite(s.hi) && s.hi > s.lo) return 0.05 * (s.hi - s.lo);
+  return 20.0 * hstmon::circuit_tools::sensor_sigma(s);
+}
+
+// score_monitor.py's events: the last of these with candidates is the answer.
+bool is_scored(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "detected"; }
+
+// --dump: the folder where the log of every run that misses, or nominal run that alarms, is written.
+std::string g_dump_dir;
+
+RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f, double duration, std::uint64_t seed) {
+  RunResult r;
+  std::mt19937_64 rng(seed);
+  LoadedCircuit m = machine(c, rng);
+  CircuitSimOptions so;
+  so.duration = duration;
+  so.rate = cond.rate;
+  so.seed = seed;
+  so.from_rest = cond.from_rest;
+  so.steps = load_steps(c, duration, rng);
+  const bool faulted = !f.name.empty();
+  if (f.param >= 0) {
+    InputStep s;
+    s.t = g_timing.t_fault;
+    s.param = f.param;
+    s.factor = f.factor;
+    so.steps.push_back(s);
+  }
+  if (f.input >= 0) {
+    // The true input × factor from t_f on, at every later setting: each step's value and
+    // a step at t_f holding the setting then in force.
+    double setting = c.values.inputs.v[f.input];
+    for (const InputStep& s : so.steps) {
+      if (s.input == f.input && s.t <= g_timing.t_fault) setting = s.value;
+    }
+    for (InputStep& s : so.steps) {
+      if (s.input == f.input && s.t > g_timing.t_fault) s.value *= f.factor;
+    }
+    InputStep s;
+    s.t = g_timing.t_fault;
+    s.input = f.input;
+    s.value = setting * f.factor;
+    so.steps.push_back(s);
+  }
+  hstmon::circuit_tools::sort_steps(so.steps);
+  CircuitLog log;
+  try {
+    log = hstmon::circuit_tools::simulate_circuit(m, so);
+  } catch (const std::exception& e) {
+    r.error = e.what();
+    return r;
+  }
+  for (std::size_t k = 0; k < log.rows(); ++k) {
+    if (log.t[k] < g_timing.t_fault - 1e-12) continue;
+    if (f.input >= 0 && !log.inputs[f.input].empty()) log.inputs[f.input][k] /= f.factor;  // the setting
+    if (f.channel >= 0 && !log.sensors[f.channel].empty()) log.sensors[f.channel][k] += sensor_bias(c.file.sensors[f.channel]);
+  }
+  CircuitReplayOptions ro;
+  const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
+  const hstmon::host::ReplayEvent* last = nullptr;
+  for (const auto& e : res.events) {
+    if (e.event == "detected") {
+      if (!faulted || e.t < g_timing.t_fault) {
+        r.early = true;
+        ++r.alarms;
+      } else if (!r.detected) {
+        r.detected = true;
+        r.delay = e.t - g_timing.t_fault;
+      }
+    }
+    if (faulted && e.t >= g_timing.t_fault && is_scored(e.event) && !e.candidates.empty()) last = &e;
+  }
+  if (last != nullptr) {
+    r.last = fmt::format("{} at {:.3f} s:", last->event, last->t);
+    for (std::size_t i = 0; i < last->candidates.size(); ++i) {
+      const auto& cand = last->candidates[i];
+      r.last += fmt::format(" {} {:.2f}", cand.fault, cand.score);
+      if (cand.fault == f.name) {
+        r.in_set = true;
+        r.best = r.best || i == 0;
+      }
+    }
+  }
+  if (!g_dump_dir.empty() && (faulted ? !r.detected || !r.in_set || r.early : r.alarms > 0)) {
+    const std::string what = faulted ? fmt::format("{} at {} s", f.name, g_timing.t_fault) : "nominal";
+    std::ofstream(fmt::format("{}/{}_{}.csv", g_dump_dir, faulted ? f.name : "nominal", seed))
+        << hstmon::circuit_tools::circuit_log_text(c.file, log, {fmt::format("{}, {}, seed {}", what, cond.name, seed)});
+  }
+  return r;
+}
+
+// The table's rows as faults to inject (in table order).
+std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::vector<std::string>& undetectable) {
+  const auto table = hstmon::circuit_tools::circuit_fault_table(c);
+  undetectable = table.undetectable;
+  std::vector<Fault> out;
+  for (const std::string& name : table.names) {
+    Fault f;
+    f.name = name;
+    if (name.rfind("sensor_", 0) == 0) {
+      for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+        if (name == "sensor_" + c.file.sensors[ch].name) f.channel = static_cast<int>(ch);
+      }
+    } else {
+      const std::string base = name.substr(0, name.size() - 1);
+      const double factor = name.back() == '+' ? 1.0 + magnitude : 1.0 - magnitude;
+      f.factor = factor;
+      f.param = c.file.param_index(base);
+      if (f.param < 0) f.input = c.file.input_index(base);
+    }
+    if (f.param >= 0 || f.input >= 0 || f.channel >= 0) out.push_back(f);
+  }
+  return out;
+}
+
+struct Job {
+  int condition;
+  int fault;  // index into the faults, −1 = nominal segment
+  std::uint64_t seed;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Fault campaign for a circuit file: simulated faults and nominal hours through hstmon replay --circuit's monitor"};
+  std::string circuit, params;
+  double hours = 1.0, magnitude = 0.3;
+  int seeds = 2;
+  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  bool json = false, verbose = false;
+  app.add_option("--circuit", circuit, "circuit file")->required();
+  app.add_option("--params", params, "its parameter file (default: <stem>.params.json beside it)");
+  app.add_option("--hours", hours, "nominal replay in all [h]")->check(CLI::NonNegativeNumber);
+  app.add_option("--seeds", seeds, "fault runs per fault and condition")->check(CLI::PositiveNumber);
+  app.add_option("--magnitude", magnitude, "parameter / input fault size M: factor 1 ± M")->check(CLI::Range(0.01, 0.9));
+  app.add_option("--jobs", jobs, "threads")->check(CLI::PositiveNumber);
+  app.add_flag("--json", json, "one JSON object with the figures");
+  app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
+  app.add_flag("--verbose", verbose, "print every fault run whose truth is not in the reported set");
+  CLI11_PARSE(app, argc, argv);
+
+  LoadedCircuit c;
+  if (const auto err = hstmon::circuit_tools::load_circuit(circuit, params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return 2;
+  }
+  std::vector<std::string> undetectable;
+  std::vector<Fault> faults;
+  try {
+    faults = table_faults(c, magnitude, undetectable);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: {}\n", circuit, e.what());
+    return 2;
+  }
+
+  g_timing = timing(c);
+  std::vector<Job> work;
+  const int n_cond = static_cast<int>(kConditions.size());
+  for (int ci = 0; ci < n_cond; ++ci) {
+    for (int fi = 0; fi < static_cast<int>(faults.size()); ++fi) {
+      for (int s = 0; s < seeds; ++s) work.push_back({ci, fi, 1000003ull * static_cast<std::uint64_t>(ci * 7919 + fi) + static_cast<std::uint64_t>(s) + 1});
+    }
+  }
+  const int segments = static_cast<int>(std::ceil(hours * 3600.0 / kSegment));
+  for (int k = 0; k < segments; ++k) work.push_back({k % n_cond, -1, 900000001ull + static_cast<std::uint64_t>(k)});
+
+  std::vector<RunResult> results(work.size());
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  for (unsigned j = 0; j < jobs; ++j) {
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < work.size(); i = next++) {
+        const Job& w = work[i];
+        const Fault nominal;
+        const Fault& f = w.fault >= 0 ? faults[static_cast<std::size_t>(w.fault)] : nominal;
+        results[i] = run_one(c, kConditions[static_cast<std::size_t>(w.condition)], f, w.fault >= 0 ? g_timing.run : kSegment, w.seed);
+      }
+    });
+  }
+  for (auto& t : pool) t.join();
+
+  // Per fault and per condition tallies.
+  struct Tally {
+    int runs = 0, detected = 0, in_set = 0, best = 0, early = 0, errors = 0;
+    double delay_sum = 0.0;
+  };
+  std::map<std::string, Tally> by_fault;
+  std::vector<Tally> by_cond(kConditions.size());
+  Tally all, nominal;
+  double nominal_s = 0.0;
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    const Job& w = work[i];
+    const RunResult& r = results[i];
+    if (w.fault < 0) {
+      ++nominal.runs;
+      nominal.early += r.alarms;
+      nominal.errors += r.error.empty() ? 0 : 1;
+      if (r.error.empty()) nominal_s += kSegment;
+      if (verbose && (r.alarms > 0 || !r.error.empty()))
+        fmt::print(stderr, "nominal seed {} ({}): {} alarms {}\n", w.seed, kConditions[static_cast<std::size_t>(w.condition)].name, r.alarms, r.error);
+      continue;
+    }
+    const Fault& f = faults[static_cast<std::size_t>(w.fault)];
+    for (Tally* t : {&by_fault[f.name], &by_cond[static_cast<std::size_t>(w.condition)], &all}) {
+      ++t->runs;
+      t->errors += r.error.empty() ? 0 : 1;
+      t->early += r.early ? 1 : 0;
+      t->detected += r.detected ? 1 : 0;
+      t->in_set += r.detected && r.in_set ? 1 : 0;
+      t->best += r.detected && r.best ? 1 : 0;
+      if (r.detected) t->delay_sum += r.delay;
+    }
+    if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
+    if (verbose && r.error.empty() && (!r.detected || !r.in_set || r.early))
+      fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
+                 kConditions[static_cast<std::size_t>(w.condition)].name, r.detected, r.early, r.last.empty() ? "no decision" : r.last);
+  }
+  const auto pct = [](int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; };
+  if (json) {
+    fmt::print(
+        "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":{:.2f},"
+        "\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
+        c.file.name, faults.size(), all.runs, pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected),
+        all.early, nominal_s / 3600.0, nominal.early, all.errors + nominal.errors);
+    return 0;
+  }
+  fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, circuit,
+             faults.size(), 100.0 * magnitude, seeds, kConditions.size());
+  fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
+             g_timing.t_fault, g_timing.run, g_timing.load_period);
+  if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
+  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best", "delay ms", "early");
+  for (const auto& [name, t] : by_fault) {
+    fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>9.0f} {:>6}\n", name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected),
+               pct(t.best, t.detected), t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.early);
+  }
+  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7}\n", "condition", "runs", "detected", "in set", "early");
+  for (std::size_t i = 0; i < kConditions.size(); ++i) {
+    const Tally& t = by_cond[i];
+    fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>6}\n", kConditions[i].name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected), t.early);
+  }
+  fmt::print("\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections {}\n", all.runs,
+             pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected), all.early);
+  fmt::print("nominal: {:.2f} h in {} segments of {:.0f} s: {} false alarms\n", nominal_s / 3600.0, nominal.runs, kSegment, nominal.early);
+  if (all.errors + nominal.errors > 0) fmt::print("simulation errors: {} (runs not scored)\n", all.errors + nominal.errors);
+  return 0;
+}
