@@ -7,6 +7,8 @@
 #include <initializer_list>
 #include <map>
 
+#include "hstmon/circuit/laws.hpp"
+
 namespace hstmon::fdi {
 
 namespace {
@@ -32,8 +34,9 @@ Ref first_given(std::initializer_list<Ref> refs) {
 
 class Builder {
  public:
-  Builder(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel& at, CircuitBondGraph& g)
-      : f_(c.file), m_(at), g_(g) {}
+  Builder(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel& at, const std::vector<double>& z,
+          CircuitBondGraph& g)
+      : f_(c.file), m_(at), z_(z), g_(g) {}
 
   std::optional<std::string> build() {
     const host::HostCircuit& d = f_.circuit;
@@ -133,8 +136,12 @@ class Builder {
       default:
         break;
     }
-    // A shut orifice (a directional valve's closed paths) passes nothing at this point.
-    if (el.kind == CKind::kOrifice && m_.coeffs(e).c[0] == 0.0) return;
+    // A shut orifice (a directional valve's closed paths) or a valve below its cracking
+    // pressure passes nothing and has no conductance at this point.
+    if ((el.kind == CKind::kOrifice || el.kind == CKind::kPoppet) &&
+        circuit::element_flow(el.kind, m_.coeffs(e), z_[el.a], z_[el.b], 0.0).dpa == 0.0) {
+      return;
+    }
     const std::string& ja = node_junction_[el.a];
     const std::string& jb = node_junction_[el.b];
     if (ja.empty() && jb.empty()) return;  // between two held pressures: no state sees it
@@ -346,6 +353,7 @@ class Builder {
 
   const host::CircuitFile& f_;
   const host::HostCircuitModel& m_;
+  const std::vector<double>& z_;
   CircuitBondGraph& g_;
   std::vector<std::string> node_junction_, shaft_junction_;
   std::map<int, std::string> element_hydraulic_;
@@ -365,9 +373,10 @@ int CircuitBondGraph::element_index(std::string_view name) const {
 std::string graph_parameter_name(const std::string& owner, const char* field) { return owner + "." + field; }
 
 std::optional<std::string> circuit_bond_graph(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel& at,
-                                              CircuitBondGraph& out) {
+                                              const std::vector<double>& z, CircuitBondGraph& out) {
   out = CircuitBondGraph{};
-  return Builder(c, at, out).build();
+  if (z.size() < static_cast<std::size_t>(host::HostCircuitModel::kZ)) return std::string("circuit_bond_graph: no operating point");
+  return Builder(c, at, z, out).build();
 }
 
 }  // namespace hstmon::fdi

@@ -212,7 +212,22 @@ CircuitCrosscheck run_circuit_crosscheck(const circuit_tools::LoadedCircuit& c, 
     for (std::size_t k = 0; k < op.z.size(); ++k) z0[k] = op.z[k];
     const Model::State x0 = op.model.from_z(z0);
     const Model::Output y0 = op.model.outputs(x0);
-    for (const std::string& fault : circuit_graph_faults(t)) {
+    const std::vector<std::string> faults = circuit_graph_faults(t);
+    if (&cs == &cases.front()) {
+      auto on_graph = [&](const std::string& n) {
+        for (const std::string& f : faults) {
+          if (f == n) return true;
+        }
+        return false;
+      };
+      for (const host::CircuitParam& p : c.file.params) {
+        if (!p.literal && !on_graph(p.name)) x.notes.push_back(p.name + ": not on the graph (a secondary number of an element, or a valve shut here)");
+      }
+      for (const host::CircuitInput& in : c.file.inputs) {
+        if (!on_graph(in.name)) x.notes.push_back(in.name + ": not on the graph (a secondary number of an element, or a valve shut here)");
+      }
+    }
+    for (const std::string& fault : faults) {
       const int in = c.file.input_index(fault);
       const double nominal = in >= 0 ? u0.v[in] : p0.v[c.file.param_index(fault)];
       if (nominal == 0.0) {

@@ -431,7 +431,7 @@ std::optional<std::string> circuit_operating_point(const circuit_tools::LoadedCi
 
 CircuitTcg circuit_tcg(const circuit_tools::LoadedCircuit& c, const CircuitOperatingPoint& op) {
   CircuitTcg t;
-  if (const auto err = circuit_bond_graph(c, op.model, t.bond_graph)) throw std::invalid_argument(*err);
+  if (const auto err = circuit_bond_graph(c, op.model, op.z, t.bond_graph)) throw std::invalid_argument(*err);
   TcgBuilder(c, op, t).build();
   // Measured nodes in channel order (the detectors were added in that order).
   return t;

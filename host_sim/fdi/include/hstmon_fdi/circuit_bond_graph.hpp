@@ -9,8 +9,9 @@
 /// (the displacement) for pumps and motors, an Sf for flow sources; R on the shaft for
 /// friction, Se for a load torque; an effort detector per pressure sensor. A boundary at a
 /// fixed pressure (tank or drain at a literal value) is no junction: its elements hang
-/// from the other node's 0-junction as one-ports. An orifice shut at the operating point (a
-/// directional valve's closed paths) is left out. Causality: sources first, then every C
+/// from the other node's 0-junction as one-ports. An orifice or valve shut at the operating
+/// point (a directional valve's closed paths, a relief or check valve below its cracking
+/// pressure) is left out: the graph is that of the operating point. Causality: sources first, then every C
 /// and I in integral causality, propagated through the junctions (SCAP); an R left free
 /// takes whatever the junctions give it.
 
@@ -46,12 +47,13 @@ struct CircuitBondGraph {
 };
 
 /// Derives the bond graph of a loaded circuit and assigns its causality.
-/// @param at   the engine bound to c's description at the operating point's values: an
-///             orifice whose resolved coefficient is 0 there (a shut valve path) is left out
+/// @param at   the engine bound to c's description at the operating point's values
+/// @param z    the operating point's full vector (node pressures [Pa], shaft speeds [rad/s]):
+///             an orifice or poppet with no conductance there (shut) is left out
 /// @param out  the graph
 /// @return nothing, or a message naming the element where the causality fails
 std::optional<std::string> circuit_bond_graph(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel& at,
-                                              CircuitBondGraph& out);
+                                              const std::vector<double>& z, CircuitBondGraph& out);
 
 /// Name of a graph parameter: "<circuit element, node or shaft>.<field>" ("prv.k",
 /// "Pmi.K", "motor.J", "motor.D"); the circuit parameter or input behind it is

@@ -62,7 +62,7 @@ struct CircuitCrosscheckRow {
 struct CircuitCrosscheck {
   std::vector<std::string> channels;       ///< sensor names
   std::vector<CircuitCrosscheckRow> rows;
-  std::vector<std::string> notes;          ///< faults skipped and why
+  std::vector<std::string> notes;          ///< faults skipped and why, parameters and inputs not on the graph
 };
 
 /// Runs the cross-check.
