@@ -193,7 +193,8 @@ TEST(CircuitTcg, OtherCircuitsBuildPropagateAndCrosscheck) {
     ASSERT_GT(a.readings, 0) << name;
     // The weighted graph is the linearisation's Markov parameters: it predicts every initial slope.
     EXPECT_EQ(a.weighted, a.readings) << name;
-    EXPECT_GE(a.linear, a.readings - 2) << name;
+    // Its steady state misses only where a 10 % step crosses a maximum (paper: Dm+ at A_dcv × 1.2).
+    EXPECT_GE(100 * a.linear, 99 * a.readings) << name;
   }
 }
 

@@ -65,6 +65,12 @@ class Builder {
   std::string param(const std::string& owner, const char* field, Ref r) const {
     return named_ref(f_, r).empty() ? "" : graph_parameter_name(owner, field);
   }
+  /// Adds number r as an extra parameter "<owner>.<field>" of src when it names a circuit
+  /// parameter or input other than the element's own.
+  void add_extra(CircuitElementSource& src, const std::string& owner, const char* field, Ref r) const {
+    if (named_ref(f_, r).empty() || (r.kind == src.ref.kind && r.index == src.ref.index)) return;
+    src.extra.emplace_back(graph_parameter_name(owner, field), r);
+  }
   /// A source's name: the input or parameter it is, else "<owner>.<field>".
   std::string source_name(const std::string& owner, const char* field, Ref r) const {
     const std::string n = named_ref(f_, r);
@@ -91,6 +97,7 @@ class Builder {
     add(j, ElementKind::kZero, "", "volume " + name + ": common pressure", src);
     const bool by_K = n.K.kind != RefKind::kNone;
     src.ref = by_K ? n.K : n.beta;
+    if (!by_K) add_extra(src, name, "V", n.volume);
     add("C_" + name, ElementKind::kC, param(name, by_K ? "K" : "beta", src.ref), "compressibility of " + name, src);
     bond(j, "C_" + name);
     node_junction_[static_cast<std::size_t>(i)] = j;
@@ -185,6 +192,24 @@ class Builder {
         return;
     }
     const bool orifice_like = el.kind == CKind::kOrifice || el.kind == CKind::kPoppet;
+    if (orifice_like) {
+      if (el.r[circuit::kK].kind == RefKind::kNone) {
+        add_extra(src, name, "Cd", el.r[circuit::kCd]);
+        add_extra(src, name, "rho", el.r[circuit::kRho]);
+      }
+      if (el.kind == CKind::kOrifice) add_extra(src, name, "opening", el.r[circuit::kOpening]);
+      if (el.kind == CKind::kPoppet) {
+        add_extra(src, name, "crack", el.r[circuit::kCrack]);
+        add_extra(src, name, "full", el.r[circuit::kFull]);
+      }
+    } else if (el.kind == CKind::kCompPump) {
+      add_extra(src, name, "R", el.r[circuit::kRleak]);
+      add_extra(src, name, "Pc", el.r[circuit::kPc]);
+      add_extra(src, name, "Pk", el.r[circuit::kPk]);
+      add_extra(src, name, "Pmax", el.r[circuit::kPmax]);
+    } else if (el.kind == CKind::kMachine) {
+      add_extra(src, name, "fraction", el.r[circuit::kFraction]);
+    }
     const char* field = el.kind == CKind::kMachine    ? "D"
                         : el.kind == CKind::kLaminar  ? "R"
                         : el.kind == CKind::kCompPump ? "Q0"

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <iterator>
 #include <optional>
 #include <stdexcept>
@@ -220,25 +221,42 @@ class TcgBuilder {
   void link(const std::string& from, const std::string& to, int sign, const std::string& element, const std::string& relation) {
     t_.graph.add_edge(Edge{t_.graph.at(from), t_.graph.at(to), sign, EdgeType::kInstant, "", 0, element, relation, 1.0, 0.0});
   }
+  /// The value a relation computes, as a function of the model's numbers (for injections).
+  using Law = std::function<double(const Model&)>;
+
+  /// An element relation from → to carrying the element's parameter and, as parallel
+  /// edges of gain 0 (the relation's slope is counted once), each extra parameter with its
+  /// own injection from `law`.
   void param_edge(const std::string& from, const std::string& to, int sign, EdgeType type, const Element& el,
-                  int structural_sign, double gain, double injection, double scale, const std::string& relation) {
-    std::string p = el.parameter;
+                  int structural_sign, double gain, double injection, double scale, const std::string& relation,
+                  const Law& law = nullptr) {
+    const CircuitElementSource& s = src(el.name);
+    add_param_edge(from, to, sign, type, el.name, el.parameter, s.ref, structural_sign, gain, injection, scale, relation);
+    for (const auto& [name, ref] : s.extra) {
+      const double inj = law ? log_derivative(m_, ref, law) : 0.0;
+      // Without an injection here (a storage's V), its sign with positive signals: K = β/V.
+      add_param_edge(from, to, sign, type, el.name, name, ref, type == EdgeType::kIntegral ? -structural_sign : 1, 0.0,
+                     inj, scale, relation + " (" + name + ")");
+    }
+  }
+  void add_param_edge(const std::string& from, const std::string& to, int sign, EdgeType type, const std::string& element,
+                      const std::string& p, Ref ref, int structural_sign, double gain, double injection, double scale,
+                      const std::string& relation) {
     int ps = 0;
     if (!p.empty()) {
       // The sign of the parameter's influence at the operating point; where it injects
       // nothing there (C, I at a steady state, a shut valve), its sign with positive signals.
       ps = std::fabs(injection) > 1e-12 * scale ? sign_of(injection) : structural_sign;
-      register_param(el, false);
+      register_param(p, ref, false);
     }
-    t_.graph.add_edge(Edge{t_.graph.at(from), t_.graph.at(to), sign, type, p, ps, el.name, relation, gain,
+    t_.graph.add_edge(Edge{t_.graph.at(from), t_.graph.at(to), sign, type, p, ps, element, relation, gain,
                            p.empty() ? 0.0 : injection});
   }
-  void register_param(const Element& el, bool source) {
+  void register_param(const std::string& name, Ref r, bool source) {
     for (const GraphParameter& g : t_.parameters) {
-      if (g.name == el.parameter) return;
+      if (g.name == name) return;
     }
-    const Ref r = src(el.name).ref;
-    t_.parameters.push_back(GraphParameter{el.parameter, named_ref(f_, r), r, source});
+    t_.parameters.push_back(GraphParameter{name, named_ref(f_, r), r, source});
   }
 
   void element_relations(std::size_t i) {
@@ -277,7 +295,7 @@ class TcgBuilder {
         const bool effort = el.kind == ElementKind::kSe;
         if (t_.graph.find(el.parameter) < 0) {
           add_node(el.parameter, NodeKind::kSource, bonds_[b].number, effort ? e_val_[b] : f_val_[b], el.meaning);
-          register_param(el, true);
+          register_param(el.parameter, src(el.name).ref, true);
         }
         link(el.parameter, effort ? e_(b) : f_n(b), 1, el.name, (effort ? e_(b) : f_n(b)) + " = " + el.parameter);
         break;
@@ -340,7 +358,7 @@ class TcgBuilder {
                  e_(b) + " = Q^-1(" + f_n(b) + ")");
     } else {
       param_edge(e_(b), f_n(b), 1, EdgeType::kInstant, el, structural, g, inj, scale,
-                 f_n(b) + " = Q(" + e_(b) + ")");
+                 f_n(b) + " = Q(" + e_(b) + ")", [&, e, ps](const Model& m) { return ps * flow_of(m, e).q; });
     }
   }
 
@@ -358,8 +376,10 @@ class TcgBuilder {
     const double inj_tq = log_derivative(m_, s.ref, [&](const Model& mm) { return torque_of(mm, e); });
     const double inj_q = log_derivative(m_, s.ref, [&](const Model& mm) { return port_sign(h, e) * flow_of(mm, e).q; });
     if (bg_.effort_by[h] != el.name) {
-      param_edge(e_(h), e_(m), sd * se, EdgeType::kInstant, el, 1, aD, inj_tq, scale_m, e_(m) + " = D*" + e_(h));
-      param_edge(f_n(m), f_n(h), sd, EdgeType::kInstant, el, 1, aD, inj_q, scale_h, f_n(h) + " = D*" + f_n(m));
+      param_edge(e_(h), e_(m), sd * se, EdgeType::kInstant, el, 1, aD, inj_tq, scale_m, e_(m) + " = D*" + e_(h),
+                 [&, e](const Model& mm) { return torque_of(mm, e); });
+      param_edge(f_n(m), f_n(h), sd, EdgeType::kInstant, el, 1, aD, inj_q, scale_h, f_n(h) + " = D*" + f_n(m),
+                 [&, e, h](const Model& mm) { return port_sign(h, e) * flow_of(mm, e).q; });
     } else {
       param_edge(e_(m), e_(h), sd * se, EdgeType::kInstant, el, -1, 1.0 / aD, -e_val_[h], std::fabs(e_val_[h]) + 1e-300,
                  e_(h) + " = " + e_(m) + "/D");

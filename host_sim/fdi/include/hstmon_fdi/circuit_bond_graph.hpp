@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "hstmon_circuit/circuit_load.hpp"
@@ -32,6 +33,11 @@ struct CircuitElementSource {
   int shaft = -1;    ///< circuit shaft index (shaft 1-junction, I, driven Sf), or −1
   int channel = -1;  ///< sensor channel index (detector), or −1
   circuit::Ref ref{};  ///< the number the element's parameter is (K or β, J, k or A, R, D, c, τ, Q, p, ω)
+  /// The element's other named numbers, each a parameter of the same relations: a valve's
+  /// opening, Cd and ρ, a poppet's cracking and full-open pressures, a compensated pump's
+  /// leakage R, Pc, Pk and Pmax, a machine's displacement fraction, a volume's V. Laminar
+  /// transitions (dp_t) are not: they shape the law near zero flow only.
+  std::vector<std::pair<std::string, circuit::Ref>> extra;
 };
 
 /// A circuit's bond graph with its causality.
