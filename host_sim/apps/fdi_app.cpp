@@ -121,7 +121,18 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (!circuit.empty() && !(*iso || *place || *table)) {
+    const bool circuit_cmd = !circuit.empty() && !(*iso || *place || *table);
+    // Options of one kind of graph are refused with the other, not silently ignored.
+    if (circuit_cmd && (nonlinear || linearised || check->count("--t-early") > 0)) {
+      std::cerr << "hstmon-fdi: --nonlinear, --linearised and --t-early are for the thesis graph, not --circuit\n";
+      return 1;
+    }
+    if (circuit.empty() && (!cases.empty() || !fault_steps_opt.empty() || check->count("--step") > 0 ||
+                            !circuit_params.empty())) {
+      std::cerr << "hstmon-fdi: --case, --fault-step, --step and --params need --circuit\n";
+      return 1;
+    }
+    if (circuit_cmd) {
       const CircuitSource src{circuit, circuit_params};
       if (*graph) return run_circuit_graph(src, json);
       if (*tree) return run_circuit_tree(src, channel, minus);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -71,8 +72,15 @@ std::pair<std::string, double> name_value(const std::string& s) {
   const std::size_t eq = s.find('=');
   if (eq == std::string::npos || eq == 0) throw std::invalid_argument("expected NAME=NUMBER: " + s);
   std::size_t used = 0;
-  const double v = std::stod(s.substr(eq + 1), &used);
-  if (used != s.size() - eq - 1 || !(v > 0.0)) throw std::invalid_argument("expected a positive number after '=': " + s);
+  double v = 0.0;
+  try {
+    v = std::stod(s.substr(eq + 1), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != s.size() - eq - 1 || !(v > 0.0) || !std::isfinite(v)) {
+    throw std::invalid_argument("expected NAME=POSITIVE_NUMBER: " + s);
+  }
   return {s.substr(0, eq), v};
 }
 
@@ -200,7 +208,10 @@ int run_circuit_crosscheck(const CircuitSource& s, const std::vector<std::string
       const auto [name, f] = name_value(k);
       opt.cases.push_back({fmt::format("{} x {:g}", name, f), {{name, f}}});
     }
-    for (const std::string& k : steps) opt.steps.push_back(name_value(k));
+    for (const std::string& k : steps) {
+      opt.steps.push_back(name_value(k));
+      if (!(opt.steps.back().second < 1.0)) throw std::invalid_argument("a fault step is below 1 (a fraction): " + k);
+    }
   } catch (const std::exception& e) {
     std::cerr << "hstmon-fdi crosscheck: " << e.what() << '\n';
     return 1;
