@@ -210,7 +210,7 @@ int run_circuit_crosscheck(const CircuitSource& s, const std::vector<std::string
     }
     for (const std::string& k : steps) {
       opt.steps.push_back(name_value(k));
-      if (!(opt.steps.back().second < 1.0)) throw std::invalid_argument("a fault step is below 1 (a fraction): " + k);
+      if (!(opt.steps.back().second < 1.0)) throw std::invalid_argument("a fault step must be below 1 (a fraction): " + k);
     }
   } catch (const std::exception& e) {
     std::cerr << "hstmon-fdi crosscheck: " << e.what() << '\n';

@@ -396,34 +396,28 @@ class TcgBuilder {
     const std::vector<std::size_t> bs = bonds_of(el.name);
     const bool pressure = el.name.rfind("De_", 0) == 0;
     std::string from;
+    int sign = 1;
     double value = 0.0;
     if (!bs.empty()) {
       from = pressure ? e_(bs[0]) : f_n(bs[0]);
       value = pressure ? e_val_[bs[0]] : f_val_[bs[0]];
     } else if (pressure) {
-      value = zv(s.node);  // a held pressure: constant
+      value = zv(s.node);  // a held pressure: a constant
     } else {
-      // A one-port's flow: read off its bond.
-      const circuit::Element& ce = f_.circuit.elements[s.element];
-      for (std::size_t b = 0; b < bonds_.size(); ++b) {
-        const std::string* core = nullptr;
+      // A one-port's flow (no common-flow junction): read off its hydraulic bond, with the
+      // bond's sign relative to the element's a→b flow. None if the element is shut.
+      value = flow_of(m_, s.element).q;
+      for (std::size_t b = 0; b < bonds_.size() && from.empty(); ++b) {
         for (const std::string* end : {&bonds_[b].from, &bonds_[b].to}) {
           const CircuitElementSource& cs = src(*end);
-          if (cs.element == s.element && cs.channel < 0 && !is_kind(*end, ElementKind::kOne)) core = end;
+          if (cs.element != s.element || cs.channel >= 0 || is_shaft_junction(other(b, *end))) continue;
+          from = f_n(b);
+          sign = port_sign(b, s.element);
         }
-        if (core == nullptr || is_shaft_junction(other(b, *core))) continue;
-        from = f_n(b);
-        const int ps = port_sign(b, s.element);
-        value = flow_of(m_, s.element).q;
-        (void)ce;
-        add_node(name, NodeKind::kMeasurement, 0, value, "measured " + name);
-        link(from, name, ps, el.name, name + " = " + (ps > 0 ? "" : "-") + from);
-        t_.measured.push_back(name);
-        return;
       }
     }
     add_node(name, NodeKind::kMeasurement, 0, value, "measured " + name);
-    if (!from.empty()) link(from, name, 1, el.name, name + " = " + from);
+    if (!from.empty()) link(from, name, sign, el.name, name + " = " + (sign > 0 ? "" : "-") + from);
     t_.measured.push_back(name);
   }
 
