@@ -14,6 +14,7 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/circuit_crosscheck.hpp"
+#include "hstmon_fdi/crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/fault_tree.hpp"
 #include "hstmon_fdi/forward.hpp"
@@ -195,6 +196,34 @@ TEST(CircuitTcg, OtherCircuitsBuildPropagateAndCrosscheck) {
     EXPECT_EQ(a.weighted, a.readings) << name;
     // Its steady state misses only where a 10 % step crosses a maximum (paper: Dm+ at A_dcv × 1.2).
     EXPECT_GE(100 * a.linear, 99 * a.readings) << name;
+  }
+}
+
+TEST(CircuitTcg, QualitativeMissesAreStorageParametersOnly) {
+  // A capacitance or inertia injects nothing at a steady state (no net flow or torque), so
+  // its qualitative slope has no nonlinear counterpart; every other fault's slope agrees.
+  for (const char* name : {"thesis.json", "paper.json", "closed_loop_hst.json"}) {
+    const Derived d(name);
+    auto storage_only = [&](const std::string& fault) {
+      bool any = false, all = true;
+      for (const ParamStep& s : circuit_fault_steps(d.t, fault, 1)) {
+        for (const Edge& e : d.t.graph.edges()) {
+          if (e.param != s.param) continue;
+          any = true;
+          all = all && e.type == EdgeType::kIntegral;
+        }
+      }
+      return any && all;
+    };
+    const CircuitCrosscheck x = run_circuit_crosscheck(d.c, CircuitCrosscheckOptions{});
+    for (const CircuitCrosscheckRow& r : x.rows) {
+      const std::string fault = r.fault.substr(0, r.fault.size() - 1);
+      for (std::size_t k = 0; k < r.channel.size(); ++k) {
+        const CircuitChannelCheck& c = r.channel[k];
+        if (qual_agrees(c.tcg_slope, c.slope0) && c.tcg_order == c.order0) continue;
+        EXPECT_TRUE(storage_only(fault)) << name << " " << r.fault << "@" << r.case_name << " " << x.channels[k];
+      }
+    }
   }
 }
 
