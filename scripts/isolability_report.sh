@@ -19,10 +19,12 @@ contradicts (opposite signs, or a channel one fault cannot move at all against o
 other moves); *weakly isolable* when the directions differ by less than ≈ 11°. Classes
 are the connected sets of the first relation (so `c_m+, c_m-, sensor_p_b` is one class
 because each moves p_b alone, like a fault of that transmitter, not because c_m+ looks
-like c_m-). This is the steady part of issue 15's structural analysis: derivative orders
-and slopes (a circuit's temporal causal graph) are not derived yet, so hypotheses called
-not isolable here may still be told apart by their transients, and the thesis rig's
-hand-built table (docs/fdi.md) separates more than its circuit file's does.
+like c_m-). This is the steady part of issue 15's structural analysis: the derivative
+orders and slopes of each circuit's temporal causal graph are in
+[circuit_tcg.md](circuit_tcg.md) (`hstmon-fdi forward --circuit`) but not yet in this
+table, so hypotheses called not isolable here may still be told apart by their
+transients, and the thesis rig's hand-built table (docs/fdi.md) separates more than its
+circuit file's does.
 
 The sensor tables list the best five single added sensors — `p(node)`, `w(shaft)` or
 `q(component)` — by classes split, then faults made detectable, then weak pairs cleared.

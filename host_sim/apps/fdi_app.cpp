@@ -9,6 +9,11 @@
 ///   hstmon-fdi isolability --circuit FILE [--params FILE] [--json]   any circuit: detectability, classes
 ///   hstmon-fdi sensors --circuit FILE [--params FILE] [--json]       any circuit: added sensors ranked
 ///   hstmon-fdi table --circuit FILE [--params FILE] --name NAME --out FILE  any circuit: constexpr fault table
+/// graph, tree, backward, forward and crosscheck take --circuit FILE [--params FILE] too: the
+/// circuit's own bond graph and TCG (docs/fdi.md, "Any circuit"), e.g.
+///   hstmon-fdi backward --circuit examples/circuits/thesis.json p_pp+
+///   hstmon-fdi forward --circuit examples/circuits/thesis.json kp-
+///   hstmon-fdi crosscheck --circuit examples/circuits/thesis.json --case kp=1.6 --case kp=0.65 --fault-step kp=0.5
 /// backward and graph default to the linearised graph of Fig. 2.14 (the thesis's TCG);
 /// tree and forward default to Fig. 2.3's parameters (kp, kfi, kfo), the names of the catalogue.
 
@@ -17,9 +22,11 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "cli_validators.hpp"
 #include "fdi_circuit.hpp"
+#include "fdi_circuit_tcg.hpp"
 #include "fdi_report.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/crosscheck.hpp"
@@ -101,8 +108,38 @@ int main(int argc, char** argv) {
     sub->add_flag("--json", json, "JSON output");
   }
 
+  // The circuit versions of the thesis commands.
+  std::vector<std::string> cases, fault_steps_opt;
+  double step = 0.1;
+  for (CLI::App* sub : {graph, tree, back, fwd, check}) {
+    sub->add_option("--circuit", circuit, "any circuit file: its own bond graph and TCG (docs/fdi.md)");
+    sub->add_option("--params", circuit_params, "with --circuit: its parameter file (default <stem>.params.json)");
+  }
+  check->add_option("--case", cases, "with --circuit: an operating point NAME=FACTOR (input or parameter scaled); repeatable")->take_all();
+  check->add_option("--fault-step", fault_steps_opt, "with --circuit: relative step of one fault NAME=STEP; repeatable");
+  check->add_option("--step", step, "with --circuit: relative step of every other fault")->check(CLI::Range(1e-6, 0.9));
+
   CLI11_PARSE(app, argc, argv);
   try {
+    const bool circuit_cmd = !circuit.empty() && !(*iso || *place || *table);
+    // Options of one kind of graph are refused with the other, not silently ignored.
+    if (circuit_cmd && (nonlinear || linearised || check->count("--t-early") > 0)) {
+      std::cerr << "hstmon-fdi: --nonlinear, --linearised and --t-early are for the thesis graph, not --circuit\n";
+      return 1;
+    }
+    if (circuit.empty() && (!cases.empty() || !fault_steps_opt.empty() || check->count("--step") > 0 ||
+                            !circuit_params.empty())) {
+      std::cerr << "hstmon-fdi: --case, --fault-step, --step and --params need --circuit\n";
+      return 1;
+    }
+    if (circuit_cmd) {
+      const CircuitSource src{circuit, circuit_params};
+      if (*graph) return run_circuit_graph(src, json);
+      if (*tree) return run_circuit_tree(src, channel, minus);
+      if (*back) return run_circuit_backward(src, observation, json);
+      if (*fwd) return run_circuit_forward(src, fault, order, json);
+      if (*check) return run_circuit_crosscheck(src, cases, fault_steps_opt, step, json);
+    }
     if (*iso) return hstmon::fdi::run_isolability(circuit, circuit_params, json);
     if (*place) return hstmon::fdi::run_sensor_placement(circuit, circuit_params, json);
     if (*table) return hstmon::fdi::run_table_header(circuit, circuit_params, table_name, out);

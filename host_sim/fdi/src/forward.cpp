@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "hstmon_fdi/qual.hpp"
@@ -82,7 +83,8 @@ struct WeightedAlgebra {
 
 /// Derivatives k = 0…max_order at 0+ of every node: value[k][node].
 template <class Alg>
-ForwardResult propagate(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order) {
+std::vector<ChannelPrediction> propagate(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order,
+                                         const std::vector<std::string>& measured) {
   if (max_order < 0) throw std::invalid_argument("max_order must be >= 0");
   check_fault(g, fault);
   const std::vector<int> order = instant_order(g);
@@ -114,10 +116,10 @@ ForwardResult propagate(const CausalGraph& g, const std::vector<ParamStep>& faul
       cur[static_cast<std::size_t>(node)] = v;
     }
   }
-  ForwardResult r;
-  for (int c = 0; c < 4; ++c) {
-    const std::size_t m = static_cast<std::size_t>(g.at(kMeasurementNodes[c]));
-    ChannelPrediction& p = r.channel[static_cast<std::size_t>(c)];
+  std::vector<ChannelPrediction> r(measured.size());
+  for (std::size_t c = 0; c < measured.size(); ++c) {
+    const std::size_t m = static_cast<std::size_t>(g.at(measured[c]));
+    ChannelPrediction& p = r[c];
     p.order = -1;
     p.slope = kQualZero;
     for (int k = 0; k <= max_order; ++k) {
@@ -137,8 +139,8 @@ ForwardResult propagate(const CausalGraph& g, const std::vector<ParamStep>& faul
 /// from instantaneous edges), with or without the fault's injections; also the rates of
 /// the integrated nodes.
 void evaluate_linear(const CausalGraph& g, const std::vector<int>& order, const std::vector<int>& states,
-                     const Eigen::Vector4d& x, const std::vector<ParamStep>* fault, std::vector<double>& value,
-                     Eigen::Vector4d& rate) {
+                     const Eigen::VectorXd& x, const std::vector<ParamStep>* fault, std::vector<double>& value,
+                     Eigen::VectorXd& rate) {
   value.assign(g.nodes().size(), 0.0);
   for (std::size_t i = 0; i < states.size(); ++i) value[static_cast<std::size_t>(states[i])] = x[static_cast<Eigen::Index>(i)];
   for (int node : order) {
@@ -166,18 +168,36 @@ void evaluate_linear(const CausalGraph& g, const std::vector<int>& order, const 
   }
 }
 
+/// The thesis's four measurement nodes as a ForwardResult.
+ForwardResult thesis_channels(const std::vector<ChannelPrediction>& v) {
+  ForwardResult r;
+  for (std::size_t c = 0; c < 4; ++c) r.channel[c] = v[c];
+  return r;
+}
+
+std::vector<std::string> thesis_measurements() { return {std::begin(kMeasurementNodes), std::end(kMeasurementNodes)}; }
+
 }  // namespace
 
+std::vector<ChannelPrediction> forward_qualitative_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                                      int max_order, const std::vector<std::string>& measured) {
+  return propagate<QualAlgebra>(g, fault, max_order, measured);
+}
+
+std::vector<ChannelPrediction> forward_weighted_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                                   int max_order, const std::vector<std::string>& measured) {
+  return propagate<WeightedAlgebra>(g, fault, max_order, measured);
+}
+
 ForwardResult forward_qualitative(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order) {
-  return propagate<QualAlgebra>(g, fault, max_order);
+  return thesis_channels(forward_qualitative_at(g, fault, max_order, thesis_measurements()));
 }
 
 ForwardResult forward_weighted(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order) {
-  return propagate<WeightedAlgebra>(g, fault, max_order);
+  return thesis_channels(forward_weighted_at(g, fault, max_order, thesis_measurements()));
 }
 
-std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vector<ParamStep>& fault) {
-  check_fault(g, fault);
+std::vector<int> integrated_nodes(const CausalGraph& g) {
   std::vector<int> states;
   for (std::size_t i = 0; i < g.nodes().size(); ++i) {
     for (int ei : g.in_edges(static_cast<int>(i))) {
@@ -187,31 +207,47 @@ std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vect
       }
     }
   }
-  if (states.size() != 4) throw std::invalid_argument("linear_steady_change: the graph must have exactly 4 integrated nodes");
+  return states;
+}
+
+std::vector<double> linear_steady_change_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                            const std::vector<std::string>& measured) {
+  check_fault(g, fault);
+  const std::vector<int> states = integrated_nodes(g);
+  const Eigen::Index n = static_cast<Eigen::Index>(states.size());
+  if (n == 0) throw std::invalid_argument("linear_steady_change: the graph has no integrated nodes");
   const std::vector<int> order = instant_order(g);
   std::vector<double> value;
-  Eigen::Matrix4d A;
-  Eigen::Vector4d rate;
-  for (int j = 0; j < 4; ++j) {
-    evaluate_linear(g, order, states, Eigen::Vector4d::Unit(j), nullptr, value, rate);
+  Eigen::MatrixXd A(n, n);
+  Eigen::VectorXd rate(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    evaluate_linear(g, order, states, Eigen::VectorXd::Unit(n, j), nullptr, value, rate);
     A.col(j) = rate;
   }
-  Eigen::Vector4d b;
-  evaluate_linear(g, order, states, Eigen::Vector4d::Zero(), &fault, value, b);
+  Eigen::VectorXd b(n);
+  evaluate_linear(g, order, states, Eigen::VectorXd::Zero(n), &fault, value, b);
   // Pressures (1e6 Pa) and speed (1e2 rad/s) with K = 1e14 spread A's entries over ~20
   // decades: equilibrate rows and columns before the rank test.
-  Eigen::Vector4d row = A.cwiseAbs().rowwise().maxCoeff().cwiseInverse();
-  const Eigen::Matrix4d Ar = row.asDiagonal() * A;
-  const Eigen::Vector4d col = Ar.cwiseAbs().colwise().maxCoeff().transpose().cwiseInverse();
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(Ar * col.asDiagonal());
+  const Eigen::VectorXd row = A.cwiseAbs().rowwise().maxCoeff().cwiseInverse();
+  const Eigen::MatrixXd Ar = row.asDiagonal() * A;
+  const Eigen::VectorXd col = Ar.cwiseAbs().colwise().maxCoeff().transpose().cwiseInverse();
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(Ar * col.asDiagonal());
   if (!lu.isInvertible() || !col.allFinite() || !row.allFinite()) {
     throw std::invalid_argument("linear_steady_change: singular state matrix");
   }
-  const Eigen::Vector4d x = col.asDiagonal() * lu.solve(-(row.asDiagonal() * b));
+  const Eigen::VectorXd x = col.asDiagonal() * lu.solve(-(row.asDiagonal() * b));
   evaluate_linear(g, order, states, x, &fault, value, rate);
-  std::array<double, 4> y{};
-  for (int c = 0; c < 4; ++c) y[static_cast<std::size_t>(c)] = value[static_cast<std::size_t>(g.at(kMeasurementNodes[c]))];
+  std::vector<double> y;
+  for (const std::string& m : measured) y.push_back(value[static_cast<std::size_t>(g.at(m))]);
   return y;
+}
+
+std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vector<ParamStep>& fault) {
+  if (integrated_nodes(g).size() != 4) {
+    throw std::invalid_argument("linear_steady_change: the graph must have exactly 4 integrated nodes");
+  }
+  const std::vector<double> v = linear_steady_change_at(g, fault, thesis_measurements());
+  return {v[0], v[1], v[2], v[3]};
 }
 
 std::string render_derivatives(const ChannelPrediction& c) {

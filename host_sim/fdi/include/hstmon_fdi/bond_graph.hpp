@@ -18,7 +18,7 @@ enum class ValveModel {
 };
 
 /// Kind of a bond-graph element.
-enum class ElementKind { kSe, kR, kC, kI, kTF, kZero, kOne, kDetector };
+enum class ElementKind { kSe, kR, kC, kI, kTF, kZero, kOne, kDetector, kSf };
 
 /// One element: a source, a storage, a resistance, a transformer, a junction or a sensor.
 struct Element {

@@ -52,6 +52,24 @@ ForwardResult forward_weighted(const CausalGraph& g, const std::vector<ParamStep
 ///         or A is singular
 std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vector<ParamStep>& fault);
 
+/// forward_qualitative for any measured nodes (a circuit's sensor channels), in the given order.
+/// @throws std::invalid_argument as forward_qualitative, or for a name that is not a node
+std::vector<ChannelPrediction> forward_qualitative_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                                      int max_order, const std::vector<std::string>& measured);
+
+/// forward_weighted for any measured nodes, in the given order.
+std::vector<ChannelPrediction> forward_weighted_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                                   int max_order, const std::vector<std::string>& measured);
+
+/// Nodes with an integrating (dt) in-edge: the states of the linearised model, in node order.
+std::vector<int> integrated_nodes(const CausalGraph& g);
+
+/// linear_steady_change for any number of integrated nodes and any measured nodes
+/// [measured units per unit ln θ].
+/// @throws std::invalid_argument without integrated nodes, for a singular A or an unknown name
+std::vector<double> linear_steady_change_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
+                                            const std::vector<std::string>& measured);
+
 /// Renders derivative signs as "0 0 + -" (k = 0…max_order).
 std::string render_derivatives(const ChannelPrediction& c);
 
