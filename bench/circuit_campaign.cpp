@@ -65,6 +65,7 @@ const std::vector<Condition> kConditions = {
     {"rest 100 Hz", true, 100.0}};
 
 constexpr double kSegment = 100.0;  // nominal segment [s]
+constexpr double kTieMargin = 0.01;  // FaultMatcher's default tie margin [rad]
 
 // Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
 // longer (a start from rest has settled); the run 2.5 s beyond, or 6 τ where longer
@@ -104,6 +105,7 @@ struct RunResult {
   bool in_set = false;      // truth among the last scored event's candidates
   bool best = false;        // truth that event's best
   std::string last;         // that event, for --verbose
+  std::vector<std::string> reported;  // its candidates within the matcher's tie margin of the best
   std::string error;
 };
 
@@ -213,6 +215,12 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   }
   if (last != nullptr) {
     r.last = fmt::format("{} at {:.3f} s:", last->event, last->t);
+    // The reported set (as the thesis campaign's): the candidates whose angle lies within
+    // the matcher's default tie margin of the best's.
+    const double best_angle = std::acos(std::clamp(last->candidates.front().score, -1.0, 1.0));
+    for (const auto& cand : last->candidates) {
+      if (std::acos(std::clamp(cand.score, -1.0, 1.0)) - best_angle <= kTieMargin) r.reported.push_back(cand.fault);
+    }
     for (std::size_t i = 0; i < last->candidates.size(); ++i) {
       const auto& cand = last->candidates[i];
       r.last += fmt::format(" {} {:.2f}", cand.fault, cand.score);
@@ -326,6 +334,8 @@ int main(int argc, char** argv) {
     double delay_sum = 0.0;
   };
   std::map<std::string, Tally> by_fault;
+  // Per truth: how often each other fault shared the reported set (detected runs).
+  std::map<std::string, std::map<std::string, int>> confused;
   std::vector<Tally> by_cond(kConditions.size());
   Tally all, nominal;
   double nominal_s = 0.0;
@@ -351,6 +361,11 @@ int main(int argc, char** argv) {
       t->best += r.detected && r.best ? 1 : 0;
       if (r.detected) t->delay_sum += r.delay;
     }
+    if (r.detected) {
+      for (const std::string& other : r.reported) {
+        if (other != f.name) ++confused[f.name][other];
+      }
+    }
     if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
     if (verbose && r.error.empty() && (!r.detected || !r.in_set || r.early))
       fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
@@ -374,6 +389,15 @@ int main(int argc, char** argv) {
   for (const auto& [name, t] : by_fault) {
     fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>9.0f} {:>6}\n", name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected),
                pct(t.best, t.detected), t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.early);
+  }
+  fmt::print("\nconfusions (a fault in the reported set of another's detected runs, in ≥ 25 % of them):\n");
+  for (const auto& [truth, others] : confused) {
+    std::vector<std::string> shown;
+    const int n = by_fault[truth].detected;
+    for (const auto& [other, k] : others) {
+      if (4 * k >= n) shown.push_back(fmt::format("{} {:.0f} %", other, pct(k, n)));
+    }
+    if (!shown.empty()) fmt::print("  {:<20} with {}\n", truth, fmt::join(shown, ", "));
   }
   fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7}\n", "condition", "runs", "detected", "in set", "early");
   for (std::size_t i = 0; i < kConditions.size(); ++i) {
