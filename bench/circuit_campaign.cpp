@@ -34,7 +34,6 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -238,8 +237,23 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   return r;
 }
 
-// The table's rows as faults to inject (in table order).
-std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::vector<std::string>& undetectable) {
+// True when the circuit has a steady state at its nominal inputs with parameter p (or
+// input i) times factor.
+bool has_steady_state(const LoadedCircuit& c, int p, int i, double factor) {
+  auto params = c.values.params;
+  auto inputs = c.values.inputs;
+  if (p >= 0) params.v[p] *= factor;
+  if (i >= 0) inputs.v[i] *= factor;
+  const hstmon::host::HostCircuitModel m(c.file.circuit, params, inputs);
+  hstmon::host::HostCircuitModel::State xs;
+  return m.valid() && m.steady_state(xs);
+}
+
+// The table's rows as faults to inject (in table order). A fault of the given magnitude
+// that leaves the circuit no steady state (the machine stalls, every channel collapses:
+// a different question) is injected at 10 %, as the table's own signs are then taken.
+std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::vector<std::string>& undetectable,
+                                std::vector<std::string>& notes) {
   const auto table = hstmon::circuit_tools::circuit_fault_table(c);
   undetectable = table.undetectable;
   std::vector<Fault> out;
@@ -256,6 +270,14 @@ std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::v
       f.factor = factor;
       f.param = c.file.param_index(base);
       if (f.param < 0) f.input = c.file.input_index(base);
+      if (!has_steady_state(c, f.param, f.input, f.factor)) {
+        f.factor = name.back() == '+' ? 1.1 : 0.9;
+        notes.push_back(fmt::format("{}: no steady state at {:.0f} %: injected at 10 %", name, 100.0 * magnitude));
+        if (!has_steady_state(c, f.param, f.input, f.factor)) {
+          notes.back() = fmt::format("{}: no steady state at 10 % either: not injected", name);
+          continue;
+        }
+      }
     }
     if (f.param >= 0 || f.input >= 0 || f.channel >= 0) out.push_back(f);
   }
@@ -293,10 +315,10 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "{}\n", err->to_string());
     return 2;
   }
-  std::vector<std::string> undetectable;
+  std::vector<std::string> undetectable, fault_notes;
   std::vector<Fault> faults;
   try {
-    faults = table_faults(c, magnitude, undetectable);
+    faults = table_faults(c, magnitude, undetectable, fault_notes);
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", circuit, e.what());
     return 2;
@@ -385,6 +407,7 @@ int main(int argc, char** argv) {
   fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
              g_timing.t_fault, g_timing.run, g_timing.load_period);
   if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
+  for (const std::string& n : fault_notes) fmt::print("{}\n", n);
   fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best", "delay ms", "early");
   for (const auto& [name, t] : by_fault) {
     fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>9.0f} {:>6}\n", name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected),
