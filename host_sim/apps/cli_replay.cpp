@@ -6,16 +6,20 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "cli_log_options.hpp"
+#include "cli_log_replay.hpp"
 #include "cli_validators.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
@@ -141,6 +145,13 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   }
 }
 
+// Worth a progress line: more than about 200 000 rows (16 MB of text).
+bool log_is_long(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  return !ec && bytes > (std::uintmax_t{16} << 20);
+}
+
 // Residual CSV in display units (bar, rpm) through the host port's writer; rows where a
 // channel is absent carry "nan" there.
 std::string write_residual_csv(const std::string& path, const host::ReplayResult& r) {
@@ -179,30 +190,32 @@ int run_replay(const ReplayArgs& a) {
   const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
   const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
 
-  const host::LogData log = read_log_reporting(a.log, *ro);
-  if (log.error) {
-    if (!a.io.lenient || log.rows() == 0) return kExitBadInput;
-    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
-  }
-
   host::ReplayOptions opt;
   opt.tick = a.tick;
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty();
   opt.diagnose = !a.no_diagnosis;
   if (pf.sensors) opt.sensors = *pf.sensors;
+  // The log is streamed (cli_log_replay.hpp): read and replayed chunk by chunk.
   Progress progress;
-  progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
-  if (progress.on) opt.progress = [&progress](double f) { progress(f); };
-  const host::ReplayResult r = host::replay(log, params, inputs, opt);
+  progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log_is_long(a.log);
+  std::function<void(double)> on_chunk;
+  if (progress.on) on_chunk = [&progress](double f) { progress(f); };
+  const LogReplay lr = replay_log_file(a.log, *ro, params, inputs, opt, on_chunk);
   progress.done();
+  print_log_messages(a.log, lr.notes, lr.error);
+  const host::ReplayResult& r = lr.result;
+  if (lr.error) {
+    if (!a.io.lenient || r.rows == 0) return kExitBadInput;
+    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, r.rows);
+  }
 
   if (a.json) {
     print_json(a, r);
   } else {
     print_human(a, r);
   }
-  int rc = log.error ? kExitBadInput : kExitOk;
+  int rc = lr.error ? kExitBadInput : kExitOk;
   if (!a.residuals_csv.empty()) {
     const std::string err = write_residual_csv(a.residuals_csv, r);
     if (!err.empty()) {
