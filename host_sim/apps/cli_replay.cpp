@@ -18,6 +18,7 @@
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
+#include "cli_fleet_replay.hpp"
 #include "cli_log_options.hpp"
 #include "cli_log_replay.hpp"
 #include "cli_validators.hpp"
@@ -32,7 +33,8 @@ namespace hstmon::cli {
 namespace {
 
 struct ReplayArgs {
-  std::string log;
+  std::string log;                // the one log (single-log output)
+  std::vector<std::string> logs;  // as given: files or folders (several: summary lines)
   LogOptionArgs io;  // --map, --separator, --lenient, --rate, --params
   bool json = false;
   std::string residuals_csv;
@@ -42,6 +44,9 @@ struct ReplayArgs {
   bool no_progress = false;
   bool no_diagnosis = false;
   std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
+  bool summary = false;       // --summary: one JSON line per log (cli_fleet_replay.hpp)
+  unsigned jobs = 0;          // --jobs
+  std::string machine_from = "parent";
 };
 
 struct Display {
@@ -237,12 +242,58 @@ int run_replay(const ReplayArgs& a) {
   return rc;
 }
 
+// Several logs, a folder or --summary: one summary line per log (cli_fleet_replay.hpp).
+bool wants_summaries(const ReplayArgs& a) {
+  std::error_code ec;
+  return a.summary || a.logs.size() > 1 || std::filesystem::is_directory(a.logs.front(), ec);
+}
+
+int run_summaries(const ReplayArgs& a) {
+  const char* single_only[] = {"--residuals", "--plot"};
+  const std::string given[] = {a.residuals_csv, a.plot};
+  for (int i = 0; i < 2; ++i) {
+    if (!given[i].empty()) {
+      fmt::print(stderr, "hstmon replay: error: {} takes one log (not with several logs, a folder or --summary)\n",
+                 single_only[i]);
+      return kExitUsage;
+    }
+  }
+  FleetReplayArgs f;
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "replay");
+  if (!ro) return kExitUsage;
+  f.read = *ro;
+  std::string err;
+  f.machine = parse_machine_rule(a.machine_from, err);
+  if (!err.empty()) {
+    fmt::print(stderr, "hstmon replay: error: --machine-from {}\n", err);
+    return kExitUsage;
+  }
+  host::ParamsFileResult pf;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
+  f.params = pf.params.value_or(ThesisParams<double>{});
+  f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
+  f.replay.tick = a.tick;
+  f.replay.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  f.replay.diagnose = !a.no_diagnosis;
+  if (pf.sensors) f.replay.sensors = *pf.sensors;
+  f.jobs = a.jobs;
+  const std::vector<std::string> logs = expand_logs(a.logs);
+  if (logs.empty()) {
+    fmt::print(stderr, "hstmon replay: error: no logs (*.csv, *.tsv, *.txt) in {}\n", a.logs.front());
+    return kExitBadInput;
+  }
+  return run_fleet_replay(logs, f);
+}
+
 }  // namespace
 
 void add_replay_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ReplayArgs>();
   CLI::App* cmd = app.add_subcommand("replay", "Replay a sensor log through the observer and report residuals");
-  cmd->add_option("LOG", args->log, "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m)")->required();
+  cmd->add_option("LOG", args->logs,
+                  "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m); several logs or a folder: "
+                  "one JSON summary line per log (docs/fleet.md)")
+      ->required();
   cmd->add_flag("--json", args->json, "One JSON object per line instead of the human summary");
   cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
@@ -257,7 +308,24 @@ void add_replay_command(CLI::App& app, int& exit_code) {
                   "Replay through the monitor of this circuit file (docs/circuits.md): residuals and the fault matcher "
                   "on the circuit's generated table; --params is then its parameter file (default: <stem>.params.json "
                   "beside it)");
+  cmd->add_flag("--summary", args->summary,
+                "One JSON summary line per log (implied by several logs or a folder; docs/fleet.md)");
+  cmd->add_option("--jobs", args->jobs, "Logs replayed at once with --summary (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--machine-from", args->machine_from,
+                  "Machine of a log in its summary line: parent (its folder; default), stem (file name without "
+                  "extension) or regex:PATTERN (first capture group, on the path)");
   cmd->callback([args, cmd, &exit_code]() {
+    args->log = args->logs.front();
+    if (wants_summaries(*args)) {
+      if (!args->circuit.empty()) {
+        fmt::print(stderr, "hstmon replay: error: --circuit takes one log (not several logs, a folder or --summary) (yet)\n");
+        exit_code = kExitUsage;
+        return;
+      }
+      exit_code = run_summaries(*args);
+      return;
+    }
     if (args->circuit.empty()) {
       exit_code = run_replay(*args);
       return;
