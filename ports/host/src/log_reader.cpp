@@ -959,8 +959,11 @@ class Parser {
         break;
       }
       if (src_->fill == src_->cap) {
-        fail_at(line_no_ + 1, 1, "line longer than " + std::to_string((src_->cap - static_cast<std::size_t>(pin_ - buf)) >> 10) +
-                                     " KiB (not a log row)");
+        const std::size_t room = src_->cap - static_cast<std::size_t>(pin_ - buf);
+        fail_at(line_no_ + 1, 1,
+                "line longer than " + (room >= (std::size_t{1} << 20) ? std::to_string(room >> 20) + " MiB"
+                                                                      : std::to_string(room) + " bytes") +
+                    " (not a log row)");
         return false;
       }
     }
