@@ -14,6 +14,7 @@ if [[ ! -x $build/bin/hstmon || ! -x $build/bin/hstmon-sim ]]; then
   cmake --preset host-release >/dev/null
   cmake --build "$build" -j2 --target hstmon hstmon-sim >/dev/null
 fi
+build=$(cd "$build" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for seed in 0 1 2 3 4 5 6 7 8 9; do

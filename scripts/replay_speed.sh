@@ -15,6 +15,7 @@ if [[ ! -x $build/bin/hstmon || ! -x $build/bin/hstmon-sim ]]; then
   cmake --preset host-release >/dev/null
   cmake --build "$build" -j2 --target hstmon hstmon-sim >/dev/null
 fi
+build=$(cd "$build" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for minutes in 15 60; do

@@ -6,7 +6,8 @@
 #  - the Slurm array script, every task run with SLURM_ARRAY_TASK_ID set: the same again;
 #  - a repeated run gives byte-identical lines (idempotent);
 #  - the bad log has an error line and exit code 2, the others are all there;
-#  - `hstmon fleet` flags the blocked machine and only it.
+#  - `hstmon fleet` flags the blocked machine and only it;
+#  - --machine-from stem and regex:, and the options that take one log.
 #   bash fleet_recipes.sh HSTMON HSTMON_SIM SOURCE_DIR WORK_DIR
 set -euo pipefail
 hstmon=$1 sim=$2 src=$3 work=$4
@@ -55,5 +56,19 @@ cmp inproc2.jsonl again.jsonl || fail "a repeated run differs"
 grep -q '"machine":"m01".*"verdict":"steady"' fleet.jsonl || fail "m01 should be steady"
 grep -q '"machine":"m02".*"verdict":"drifting"' fleet.jsonl || fail "m02 should drift"
 grep -q '"drifting":1,"failed":1' fleet.jsonl || fail "fleet line"
-"$hstmon" fleet inproc2.jsonl | grep -q 'm02 .*DRIFTING' || fail "human table"
+"$hstmon" fleet inproc2.jsonl > fleet.txt
+grep -q 'm02 .*DRIFTING' fleet.txt || fail "human table"
+# The machine rules, and options that take one log.
+expect_rc 2 "$hstmon" replay logs/ --machine-from stem > stem.jsonl
+grep -q '"log":"logs/m01/2026-11-01.csv","machine":"2026-11-01"' stem.jsonl ||
+  fail "--machine-from stem (or logs/ read differently from logs)"
+expect_rc 2 "$hstmon" replay logs --machine-from 'regex:/(m0[12])/' > regex.jsonl
+grep -q '"log":"logs/m02/2026-11-03.csv","machine":"m02"' regex.jsonl || fail "--machine-from regex:"
+expect_rc 1 "$hstmon" replay logs --machine-from 'regex:m01' 2> err.txt
+grep -q "needs a capture group" err.txt || fail "regex without a group"
+expect_rc 1 "$hstmon" replay logs --residuals r.csv 2> err.txt
+grep -q -- "--residuals takes one log" err.txt || fail "--residuals with a folder"
+mkdir -p empty
+expect_rc 2 "$hstmon" replay empty 2> err.txt
+grep -q "no logs" err.txt || fail "empty folder"
 echo "fleet_recipes: ok"
