@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <system_error>
 #include <thread>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
@@ -128,6 +133,13 @@ std::string summary_line(const std::string& path, const FleetReplayArgs& args, b
 }
 
 int run_fleet_replay(const std::vector<std::string>& logs, const FleetReplayArgs& args) {
+#ifdef __GLIBC__
+  // Each log takes a read buffer and a chunk of rows (~9 MB). glibc would map and unmap
+  // them for every log, and the fresh pages' faults cost a third of the CPU time of 200
+  // one-minute logs (0.7 s of 2.4 s); kept in the heap, the next log reuses them.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
   std::vector<std::string> lines(logs.size());
   std::vector<char> failed(logs.size(), 0);  // (not vector<bool>: threads write neighbours)
   std::atomic<std::size_t> next{0};
