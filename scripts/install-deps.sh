@@ -23,6 +23,7 @@ packages=(
   qemu-system-arm             # runs the firmware (mps2-an386) in tests/firmware and footprint.sh
   g++-aarch64-linux-gnu qemu-user googletest  # aarch64 cross build; lib tests under qemu-aarch64
   clang libclang-rt-14-dev    # libFuzzer + ASan/UBSan runtimes for scripts/fuzz.sh
+  parallel                    # GNU parallel: the fleet recipe of docs/fleet.md and its test (tests/fleet)
 )
 
 missing=()

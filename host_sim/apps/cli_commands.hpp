@@ -45,5 +45,6 @@ inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<const
 void add_replay_command(CLI::App& app, int& exit_code);
 void add_identify_command(CLI::App& app, int& exit_code);  ///< `hstmon identify LOG... --out FILE`
 void add_gap_command(CLI::App& app, int& exit_code);  ///< `hstmon gap --fit LOG_A --check LOG_B`
+void add_fleet_command(CLI::App& app, int& exit_code);  ///< `hstmon fleet SUMMARY.jsonl...` (drifting machines)
 
 }  // namespace hstmon::cli

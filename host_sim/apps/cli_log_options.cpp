@@ -56,13 +56,18 @@ std::string capped(const std::string& message, std::size_t max_chars) {
   return message.substr(0, cut) + fmt::format("… ({} bytes in all)", message.size());
 }
 
+void print_log_messages(const std::string& path, const std::vector<std::string>& notes,
+                        const std::optional<host::LogError>& error) {
+  for (std::size_t i = 0; i < notes.size() && i < kMaxNotes; ++i) fmt::print(stderr, "{}\n", capped(notes[i]));
+  if (notes.size() > kMaxNotes) {
+    fmt::print(stderr, "{}: note: … and {} more notes\n", path, notes.size() - kMaxNotes);
+  }
+  if (error) fmt::print(stderr, "{}\n", capped(error->to_string()));
+}
+
 host::LogData read_log_reporting(const std::string& path, const host::ReadOptions& options) {
   host::LogData log = host::read_log(path, options);
-  for (std::size_t i = 0; i < log.notes.size() && i < kMaxNotes; ++i) fmt::print(stderr, "{}\n", capped(log.notes[i]));
-  if (log.notes.size() > kMaxNotes) {
-    fmt::print(stderr, "{}: note: … and {} more notes\n", path, log.notes.size() - kMaxNotes);
-  }
-  if (log.error) fmt::print(stderr, "{}\n", capped(log.error->to_string()));
+  print_log_messages(path, log.notes, log.error);
   return log;
 }
 

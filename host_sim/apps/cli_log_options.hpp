@@ -36,6 +36,10 @@ std::optional<host::ReadOptions> to_read_options(const LogOptionArgs& args, cons
 /// notes (then a count). The caller decides what an error means for it.
 host::LogData read_log_reporting(const std::string& path, const host::ReadOptions& options);
 
+/// Prints a log's notes and error to stderr as read_log_reporting does.
+void print_log_messages(const std::string& path, const std::vector<std::string>& notes,
+                        const std::optional<host::LogError>& error);
+
 /// `message` cut to at most max_chars bytes (on a UTF-8 boundary) with "… (N bytes)"
 /// appended: no message fills a screen.
 std::string capped(const std::string& message, std::size_t max_chars = 400);

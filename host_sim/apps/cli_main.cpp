@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   hstmon::cli::add_replay_command(app, exit_code);
   hstmon::cli::add_identify_command(app, exit_code);
   hstmon::cli::add_gap_command(app, exit_code);
+  hstmon::cli::add_fleet_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

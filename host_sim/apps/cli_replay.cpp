@@ -6,16 +6,21 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "cli_circuit_replay.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
+#include "cli_fleet_replay.hpp"
 #include "cli_log_options.hpp"
+#include "cli_log_replay.hpp"
 #include "cli_replay_report.hpp"
 #include "cli_validators.hpp"
 #include "hstmon_host/log_reader.hpp"
@@ -29,7 +34,8 @@ namespace hstmon::cli {
 namespace {
 
 struct ReplayArgs {
-  std::string log;
+  std::string log;                // the one log (single-log output)
+  std::vector<std::string> logs;  // as given: files or folders (several: summary lines)
   LogOptionArgs io;  // --map, --separator, --lenient, --rate, --params
   bool json = false;
   std::string residuals_csv;
@@ -40,6 +46,9 @@ struct ReplayArgs {
   bool no_progress = false;
   bool no_diagnosis = false;
   std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
+  bool summary = false;       // --summary: one JSON line per log (cli_fleet_replay.hpp)
+  unsigned jobs = 0;          // --jobs
+  std::string machine_from = "parent";
 };
 
 struct Display {
@@ -143,6 +152,13 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   }
 }
 
+// Worth a progress line: more than about 200 000 rows (16 MB of text).
+bool log_is_long(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  return !ec && bytes > (std::uintmax_t{16} << 20);
+}
+
 // Residual CSV in display units (bar, rpm) through the host port's writer; rows where a
 // channel is absent carry "nan" there.
 std::string write_residual_csv(const std::string& path, const host::ReplayResult& r) {
@@ -181,30 +197,32 @@ int run_replay(const ReplayArgs& a) {
   const ThesisParams<double> params = pf.params.value_or(ThesisParams<double>{});
   const ThesisInputs<double> inputs = pf.inputs.value_or(ThesisInputs<double>{});
 
-  const host::LogData log = read_log_reporting(a.log, *ro);
-  if (log.error) {
-    if (!a.io.lenient || log.rows() == 0) return kExitBadInput;
-    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
-  }
-
   host::ReplayOptions opt;
   opt.tick = a.tick;
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   opt.diagnose = !a.no_diagnosis;
   if (pf.sensors) opt.sensors = *pf.sensors;
+  // The log is streamed (cli_log_replay.hpp): read and replayed chunk by chunk.
   Progress progress;
-  progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log.rows() > 200000;
-  if (progress.on) opt.progress = [&progress](double f) { progress(f); };
-  const host::ReplayResult r = host::replay(log, params, inputs, opt);
+  progress.on = !a.no_progress && ::isatty(STDERR_FILENO) && log_is_long(a.log);
+  std::function<void(double)> on_chunk;
+  if (progress.on) on_chunk = [&progress](double f) { progress(f); };
+  const LogReplay lr = replay_log_file(a.log, *ro, params, inputs, opt, on_chunk);
   progress.done();
+  print_log_messages(a.log, lr.notes, lr.error);
+  const host::ReplayResult& r = lr.result;
+  if (lr.error) {
+    if (!a.io.lenient || r.rows == 0) return kExitBadInput;
+    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, r.rows);
+  }
 
   if (a.json) {
     print_json(a, r);
   } else {
     print_human(a, r);
   }
-  int rc = log.error ? kExitBadInput : kExitOk;
+  int rc = lr.error ? kExitBadInput : kExitOk;
   if (!a.residuals_csv.empty()) {
     const std::string err = write_residual_csv(a.residuals_csv, r);
     if (!err.empty()) {
@@ -236,12 +254,58 @@ int run_replay(const ReplayArgs& a) {
   return rc;
 }
 
+// Several logs, a folder or --summary: one summary line per log (cli_fleet_replay.hpp).
+bool wants_summaries(const ReplayArgs& a) {
+  std::error_code ec;
+  return a.summary || a.logs.size() > 1 || std::filesystem::is_directory(a.logs.front(), ec);
+}
+
+int run_summaries(const ReplayArgs& a) {
+  const char* single_only[] = {"--residuals", "--plot", "--report"};
+  const std::string given[] = {a.residuals_csv, a.plot, a.report};
+  for (int i = 0; i < 3; ++i) {
+    if (!given[i].empty()) {
+      fmt::print(stderr, "hstmon replay: error: {} takes one log (not with several logs, a folder or --summary)\n",
+                 single_only[i]);
+      return kExitUsage;
+    }
+  }
+  FleetReplayArgs f;
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "replay");
+  if (!ro) return kExitUsage;
+  f.read = *ro;
+  std::string err;
+  f.machine = parse_machine_rule(a.machine_from, err);
+  if (!err.empty()) {
+    fmt::print(stderr, "hstmon replay: error: --machine-from {}\n", err);
+    return kExitUsage;
+  }
+  host::ParamsFileResult pf;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
+  f.params = pf.params.value_or(ThesisParams<double>{});
+  f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
+  f.replay.tick = a.tick;
+  f.replay.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  f.replay.diagnose = !a.no_diagnosis;
+  if (pf.sensors) f.replay.sensors = *pf.sensors;
+  f.jobs = a.jobs;
+  const std::vector<std::string> logs = expand_logs(a.logs);
+  if (logs.empty()) {
+    fmt::print(stderr, "hstmon replay: error: no logs (*.csv, *.tsv, *.txt) in {}\n", a.logs.front());
+    return kExitBadInput;
+  }
+  return run_fleet_replay(logs, f);
+}
+
 }  // namespace
 
 void add_replay_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ReplayArgs>();
   CLI::App* cmd = app.add_subcommand("replay", "Replay a sensor log through the observer and report residuals");
-  cmd->add_option("LOG", args->log, "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m)")->required();
+  cmd->add_option("LOG", args->logs,
+                  "CSV log (t[s] plus any of p_sup, p_s, p_bp, kp, p_mi, p_mo, p_pp, w_m); several logs or a folder: "
+                  "one JSON summary line per log (docs/fleet.md)")
+      ->required();
   cmd->add_flag("--json", args->json, "One JSON object per line instead of the human summary");
   cmd->add_option("--residuals", args->residuals_csv, "Write measured, model and residual per row to this CSV");
   cmd->add_option("--plot", args->plot, "Write a plot (.svg or .png) of measured, model and residual");
@@ -258,7 +322,24 @@ void add_replay_command(CLI::App& app, int& exit_code) {
                   "Replay through the monitor of this circuit file (docs/circuits.md): residuals and the fault matcher "
                   "on the circuit's generated table; --params is then its parameter file (default: <stem>.params.json "
                   "beside it)");
+  cmd->add_flag("--summary", args->summary,
+                "One JSON summary line per log (implied by several logs or a folder; docs/fleet.md)");
+  cmd->add_option("--jobs", args->jobs, "Logs replayed at once with --summary (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--machine-from", args->machine_from,
+                  "Machine of a log in its summary line: parent (its folder; default), stem (file name without "
+                  "extension) or regex:PATTERN (first capture group, on the path)");
   cmd->callback([args, cmd, &exit_code]() {
+    args->log = args->logs.front();
+    if (wants_summaries(*args)) {
+      if (!args->circuit.empty()) {
+        fmt::print(stderr, "hstmon replay: error: --circuit takes one log (not several logs, a folder or --summary) (yet)\n");
+        exit_code = kExitUsage;
+        return;
+      }
+      exit_code = run_summaries(*args);
+      return;
+    }
     if (args->circuit.empty()) {
       exit_code = run_replay(*args);
       return;

@@ -5,11 +5,15 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <new>
 #include <memory>
 #include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "delimiter_scan.hpp"
 #include "fast_decimal.hpp"
@@ -104,8 +108,43 @@ bool field_is_number(std::string_view s, bool decimal_comma) noexcept {
   return r.ec == std::errc() && r.ptr == buf + s.size();
 }
 
+/// The file behind a streamed read (LogStream): one buffer refilled by read(2), so the
+/// memory does not grow with the file.
+struct StreamSource {
+  int fd = -1;
+  std::unique_ptr<char[]> buf;
+  std::size_t cap = 0;         ///< buffer size [bytes]
+  std::size_t fill = 0;        ///< bytes in the buffer
+  std::uint64_t total = 0;     ///< bytes read from the file so far
+  bool eof = false;
+  int err = 0;                 ///< errno of a failed read
+
+  /// Reads until the buffer is full or the file ends; false on a read error.
+  bool read_more() {
+    while (fill < cap && !eof) {
+      const ssize_t n = ::read(fd, buf.get() + fill, cap - fill);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        err = errno;
+        return false;
+      }
+      if (n == 0) eof = true;
+      fill += static_cast<std::size_t>(n);
+      total += static_cast<std::uint64_t>(n);
+    }
+    return true;
+  }
+};
+
 class Parser {
  public:
+  /// A streamed read: text is the buffer's complete lines; more come through refill().
+  Parser(std::string_view text, const ReadOptions& options, LogData& out, StreamSource* src, std::size_t chunk_rows)
+      : Parser(text, options, out) {
+    src_ = src;
+    chunk_rows_ = chunk_rows;
+  }
+
   Parser(std::string_view text, const ReadOptions& options, LogData& out)
       : opt_(options), out_(out) {
     const bool bom = text.substr(0, 3) == "\xEF\xBB\xBF";
@@ -166,7 +205,7 @@ class Parser {
   /// NUL and invalid UTF-8 here; fast_row checks its own lines (it takes ASCII only), so
   /// the text is checked once, in order, and the first bad byte is the one reported.
   bool next_content_line(Line& line) {
-    while (cur_ < end_) {
+    while (cur_ < end_ || refill()) {
       const auto* nl = static_cast<const char*>(std::memchr(cur_, '\n', static_cast<std::size_t>(end_ - cur_)));
       line.begin = cur_;
       line.next = nl != nullptr ? nl + 1 : end_;
@@ -568,14 +607,15 @@ class Parser {
 
   /// Trims every column to the rows kept so far (drops a partly stored row).
   void trim_to_kept_rows() {
+    const std::size_t kept = rows_ - chunk_base_;  // rows of this chunk
     for (ColumnSpec& c : cols_) {
-      if (c.dst != nullptr && c.dst->size() > rows_) c.dst->resize(rows_);
+      if (c.dst != nullptr && c.dst->size() > kept) c.dst->resize(kept);
     }
   }
 
   /// Trims every column to the rows kept (lenient) or to none (strict).
   void drop_rows_after_error() {
-    if (!opt_.lenient) rows_ = 0;
+    if (!opt_.lenient) rows_ = chunk_base_;
     trim_to_kept_rows();
   }
 
@@ -806,27 +846,71 @@ class Parser {
 
   void parse_rows(Line line) {
     delims_.resize(cols_.size());
-    const std::size_t max_rows = estimate_rows(line.begin, end_);
+    const std::size_t max_rows = src_ != nullptr ? chunk_rows_ : estimate_rows(line.begin, end_);
     for (ColumnSpec& c : cols_) {
       if (c.dst != nullptr) c.dst->reserve(max_rows);
     }
-    std::size_t fast_misses = 0;  // consecutive rows fast_row refused
-    std::size_t general_rows = 0;
+    first_ = line;
+    have_first_ = true;
+    if (src_ != nullptr) {
+      // Streamed: LogStream pulls the rows chunk by chunk. Everything above the first data
+      // row (header, units row: the column names the messages quote) stays put in the buffer.
+      pin_ = const_cast<char*>(line.begin);
+      return;
+    }
+    parse_rows_until(static_cast<std::size_t>(-1));
+    finish_rows();
+  }
+
+ public:
+  /// Parses data rows until the text ends, a row fails, or `stop_at` rows are kept in all;
+  /// true when it stopped at stop_at (more rows may follow).
+  bool parse_rows_until(std::size_t stop_at) {
+    Line line;
     for (;;) {
-      if (parse_row(line) == RowResult::kFailed) break;
+      if (have_first_) {
+        line = first_;
+        have_first_ = false;
+      } else if (!next_content_line(line)) {
+        return false;
+      }
+      if (parse_row(line) == RowResult::kFailed) return false;
       // A log fast_row never takes (blanks after separators, '+' signs) would pay for a
       // failed attempt on every row: after 8 misses, try every 256th row only.
-      if (fast_misses < 8 || (++general_rows & 255u) == 0) {
-        ++fast_misses;
-        while (cur_ < end_ && may_be_fast(*cur_)) {
+      if (fast_misses_ < 8 || (++general_rows_ & 255u) == 0) {
+        ++fast_misses_;
+        while (rows_ < stop_at && (cur_ < end_ || refill()) && may_be_fast(*cur_)) {
           const char* next = fast_row(cur_);
           if (next == nullptr) break;
-          fast_misses = 0;
+          fast_misses_ = 0;
           cur_ = next;
         }
       }
-      if (!next_content_line(line)) break;
+      if (rows_ >= stop_at) return true;
     }
+  }
+
+  /// Starts a new chunk of a streamed read: the columns drop the rows handed out.
+  void start_chunk() {
+    chunk_base_ = rows_;
+    for (ColumnSpec& c : cols_) {
+      if (c.dst != nullptr) c.dst->clear();
+    }
+  }
+
+  std::size_t rows_kept() const noexcept { return rows_; }
+  std::size_t chunk_rows() const noexcept { return chunk_rows_; }
+  /// Header read, rows to come through parse_rows_until (streamed reads).
+  bool rows_pending() const noexcept { return pin_ != nullptr && !out_.error; }
+  /// The header phase reached the end of the first buffer with more of the file to come.
+  bool ran_out() const noexcept { return ran_out_; }
+  /// Bytes of the file parsed so far (streamed reads).
+  std::uint64_t consumed() const noexcept {
+    return src_ == nullptr ? 0 : src_->total - static_cast<std::uint64_t>(src_->buf.get() + src_->fill - cur_);
+  }
+
+  /// The checks at the end of the rows (lenient skips, --rate), then the rows kept.
+  void finish_rows() {
     if (!out_.error && skipped_ > kFreeSkips && skipped_ * 100 > kMaxSkipPercent * (rows_ + skipped_)) {
       refuse_lenient_skips();
       return;
@@ -840,6 +924,50 @@ class Parser {
     out_.skipped_rows = skipped_;
     if (out_.error) drop_rows_after_error();
     if (opt_.rate > 0.0) rebuild_time();
+  }
+
+ private:
+  /// Streamed reads: moves the unparsed tail of the buffer down to the pinned header,
+  /// reads on, and makes end_ the end of the last complete line (a row is never split).
+  /// False at the end of the file, on an error (set), and before the header is read
+  /// (then ran_out_ tells LogStream to read the file whole instead).
+  bool refill() {
+    if (src_ == nullptr || src_->eof || out_.error) return false;
+    if (pin_ == nullptr) {
+      ran_out_ = true;
+      return false;
+    }
+    char* const buf = src_->buf.get();
+    const auto keep = static_cast<std::size_t>(buf + src_->fill - cur_);
+    std::memmove(pin_, cur_, keep);
+    src_->fill = static_cast<std::size_t>(pin_ - buf) + keep;
+    cur_ = pin_;
+    end_ = pin_;  // nothing to parse until a complete line is in
+    for (;;) {
+      if (!src_->read_more()) {
+        fail_at(line_no_ + 1, 1, std::string("cannot read: ") + std::generic_category().message(src_->err));
+        return false;
+      }
+      const char* const fill_end = buf + src_->fill;
+      if (src_->eof) {
+        end_ = fill_end;
+        break;
+      }
+      const void* nl = ::memrchr(cur_, '\n', static_cast<std::size_t>(fill_end - cur_));
+      if (nl != nullptr) {
+        end_ = static_cast<const char*>(nl) + 1;
+        break;
+      }
+      if (src_->fill == src_->cap) {
+        const std::size_t room = src_->cap - static_cast<std::size_t>(pin_ - buf);
+        fail_at(line_no_ + 1, 1,
+                "line longer than " + (room >= (std::size_t{1} << 20) ? std::to_string(room >> 20) + " MiB"
+                                                                      : std::to_string(room) + " bytes") +
+                    " (not a log row)");
+        return false;
+      }
+    }
+    return cur_ < end_;
   }
 
   /// A lenient read that would drop more than a few per cent of the rows: no glitch but
@@ -937,6 +1065,16 @@ class Parser {
   std::size_t first_skip_column_ = 0;
   std::size_t notes_before_skips_ = 0;  ///< notes before the first skip note
   bool time_column_ = false;            ///< a column gives t (with a rate: its start)
+  Line first_;                          ///< first data row, parsed by parse_rows_until
+  bool have_first_ = false;
+  std::size_t fast_misses_ = 0;         ///< consecutive rows fast_row refused
+  std::size_t general_rows_ = 0;
+  // Streamed reads (LogStream).
+  StreamSource* src_ = nullptr;
+  std::size_t chunk_rows_ = 0;          ///< rows per chunk
+  std::size_t chunk_base_ = 0;          ///< rows kept before this chunk
+  char* pin_ = nullptr;                 ///< first data row: the buffer above it never moves
+  bool ran_out_ = false;
 };
 
 }  // namespace
@@ -999,6 +1137,115 @@ LogData read_log(const std::string& path, const ReadOptions& options) {
     std::fclose(f);
     return failed("cannot read", ENOMEM);
   }
+}
+
+}  // namespace hstmon::host
+
+// ---- LogStream (log_stream.hpp) -----------------------------------------------------------
+
+#include "hstmon_host/log_stream.hpp"
+
+namespace hstmon::host {
+
+struct LogStream::Impl {
+  ReadOptions options;  // the parser keeps a reference
+  StreamSource src;
+  std::uint64_t size = 0;  // file size [bytes], 0 if unknown
+  std::unique_ptr<Parser> parser;
+
+  ~Impl() {
+    if (src.fd >= 0) ::close(src.fd);
+  }
+};
+
+LogStream::LogStream() = default;
+LogStream::~LogStream() = default;
+
+bool LogStream::open(const std::string& path, const ReadOptions& options, std::size_t chunk_rows,
+                     std::size_t buffer_bytes) {
+  impl_ = std::make_unique<Impl>();
+  data_ = LogData{};
+  data_.path = path;
+  rows_read_ = 0;
+  whole_ = false;
+  done_ = false;
+  Impl& m = *impl_;
+  m.options = options;
+  const auto read_whole = [&] {
+    whole_ = true;
+    data_ = read_log(path, options);
+    return data_.rows() > 0;
+  };
+  if (options.lenient || options.rate != 0.0) return read_whole();
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::is_regular_file(st)) return read_whole();  // its messages for dirs, pipes, missing files
+  m.size = std::filesystem::file_size(path, ec);
+  if (ec) m.size = 0;
+  m.src.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (m.src.fd < 0) return read_whole();
+  ::posix_fadvise(m.src.fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+  try {
+    m.src.cap = std::max<std::size_t>(64, buffer_bytes);
+    m.src.buf.reset(new char[m.src.cap]);
+    if (!m.src.read_more()) return read_whole();
+    const char* const buf = m.src.buf.get();
+    std::size_t complete = m.src.fill;  // the first buffer's complete lines
+    if (!m.src.eof) {
+      const void* nl = ::memrchr(buf, '\n', m.src.fill);
+      complete = nl != nullptr ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf) + 1 : 0;
+    }
+    m.parser = std::make_unique<Parser>(std::string_view(buf, complete), m.options, data_, &m.src,
+                                        std::max<std::size_t>(1, chunk_rows));
+    m.parser->run();
+    if (m.parser->ran_out()) {
+      m.parser.reset();
+      return read_whole();
+    }
+  } catch (const std::bad_alloc&) {
+    data_.error = LogError{path, 0, 0, "out of memory"};
+  }
+  if (data_.error) {
+    data_.t.clear();
+    for (auto& v : data_.values) v.clear();
+    done_ = true;
+    return false;
+  }
+  return true;
+}
+
+bool LogStream::next() {
+  if (done_ || impl_ == nullptr) return false;
+  if (whole_) {
+    done_ = true;
+    rows_read_ = data_.rows();
+    return data_.rows() > 0;
+  }
+  Parser& p = *impl_->parser;
+  try {
+    p.start_chunk();
+    const bool more = p.parse_rows_until(p.rows_kept() + p.chunk_rows());
+    if (!more) {
+      p.finish_rows();
+      done_ = true;
+    }
+  } catch (const std::bad_alloc&) {
+    data_.error = LogError{data_.path, 0, 0, "out of memory"};
+  }
+  if (data_.error) {
+    done_ = true;
+    data_.t.clear();
+    for (auto& v : data_.values) v.clear();
+    return false;
+  }
+  rows_read_ += data_.rows();
+  return data_.rows() > 0;
+}
+
+double LogStream::fraction() const noexcept {
+  if (whole_) return done_ ? 1.0 : 0.0;
+  if (impl_ == nullptr || impl_->parser == nullptr || impl_->size == 0) return 0.0;
+  return std::min(1.0, static_cast<double>(impl_->parser->consumed()) / static_cast<double>(impl_->size));
 }
 
 }  // namespace hstmon::host

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <utility>
 
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
@@ -69,6 +71,14 @@ struct InputColumns {
   const double* col[4] = {nullptr, nullptr, nullptr, nullptr};  // Psupl, Ps, Pbp, kp
   ThesisInputs<double> fallback;
 
+  InputColumns(const LogData& log, const std::array<bool, 4>& present, const ThesisInputs<double>& defaults)
+      : fallback(defaults) {
+    const Signal input_signals[4] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp};
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (present[i]) col[i] = log.values[index(input_signals[i])].data();
+    }
+  }
+
   ThesisInputs<double> at(std::size_t row) const {
     ThesisInputs<double> u = fallback;
     if (col[0]) u.Psupl = col[0][row];
@@ -81,25 +91,35 @@ struct InputColumns {
 
 }  // namespace
 
-ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
-                    const ThesisInputs<double>& defaults, const ReplayOptions& options) {
+struct ChunkedReplay::State {
+  ThesisParams<double> params;
+  ThesisInputs<double> defaults;
+  ReplayOptions options;
   ReplayResult res;
-  const std::size_t rows = log.rows();
-  res.rows = rows;
-  if (rows == 0) return res;
-  const std::vector<double>& t = log.t;
-  res.t_first = t.front();
-  res.t_last = t.back();
+  Mon mon;
+  bool started = false;   // first row seen: tick, columns and initial state fixed
+  bool failed = false;    // configuration refused: nothing replayed
+  std::size_t row = 0;    // 0-based index of the next row in the log
+  std::uint8_t mask = 0;  // measured channels present
+  std::array<bool, 4> input_present{};
+  ThesisInputs<double> u_prev;
+  std::vector<std::string> input_notes;
 
-  InputColumns in;
-  in.fallback = defaults;
+  void start(const LogData& log);
+  void run(const LogData& log, std::size_t rows_total);
+};
+
+// Fixes what the first chunk decides: the inputs held at their defaults, the tick, the
+// monitor's configuration and its initial state.
+void ChunkedReplay::State::start(const LogData& log) {
+  started = true;
+  res.t_first = log.t.front();
   const Signal input_signals[4] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp};
   const char* input_names[4] = {"p_sup (Psupl)", "p_s (Ps)", "p_bp (Pbp)", "kp"};
   const double input_defaults[4] = {defaults.Psupl, defaults.Ps, defaults.Pbp, defaults.kp};
   for (int i = 0; i < 4; ++i) {
-    if (log.present[index(input_signals[i])]) {
-      in.col[i] = log.values[index(input_signals[i])].data();
-    } else {
+    input_present[static_cast<std::size_t>(i)] = log.present[index(input_signals[i])];
+    if (!log.present[index(input_signals[i])]) {
       // In the units of the tables beside it: pressures in bar, kp in SI.
       char value[64];
       if (input_signals[i] == Signal::kKp) {
@@ -110,24 +130,20 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
       res.notes.push_back(std::string(input_names[i]) + " not in log: held at the parameter value " + value);
     }
   }
-  const double* meas[4];
-  std::uint8_t mask = 0;
   for (int c = 0; c < 4; ++c) {
     const std::size_t s = index(kMeasuredSignals[static_cast<std::size_t>(c)]);
     res.measured[static_cast<std::size_t>(c)] = log.present[s];
-    meas[c] = log.present[s] ? log.values[s].data() : nullptr;
     if (log.present[s]) mask = static_cast<std::uint8_t>(mask | (1u << c));
   }
 
   double tick = options.tick;
   if (!(tick > 0.0)) {
-    const double dt = median_interval(t);
+    const double dt = median_interval(log.t);
     // Rounded to 1 ns: the median of differences carries the time column's rounding.
     tick = (dt > 0.0) ? std::min(std::round(dt * 1e9) * 1e-9, 10e-3) : 1e-3;
   }
   res.tick = tick;
 
-  Mon mon;
   Mon::Config cfg;
   cfg.observer.tick = tick;
   for (std::size_t c = 0; c < 4; ++c) {
@@ -138,32 +154,46 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
   const int table_rows = options.diagnose ? kThesisSignatureCount : 0;
   if (mon.configure(params, cfg, kThesisSignatures, table_rows) != Status::kOk) {
     res.notes.push_back("invalid parameters or configuration: nothing replayed");
-    return res;
+    failed = true;
+    return;
   }
-  const Obs& obs = mon.observer();
 
-  const ThesisInputs<double> u0 = in.at(0);
+  const ThesisInputs<double> u0 = InputColumns(log, input_present, defaults).at(0);
   Obs::Measurement first;
-  for (int c = 0; c < 4; ++c) first.y[c] = meas[c] ? meas[c][0] : 0.0;
-  first.valid = mask;
-  Status started = Status::kInvalidInputs;
-  if (options.init == InitMode::kAuto) {
-    started = mon.reset_measured(u0, first, &res.start);
-  } else if (options.init == InitMode::kSteady) {
-    started = mon.reset_steady(u0);
-    res.start = InitialState::kSteady;
-    if (started != Status::kOk) res.notes.push_back("no steady state for the first row's inputs: started at rest");
+  for (int c = 0; c < 4; ++c) {
+    first.y[c] = (mask & (1u << c)) ? log.values[index(kMeasuredSignals[static_cast<std::size_t>(c)])][0] : 0.0;
   }
-  if (started != Status::kOk) {
+  first.valid = mask;
+  Status status = Status::kInvalidInputs;
+  if (options.init == InitMode::kAuto) {
+    status = mon.reset_measured(u0, first, &res.start);
+  } else if (options.init == InitMode::kSteady) {
+    status = mon.reset_steady(u0);
+    res.start = InitialState::kSteady;
+    if (status != Status::kOk) res.notes.push_back("no steady state for the first row's inputs: started at rest");
+  }
+  if (status != Status::kOk) {
     mon.reset_rest(u0);
     res.start = InitialState::kRest;
   }
   res.startup_hold = mon.startup_hold();
+  u_prev = u0;
+}
 
-  if (options.keep_trace) res.trace.reserve(rows);
-  const std::size_t progress_every = std::max<std::size_t>(1, rows / 100);
+// The monitor over one chunk's rows (row numbers and statistics continue across chunks).
+void ChunkedReplay::State::run(const LogData& log, std::size_t rows_total) {
+  const std::size_t rows = log.rows();
+  const std::vector<double>& t = log.t;
+  const InputColumns in(log, input_present, defaults);
+  const double* meas[4];
+  for (int c = 0; c < 4; ++c) {
+    meas[c] = (mask & (1u << c)) ? log.values[index(kMeasuredSignals[static_cast<std::size_t>(c)])].data() : nullptr;
+  }
+  const Obs& obs = mon.observer();
+  const double tick = res.tick;
+  if (options.keep_trace) res.trace.reserve(res.trace.size() + rows);
+  const std::size_t progress_every = std::max<std::size_t>(1, rows_total / 100);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  ThesisInputs<double> u_prev = u0;
   Obs::Measurement m;
   const Obs::Measurement none;
   Mon::Event ev;
@@ -171,7 +201,7 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     while (mon.pop_event(ev)) res.events.push_back(to_replay_event(ev));
   };
 
-  for (std::size_t k = 0; k < rows; ++k) {
+  for (std::size_t k = 0; k < rows; ++k, ++row) {
     // Ticks without a measurement until the model clock reaches this row (inputs held).
     const double t_row = t[k] - res.t_first;
     while (t_row - static_cast<double>(obs.ticks()) * tick > 0.5 * tick) {
@@ -184,7 +214,7 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     m.valid = mask;
     mon.step(t[k], u, m);
     drain_events();
-    if (k == 0) {
+    if (row == 0) {
       for (int c = 0; c < 4; ++c) res.thresholds[static_cast<std::size_t>(c)] = mon.evaluator().bound(c);
     }
     const std::uint32_t flags = mon.health();
@@ -197,7 +227,7 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
     const std::uint8_t rv = obs.residual_valid();
     for (int c = 0; c < 4; ++c) {
       if (!(rv & (1u << c))) continue;
-      res.channels[static_cast<std::size_t>(c)].add(r[c], t[k], k);
+      res.channels[static_cast<std::size_t>(c)].add(r[c], t[k], row);
     }
     if (options.keep_trace) {
       TraceRow tr;
@@ -211,11 +241,57 @@ ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
       }
       res.trace.push_back(tr);
     }
-    if (options.progress && (k + 1) % progress_every == 0) options.progress(static_cast<double>(k + 1) / static_cast<double>(rows));
+    if (rows_total > 0 && options.progress && (row + 1) % progress_every == 0) {
+      options.progress(static_cast<double>(row + 1) / static_cast<double>(rows_total));
+    }
   }
   drain_events();
-  res.ticks = obs.ticks();
-  res.final_status = to_string(mon.matcher().status());
+  res.rows = row;
+  res.t_last = t.back();
+}
+
+ChunkedReplay::ChunkedReplay(const ThesisParams<double>& params, const ThesisInputs<double>& defaults,
+                             const ReplayOptions& options)
+    : s_(std::make_unique<State>()) {
+  s_->params = params;
+  s_->defaults = defaults;
+  s_->options = options;
+}
+
+ChunkedReplay::~ChunkedReplay() = default;
+
+void ChunkedReplay::add(const LogData& chunk, std::size_t rows_total) {
+  if (chunk.rows() == 0) return;
+  if (!s_->started) s_->start(chunk);
+  if (s_->failed) {
+    // Nothing replayed: the rows and the time span are still said, as replay() did.
+    s_->row += chunk.rows();
+    s_->res.rows = s_->row;
+    s_->res.t_last = chunk.t.back();
+    return;
+  }
+  s_->run(chunk, rows_total);
+}
+
+ReplayResult ChunkedReplay::finish() {
+  ReplayResult res = std::move(s_->res);
+  if (s_->started && !s_->failed) {
+    res.ticks = s_->mon.observer().ticks();
+    res.final_status = to_string(s_->mon.matcher().status());
+  }
+  return res;
+}
+
+ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
+                    const ThesisInputs<double>& defaults, const ReplayOptions& options) {
+  ChunkedReplay r(params, defaults, options);
+  r.add(log, log.rows());
+  ReplayResult res = r.finish();
+  res.rows = log.rows();
+  if (log.rows() > 0) {
+    res.t_first = log.t.front();
+    res.t_last = log.t.back();
+  }
   return res;
 }
 

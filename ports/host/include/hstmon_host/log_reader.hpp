@@ -110,7 +110,8 @@ struct LogData {
 };
 
 /// Reads and parses the log file at `path` (whole file into memory, then
-/// read_log_from_memory). An unreadable file gives an error with line 0.
+/// read_log_from_memory). An unreadable file gives an error with line 0. For a log too
+/// long to hold, LogStream (log_stream.hpp) reads it chunk by chunk, with the same result.
 LogData read_log(const std::string& path, const ReadOptions& options = {});
 
 /// Parses log text held in memory. `path_for_messages` names the source in errors and

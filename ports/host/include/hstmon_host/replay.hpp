@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,32 @@ struct ReplayResult {
 /// (read without error, or the valid prefix of a lenient read).
 ReplayResult replay(const LogData& log, const ThesisParams<double>& params,
                     const ThesisInputs<double>& defaults, const ReplayOptions& options);
+
+/// replay() chunk by chunk, for a log read with LogStream (log_stream.hpp): memory that
+/// does not grow with the log (unless ReplayOptions::keep_trace). The same monitor and
+/// result as replay() of the whole log, but for one thing: the default tick is the
+/// median sample period of the first chunk's rows rather than of the whole log (the same
+/// for a log sampled at one rate).
+class ChunkedReplay {
+ public:
+  ChunkedReplay(const ThesisParams<double>& params, const ThesisInputs<double>& defaults,
+                const ReplayOptions& options);
+  ~ChunkedReplay();
+  ChunkedReplay(const ChunkedReplay&) = delete;
+  ChunkedReplay& operator=(const ChunkedReplay&) = delete;
+
+  /// Replays `chunk`, the log's next rows (the same columns in every chunk; the first
+  /// non-empty chunk fixes the tick and the initial state). `rows_total`: the log's rows,
+  /// for ReplayOptions::progress; 0 = no progress calls (the caller reports progress).
+  void add(const LogData& chunk, std::size_t rows_total = 0);
+
+  /// The result after the last chunk; call once.
+  ReplayResult finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 /// A matcher event (any model's monitor, double) as a replay event.
 ReplayEvent to_replay_event(const MatchEvent<double>& e);

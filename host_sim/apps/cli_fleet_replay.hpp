@@ -1,0 +1,52 @@
+#pragma once
+// `hstmon replay --summary LOG|DIR...`: many logs, each replayed on its own (streamed,
+// cli_log_replay.hpp) on a pool of threads, one JSON summary line per log in the order of
+// the sorted paths, whatever the number of threads. docs/fleet.md describes the line, the
+// machine rule and how to run it under GNU parallel or a Slurm array instead.
+#include <string>
+#include <vector>
+
+#include "hstmon/thesis_params.hpp"
+#include "hstmon_host/log_reader.hpp"
+#include "hstmon_host/replay.hpp"
+
+namespace hstmon::cli {
+
+/// What names a log's machine: its parent folder (default; the file stem for a log given
+/// without a folder), its file stem, or the first group of a regular expression matched
+/// against the path as given.
+struct MachineRule {
+  enum class Kind { kParent, kStem, kRegex } kind = Kind::kParent;
+  std::string pattern;  ///< kRegex: ECMAScript regex with one capture group
+};
+
+/// Parses --machine-from: "parent", "stem" or "regex:PATTERN". On a bad rule sets `error`.
+MachineRule parse_machine_rule(const std::string& text, std::string& error);
+
+/// The machine of `path` under `rule`; "" when a regex does not match.
+std::string machine_of(const std::string& path, const MachineRule& rule);
+
+/// Logs named on the command line: files as given, folders searched recursively for
+/// *.csv, *.tsv and *.txt; sorted by path (byte order), duplicates removed. A name that is
+/// neither file nor folder is kept (its line then says it cannot be opened).
+std::vector<std::string> expand_logs(const std::vector<std::string>& names);
+
+/// Everything a summary replay needs besides the logs.
+struct FleetReplayArgs {
+  host::ReadOptions read;
+  ThesisParams<double> params;
+  ThesisInputs<double> inputs;
+  host::ReplayOptions replay;  ///< keep_trace and progress are ignored
+  MachineRule machine;
+  unsigned jobs = 0;           ///< threads; 0 = all cores
+};
+
+/// One log's summary line (no newline): {"type":"log","log",...,"status":"ok"|"error",...}.
+/// The same input gives the same bytes. `failed` (if given) is set when the log failed.
+std::string summary_line(const std::string& path, const FleetReplayArgs& args, bool* failed = nullptr);
+
+/// Replays `logs` on args.jobs threads and prints one summary line per log to stdout, in
+/// the order of `logs`. Returns kExitOk, or kExitBadInput when any log failed.
+int run_fleet_replay(const std::vector<std::string>& logs, const FleetReplayArgs& args);
+
+}  // namespace hstmon::cli
