@@ -201,8 +201,8 @@ class FaultMatcher {
   /// @return       kOk, or kInvalidConfig (matcher unchanged)
   Status configure(const Signature* table, int count, const Config& c) noexcept {
     const bool ok = table_ok(table, count) && nonneg(c.order_window) && nonneg(c.settle_time) &&
-                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) && nonneg(c.k_zero_bound) &&
-                    nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
+                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) &&
+                    nonneg(c.k_zero_bound) && nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
     if (!ok) return Status::kInvalidConfig;
     cfg_ = c;
     const detail::MarginCosSin<T> m = detail::margin_cos_sin(c.tie_margin);

@@ -24,7 +24,10 @@
 ///  - each channel's bound is widened by transient_factor × the model's recent output
 ///    variation (a leaky total variation with time constant τ_s, which bounds what a
 ///    first-order transducer lag of up to τ_s can make of the model's own transient) plus
-///    half the learned ADC step; in steady operation the widening is 0.
+///    half the learned ADC step; in steady operation the widening is 0;
+///  - optionally (Config::model_transient, on for circuit monitors) also by the envelope
+///    of the model's distance from its steady state, decaying with τ_m: the parameter
+///    uncertainty's share of a long, lightly damped transient after an input step.
 /// step() never allocates or throws.
 
 #include <cmath>
@@ -207,8 +210,9 @@ class ModelMonitor {
   /// The model bound in use, per channel [channel unit].
   const T* model_bound() const noexcept { return bound_; }
   /// The transient allowance of channel i at the last sample [channel unit]: the model's
-  /// own recent output variation times transient_factor, plus half the learned ADC step
-  /// (see the file comment).
+  /// own recent output variation times transient_factor, plus model_transient times the
+  /// envelope of the model's distance from its steady state (0 unless configured), plus
+  /// half the learned ADC step (see the file comment).
   T transient_allowance(int i) const noexcept {
     return transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
   }
