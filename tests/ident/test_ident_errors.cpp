@@ -38,11 +38,21 @@ CliRun run_cli(const std::string& args) {
   return r;
 }
 
+fs::path temp_dir_path() { return fs::temp_directory_path() / ("hstmon-ident-test-" + std::to_string(::getpid())); }
+
 fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("hstmon-ident-test-" + std::to_string(::getpid()));
+  const fs::path d = temp_dir_path();
   fs::create_directories(d);
   return d;
 }
+
+// This process's scratch folder goes when the tests end (static destruction).
+struct RemoveTempDirAtExit {
+  ~RemoveTempDirAtExit() {
+    std::error_code ec;
+    fs::remove_all(temp_dir_path(), ec);
+  }
+} const remove_temp_dir_at_exit;
 
 // Writes a thesis log (bar, rad/s) from LogData columns.
 std::string write_log(const fs::path& path, const host::LogData& log) {
