@@ -46,7 +46,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   circuit_tools::CircuitLog logs[2];
   const std::string* paths[2] = {&a.fit, &a.check};
   for (int i = 0; i < 2; ++i) {
-    logs[i] = circuit_tools::read_circuit_log(*paths[i], c.file);
+    logs[i] = circuit_tools::read_circuit_log(*paths[i], c.file, a.read);
     for (const auto& n : logs[i].notes) fmt::print(stderr, "{}\n", n);
     if (logs[i].error) {
       fmt::print(stderr, "{}\n", logs[i].error->to_string());

@@ -4,6 +4,8 @@
 // judged on the withheld one.
 #include <string>
 
+#include "hstmon_host/log_reader.hpp"
+
 namespace hstmon::cli {
 
 /// The options of gap that apply with --circuit.
@@ -12,6 +14,7 @@ struct CircuitGapArgs {
   std::string params;  ///< "" = <stem>.params.json beside it
   std::string fit, check;
   bool json = false;
+  host::ReadOptions read;  ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 
 /// Runs it and prints the result; errors as file:line:column on stderr.

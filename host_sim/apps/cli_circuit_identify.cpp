@@ -66,7 +66,7 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   }
   std::vector<circuit_tools::CircuitLog> logs;
   for (const std::string& path : a.logs) {
-    circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file);
+    circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, a.read);
     for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
     if (log.error) {
       fmt::print(stderr, "{}\n", log.error->to_string());

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "hstmon_host/log_reader.hpp"
+
 namespace hstmon::cli {
 
 /// The options of identify that apply with --circuit.
@@ -15,6 +17,7 @@ struct CircuitIdentifyArgs {
   std::string out;                 ///< parameter file to write ("" = none)
   bool json = false;
   double min_duration = 0.2;       ///< [s]
+  host::ReadOptions read;          ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 
 /// Runs it and prints the result; errors as file:line:column on stderr.

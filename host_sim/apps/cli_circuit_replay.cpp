@@ -158,7 +158,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
     fmt::print(stderr, "{}\n", err->to_string());
     return kExitBadInput;
   }
-  const circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(a.log, c.file);
+  const circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(a.log, c.file, a.read);
   for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
   if (log.error) {
     fmt::print(stderr, "{}\n", log.error->to_string());

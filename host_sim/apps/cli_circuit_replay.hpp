@@ -3,6 +3,8 @@
 // the circuit's monitor (circuit_replay.hpp): residuals and the fault matcher.
 #include <string>
 
+#include "hstmon_host/log_reader.hpp"
+
 namespace hstmon::cli {
 
 /// The options of replay that apply with --circuit.
@@ -15,6 +17,7 @@ struct CircuitReplayArgs {
   std::string init = "auto"; ///< auto | rest | steady
   bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
   std::string residuals_csv; ///< --residuals: measured, model and residual per row ("" = none)
+  host::ReadOptions read;    ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 
 /// Runs it and prints the result (human, or JSON lines); errors as file:line:column on

@@ -105,12 +105,17 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       exit_code = run_gap_command(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--report", "--refit-nominal", "--effects", "--max-step", "--map", "--separator", "--lenient",
-                            "--rate"})) {
+    if (!refuse_with_circuit(*cmd, {"--report", "--refit-nominal", "--effects", "--max-step"})) {
+      exit_code = kExitUsage;
+      return;
+    }
+    const std::optional<host::ReadOptions> ro = to_read_options(args->io, "gap");
+    if (!ro) {
       exit_code = kExitUsage;
       return;
     }
     CircuitGapArgs c;
+    c.read = *ro;
     c.circuit = args->circuit;
     c.params = args->io.params;
     c.fit = args->fit;

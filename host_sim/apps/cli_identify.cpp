@@ -464,11 +464,17 @@ void add_identify_command(CLI::App& app, int& exit_code) {
     }
     if (!refuse_with_circuit(*cmd, {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
                             "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
-                            "--studies", "--map", "--separator", "--lenient", "--rate"})) {
+                            "--studies"})) {
+      exit_code = kExitUsage;
+      return;
+    }
+    const std::optional<host::ReadOptions> ro = to_read_options(args->io, "identify");
+    if (!ro) {
       exit_code = kExitUsage;
       return;
     }
     CircuitIdentifyArgs c;
+    c.read = *ro;
     c.logs = args->logs;
     c.circuit = args->circuit;
     c.params = args->io.params;

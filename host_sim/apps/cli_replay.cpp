@@ -344,11 +344,17 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       exit_code = run_replay(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--plot", "--report", "--map", "--separator", "--lenient", "--rate"})) {
+    if (!refuse_with_circuit(*cmd, {"--plot", "--report"})) {
+      exit_code = kExitUsage;
+      return;
+    }
+    const std::optional<host::ReadOptions> ro = to_read_options(args->io, "replay");
+    if (!ro) {
       exit_code = kExitUsage;
       return;
     }
     CircuitReplayArgs c;
+    c.read = *ro;
     c.log = args->log;
     c.circuit = args->circuit;
     c.params = args->io.params;

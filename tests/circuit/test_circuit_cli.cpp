@@ -103,6 +103,42 @@ TEST(CircuitCli, ReplayErrorsNameFileLineColumn) {
   EXPECT_EQ(r.exit_code, 1) << r.out;  // not for circuits yet: refused, not ignored
 }
 
+// replay, identify and gap take the log options with --circuit as without: a logger's
+// export with no time column, ';' between fields and its own name for a channel, read
+// with --rate, --separator and --map.
+TEST(CircuitCli, LogOptionsWorkWithCircuit) {
+  const std::string log = (std::filesystem::temp_directory_path() / "hstmon_circuit_cli_options.txt").string();
+  {
+    std::ifstream in(std::string(kDir) + "test_stand.csv");  // 200 Hz
+    std::ofstream out(log);
+    std::string line;
+    bool header = true;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      if (header) {
+        out << "n_pump[rpm];throttle;Druck[bar];q[L/min]\n";
+        header = false;
+        continue;
+      }
+      std::string rest = line.substr(line.find(',') + 1);
+      std::replace(rest.begin(), rest.end(), ',', ';');
+      out << rest << '\n';
+    }
+  }
+  const std::string circuit = std::string(kDir) + "test_stand.json";
+  for (const std::string& cmd : {" replay --circuit " + circuit + " " + log,
+                                 " identify --circuit " + circuit + " --fit R_leak " + log,
+                                 " gap --circuit " + circuit + " --fit " + log + " --check " + log}) {
+    const CliRun strict = run(std::string(HSTMON_CLI) + cmd + " --map Druck=p_line 2>&1");
+    EXPECT_EQ(strict.exit_code, 2) << cmd << "\n" << strict.out;  // no time column: the error names --rate
+    EXPECT_NE(strict.out.find(log + ":1:1: error: no time column"), std::string::npos) << strict.out;
+    EXPECT_NE(strict.out.find("--rate HZ"), std::string::npos) << strict.out;
+    const CliRun ok = run(std::string(HSTMON_CLI) + cmd + " --map Druck=p_line --rate 200 --separator ';' 2>&1");
+    EXPECT_EQ(ok.out.find(log + ":"), std::string::npos) << cmd << "\n" << ok.out;  // read without a message
+    EXPECT_NE(ok.exit_code, 2) << cmd << "\n" << ok.out;
+  }
+}
+
 TEST(CircuitCli, ReplayWritesResidualsInTheSensorsUnits) {
   const std::string csv = (std::filesystem::temp_directory_path() / "hstmon_circuit_residuals.csv").string();
   const CliRun r = run(std::string(HSTMON_CLI) + " replay --circuit " + kDir + "test_stand.json " + kDir +

@@ -3,11 +3,13 @@
 // circuit file's; unknown columns noted.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
+#include "hstmon_host/log_reader.hpp"
 
 namespace {
 
@@ -46,7 +48,8 @@ TEST(CircuitLog, ReadsUnitsAndNotesUnknownColumns) {
 
 TEST(CircuitLog, MistakesAreLocated) {
   EXPECT_EQ(error_of(""), "log.csv:1:1: error: empty log: no header row");
-  EXPECT_EQ(error_of("p_line[bar]\n1\n"), "log.csv:1:1: error: no time column (t[s]) in the header");
+  EXPECT_EQ(error_of("p_line[bar]\n1\n"),
+            "log.csv:1:1: error: no time column (t[s]) in the header (or give the sample rate: --rate HZ)");
   EXPECT_EQ(error_of("t[s],p_line[furlong]\n0,1\n").rfind("log.csv:1:6: error: column 'p_line': ", 0), 0u);
   EXPECT_EQ(error_of("t[s],p_line[bar],P_LINE[bar]\n"), "log.csv:1:18: error: duplicated column 'P_LINE'");
   EXPECT_EQ(error_of("t[s],p_line[bar]\n0,1\n0.1,1x\n"), "log.csv:3:5: error: not a number: '1x'");
@@ -55,6 +58,90 @@ TEST(CircuitLog, MistakesAreLocated) {
   EXPECT_EQ(error_of("t[s],p_line[bar]\n0,1e400\n"), "log.csv:2:3: error: not a number: '1e400'");
   EXPECT_EQ(error_of("t[s],p_line[bar]\n"), "log.csv:2:1: error: no data rows after the header");
   EXPECT_EQ(error_of(std::string("t[s]\n0\0", 7)), "log.csv:2:2: error: NUL byte: not a text log");
+}
+
+// The log options every reader takes (host::ReadOptions), with the thesis logs' meaning.
+ct::CircuitLog parse_with(const std::string& text, const hstmon::host::ReadOptions& o) {
+  const ct::LoadedCircuit c = test_stand();
+  return ct::parse_circuit_log(text, "log.txt", c.file, o);
+}
+
+// A test-stand export as a Spider8 writes one: tab, decimal comma, CRLF, channel names
+// with "CH=n", time rounded to 1 ms at 4800 Hz (most timestamps repeat).
+std::string spider8_stand(int rows) {
+  std::string text = "Time  Spider8_1 CH=1\tn CH=2\tthrottle CH=3\tp CH=8\tQ CH=9\r\n";
+  for (int i = 0; i < rows; ++i) {
+    char line[128];
+    std::snprintf(line, sizeof line, "%.3f\t1500\t1\t%.2f\t67,1\r\n", static_cast<double>(i) / 4800.0, 148.0 + 0.01 * i);
+    for (char* q = line; *q != 0; ++q) {
+      if (*q == '.') *q = ',';
+    }
+    text += line;
+  }
+  return text;
+}
+
+TEST(CircuitLog, Spider8ExportLoadsWithRateAndMap) {
+  hstmon::host::ReadOptions o;
+  o.rate = 4800.0;
+  o.column_number_map[1] = "t";
+  o.column_map = {{"n CH=2", "n_pump"}, {"THROTTLE ch=3", "throttle"}, {"p  CH=8", "p_line"}, {"Q CH=9", "q"}};
+  const ct::CircuitLog log = parse_with(spider8_stand(300), o);
+  ASSERT_TRUE(log.ok()) << log.error->to_string();
+  ASSERT_EQ(log.rows(), 300u);
+  EXPECT_DOUBLE_EQ(log.t[299], 299.0 / 4800.0);
+  EXPECT_NEAR(log.inputs[0][0], 1500 * 2 * 3.14159265358979 / 60, 1e-9);  // n_pump: the circuit file's rpm
+  EXPECT_NEAR(log.sensors[0][10], 148.1e5, 1e-3);                         // p_line: bar, decimal comma
+  EXPECT_NEAR(log.sensors[1][0], 67.1 / 60000, 1e-15);                    // q: L/min
+  EXPECT_TRUE(log.notes.empty()) << log.notes.front();
+}
+
+TEST(CircuitLog, Spider8ExportWithoutRateNamesTheFix) {
+  hstmon::host::ReadOptions o;
+  o.column_number_map[1] = "t";
+  o.column_map = {{"p CH=8", "p_line"}};
+  const ct::CircuitLog strict = parse_with(spider8_stand(300), o);
+  ASSERT_TRUE(strict.error.has_value());
+  EXPECT_EQ(strict.error->line, 3u);
+  EXPECT_NE(strict.error->message.find("--rate HZ"), std::string::npos) << strict.error->message;
+  EXPECT_EQ(strict.rows(), 0u);
+  // Lenient would drop most rows: refused, with the reason and the fix, no rows kept.
+  o.lenient = true;
+  const ct::CircuitLog lenient = parse_with(spider8_stand(300), o);
+  ASSERT_TRUE(lenient.error.has_value());
+  EXPECT_NE(lenient.error->message.find("more than 5 %"), std::string::npos) << lenient.error->message;
+  EXPECT_NE(lenient.error->message.find("--rate HZ"), std::string::npos);
+  EXPECT_EQ(lenient.rows(), 0u);
+}
+
+TEST(CircuitLog, LenientSkipsARepeatedTimeAndKeepsRowsBeforeABadOne) {
+  hstmon::host::ReadOptions o;
+  o.lenient = true;
+  std::string text = "t[s],p_line[bar]\n";
+  for (int i = 0; i < 40; ++i) text += std::to_string(0.01 * (i == 20 ? i - 1 : i)) + ",150\n";
+  const ct::CircuitLog skipped = parse_with(text, o);
+  ASSERT_TRUE(skipped.ok()) << skipped.error->to_string();
+  EXPECT_EQ(skipped.rows(), 39u);
+  ASSERT_EQ(skipped.notes.size(), 1u);
+  EXPECT_EQ(skipped.notes[0].rfind("log.txt:22:1: note: time not strictly increasing", 0), 0u) << skipped.notes[0];
+  const ct::CircuitLog stopped = parse_with(text + "0.5,oops\n0.6,150\n", o);
+  ASSERT_TRUE(stopped.error.has_value());
+  EXPECT_EQ(stopped.error->to_string(), "log.txt:42:5: error: not a number: 'oops'");
+  EXPECT_EQ(stopped.rows(), 39u);  // the rows before the bad one
+}
+
+TEST(CircuitLog, SeparatorAndMapOptions) {
+  hstmon::host::ReadOptions o;
+  o.separator = ';';
+  o.column_map = {{"Druck", "p_line"}, {"junk", ""}};
+  const ct::CircuitLog log = parse_with("t[s];Druck[bar];junk\n0;150,5;x\n0,001;151;y\n", o);
+  ASSERT_TRUE(log.ok()) << log.error->to_string();
+  EXPECT_DOUBLE_EQ(log.sensors[0][0], 150.5e5);
+  EXPECT_TRUE(log.notes.empty());  // a column mapped to "" is dropped without a note
+  o.column_number_map[7] = "q";
+  const ct::CircuitLog beyond = parse_with("t[s];Druck[bar];junk\n0;150,5;x\n", o);
+  ASSERT_TRUE(beyond.error.has_value());
+  EXPECT_EQ(beyond.error->to_string(), "log.txt:1:1: error: --map #7: the header has 3 columns");
 }
 
 TEST(CircuitLog, EveryTruncationOfALogIsHandled) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "hstmon_host/circuit_units.hpp"
@@ -99,9 +100,26 @@ std::string format_value(double v) {
 
 bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
+// A header name as a --map key matches it: ASCII case ignored, runs of blanks as one,
+// blanks at the ends dropped ("Time  CH=1" is "time ch=1").
+std::string map_key(std::string_view s) {
+  std::string k;
+  bool blank = false;
+  for (const char ch : trim(s)) {
+    if (ch == ' ' || ch == '\t') {
+      blank = true;
+      continue;
+    }
+    if (blank && !k.empty()) k += ' ';
+    blank = false;
+    k += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  return k;
+}
+
 }  // namespace
 
-CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c) {
+CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
   std::string text;
   if (auto err = host::read_text_file(path, text)) {
     CircuitLog log;
@@ -109,10 +127,11 @@ CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c)
     log.error = *err;
     return log;
   }
-  return parse_circuit_log(text, path, c);
+  return parse_circuit_log(text, path, c, o);
 }
 
-CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c) {
+CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,
+                             const host::ReadOptions& o) {
   CircuitLog log;
   log.path = std::move(path_for_messages);
   log.inputs.assign(c.inputs.size(), {});
@@ -124,6 +143,17 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     for (auto& v : log.sensors) v.clear();
     return log;
   };
+  // A bad data row in a lenient read: reading stops there and the rows before it stay.
+  auto stop = [&](std::size_t line, std::size_t col, std::string msg) {
+    if (!o.lenient) return fail(line, col, std::move(msg));
+    log.error = SourceError{log.path, line, col, std::move(msg)};
+    return log;
+  };
+  std::map<std::string, std::string> name_map;  // map_key(log name) → target
+  for (const auto& [from, to] : o.column_map) name_map[map_key(from)] = to;
+  std::size_t skipped = 0;     // rows a lenient read skipped (time not increasing)
+  std::size_t data_rows = 0;   // data rows met
+  double t0 = 0.0;             // with a rate: the first row's logged time
   if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
       static_cast<unsigned char>(text[2]) == 0xBF) {
     text.remove_prefix(3);
@@ -145,6 +175,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   bool header_seen = false;
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
+  std::vector<double> values;
   std::size_t line_no = 0, pos = 0;
   while (pos <= text.size()) {
     const std::size_t nl = text.find('\n', pos);
@@ -157,8 +188,16 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
 
     if (!header_seen) {
       header_seen = true;
-      sep = line.find('\t') != std::string_view::npos ? '\t' : (line.find(';') != std::string_view::npos ? ';' : ',');
+      sep = o.separator != 0 ? o.separator
+                             : line.find('\t') != std::string_view::npos ? '\t'
+                             : (line.find(';') != std::string_view::npos ? ';' : ',');
       split(line, sep, fields, offs);
+      for (const auto& [number, to] : o.column_number_map) {
+        if (number < 1 || number > fields.size()) {
+          return fail(line_no, 1, "--map #" + std::to_string(number) + ": the header has " + std::to_string(fields.size()) +
+                                      " columns");
+        }
+      }
       targets.assign(fields.size(), Target{});
       bool time_seen = false;
       std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
@@ -168,6 +207,18 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         name_and_unit(fields[k], name, unit, has_unit);
         const std::size_t lead = fields[k].find_first_not_of(" \t");
         const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
+        // --map: by column number first, then by name; the target keeps the column's unit.
+        std::string mapped;
+        bool is_mapped = false;
+        if (const auto it = o.column_number_map.find(k + 1); it != o.column_number_map.end()) {
+          mapped = it->second;
+          is_mapped = true;
+        } else if (const auto jt = name_map.find(map_key(name)); jt != name_map.end()) {
+          mapped = jt->second;
+          is_mapped = true;
+        }
+        if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
+        if (is_mapped) name = mapped;
         if (name.empty()) return fail(line_no, col, "empty column name in the header");
         Target& tg = targets[k];
         std::string err;
@@ -203,41 +254,68 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
                               std::string(name) + "' is no input or sensor of circuit " + c.name + ": ignored");
         }
       }
-      if (!time_seen) return fail(line_no, 1, "no time column (t[s]) in the header");
+      if (!time_seen && !(o.rate > 0.0)) {
+        return fail(line_no, 1, "no time column (t[s]) in the header (or give the sample rate: --rate HZ)");
+      }
       continue;
     }
 
     split(line, sep, fields, offs);
+    ++data_rows;
     if (fields.size() != targets.size()) {
       const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
-      return fail(line_no, char_column(line, off),
+      return stop(line_no, char_column(line, off),
                   "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size()));
     }
+    // The row's values first, kept only when the whole row is good.
+    values.assign(fields.size(), 0.0);
+    double t = NAN;
+    std::size_t t_col = 1;
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const Target& tg = targets[k];
       if (tg.kind == Target::kIgnored) continue;
       double v = 0.0;
       const std::size_t col = char_column(line, offs[k]);
       if (!parse_number(fields[k], sep != ',', v)) {
-        return fail(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
+        return stop(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
       }
       v = tg.conv.to_si(v);
-      if (!std::isfinite(v)) return fail(line_no, col, "value is not finite");
-      switch (tg.kind) {
-        case Target::kTime:
-          if (!log.t.empty() && !(v > log.t.back())) {
-            return fail(line_no, col, "time not strictly increasing: " + format_value(v) + " s after " +
-                                          format_value(log.t.back()) + " s");
-          }
-          log.t.push_back(v);
-          break;
-        case Target::kInput: log.inputs[static_cast<std::size_t>(tg.index)].push_back(v); break;
-        case Target::kSensor: log.sensors[static_cast<std::size_t>(tg.index)].push_back(v); break;
-        case Target::kIgnored: break;
+      if (!std::isfinite(v)) return stop(line_no, col, "value is not finite");
+      values[k] = v;
+      if (tg.kind == Target::kTime) {
+        t = v;
+        t_col = col;
       }
+    }
+    if (o.rate > 0.0) {
+      // Time from the row index: a rounded or missing time column no longer matters.
+      if (log.t.empty() && std::isfinite(t)) t0 = t;
+      t = t0 + static_cast<double>(log.t.size()) / o.rate;
+    } else if (!log.t.empty() && !(t > log.t.back())) {
+      const std::string msg = "time not strictly increasing: " + format_value(t) + " s after " +
+                              format_value(log.t.back()) + " s (a logger that rounds its time: give the sample rate, --rate HZ)";
+      if (!o.lenient) return fail(line_no, t_col, msg);
+      ++skipped;
+      log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
+                          ": row skipped");
+      continue;
+    }
+    log.t.push_back(t);
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const Target& tg = targets[k];
+      if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+      if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
     }
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
+  if (log.error) {
+    if (log.t.empty()) return fail(log.error->line, log.error->column, log.error->message);
+    return log;  // lenient: the rows before the bad one
+  }
+  if (skipped * 20 > data_rows) {
+    return fail(line_no, 1, "--lenient would skip " + std::to_string(skipped) + " of " + std::to_string(data_rows) +
+                                " rows (more than 5 %) whose time does not increase: give the sample rate, --rate HZ");
+  }
   if (log.t.empty()) return fail(line_no, 1, "no data rows after the header");
   return log;
 }

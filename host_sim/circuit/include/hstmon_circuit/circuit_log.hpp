@@ -5,8 +5,13 @@
 /// `name (unit)` in the header, or a bare name for the unit the circuit file gives the
 /// column ("" = SI). The format `hstmon replay` reads and hstmon-sim writes:
 ///  - optional UTF-8 BOM, LF or CRLF; blank lines and lines starting with '#' skipped;
-///  - separator from the header line: tab if it has one, else ';', else ',';
-///  - data rows of decimal numbers (blanks around them allowed), time strictly rising.
+///  - separator from the header line: tab if it has one, else ';', else ',' (or given:
+///    ReadOptions::separator); a decimal comma where the separator is not ',';
+///  - data rows of decimal numbers (blanks around them allowed), time strictly rising
+///    (or rebuilt from the row index: ReadOptions::rate);
+///  - columns renamed by ReadOptions' maps (by name, or by number), as the thesis logs'.
+/// Instrument layouts (a units row above the names, a metadata block) are not detected:
+/// that is the thesis reader's (ports/host log_reader.cpp), whose columns are the rig's.
 /// Columns the circuit does not know are ignored with a note. Every error (bad number,
 /// ragged row, unknown unit, duplicated column, no time column, no rows, time not rising,
 /// non-finite value, unreadable file) is a SourceError at file:line:column; nothing
@@ -19,6 +24,7 @@
 #include <vector>
 
 #include "hstmon_host/circuit_file.hpp"
+#include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/source_error.hpp"
 
 namespace hstmon::circuit_tools {
@@ -37,10 +43,18 @@ struct CircuitLog {
 };
 
 /// Reads the log at path for circuit c.
-CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c);
+/// @param o  the log options every reader takes (`--separator`, `--map`, `--lenient`,
+///           `--rate`; host::ReadOptions), with the same meaning as for the thesis logs:
+///           a map's target is a circuit column name (or `t`, or "" to drop); with a rate
+///           the time is t0 + i/rate and need not increase (no time column: t0 = 0); a
+///           lenient read skips a row whose time does not increase (a note each), keeps
+///           the rows before any other bad row (error still set), and refuses the log when
+///           it would drop more than 5 % of the rows.
+CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o = {});
 
 /// Parses log text for circuit c; path_for_messages names it in errors.
-CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c);
+CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,
+                             const host::ReadOptions& o = {});
 
 /// The log as text: `t[s]`, the present input columns, then the present sensor columns,
 /// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g".
