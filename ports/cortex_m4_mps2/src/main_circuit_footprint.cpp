@@ -13,6 +13,7 @@
 
 #include "hstmon_mps2/cycles.h"
 #include "hstmon_mps2/semihosting.h"
+#include "hstmon_mps2/stack_paint.h"
 
 #ifndef HSTMON_FW_WITH_ENGINE
 #define HSTMON_FW_WITH_ENGINE 1
@@ -58,23 +59,6 @@ using Meas = CircuitFwObserver::Measurement;
 using Inputs = CircuitFwObserver::Inputs;
 
 CircuitFwObserver obs;  // the engine's RAM (static: no heap, not on the stack)
-
-extern "C" std::uint32_t __stack_limit__[];
-constexpr std::uint32_t kPaint = 0xA5A5A5A5u;
-
-// Fills the unused stack below this function's frame with a pattern.
-__attribute__((noinline)) void paint_stack() {
-  std::uint32_t* sp;
-  __asm volatile("mov %0, sp" : "=r"(sp));
-  for (volatile std::uint32_t* p = __stack_limit__; p < sp - 16; ++p) *p = kPaint;
-}
-
-// Lowest stack address written since paint_stack().
-std::uintptr_t stack_low_water() {
-  const std::uint32_t* p = __stack_limit__;
-  while (*p == kPaint) ++p;
-  return reinterpret_cast<std::uintptr_t>(p);
-}
 
 __attribute__((noinline)) std::uint32_t engine_step(const Inputs& u, const Meas& m) { return obs.step(u, m); }
 
@@ -136,7 +120,7 @@ int main() {
 #if HSTMON_FW_WITH_ENGINE
   std::uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
-  paint_stack();
+  stack_paint();
   if (hstmon::fw::configure_circuit_observer(obs) != hstmon::Status::kOk) semihost_exit(10);
   const Inputs u = hstmon::fw::circuit_inputs();
   if (obs.reset_steady(u) != hstmon::Status::kOk) semihost_exit(11);
@@ -144,7 +128,7 @@ int main() {
   Meas m;
   m.y = obs.estimate();
   m.valid = static_cast<std::uint8_t>((1u << obs.model().n_outputs()) - 1u);
-  paint_stack();
+  stack_paint();
   sink = obs.step(u, m);  // the first step (the quasi-steady solve's warm start settles)
   const std::uint32_t counts_step = time_ticks(engine_step, u, m);
   const auto stack_step = static_cast<std::uint32_t>(sp_main - stack_low_water());

@@ -14,29 +14,13 @@
 #include "hstmon_fw_log_data.hpp"
 #include "hstmon_mps2/cycles.h"
 #include "hstmon_mps2/semihosting.h"
+#include "hstmon_mps2/stack_paint.h"
 
 namespace {
 
 hstmon::fw::CircuitFwMonitor monitor;  // static: no heap, not on the stack
 
-extern "C" std::uint32_t __stack_limit__[];
-constexpr std::uint32_t kPaint = 0xA5A5A5A5u;
 constexpr std::uint32_t kCalibLoop = 100000;  // as main_circuit_footprint.cpp
-
-// Fills the unused stack below this function's frame with a pattern (as the other
-// footprint mains do).
-__attribute__((noinline)) void paint_stack() {
-  std::uint32_t* sp;
-  __asm volatile("mov %0, sp" : "=r"(sp));
-  for (volatile std::uint32_t* p = __stack_limit__; p < sp - 16; ++p) *p = kPaint;
-}
-
-// Lowest stack address written since paint_stack().
-std::uintptr_t stack_low_water() {
-  const std::uint32_t* p = __stack_limit__;
-  while (*p == kPaint) ++p;
-  return reinterpret_cast<std::uintptr_t>(p);
-}
 
 }  // namespace
 
@@ -49,7 +33,7 @@ int main() {
   const std::uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
   std::uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
-  paint_stack();
+  stack_paint();
   const std::uint32_t t0 = cycles_now();
   const std::uint32_t health = hstmon::fw::circuit_monitor_replay(monitor, log, columns, semihost_write0);
   const std::uint32_t replay_counts = cycles_elapsed(t0, cycles_now());

@@ -20,6 +20,7 @@
 #include "hstmon_c.h"
 #include "hstmon_mps2/cycles.h"
 #include "hstmon_mps2/semihosting.h"
+#include "hstmon_mps2/stack_paint.h"
 
 #ifndef HSTMON_FW_WITH_MONITOR
 #define HSTMON_FW_WITH_MONITOR 1
@@ -54,23 +55,6 @@ static void put_uint(const char* key, uint32_t v) {
 
 #if HSTMON_FW_WITH_MONITOR
 static hstmon_monitor_storage storage; /* the monitor's RAM */
-
-extern uint32_t __stack_limit__[];
-#define STACK_PAINT 0xA5A5A5A5u
-
-/* Fills the unused stack below this function's frame with a pattern. */
-__attribute__((noinline)) static void paint_stack(void) {
-  uint32_t* sp;
-  __asm volatile("mov %0, sp" : "=r"(sp));
-  for (volatile uint32_t* p = __stack_limit__; p < sp - 16; ++p) *p = STACK_PAINT;
-}
-
-/* Lowest stack address written since paint_stack(). */
-static uintptr_t stack_low_water(void) {
-  const uint32_t* p = __stack_limit__;
-  while (*p == STACK_PAINT) ++p;
-  return (uintptr_t)p;
-}
 
 __attribute__((noinline)) static uint32_t empty_step(hstmon_monitor* m, const hstmon_sample* s) {
   __asm volatile("" ::"r"(m), "r"(s) : "memory");
@@ -112,7 +96,7 @@ int main(void) {
 #if HSTMON_FW_WITH_MONITOR
   uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
-  paint_stack();
+  stack_paint();
   hstmon_config cfg;
   hstmon_default_config(&cfg);
   cfg.tick_s = 1e-3f;
@@ -129,12 +113,12 @@ int main(void) {
   for (int i = 0; i < HSTMON_CHANNELS; ++i) s.y[i] = r.estimate[i];
   s.valid = 0x0F;
   const uint32_t stack_bytes = (uint32_t)(sp_main - stack_low_water());
-  paint_stack(); /* the first step: a tick plus the model bound for the new inputs */
+  stack_paint(); /* the first step: a tick plus the model bound for the new inputs */
   const uint32_t b0 = cycles_now();
   sink = hstmon_step(m, &s);
   const uint32_t counts_bound = cycles_elapsed(b0, cycles_now());
   const uint32_t stack_bound_bytes = (uint32_t)(sp_main - stack_low_water());
-  paint_stack(); /* again: the nominal step path alone */
+  stack_paint(); /* again: the nominal step path alone */
   const uint32_t counts_step = time_ticks(hstmon_step, m, &s);
   const uint32_t stack_step_bytes = (uint32_t)(sp_main - stack_low_water());
   const uint32_t counts_empty = time_ticks(empty_step, m, &s);
@@ -142,7 +126,7 @@ int main(void) {
   const uint32_t health_nominal = r.health;
   const uint32_t status_nominal = (uint32_t)hstmon_match_status(m);
   /* A fault episode: Ppp 10 bar above the model; the costliest single tick. */
-  paint_stack();
+  stack_paint();
   uint32_t counts_episode_max = 0u, events = 0u;
   const float ppp = s.y[HSTMON_CH_PPP];
   for (int k = 0; k < 300; ++k) {
