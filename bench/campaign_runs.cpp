@@ -185,55 +185,6 @@ hstmon::host::ReplayResult replay_log(const sim::ThesisMeasurements& log, const 
   return hstmon::host::replay(d, Params{}, Inputs{}, o);
 }
 
-namespace {
-
-bool is_decision(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "unexplained"; }
-
-}  // namespace
-
-Scored score(const hstmon::host::ReplayResult& r, const std::string& truth, double t_fault, double tie_margin) {
-  Scored s;
-  const double eps = 1e-9;
-  const hstmon::host::ReplayEvent* last_decision = nullptr;
-  const hstmon::host::ReplayEvent* last_with_cands = nullptr;
-  for (const auto& e : r.events) {
-    if (e.t < t_fault - eps) {
-      if (e.event == "detected") ++s.false_events;
-      continue;
-    }
-    if (e.event == "detected" && !s.detected) {
-      s.detected = true;
-      s.delay = e.t - t_fault;
-    }
-    if (is_decision(e.event)) {
-      last_decision = &e;
-      if (!e.candidates.empty() && e.candidates[0].fault.rfind("sensor_", 0) == 0 && truth.rfind("sensor_", 0) != 0) {
-        s.called_sensor = true;
-      }
-    }
-    if ((e.event == "isolated" || e.event == "detected" || e.event == "ambiguous") && !e.candidates.empty()) {
-      last_with_cands = &e;
-    }
-  }
-  if (last_with_cands) {
-    for (const auto& c : last_with_cands->candidates) s.in_last = s.in_last || c.fault == truth;
-  }
-  if (!last_decision) return s;
-  s.decided = true;
-  const auto& e = *last_decision;
-  if (e.candidates.empty() || e.event == "unexplained") return s;
-  s.best = e.candidates[0].fault;
-  auto ang = [](double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); };
-  const double a0 = ang(e.candidates[0].score);
-  for (std::size_t j = 0; j < e.candidates.size(); ++j) {
-    if (j > 0 && !(ang(e.candidates[j].score) - a0 < tie_margin)) continue;
-    ++s.set_size;
-    s.in_set = s.in_set || e.candidates[j].fault == truth;
-  }
-  s.isolated_as_truth = e.event == "isolated" && s.best == truth;
-  return s;
-}
-
 NominalStats score_nominal(const hstmon::host::ReplayResult& r) {
   NominalStats st;
   st.seconds = r.t_last - r.t_first;

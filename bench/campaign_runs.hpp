@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "campaign_score.hpp"
 #include "hstmon_host/replay.hpp"
 #include "hstmon_sim/load_profile.hpp"
 #include "hstmon_sim/param_fault.hpp"
@@ -76,21 +77,6 @@ std::vector<FaultCase> sensor_faults(const hstmon::sim::SensorConfig& sensors);
 /// parameter file would), else the replay's default assumption.
 hstmon::host::ReplayResult replay_log(const hstmon::sim::ThesisMeasurements& log,
                                       const hstmon::sim::SensorConfig& sensors, bool declare_ranges);
-
-/// Scoring of one fault run.
-struct Scored {
-  int false_events = 0;      ///< detections before the fault
-  bool detected = false;     ///< a detection at or after the fault
-  double delay = 0.0;        ///< first detection − fault [s]
-  bool decided = false;      ///< isolated/ambiguous/unexplained after the fault
-  bool in_set = false;       ///< truth in the last decision's set (candidates within the tie margin of the best)
-  bool in_last = false;      ///< truth among the last event's candidates (score_monitor.py's rule)
-  bool isolated_as_truth = false;  ///< last decision isolated with the truth best
-  bool called_sensor = false;      ///< a decision after the fault named a sensor fault best (parameter faults)
-  int set_size = 0;
-  std::string best;          ///< best candidate of the last decision ("" if none)
-};
-Scored score(const hstmon::host::ReplayResult& r, const std::string& truth, double t_fault, double tie_margin);
 
 /// False alarms of a nominal log: detected events.
 struct NominalStats {

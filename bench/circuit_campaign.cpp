@@ -39,6 +39,7 @@
 #include <thread>
 #include <vector>
 
+#include "campaign_score.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
@@ -97,15 +98,11 @@ struct Fault {
 };
 
 struct RunResult {
-  bool early = false;       // detected before t_f (any time on a nominal run)
-  int alarms = 0;           // detected events in a nominal run
-  bool detected = false;    // detected at or after t_f
-  double delay = NAN;       // [s]
-  bool in_set = false;      // truth among the last scored event's candidates
-  bool best = false;        // truth that event's best
-  std::string last;         // that event, for --verbose
-  std::vector<std::string> reported;  // its candidates within the matcher's tie margin of the best
+  int alarms = 0;  // detected events in a nominal run
+  hstmon_campaign::Scored s;  // a fault run (campaign_score.hpp): in set = s.in_last, reported set = s.last_set
   std::string error;
+  bool early() const { return s.false_events > 0; }
+  bool missed() const { return !s.detected || !s.in_last || early(); }
 };
 
 // The machine for one run: the file's values with every uncertain parameter ±2 %.
@@ -144,8 +141,6 @@ double sensor_bias(const hstmon::host::CircuitSensor& s) {
   return 20.0 * hstmon::circuit_tools::sensor_sigma(s);
 }
 
-// score_monitor.py's events: the last of these with candidates is the answer.
-bool is_scored(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "detected"; }
 
 // --dump: the folder where the log of every run that misses, or nominal run that alarms, is written.
 std::string g_dump_dir;
@@ -199,37 +194,12 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   }
   CircuitReplayOptions ro;
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
-  const hstmon::host::ReplayEvent* last = nullptr;
-  for (const auto& e : res.events) {
-    if (e.event == "detected") {
-      if (!faulted || e.t < g_timing.t_fault) {
-        r.early = true;
-        ++r.alarms;
-      } else if (!r.detected) {
-        r.detected = true;
-        r.delay = e.t - g_timing.t_fault;
-      }
-    }
-    if (faulted && e.t >= g_timing.t_fault && is_scored(e.event) && !e.candidates.empty()) last = &e;
+  if (faulted) {
+    r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin);
+  } else {
+    for (const auto& e : res.events) r.alarms += e.event == "detected" ? 1 : 0;
   }
-  if (last != nullptr) {
-    r.last = fmt::format("{} at {:.3f} s:", last->event, last->t);
-    // The reported set (as the thesis campaign's): the candidates whose angle lies within
-    // the matcher's default tie margin of the best's.
-    const double best_angle = std::acos(std::clamp(last->candidates.front().score, -1.0, 1.0));
-    for (const auto& cand : last->candidates) {
-      if (std::acos(std::clamp(cand.score, -1.0, 1.0)) - best_angle <= kTieMargin) r.reported.push_back(cand.fault);
-    }
-    for (std::size_t i = 0; i < last->candidates.size(); ++i) {
-      const auto& cand = last->candidates[i];
-      r.last += fmt::format(" {} {:.2f}", cand.fault, cand.score);
-      if (cand.fault == f.name) {
-        r.in_set = true;
-        r.best = r.best || i == 0;
-      }
-    }
-  }
-  if (!g_dump_dir.empty() && (faulted ? !r.detected || !r.in_set || r.early : r.alarms > 0)) {
+  if (!g_dump_dir.empty() && (faulted ? r.missed() : r.alarms > 0)) {
     const std::string what = faulted ? fmt::format("{} at {} s", f.name, g_timing.t_fault) : "nominal";
     std::ofstream(fmt::format("{}/{}_{}.csv", g_dump_dir, faulted ? f.name : "nominal", seed))
         << hstmon::circuit_tools::circuit_log_text(c.file, log, {fmt::format("{}, {}, seed {}", what, cond.name, seed)});
@@ -377,21 +347,21 @@ int main(int argc, char** argv) {
     for (Tally* t : {&by_fault[f.name], &by_cond[static_cast<std::size_t>(w.condition)], &all}) {
       ++t->runs;
       t->errors += r.error.empty() ? 0 : 1;
-      t->early += r.early ? 1 : 0;
-      t->detected += r.detected ? 1 : 0;
-      t->in_set += r.detected && r.in_set ? 1 : 0;
-      t->best += r.detected && r.best ? 1 : 0;
-      if (r.detected) t->delay_sum += r.delay;
+      t->early += r.early() ? 1 : 0;
+      t->detected += r.s.detected ? 1 : 0;
+      t->in_set += r.s.detected && r.s.in_last ? 1 : 0;
+      t->best += r.s.detected && r.s.best_in_last ? 1 : 0;
+      if (r.s.detected) t->delay_sum += r.s.delay;
     }
-    if (r.detected) {
-      for (const std::string& other : r.reported) {
+    if (r.s.detected) {
+      for (const std::string& other : r.s.last_set) {
         if (other != f.name) ++confused[f.name][other];
       }
     }
     if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
-    if (verbose && r.error.empty() && (!r.detected || !r.in_set || r.early))
+    if (verbose && r.error.empty() && r.missed())
       fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
-                 kConditions[static_cast<std::size_t>(w.condition)].name, r.detected, r.early, r.last.empty() ? "no decision" : r.last);
+                 kConditions[static_cast<std::size_t>(w.condition)].name, r.s.detected, r.early(), r.s.last.empty() ? "no decision" : r.s.last);
   }
   const auto pct = [](int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; };
   if (json) {

@@ -255,7 +255,7 @@ int main(int argc, char** argv) {
         sim::inject_sensor_fault(log, sensors, sf);
       }
       const hstmon::host::ReplayResult res = replay_log(log, sensors, c.declare_ranges);
-      r.s = score(res, f.row, t_f, tie);
+      r.s = score(res.events, f.row, t_f, tie);
       if (o.verbose && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
         char b[160];
         std::snprintf(b, sizeof b, "%s | %s seed %d (t_f %.1f s):", c.name.c_str(), f.label.c_str(), j.seed, t_f);

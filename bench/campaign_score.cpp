@@ -1,0 +1,74 @@
+// Scoring of one monitored fault run by its events (campaign_score.hpp).
+#include "campaign_score.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace hstmon_campaign {
+
+bool is_decision(const std::string& e) { return e == "isolated" || e == "ambiguous" || e == "unexplained"; }
+
+namespace {
+
+// A matcher score (a cosine) as an angle [rad].
+double angle(double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); }
+
+}  // namespace
+
+Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
+             double tie_margin) {
+  Scored s;
+  const double eps = 1e-9;
+  const hstmon::host::ReplayEvent* last_decision = nullptr;
+  const hstmon::host::ReplayEvent* last_with_cands = nullptr;
+  for (const auto& e : events) {
+    if (e.t < t_fault - eps) {
+      if (e.event == "detected") ++s.false_events;
+      continue;
+    }
+    if (e.event == "detected" && !s.detected) {
+      s.detected = true;
+      s.delay = e.t - t_fault;
+    }
+    if (is_decision(e.event)) {
+      last_decision = &e;
+      if (!e.candidates.empty() && e.candidates[0].fault.rfind("sensor_", 0) == 0 && truth.rfind("sensor_", 0) != 0) {
+        s.called_sensor = true;
+      }
+    }
+    if ((e.event == "isolated" || e.event == "detected" || e.event == "ambiguous") && !e.candidates.empty()) {
+      last_with_cands = &e;
+    }
+  }
+  if (last_with_cands) {
+    const auto& cands = last_with_cands->candidates;
+    for (const auto& c : cands) s.in_last = s.in_last || c.fault == truth;
+    s.best_in_last = cands[0].fault == truth;
+    const double a0 = angle(cands[0].score);
+    for (const auto& c : cands) {
+      if (angle(c.score) - a0 <= tie_margin) s.last_set.push_back(c.fault);
+    }
+    char b[48];
+    std::snprintf(b, sizeof b, " at %.3f s:", last_with_cands->t);
+    s.last = last_with_cands->event + b;
+    for (const auto& c : cands) {
+      std::snprintf(b, sizeof b, " %.2f", c.score);
+      s.last += " " + c.fault + b;
+    }
+  }
+  if (!last_decision) return s;
+  s.decided = true;
+  const auto& e = *last_decision;
+  if (e.candidates.empty() || e.event == "unexplained") return s;
+  s.best = e.candidates[0].fault;
+  const double a0 = angle(e.candidates[0].score);
+  for (std::size_t j = 0; j < e.candidates.size(); ++j) {
+    if (j > 0 && !(angle(e.candidates[j].score) - a0 < tie_margin)) continue;
+    ++s.set_size;
+    s.in_set = s.in_set || e.candidates[j].fault == truth;
+  }
+  s.isolated_as_truth = e.event == "isolated" && s.best == truth;
+  return s;
+}
+
+}  // namespace hstmon_campaign

@@ -1,0 +1,38 @@
+#pragma once
+/// @file campaign_score.hpp
+/// Scoring of one monitored fault run by its matcher events, shared by the thesis rig's
+/// campaign (fault_campaign.cpp) and the campaign for any circuit (circuit_campaign.cpp),
+/// so both count as ../shared/validation/score_monitor.py does.
+
+#include <string>
+#include <vector>
+
+#include "hstmon_host/replay.hpp"
+
+namespace hstmon_campaign {
+
+/// True for the matcher's decisions: "isolated", "ambiguous", "unexplained".
+bool is_decision(const std::string& event);
+
+/// Scoring of one fault run.
+struct Scored {
+  int false_events = 0;      ///< detections before the fault
+  bool detected = false;     ///< a detection at or after the fault
+  double delay = 0.0;        ///< first detection − fault [s]
+  bool decided = false;      ///< isolated/ambiguous/unexplained after the fault
+  bool in_set = false;       ///< truth in the last decision's set (candidates within the tie margin of the best)
+  bool in_last = false;      ///< truth among the last event's candidates (score_monitor.py's rule)
+  bool best_in_last = false; ///< truth the first of those candidates
+  std::vector<std::string> last_set;  ///< those candidates within the tie margin of their best
+  std::string last;          ///< that event as text ("isolated at 4.460 s: Rplkg+ 0.96 …"; "" if none)
+  bool isolated_as_truth = false;  ///< last decision isolated with the truth best
+  bool called_sensor = false;      ///< a decision after the fault named a sensor fault best (parameter faults)
+  int set_size = 0;
+  std::string best;          ///< best candidate of the last decision ("" if none)
+};
+
+/// Scores the events of a run whose fault `truth` starts at t_fault [s]; tie_margin [rad].
+Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
+             double tie_margin);
+
+}  // namespace hstmon_campaign
