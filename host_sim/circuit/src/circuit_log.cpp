@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 #include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/log_options.hpp"
 #include "hstmon_host/units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -100,23 +100,6 @@ std::string format_value(double v) {
 
 bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
-// A header name as a --map key matches it: ASCII case ignored, runs of blanks as one,
-// blanks at the ends dropped ("Time  CH=1" is "time ch=1").
-std::string map_key(std::string_view s) {
-  std::string k;
-  bool blank = false;
-  for (const char ch : trim(s)) {
-    if (ch == ' ' || ch == '\t') {
-      blank = true;
-      continue;
-    }
-    if (blank && !k.empty()) k += ' ';
-    blank = false;
-    k += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  }
-  return k;
-}
-
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -149,8 +132,6 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     log.error = SourceError{log.path, line, col, std::move(msg)};
     return log;
   };
-  std::map<std::string, std::string> name_map;  // map_key(log name) → target
-  for (const auto& [from, to] : o.column_map) name_map[map_key(from)] = to;
   std::size_t skipped = 0;     // rows a lenient read skipped (time not increasing)
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
@@ -213,9 +194,13 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         if (const auto it = o.column_number_map.find(k + 1); it != o.column_number_map.end()) {
           mapped = it->second;
           is_mapped = true;
-        } else if (const auto jt = name_map.find(map_key(name)); jt != name_map.end()) {
-          mapped = jt->second;
-          is_mapped = true;
+        } else {
+          for (const auto& [key, to] : o.column_map) {
+            if (!is_mapped && host::column_name_matches(key, name)) {
+              mapped = to;
+              is_mapped = true;
+            }
+          }
         }
         if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
         if (is_mapped) name = mapped;

@@ -3,7 +3,25 @@
 #include <charconv>
 #include <cmath>
 
+#include "text_util.hpp"
+
 namespace hstmon::host {
+
+bool column_name_matches(std::string_view key, std::string_view name) noexcept {
+  key = detail::trim(key);
+  std::size_t i = 0, j = 0;
+  while (i < key.size() && j < name.size()) {
+    if (detail::is_blank(key[i]) && detail::is_blank(name[j])) {
+      while (i < key.size() && detail::is_blank(key[i])) ++i;
+      while (j < name.size() && detail::is_blank(name[j])) ++j;
+      continue;
+    }
+    if (!detail::iequals(key.substr(i, 1), name.substr(j, 1))) return false;
+    ++i;
+    ++j;
+  }
+  return i == key.size() && j == name.size();
+}
 
 std::string add_column_map(ReadOptions& options, std::string_view entry) {
   const std::string usage = "takes COLUMN=SIGNAL or '#N=SIGNAL' (e.g. Druck_A=p_mi, '#8=p_pp'), got '" +

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "delimiter_scan.hpp"
+#include "hstmon_host/log_options.hpp"
 #include "fast_decimal.hpp"
 #include "text_util.hpp"
 #include "utf8_check.hpp"
@@ -477,24 +478,6 @@ class Parser {
     return true;
   }
 
-  /// A column map key and a column name are the same ignoring ASCII case and the width
-  /// of blank runs: "Time Spider8_1 CH=1" names a Spider8's "Time  Spider8_1 CH=1".
-  static bool same_name(std::string_view key, std::string_view name) noexcept {
-    key = trim(key);
-    std::size_t i = 0, j = 0;
-    while (i < key.size() && j < name.size()) {
-      if (detail::is_blank(key[i]) && detail::is_blank(name[j])) {
-        while (i < key.size() && detail::is_blank(key[i])) ++i;
-        while (j < name.size() && detail::is_blank(name[j])) ++j;
-        continue;
-      }
-      if (!detail::iequals(key.substr(i, 1), name.substr(j, 1))) return false;
-      ++i;
-      ++j;
-    }
-    return i == key.size() && j == name.size();
-  }
-
   /// Maps header cells to signals and units; fills cols_ and out_.present.
   bool resolve_columns() {
     struct MapEntry {
@@ -530,7 +513,7 @@ class Parser {
         mapped = true;
       }
       for (MapEntry& e : map) {
-        if (!mapped && same_name(e.key, cell.name)) {
+        if (!mapped && column_name_matches(e.key, cell.name)) {
           e.used = true;
           target = e.target;
           mapped = true;

@@ -18,6 +18,12 @@ namespace hstmon::host {
 /// success, else why the entry was refused.
 std::string add_column_map(ReadOptions& options, std::string_view entry);
 
+/// True when a column map key names a header column: equal ignoring ASCII case and the
+/// width of blank runs, blanks around the key ignored ("Time Spider8_1 CH=1" names a
+/// Spider8's "Time  Spider8_1 CH=1"). The rule of every log reader (the thesis logs',
+/// the circuit logs').
+bool column_name_matches(std::string_view key, std::string_view name) noexcept;
+
 /// Sets the field separator from `,`, `;`, `tab`, `\t` (the two characters) or a tab
 /// character. Returns "" on success, else why it was refused.
 std::string set_separator(ReadOptions& options, std::string_view text);
