@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "cli_circuit_replay_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
@@ -168,22 +169,43 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
-  o.keep_trace = !a.residuals_csv.empty();
+  o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   if (a.json) {
     print_json(a, c, r);
   } else {
     print_human(a, c, r);
   }
+  // An output that cannot be written is an error, after the others have been written.
+  int code = kExitOk;
   if (!a.residuals_csv.empty()) {
-    const std::string err = write_circuit_residuals(a.residuals_csv, c, r);
-    if (!err.empty()) {
+    if (const std::string err = write_circuit_residuals(a.residuals_csv, c, r); !err.empty()) {
       fmt::print(stderr, "hstmon replay: {}\n", err);
-      return kExitBadInput;
+      code = kExitBadInput;
+    } else if (!a.json) {
+      fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
-    if (!a.json) fmt::print("  residuals written to {}\n", a.residuals_csv);
   }
-  return kExitOk;
+  if (!a.plot.empty()) {
+    if (const std::string err = plot_replay(circuit_plot_trace(c, r), "hstmon replay " + a.log, a.plot); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
+      code = kExitBadInput;
+    } else if (!a.json) {
+      fmt::print("  plot written to {}\n", a.plot);
+    }
+  }
+  if (!a.report.empty()) {
+    std::string plot_warning;
+    if (const std::string err = write_replay_report(a.report, circuit_replay_report(a, c, r), plot_warning);
+        !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
+      code = kExitBadInput;
+    } else {
+      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
+      if (!a.json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", a.report);
+    }
+  }
+  return code;
 }
 
 }  // namespace hstmon::cli

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -243,7 +244,7 @@ int run_replay(const ReplayArgs& a) {
   }
   if (!a.report.empty()) {
     std::string plot_warning;
-    if (const std::string err = write_replay_report(a.report, a.log, r, !a.no_diagnosis, plot_warning); !err.empty()) {
+    if (const std::string err = write_replay_report(a.report, thesis_replay_report(a.log, r, !a.no_diagnosis), plot_warning); !err.empty()) {
       fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
       rc = kExitBadInput;
     } else {
@@ -280,14 +281,29 @@ int run_summaries(const ReplayArgs& a) {
     fmt::print(stderr, "hstmon replay: error: --machine-from {}\n", err);
     return kExitUsage;
   }
-  host::ParamsFileResult pf;
-  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
-  f.params = pf.params.value_or(ThesisParams<double>{});
-  f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
-  f.replay.tick = a.tick;
-  f.replay.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
-  f.replay.diagnose = !a.no_diagnosis;
-  if (pf.sensors) f.replay.sensors = *pf.sensors;
+  const host::InitMode init =
+      a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  if (!a.circuit.empty()) {
+    // One circuit for every log: loaded once, its monitor built per log.
+    auto c = std::make_shared<circuit_tools::LoadedCircuit>();
+    if (auto load_error = circuit_tools::load_circuit(a.circuit, a.io.params, *c)) {
+      fmt::print(stderr, "{}\n", load_error->to_string());
+      return kExitBadInput;
+    }
+    f.circuit = std::move(c);
+    f.circuit_replay.tick = a.tick;
+    f.circuit_replay.init = init;
+    f.circuit_replay.diagnose = !a.no_diagnosis;
+  } else {
+    host::ParamsFileResult pf;
+    if (!read_params_option(a.io.params, pf)) return kExitBadInput;
+    f.params = pf.params.value_or(ThesisParams<double>{});
+    f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
+    f.replay.tick = a.tick;
+    f.replay.init = init;
+    f.replay.diagnose = !a.no_diagnosis;
+    if (pf.sensors) f.replay.sensors = *pf.sensors;
+  }
   f.jobs = a.jobs;
   const std::vector<std::string> logs = expand_logs(a.logs);
   if (logs.empty()) {
@@ -332,20 +348,11 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->callback([args, cmd, &exit_code]() {
     args->log = args->logs.front();
     if (wants_summaries(*args)) {
-      if (!args->circuit.empty()) {
-        fmt::print(stderr, "hstmon replay: error: --circuit takes one log (not several logs, a folder or --summary) (yet)\n");
-        exit_code = kExitUsage;
-        return;
-      }
       exit_code = run_summaries(*args);
       return;
     }
     if (args->circuit.empty()) {
       exit_code = run_replay(*args);
-      return;
-    }
-    if (!refuse_with_circuit(*cmd, {"--plot", "--report"})) {
-      exit_code = kExitUsage;
       return;
     }
     const std::optional<host::ReadOptions> ro = to_read_options(args->io, "replay");
@@ -363,6 +370,8 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     c.init = args->init;
     c.diagnose = !args->no_diagnosis;
     c.residuals_csv = args->residuals_csv;
+    c.plot = args->plot;
+    c.report = args->report;
     exit_code = run_circuit_replay(c);
   });
 }

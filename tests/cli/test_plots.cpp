@@ -160,6 +160,40 @@ TEST(Plots, FailedPlotIsOneLineNamingTheFile) {
   EXPECT_NE(r.err.find("/nonexistent_dir/out.svg"), std::string::npos) << r.err;
 }
 
+// A circuit's replay draws one row per sensor of the circuit, titled with the sensor's
+// name and in the unit its file gives — not the thesis rig's four channels.
+TEST(Plots, CircuitReplayDrawsTheCircuitsSensorsInTheirUnits) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path svg = dir() / "test_stand.svg";
+  const std::string src = HSTMON_SOURCE_DIR;
+  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/test_stand.json' '" + src +
+                       "/examples/circuits/test_stand.csv' --no-diagnosis --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::string text = read(svg);
+  EXPECT_EQ(count(text, "p_line measured and model"), 1u);
+  EXPECT_EQ(count(text, "q residual (measured"), 1u);
+  EXPECT_EQ(count(text, "L/min"), 2u);  // the flow sensor's unit, on its two panels
+  EXPECT_EQ(count(text, "Pmi"), 0u);
+  EXPECT_EQ(count(text, "'model'") + count(text, ">model<"), 1u);  // one key
+}
+
+// --report with --circuit writes the report beside its figure, verdict first, naming the circuit.
+TEST(Plots, CircuitReplayReportNamesTheCircuitAndItsVerdict) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path out = dir() / "circuit_report";
+  const std::string src = HSTMON_SOURCE_DIR;
+  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/paper.json' '" + src +
+                       "/examples/circuits/paper_dm_fault.csv' --report '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = read(out / "report.md");
+  EXPECT_NE(md.find("**Verdict:** isolated at the end of the log (since t = 6.260 s): Dm- (1.000)"), std::string::npos) << md;
+  EXPECT_NE(md.find("circuit paper ("), std::string::npos);
+  EXPECT_NE(md.find("| w_m [rpm] |"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+  EXPECT_NE(read(out / "residuals.svg").find("p_pp residual"), std::string::npos);
+}
+
 TEST(PlotHelpers, ReadableRangeWidensFlatDataAndKeepsEveryValue) {
   const hstmon::sim::AxisRange flat = hstmon::sim::readable_range({171.08, 171.08, 171.08}, 0.1);
   EXPECT_NEAR(flat.hi - flat.lo, 0.1, 1e-12);
