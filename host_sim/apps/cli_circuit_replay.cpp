@@ -186,25 +186,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
   }
-  if (!a.plot.empty()) {
-    if (const std::string err = plot_replay(circuit_plot_trace(c, r), "hstmon replay " + a.log, a.plot); !err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
-      code = kExitBadInput;
-    } else if (!a.json) {
-      fmt::print("  plot written to {}\n", a.plot);
-    }
-  }
-  if (!a.report.empty()) {
-    std::string plot_warning;
-    if (const std::string err = write_replay_report(a.report, circuit_replay_report(a, c, r), plot_warning);
-        !err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
-      code = kExitBadInput;
-    } else {
-      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
-      if (!a.json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", a.report);
-    }
-  }
+  if (!write_plot_and_report(a.plot, a.report, circuit_replay_report(a, c, r), a.json)) code = kExitBadInput;
   return code;
 }
 

@@ -28,7 +28,6 @@
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
-#include "hstmon_plot/residual_plot.hpp"
 
 namespace hstmon::cli {
 
@@ -233,24 +232,8 @@ int run_replay(const ReplayArgs& a) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
   }
-  if (!a.plot.empty()) {
-    const std::string err = plot_trace(r, "hstmon replay " + a.log, a.plot);
-    if (!err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
-      rc = kExitBadInput;
-    } else if (!a.json) {
-      fmt::print("  plot written to {}\n", a.plot);
-    }
-  }
-  if (!a.report.empty()) {
-    std::string plot_warning;
-    if (const std::string err = write_replay_report(a.report, thesis_replay_report(a.log, r, !a.no_diagnosis), plot_warning); !err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
-      rc = kExitBadInput;
-    } else {
-      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
-      if (!a.json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", a.report);
-    }
+  if (!write_plot_and_report(a.plot, a.report, thesis_replay_report(a.log, r, !a.no_diagnosis), a.json)) {
+    rc = kExitBadInput;
   }
   return rc;
 }

@@ -170,4 +170,27 @@ std::string write_replay_report(const std::string& dir, const ReplayReport& r, s
   return {};
 }
 
+bool write_plot_and_report(const std::string& plot, const std::string& report_dir, const ReplayReport& r, bool json) {
+  bool ok = true;
+  if (!plot.empty()) {
+    if (const std::string err = plot_replay(r.plot, "hstmon replay " + r.log, plot); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
+      ok = false;
+    } else if (!json) {
+      fmt::print("  plot written to {}\n", plot);
+    }
+  }
+  if (!report_dir.empty()) {
+    std::string plot_warning;
+    if (const std::string err = write_replay_report(report_dir, r, plot_warning); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
+      ok = false;
+    } else {
+      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
+      if (!json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", report_dir);
+    }
+  }
+  return ok;
+}
+
 }  // namespace hstmon::cli

@@ -48,4 +48,9 @@ ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResu
 /// @return              empty on success, else why the report could not be written
 std::string write_replay_report(const std::string& dir, const ReplayReport& r, std::string& plot_warning);
 
+/// `--plot FILE` and `--report DIR` of a replay (either may be empty: not asked for):
+/// writes them, says so on stdout (unless json), and an error on stderr for each that fails.
+/// @return true when every one asked for was written
+bool write_plot_and_report(const std::string& plot, const std::string& report_dir, const ReplayReport& r, bool json);
+
 }  // namespace hstmon::cli

@@ -160,8 +160,4 @@ PlotTrace thesis_plot_trace(const host::ReplayResult& result) {
   return trace;
 }
 
-std::string plot_trace(const host::ReplayResult& result, const std::string& title, const std::string& path) {
-  return plot_replay(thesis_plot_trace(result), title, path);
-}
-
 }  // namespace hstmon::cli

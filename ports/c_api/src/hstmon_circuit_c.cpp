@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <new>
 
+#include "c_api_candidates.hpp"
+
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/generated_setup.hpp"
 #include "hstmon/status.hpp"
@@ -170,14 +172,7 @@ hstmon_match hstmon_circuit_match_status(const hstmon_circuit_monitor* m) {
 }
 
 int hstmon_circuit_candidates(const hstmon_circuit_monitor* m, hstmon_candidate* out, int max) {
-  if (m == nullptr) return 0;
-  const Mon::Matcher& mt = m->mon.matcher();
-  const int total = mt.candidate_count();
-  for (int r = 0; out != nullptr && r < total && r < max; ++r) {
-    const auto c = mt.candidate(r);
-    out[r] = hstmon_candidate{c.name, c.score};
-  }
-  return total;
+  return m != nullptr ? hstmon::c_api::copy_candidates(m->mon.matcher(), out, max) : 0;
 }
 
 int hstmon_circuit_pop_event(hstmon_circuit_monitor* m, hstmon_event* out) {

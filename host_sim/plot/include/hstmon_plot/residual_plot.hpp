@@ -1,7 +1,7 @@
 #pragma once
 // Plots a replay trace with gnuplot: measured against model, and the residual, for each
 // channel. SVG or PNG by the output file's extension. Any channel set: the thesis rig's
-// four (plot_trace) or a circuit's sensors (PlotTrace filled by the circuit replay).
+// four (thesis_plot_trace) or a circuit's sensors (PlotTrace filled by the circuit replay).
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -37,8 +37,5 @@ std::string plot_replay(const PlotTrace& trace, const std::string& title, const 
 /// The thesis replay's trace as a PlotTrace (Pmi, Pmo, Ppp in bar, ωm in rpm); it refers
 /// to `result`, which must outlive it.
 PlotTrace thesis_plot_trace(const host::ReplayResult& result);
-
-/// plot_replay() of thesis_plot_trace(result).
-std::string plot_trace(const host::ReplayResult& result, const std::string& title, const std::string& path);
 
 }  // namespace hstmon::cli
