@@ -163,7 +163,8 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
   if (log.error) {
     fmt::print(stderr, "{}\n", log.error->to_string());
-    return kExitBadInput;
+    if (!a.read.lenient || log.rows() == 0) return kExitBadInput;
+    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
   }
   circuit_tools::CircuitReplayOptions o;
   o.tick = a.tick;
@@ -176,8 +177,9 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   } else {
     print_human(a, c, r);
   }
-  // An output that cannot be written is an error, after the others have been written.
-  int code = kExitOk;
+  // An output that cannot be written is an error, after the others have been written; so
+  // is a lenient read that stopped early.
+  int code = log.error ? kExitBadInput : kExitOk;
   if (!a.residuals_csv.empty()) {
     if (const std::string err = write_circuit_residuals(a.residuals_csv, c, r); !err.empty()) {
       fmt::print(stderr, "hstmon replay: {}\n", err);
@@ -186,7 +188,9 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
   }
-  if (!write_plot_and_report(a.plot, a.report, circuit_replay_report(a, c, r), a.json)) code = kExitBadInput;
+  ReplayReport report = circuit_replay_report(a, c, r);
+  if (log.error) report.read_error = log.error->to_string();
+  if (!write_plot_and_report(a.plot, a.report, report, a.json)) code = kExitBadInput;
   return code;
 }
 

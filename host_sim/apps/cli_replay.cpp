@@ -232,9 +232,9 @@ int run_replay(const ReplayArgs& a) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
   }
-  if (!write_plot_and_report(a.plot, a.report, thesis_replay_report(a.log, r, !a.no_diagnosis), a.json)) {
-    rc = kExitBadInput;
-  }
+  ReplayReport report = thesis_replay_report(a.log, r, !a.no_diagnosis);
+  if (lr.error) report.read_error = lr.error->to_string();
+  if (!write_plot_and_report(a.plot, a.report, report, a.json)) rc = kExitBadInput;
   return rc;
 }
 

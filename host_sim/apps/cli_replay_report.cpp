@@ -41,6 +41,10 @@ std::string verdict(const ReplayReport& r, sim::VerdictTone& tone) {
            : r.final_status == "isolated" ? sim::VerdictTone::kBad
                                           : sim::VerdictTone::kWarning;
   }
+  if (!r.read_error.empty()) {
+    text += fmt::format("; only the {} rows before a bad row were replayed ({})", r.rows, r.read_error);
+    if (tone != sim::VerdictTone::kBad) tone = sim::VerdictTone::kWarning;
+  }
   const auto health = host::health_names(r.health);
   if (!health.empty()) {
     std::string joined;

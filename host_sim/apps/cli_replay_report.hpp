@@ -37,6 +37,9 @@ struct ReplayReport {
   std::uint32_t health = 0;               ///< HealthFlag bits OR-ed over the replay
   std::size_t unhealthy_rows = 0;
   bool diagnosed = true;                  ///< false: the verdict says the matcher did not run
+  /// A lenient read that stopped at a bad row ("file:line:column: error: …"): the verdict
+  /// says that only the rows before it were replayed. Empty when the whole log was read.
+  std::string read_error;
   PlotTrace plot;                         ///< the trace (rows = 0: no plot)
 };
 
