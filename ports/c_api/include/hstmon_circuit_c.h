@@ -90,6 +90,15 @@ void hstmon_circuit_nominal_inputs(float* u);
 hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_circuit_monitor** out,
                                     uint8_t* start);
 
+/** Restarts an existing monitor at the steady state for inputs u (a machine known to be
+ *  running; no measurement needed).
+ *  @param u  hstmon_circuit_inputs() inputs [SI]
+ *  @return HSTMON_OK, HSTMON_INVALID_INPUTS or HSTMON_NO_STEADY_STATE (monitor unchanged) */
+hstmon_status hstmon_circuit_reset_steady(hstmon_circuit_monitor* m, const float* u);
+
+/** Bytes one monitor of the pool takes (static RAM, with the model its setup solves on). */
+size_t hstmon_circuit_monitor_size(void);
+
 /** Returns the monitor to the pool; the handle must not be used again. */
 void hstmon_circuit_release(hstmon_circuit_monitor* m);
 

@@ -134,6 +134,13 @@ hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_c
   return HSTMON_INVALID_CONFIG;
 }
 
+hstmon_status hstmon_circuit_reset_steady(hstmon_circuit_monitor* m, const float* u) {
+  if (m == nullptr || u == nullptr || !m->used) return HSTMON_INVALID_INPUTS;
+  return static_cast<hstmon_status>(m->mon.reset_steady(to_core(u)));
+}
+
+size_t hstmon_circuit_monitor_size(void) { return sizeof(hstmon_circuit_monitor); }
+
 void hstmon_circuit_release(hstmon_circuit_monitor* m) {
   if (m != nullptr) m->used = false;
 }
