@@ -45,6 +45,7 @@
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace {
 
@@ -193,6 +194,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
     if (f.channel >= 0 && !log.sensors[f.channel].empty()) log.sensors[f.channel][k] += sensor_bias(c.file.sensors[f.channel]);
   }
   CircuitReplayOptions ro;
+  ro.fault_table = hstmon::fdi::circuit_signature_table;  // as hstmon replay --circuit
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
     r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin);
@@ -224,7 +226,7 @@ bool has_steady_state(const LoadedCircuit& c, int p, int i, double factor) {
 // a different question) is injected at 10 %, as the table's own signs are then taken.
 std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::vector<std::string>& undetectable,
                                 std::vector<std::string>& notes) {
-  const auto table = hstmon::circuit_tools::circuit_fault_table(c);
+  const auto table = hstmon::fdi::circuit_signature_table(c);
   undetectable = table.undetectable;
   std::vector<Fault> out;
   for (const std::string& name : table.names) {

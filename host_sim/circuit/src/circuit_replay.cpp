@@ -100,7 +100,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   CircuitFaultTable table;
   if (o.diagnose) {
     try {
-      table = circuit_fault_table(c);
+      table = o.fault_table != nullptr ? o.fault_table(c) : circuit_fault_table(c);
       res.table_rows = table.rows.size();
       res.undetectable = table.undetectable;
       for (const auto& n : table.notes) res.notes.push_back("fault table: " + n);
