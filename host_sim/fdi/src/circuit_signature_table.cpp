@@ -29,11 +29,19 @@ void append(std::string& to, const std::string& what) { to += (to.empty() ? "" :
 
 circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c) {
   circuit_tools::CircuitFaultTable t = circuit_tools::circuit_fault_table(c);
+  // Without a graph the table stays a steady-state one: a monitor still diagnoses.
   CircuitOperatingPoint op;
   if (const auto err = circuit_operating_point(c, c.values.params, c.values.inputs, op)) {
-    throw std::runtime_error("circuit " + c.file.name + ": " + *err + ": no signature table");
+    t.notes.push_back("no operating point for the causal graph (" + *err + "): slopes ?, orders 0");
+    return t;
   }
-  const CircuitTcg g = circuit_tcg(c, op);
+  CircuitTcg g;
+  try {
+    g = circuit_tcg(c, op);
+  } catch (const std::exception& e) {
+    t.notes.push_back(std::string("no causal graph (") + e.what() + "): slopes ?, orders 0");
+    return t;
+  }
   const std::vector<std::string> on_graph = circuit_graph_faults(g);
 
   // The engine at each point, one point at a time: a point without a steady state checks

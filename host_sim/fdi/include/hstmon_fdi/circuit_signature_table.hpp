@@ -11,16 +11,20 @@
 /// What the table promises must hold for the nonlinear engine, not only for the graph: the
 /// prediction is compared with the engine's own first non-zero derivative at 0+ for a
 /// ±10 % fault (circuit_crosscheck.hpp) at the nominal point and at the default cases
-/// (first input × 0.8 and × 1.2). A slope is left kQualAny where
-///  - the engine disagrees with the graph at one of these points,
-///  - the fault is not on the graph (a valve shut at the operating point, a laminar
-///    transition), or the graph finds no path up to max_order while the steady state moves,
-///  - the slope is opposite to a definite steady-state magnitude (the sign at the alarm
-///    onset then depends on the fault's size and the threshold).
-/// Orders are kept for a row only when the engine's orders equal the graph's on every
-/// responding channel at every point; otherwise the row's orders are all 0 (the matcher's
-/// order test then accepts any first channel: order 0 everywhere says nothing).
-/// Each row's reasons are in CircuitFaultTable::remarks.
+/// (first input × 0.8 and × 1.2).
+///  - A slope is kept only where graph, engine and the steady-state magnitude agree (slope =
+///    magnitude, or both 0); else kQualAny. The matcher reads the slope at a channel's alarm
+///    onset: a channel the fault moves by less than 1 σ (or by a size-dependent sign)
+///    alarms, if at all, later in a transient, with whatever sign it has there.
+///  - A row keeps the graph's orders only when the engine's orders equal them on every
+///    channel at every point and the row's most visible channel (largest |direction|) is on
+///    its fastest path (smallest order among the responding channels); otherwise all its
+///    orders are 0, which the matcher's order test accepts whatever alarms first.
+///  - A fault not on the graph (a valve shut at the operating point, a laminar transition)
+///    keeps kQualAny and orders 0.
+/// Each row's reasons are in CircuitFaultTable::remarks; docs/fdi.md §10 has the campaign
+/// figures behind the rules. A circuit whose graph cannot be derived gets the steady-state
+/// table with a note saying so.
 
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
@@ -31,9 +35,8 @@ namespace hstmon::fdi {
 inline constexpr int kCircuitTableMaxOrder = 6;
 
 /// Builds c's table at its nominal values (see the file comment).
-/// @throws std::runtime_error as circuit_tools::circuit_fault_table, or when the nominal
-///         point has no steady state; std::invalid_argument when the bond graph's
-///         causality fails (message names the element)
+/// @throws std::runtime_error as circuit_tools::circuit_fault_table (no steady state at the
+///         nominal inputs)
 circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c);
 
 }  // namespace hstmon::fdi
