@@ -3,7 +3,8 @@
 /// thesis.json's table equals today's hand-made thesis table (thesis_signatures.hpp, built
 /// from the hand-written TCG) row by row and channel by channel except for a listed,
 /// explained set of differences; the paper monitor's Dm− row carries the graph's slopes and
-/// orders; the replay of the thesis demo log on the new table gives the demo's diagnosis.
+/// orders; a slope the simulated fault contradicts is dropped; the replay of the thesis demo
+/// log on the new table gives the demo's diagnosis.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -149,6 +150,23 @@ TEST(CircuitSignatureTable, SlopesOnlyWhereGraphEngineAndSteadyChangeAgree) {
     EXPECT_NE(ts.remarks[k].find("not on the causal graph"), std::string::npos);
     for (int i = 0; i < 2; ++i) EXPECT_EQ(ts.rows[k].channel[i].slope, kQualAny);
   }
+}
+
+TEST(CircuitSignatureTable, SlopeDroppedWhereTheSimulatedFaultFirstMovesTheOtherWay) {
+  // closed_loop_hst n_e+: the charge pressure's 0+ slope is + (the charge pump speeds up),
+  // but the loop's low side draws it down first by more than 1 σ (0.05 bar): the alarm
+  // onset reads −, and the row must not promise +. p_b and w_m keep their +.
+  const circuit_tools::CircuitFaultTable t = circuit_signature_table(load("closed_loop_hst"));
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    if (t.names[k] != "n_e+") continue;
+    EXPECT_EQ(t.rows[k].channel[2].magnitude, kQualPlus);  // p_c
+    EXPECT_EQ(t.rows[k].channel[2].slope, kQualAny);
+    EXPECT_NE(t.remarks[k].find("p_c slope: an opposite excursion"), std::string::npos) << t.remarks[k];
+    EXPECT_EQ(t.rows[k].channel[1].slope, kQualPlus);  // p_b
+    EXPECT_EQ(t.rows[k].channel[3].slope, kQualPlus);  // w_m
+    return;
+  }
+  FAIL() << "no n_e+ row";
 }
 
 TEST(CircuitSignatureTable, ThesisDemoLogGivesTheDemoDiagnosisOnTheNewTable) {

@@ -32,9 +32,10 @@ std::string circuit_table_header(const LoadedCircuit& c, const CircuitFaultTable
   h += "/// Channels: " + channels + ". At the nominal inputs: magnitude = sign of the steady change\n";
   h += "/// at ±10 % and ±30 % (host_sim/circuit circuit_faults.hpp); direction = unit vector of the\n";
   h += "/// noise-scaled 10 % change; slope and order = forward propagation on the circuit's derived\n";
-  h += "/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp), kQualAny where the\n";
-  h += "/// engine's own 0+ derivative disagrees or the slope opposes the steady change, and a row's\n";
-  h += "/// orders all 0 where the engine's orders differ from the graph's (comments give why).\n\n";
+  h += "/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp): a slope only where the\n";
+  h += "/// graph, the engine's 0+ derivative, the steady sign and a simulated fault's first excursions\n";
+  h += "/// agree, a row's orders only where the engine has them too and its most visible channel is on\n";
+  h += "/// the fastest path; else kQualAny, orders all 0 (the comments say why).\n\n";
   h += "#include \"hstmon/fault_signature.hpp\"\n\n";
   h += "namespace hstmon::generated::" + name + " {\n\n";
   h += "inline constexpr int kChannels = " + std::to_string(n) + ";  ///< sensor channels of the rows\n\n";

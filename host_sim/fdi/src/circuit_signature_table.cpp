@@ -3,11 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_fdi/circuit_crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/forward.hpp"
@@ -24,6 +28,64 @@ struct EngineReading {
 };
 
 void append(std::string& to, const std::string& what) { to += (to.empty() ? "" : "; ") + what; }
+
+/// The fault `base` scaled by factor from a steady start, noise off, per channel: true when
+/// the channel's first crossing of every threshold T ≥ σ is on the side `sign` (or it
+/// crosses none), i.e. its alarm onset reads `sign` whatever the threshold; false where an
+/// opposite excursion is the first to reach some T (an early undershoot, the closed loop's
+/// p_c under n_e+). Nothing when the faulted circuit has no steady state (a fault of that
+/// size is not one the table describes: circuit_faults.hpp); empty when the run fails.
+std::optional<std::vector<bool>> onset_holds(const circuit_tools::LoadedCircuit& c, const std::string& base, double factor,
+                              const std::vector<std::int8_t>& sign, double duration) {
+  circuit_tools::CircuitSimOptions o;
+  o.noise = false;
+  o.rate = 1000.0;
+  constexpr double kFaultTime = 0.01;  // [s] a few samples of the steady start first
+  o.duration = kFaultTime + duration;
+  circuit_tools::InputStep step;
+  step.t = kFaultTime;
+  step.param = c.file.param_index(base);
+  if (step.param >= 0) {
+    step.factor = factor;
+  } else {
+    step.input = c.file.input_index(base);
+    step.value = c.values.inputs.v[step.input] * factor;
+  }
+  o.steps = {step};
+  host::HostCircuitModel::Params p = c.values.params;
+  host::HostCircuitModel::Inputs u = c.values.inputs;
+  if (step.param >= 0) {
+    p.v[step.param] *= factor;
+  } else {
+    u.v[step.input] = step.value;
+  }
+  const host::HostCircuitModel faulted(c.file.circuit, p, u);
+  host::HostCircuitModel::State xs;
+  if (!faulted.valid() || !faulted.steady_state(xs)) return std::nullopt;
+  circuit_tools::CircuitLog log;
+  try {
+    log = circuit_tools::simulate_circuit(c, o);
+  } catch (const std::exception&) {
+    return std::vector<bool>{};
+  }
+  std::vector<bool> holds(sign.size(), true);
+  for (std::size_t ch = 0; ch < sign.size() && ch < log.sensors.size(); ++ch) {
+    if (sign[ch] != kQualPlus && sign[ch] != kQualMinus) continue;
+    const std::vector<double>& y = log.sensors[ch];
+    if (y.empty()) continue;
+    const double sigma = circuit_tools::sensor_sigma(c.file.sensors[ch]);
+    double with = 0.0;  // largest excursion so far on the predicted side [SI]
+    for (std::size_t k = 0; k < y.size(); ++k) {
+      const double d = (y[k] - y[0]) * (sign[ch] == kQualPlus ? 1.0 : -1.0);
+      with = std::max(with, d);
+      if (-d > std::max(sigma, with)) {
+        holds[ch] = false;
+        break;
+      }
+    }
+  }
+  return holds;
+}
 
 }  // namespace
 
@@ -70,6 +132,11 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
     }
   }
 
+  // The fault transients are simulated for 3 slowest time constants (at least 0.2 s).
+  double z0[circuit::kExtent<host::HostCircuitModel::kZ>] = {};
+  for (std::size_t k = 0; k < op.z.size() && k < std::size(z0); ++k) z0[k] = op.z[k];
+  const double rate = op.model.slowest_rate(op.model.from_z(z0));
+  const double transient = rate > 0.0 ? std::min(std::max(3.0 / rate, 0.2), 10.0) : 1.0;
   const int channels = static_cast<int>(c.file.sensors.size());
   t.remarks.assign(t.rows.size(), std::string());
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
@@ -116,6 +183,37 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
         append(why, g.measured[ch] + " slope opposite to the steady change");
       }
       s.order = static_cast<std::uint8_t>(q[ch].order < 0 ? 0 : q[ch].order);
+    }
+    // The matcher reads the sign at the alarm onset, which the 0+ derivative gives only if
+    // no opposite excursion reaches a threshold first: simulate the fault at 10 % and 30 %.
+    std::vector<std::int8_t> sign(static_cast<std::size_t>(channels));
+    bool any = false;
+    for (int i = 0; i < channels; ++i) {
+      sign[static_cast<std::size_t>(i)] = row.channel[i].slope;
+      any = any || row.channel[i].slope == kQualPlus || row.channel[i].slope == kQualMinus;
+    }
+    int simulated = 0;
+    for (const double size : {0.1, 0.3}) {
+      if (!any) break;
+      const std::optional<std::vector<bool>> run = onset_holds(c, base, 1.0 + dir * size, sign, transient);
+      if (!run) continue;
+      ++simulated;
+      const std::vector<bool>& holds = *run;
+      for (int i = 0; i < channels; ++i) {
+        const auto ch = static_cast<std::size_t>(i);
+        if (sign[ch] != kQualPlus && sign[ch] != kQualMinus) continue;
+        if (holds.empty() || !holds[ch]) {
+          row.channel[i].slope = kQualAny;
+          sign[ch] = kQualAny;
+          append(why, g.measured[ch] + (holds.empty() ? " slope: the fault does not simulate" :
+                                        " slope: an opposite excursion crosses a threshold first at " +
+                                            std::to_string(static_cast<int>(size * 100.0 + 0.5)) + " %"));
+        }
+      }
+    }
+    if (any && simulated == 0) {
+      for (int i = 0; i < channels; ++i) row.channel[i].slope = kQualAny;
+      append(why, "slopes ?: no steady state after a 10 or 30 % fault to simulate towards");
     }
     if (!orders_hold) append(why, "orders 0: the engine's differ from the graph's");
     // The matcher wants a channel of the row's smallest order among the first to alarm

@@ -38,6 +38,9 @@ struct CircuitReplayOptions {
   /// `?`, orders 0); the host programs pass fdi::circuit_signature_table (slopes and orders
   /// from the circuit's causal graph), which circuit_tools cannot call itself (fdi depends on it).
   CircuitFaultTable (*fault_table)(const LoadedCircuit&) = nullptr;
+  /// A table already built for c by the caller (a campaign replaying many logs of one
+  /// circuit builds it once); when set, fault_table is not called. Must outlive the call.
+  const CircuitFaultTable* table = nullptr;
 };
 
 /// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).

@@ -15,7 +15,11 @@
 ///  - A slope is kept only where graph, engine and the steady-state magnitude agree (slope =
 ///    magnitude, or both 0); else kQualAny. The matcher reads the slope at a channel's alarm
 ///    onset: a channel the fault moves by less than 1 σ (or by a size-dependent sign)
-///    alarms, if at all, later in a transient, with whatever sign it has there.
+///    alarms, if at all, later in a transient, with whatever sign it has there. A kept
+///    slope must also survive a noiseless simulation of the fault (simulate_circuit, ±10 %
+///    and ±30 % where the faulted circuit has a steady state, 3 slowest time constants): on
+///    that channel no excursion against the slope may reach a threshold T ≥ 1 σ before one
+///    with it does (the closed loop's p_c dips before it rises under n_e+).
 ///  - A row keeps the graph's orders only when the engine's orders equal them on every
 ///    channel at every point and the row's most visible channel (largest |direction|) is on
 ///    its fastest path (smallest order among the responding channels); otherwise all its

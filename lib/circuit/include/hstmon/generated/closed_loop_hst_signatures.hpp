@@ -6,9 +6,10 @@
 /// Channels: p_a, p_b, p_c, w_m. At the nominal inputs: magnitude = sign of the steady change
 /// at ±10 % and ±30 % (host_sim/circuit circuit_faults.hpp); direction = unit vector of the
 /// noise-scaled 10 % change; slope and order = forward propagation on the circuit's derived
-/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp), kQualAny where the
-/// engine's own 0+ derivative disagrees or the slope opposes the steady change, and a row's
-/// orders all 0 where the engine's orders differ from the graph's (comments give why).
+/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp): a slope only where the
+/// graph, the engine's 0+ derivative, the steady sign and a simulated fault's first excursions
+/// agree, a row's orders only where the engine has them too and its most visible channel is on
+/// the fastest path; else kQualAny, orders all 0 (the comments say why).
 
 #include "hstmon/fault_signature.hpp"
 
@@ -20,8 +21,8 @@ inline constexpr int kChannels = 4;  ///< sensor channels of the rows
 inline constexpr BasicFaultSignature<kChannels> kSignatures[] = {
     // Dp+: orders 0: w_m, the most visible channel, is not on the fastest path
     {"Dp+", false, {{kQualZero, kQualAny, 0}, {kQualPlus, kQualPlus, 0}, {kQualZero, kQualAny, 0}, {kQualPlus, kQualPlus, 0}}, {-0.000028f, 0.023892f, -0.000139f, 0.999715f}},
-    // Dp-: orders 0: w_m, the most visible channel, is not on the fastest path
-    {"Dp-", false, {{kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}, {kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}}, {0.000028f, -0.023892f, 0.000139f, -0.999715f}},
+    // Dp-: p_b slope: an opposite excursion crosses a threshold first at 30 %; orders 0: w_m, the most visible channel, is not on the fastest path
+    {"Dp-", false, {{kQualZero, kQualAny, 0}, {kQualMinus, kQualAny, 0}, {kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}}, {0.000028f, -0.023892f, 0.000139f, -0.999715f}},
     // Dm+: w_m slope opposite to the steady change
     {"Dm+", false, {{kQualZero, kQualAny, 1}, {kQualMinus, kQualMinus, 1}, {kQualZero, kQualAny, 2}, {kQualMinus, kQualAny, 1}}, {0.000710f, -0.604623f, 0.003513f, -0.796504f}},
     // Dm-: w_m slope opposite to the steady change
@@ -42,14 +43,14 @@ inline constexpr BasicFaultSignature<kChannels> kSignatures[] = {
     {"p_charge_crack-", false, {{kQualMinus, kQualMinus, 2}, {kQualMinus, kQualMinus, 4}, {kQualMinus, kQualMinus, 1}, {kQualZero, kQualAny, 3}}, {-0.098901f, -0.098836f, -0.990173f, 0.002696f}},
     {"p_charge+", false, {{kQualPlus, kQualPlus, 2}, {kQualPlus, kQualPlus, 4}, {kQualPlus, kQualPlus, 1}, {kQualZero, kQualAny, 3}}, {0.098901f, 0.098836f, 0.990173f, -0.002696f}},
     {"p_charge-", false, {{kQualMinus, kQualMinus, 2}, {kQualMinus, kQualMinus, 4}, {kQualMinus, kQualMinus, 1}, {kQualZero, kQualAny, 3}}, {-0.098901f, -0.098836f, -0.990173f, 0.002696f}},
-    // n_e+: p_a slope opposite to the steady change; orders 0: w_m, the most visible channel, is not on the fastest path
-    {"n_e+", false, {{kQualPlus, kQualAny, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}}, {0.010690f, 0.034462f, 0.107162f, 0.993587f}},
-    // n_e-: p_a slope opposite to the steady change; orders 0: w_m, the most visible channel, is not on the fastest path
-    {"n_e-", false, {{kQualMinus, kQualAny, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.010805f, -0.034575f, -0.108320f, -0.993456f}},
+    // n_e+: p_a slope opposite to the steady change; p_c slope: an opposite excursion crosses a threshold first at 10 %; orders 0: w_m, the most visible channel, is not on the fastest path
+    {"n_e+", false, {{kQualPlus, kQualAny, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualAny, 0}, {kQualPlus, kQualPlus, 0}}, {0.010690f, 0.034462f, 0.107162f, 0.993587f}},
+    // n_e-: p_a slope opposite to the steady change; p_b slope: an opposite excursion crosses a threshold first at 30 %; orders 0: w_m, the most visible channel, is not on the fastest path
+    {"n_e-", false, {{kQualMinus, kQualAny, 0}, {kQualMinus, kQualAny, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.010805f, -0.034575f, -0.108320f, -0.993456f}},
     // eps+: orders 0: w_m, the most visible channel, is not on the fastest path
     {"eps+", false, {{kQualZero, kQualAny, 0}, {kQualPlus, kQualPlus, 0}, {kQualZero, kQualAny, 0}, {kQualPlus, kQualPlus, 0}}, {-0.000028f, 0.023892f, -0.000139f, 0.999715f}},
-    // eps-: orders 0: w_m, the most visible channel, is not on the fastest path
-    {"eps-", false, {{kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}, {kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}}, {0.000028f, -0.023892f, 0.000139f, -0.999715f}},
+    // eps-: p_b slope: an opposite excursion crosses a threshold first at 30 %; orders 0: w_m, the most visible channel, is not on the fastest path
+    {"eps-", false, {{kQualZero, kQualAny, 0}, {kQualMinus, kQualAny, 0}, {kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}}, {0.000028f, -0.023892f, 0.000139f, -0.999715f}},
     // T_L+: orders 0: p_b, the most visible channel, is not on the fastest path
     {"T_L+", false, {{kQualZero, kQualAny, 0}, {kQualPlus, kQualPlus, 0}, {kQualZero, kQualAny, 0}, {kQualMinus, kQualMinus, 0}}, {-0.001166f, 0.999611f, -0.005810f, -0.027262f}},
     // T_L-: orders 0: p_b, the most visible channel, is not on the fastest path

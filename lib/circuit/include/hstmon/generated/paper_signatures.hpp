@@ -6,9 +6,10 @@
 /// Channels: p_s, p_mi, p_pp, w_m. At the nominal inputs: magnitude = sign of the steady change
 /// at ±10 % and ±30 % (host_sim/circuit circuit_faults.hpp); direction = unit vector of the
 /// noise-scaled 10 % change; slope and order = forward propagation on the circuit's derived
-/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp), kQualAny where the
-/// engine's own 0+ derivative disagrees or the slope opposes the steady change, and a row's
-/// orders all 0 where the engine's orders differ from the graph's (comments give why).
+/// temporal causal graph (host_sim/fdi circuit_signature_table.hpp): a slope only where the
+/// graph, the engine's 0+ derivative, the steady sign and a simulated fault's first excursions
+/// agree, a row's orders only where the engine has them too and its most visible channel is on
+/// the fastest path; else kQualAny, orders all 0 (the comments say why).
 
 #include "hstmon/fault_signature.hpp"
 
