@@ -14,6 +14,7 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::cli {
@@ -108,7 +109,8 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   if (r.table_rows == 0) {
     fmt::print("\n  diagnosis: not run (no fault table)\n");
   } else {
-    fmt::print("\n  fault table: {} hypotheses from the circuit's parameters and sensors (steady-state signatures)\n",
+    fmt::print("\n  fault table: {} hypotheses from the circuit's parameters and sensors (steady-state signs;"
+               " slopes and orders from its causal graph)\n",
                r.table_rows);
     if (!r.undetectable.empty()) {
       std::string joined;
@@ -171,6 +173,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
   o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
+  o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   if (a.json) {
     print_json(a, c, r);

@@ -162,6 +162,7 @@ std::string circuit_summary(nlohmann::json& j, const std::string& path, const Fl
   if (failed) return j.dump();
   circuit_tools::CircuitReplayOptions o = args.circuit_replay;
   o.keep_trace = false;
+  o.table = args.circuit_table.get();
   const circuit_tools::CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
   SummaryFacts f{r.rows, r.t_first, r.t_last, status, &r.events, r.health, {}, log.notes};

@@ -45,7 +45,10 @@ struct FleetReplayArgs {
   /// `--circuit`: every log is the circuit's (read whole, circuit_log.hpp), replayed
   /// through its monitor with circuit_replay (params, inputs and replay are then unused).
   std::shared_ptr<const circuit_tools::LoadedCircuit> circuit;
-  circuit_tools::CircuitReplayOptions circuit_replay;  ///< keep_trace is ignored
+  /// Its fault table, built once for every log (null: each replay builds its own, or runs
+  /// residuals only, as circuit_replay says).
+  std::shared_ptr<const circuit_tools::CircuitFaultTable> circuit_table;
+  circuit_tools::CircuitReplayOptions circuit_replay;  ///< keep_trace and table are ignored
 };
 
 /// One log's summary line (no newline): {"type":"log","log",...,"status":"ok"|"error",...};

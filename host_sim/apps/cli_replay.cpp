@@ -24,6 +24,7 @@
 #include "cli_log_replay.hpp"
 #include "cli_replay_report.hpp"
 #include "cli_validators.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
@@ -273,10 +274,20 @@ int run_summaries(const ReplayArgs& a) {
       fmt::print(stderr, "{}\n", load_error->to_string());
       return kExitBadInput;
     }
-    f.circuit = std::move(c);
     f.circuit_replay.tick = a.tick;
     f.circuit_replay.init = init;
     f.circuit_replay.diagnose = !a.no_diagnosis;
+    // The table `replay --circuit` runs on, built once for all the logs; a circuit it
+    // cannot be built for is replayed log by log, each saying why (residuals only).
+    f.circuit_replay.fault_table = fdi::circuit_signature_table;
+    if (f.circuit_replay.diagnose) {
+      try {
+        f.circuit_table = std::make_shared<const circuit_tools::CircuitFaultTable>(fdi::circuit_signature_table(*c));
+      } catch (const std::exception&) {
+        f.circuit_table.reset();
+      }
+    }
+    f.circuit = std::move(c);
   } else {
     host::ParamsFileResult pf;
     if (!read_params_option(a.io.params, pf)) return kExitBadInput;
