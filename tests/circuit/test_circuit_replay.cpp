@@ -76,6 +76,32 @@ TEST(CircuitReplay, SimulatedThenReplayedAtNoiseLevel) {
   }
 }
 
+// A sample on a step: the thesis rig with a flow sensor at the DCV inlet
+// (bench/circuits/thesis_q_dcv.json), supply stepped at a sample instant. The motor-inlet
+// volume settles in microseconds; the sample must not show the flow reversing through the
+// DCV in between (a transducer cannot), and the replay sees no spike there.
+TEST(CircuitReplay, SampleOnAStepShowsTheFastVolumesSettled) {
+  ct::LoadedCircuit c;
+  ASSERT_FALSE(ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/bench/circuits/thesis_q_dcv.json", "", c).has_value());
+  ct::CircuitSimOptions o;
+  o.duration = 1.0;
+  o.rate = 1000.0;
+  o.noise = false;
+  ct::InputStep st;
+  ASSERT_FALSE(ct::parse_input_step("Psupl=30 bar@0.5", c.file, st).has_value());
+  o.steps.push_back(st);
+  const ct::CircuitLog log = ct::simulate_circuit(c, o);
+  ASSERT_EQ(log.rows(), 1000u);
+  std::size_t q = 0;
+  while (q < c.file.sensors.size() && c.file.sensors[q].name != "q_in") ++q;
+  ASSERT_LT(q, c.file.sensors.size());
+  const std::vector<double>& flow = log.sensors[q];
+  EXPECT_GT(flow[500], 0.5 * flow[499]) << "the sample on the step shows the flow reversing";
+  EXPECT_NEAR(flow[500], flow[501], 0.05 * flow[499]);
+  const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+  EXPECT_LT(r.channels[q].max_abs, 0.02 * flow[499]) << "residual peak at t = " << r.channels[q].t_max;
+}
+
 TEST(CircuitReplay, FromRestAtNoiseLevel) {
   // A start from rest: the closed loop's suction side goes below 0 bar gauge (no
   // cavitation in the model) where its transmitters clip at 0: those rows are not compared.

@@ -1,5 +1,7 @@
 #include "hstmon_circuit/circuit_sim.hpp"
 
+#include "hstmon/circuit/stiffness.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -57,6 +59,27 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   }
 
   const int n = full.n_states();
+  // What a transducer sees at a sample that falls on a step: no transducer follows the
+  // microseconds in which the volumes far faster than the sampling settle (a flow
+  // reversing through a valve the instant its supply drops). At such a sample those
+  // volumes (the ones an observer at this period takes quasi-steady) are read at their
+  // settled pressures, the other states as they are.
+  host::HostCircuit settled_desc = c.file.circuit;
+  settled_desc.stiff_mask = circuit::auto_stiff_mask<double>(settled_desc, p, u, 1.0 / o.rate);
+  std::optional<Model> settled;
+  std::vector<int> settled_from_full;  // full-model state index of each settled-model state
+  if (settled_desc.stiff_mask != 0) {
+    settled.emplace(settled_desc, p, u);
+    if (settled->error() != circuit::CircuitError::kOk || !settled->valid()) {
+      settled.reset();
+    } else {
+      for (int j = 0; j < settled->n_states(); ++j) {
+        for (int s = 0; s < n; ++s) {
+          if (full.state_z(s) == settled->state_z(j)) settled_from_full.push_back(s);
+        }
+      }
+    }
+  }
   std::vector<double> abs_tol(static_cast<std::size_t>(n));
   for (int s = 0; s < n; ++s) {
     abs_tol[static_cast<std::size_t>(s)] =
@@ -114,7 +137,9 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   for (std::size_t k = 0; k < samples; ++k) {
     const double ts = static_cast<double>(k) / o.rate;
     // Steps up to this sample, each met exactly by a hard stop.
+    bool stepped_here = false;
     while (next < steps.size() && steps[next].t <= ts + 1e-12) {
+      stepped_here = stepped_here || std::fabs(steps[next].t - ts) <= 1e-12;
       if (ref && steps[next].t > ref->time()) ref->advance_to(steps[next].t);
       if (ref) x = ref->state();
       apply_steps_until(steps[next].t);
@@ -122,7 +147,16 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     }
     if (ref && ts > ref->time()) ref->advance_to(ts);
     if (ref) x = ref->state();
-    const Model::Output y = full.outputs(to_state(x.data()));
+    Model::Output y = full.outputs(to_state(x.data()));
+    if (stepped_here && settled && static_cast<int>(settled_from_full.size()) == settled->n_states()) {
+      settled->set_params(p);
+      settled->set_inputs(u);
+      Model::State xs = Model::State::Zero();
+      for (std::size_t j = 0; j < settled_from_full.size(); ++j) {
+        xs[static_cast<int>(j)] = x[static_cast<std::size_t>(settled_from_full[j])];
+      }
+      y = settled->outputs(xs);
+    }
     for (std::size_t ch = 0; ch < channels; ++ch) truth[ch] = y[static_cast<int>(ch)];
     if (k == 0) {
       chain.reset(truth.data());

@@ -4,7 +4,9 @@
 /// (no node taken quasi-steady) integrated by host_sim's Rosenbrock-4 (StiffIntegrator,
 /// the reference of tests/circuit), inputs piecewise constant and met exactly at their
 /// steps, every sample a hard stop; the outputs go through the sensor chain (white noise
-/// and range clipping from the circuit's sensors section, no lag, no ADC).
+/// and range clipping from the circuit's sensors section, no lag, no ADC). A sample that
+/// falls on a step reads the volumes far faster than the sampling (those an observer at
+/// this period takes quasi-steady) settled: no transducer follows their microseconds.
 
 #include <cstdint>
 #include <vector>
