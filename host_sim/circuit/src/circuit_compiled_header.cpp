@@ -3,6 +3,7 @@
 // over elements, incidence lists and channels is unrolled here, in the interpreter's order,
 // so each sum is accumulated in the same order and the compiled model's numbers are the
 // interpreter's bit for bit; the laws themselves are called, never written out.
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -18,21 +19,22 @@ using circuit::NodeKind;
 
 std::string s(int v) { return std::to_string(v); }
 
-// The flow call of element e (laws.hpp), with full-vector entries a, b and shaft speed.
+// The law call of element e (laws.hpp), writing into the Flow `f`, with full-vector
+// entries a, b and shaft speed.
 std::string flow_call(const circuit::Element& el, int e, int n_nodes) {
   const std::string k = "m.coeffs(" + s(e) + ")";
   const std::string pa = "z[" + s(el.a) + "]", pb = "z[" + s(el.b) + "]";
   switch (el.kind) {
-    case ElementKind::kOrifice: return "circuit::orifice_flow(" + k + ", " + pa + ", " + pb + ")";
-    case ElementKind::kPoppet: return "circuit::poppet_flow(" + k + ", " + pa + ", " + pb + ")";
-    case ElementKind::kLaminar: return "circuit::laminar_flow(" + k + ", " + pa + ", " + pb + ")";
-    case ElementKind::kFlowSource: return "circuit::source_flow(" + k + ")";
-    case ElementKind::kMachine: return "circuit::machine_flow(" + k + ", z[" + s(n_nodes + el.shaft) + "])";
-    case ElementKind::kCompPump: return "circuit::comp_pump_flow(" + k + ", " + pa + ", " + pb + ")";
+    case ElementKind::kOrifice: return "circuit::orifice_flow(" + k + ", " + pa + ", " + pb + ", f)";
+    case ElementKind::kPoppet: return "circuit::poppet_flow(" + k + ", " + pa + ", " + pb + ", f)";
+    case ElementKind::kLaminar: return "circuit::laminar_flow(" + k + ", " + pa + ", " + pb + ", f)";
+    case ElementKind::kFlowSource: return "circuit::source_flow(" + k + ", f)";
+    case ElementKind::kMachine: return "circuit::machine_flow(" + k + ", z[" + s(n_nodes + el.shaft) + "], f)";
+    case ElementKind::kCompPump: return "circuit::comp_pump_flow(" + k + ", " + pa + ", " + pb + ", f)";
     case ElementKind::kTorque:
     case ElementKind::kFriction: break;
   }
-  return "circuit::Flow<T>{}";
+  return "(void)f";
 }
 
 const char* kind_name(ElementKind k) {
@@ -63,6 +65,92 @@ std::string list(const std::vector<int>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) o += (i > 0 ? ", " : "") + s(v[i]);
   if (v.empty()) o += "0";
   return o + "}";
+}
+
+// quasi_steady.hpp's schur_reduce for this circuit's structure, unrolled: the same
+// operations in the same order, without the terms whose factors are structurally zero
+// (there the interpreter adds ±0).
+template <class Line>
+void emit_schur(Line& line, std::vector<std::vector<bool>> nz, const std::vector<int>& ia, const std::vector<int>& ix) {
+  auto at = [&](int r, int c) { return "G[" + s(r) + "][" + s(c) + "]"; };
+  auto is = [&](int r, int c) { return static_cast<bool>(nz[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)]); };
+  const int m = static_cast<int>(ia.size()), n = static_cast<int>(ix.size());
+  auto A = [&](int k) { return ia[static_cast<std::size_t>(k)]; };
+  auto X = [&](int k) { return ix[static_cast<std::size_t>(k)]; };
+  line("  /// Reduced Jacobian jr = M⁻¹(G_xx − G_xa·G_aa⁻¹·G_ax) and the stiff block's contraction factor q");
+  line("  /// (quasi_steady.hpp schur_reduce, unrolled); G's stiff rows are destroyed.");
+  line("  template <typename T, std::size_t U, std::size_t S, std::size_t N>");
+  line("  HSTMON_CIRCUIT_INLINE static void schur(T (&G)[U][U], const T (&inv_mass)[N], T (&jr)[S][S], T& q) noexcept {");
+  line("    q = T(0);");
+  for (int a = 0; a < m; ++a) {
+    line("    {");
+    line("      T off = T(0);");
+    for (int b = 0; b < m; ++b) {
+      if (b != a && is(A(a), A(b))) line("      off += std::fabs(" + at(A(a), A(b)) + ");");
+    }
+    line("      q = std::fmax(q, off / std::fabs(" + at(A(a), A(a)) + "));");
+    line("    }");
+  }
+  for (int k = 0; k < m; ++k) {
+    bool any = false;
+    for (int r = k + 1; r < m; ++r) any = any || is(A(r), A(k));
+    if (!any) continue;
+    line("    {");
+    line("      const T inv = T(1) / " + at(A(k), A(k)) + ";");
+    for (int r = k + 1; r < m; ++r) {
+      if (!is(A(r), A(k))) continue;
+      line("      {");
+      line("        const T f = " + at(A(r), A(k)) + " * inv;");
+      line("        if (f != T(0)) {");
+      for (int c = k + 1; c < m; ++c) {
+        if (!is(A(k), A(c))) continue;
+        line("          " + at(A(r), A(c)) + " -= f * " + at(A(k), A(c)) + ";");
+        nz[static_cast<std::size_t>(A(r))][static_cast<std::size_t>(A(c))] = true;
+      }
+      for (int t = 0; t < n; ++t) {
+        if (!is(A(k), X(t))) continue;
+        line("          " + at(A(r), X(t)) + " -= f * " + at(A(k), X(t)) + ";");
+        nz[static_cast<std::size_t>(A(r))][static_cast<std::size_t>(X(t))] = true;
+      }
+      line("        }");
+      line("      }");
+    }
+    line("    }");
+  }
+  for (int k = m - 1; k >= 0; --k) {
+    for (int t = 0; t < n; ++t) {
+      std::vector<std::string> terms;
+      for (int c = k + 1; c < m; ++c) {
+        if (is(A(k), A(c)) && is(A(c), X(t))) terms.push_back(at(A(k), A(c)) + " * " + at(A(c), X(t)));
+      }
+      if (!is(A(k), X(t)) && terms.empty()) continue;  // stays 0
+      line("    {");
+      line("      T v = " + (is(A(k), X(t)) ? at(A(k), X(t)) : std::string("T(0)")) + ";");
+      for (const std::string& term : terms) line("      v -= " + term + ";");
+      line("      " + at(A(k), X(t)) + " = v / " + at(A(k), A(k)) + ";");
+      line("    }");
+      nz[static_cast<std::size_t>(A(k))][static_cast<std::size_t>(X(t))] = true;
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int t = 0; t < n; ++t) {
+      std::vector<std::string> terms;
+      for (int a = 0; a < m; ++a) {
+        if (is(X(r), A(a)) && is(A(a), X(t))) terms.push_back(at(X(r), A(a)) + " * " + at(A(a), X(t)));
+      }
+      const std::string jr = "jr[" + s(r) + "][" + s(t) + "]";
+      if (!is(X(r), X(t)) && terms.empty()) {
+        line("    " + jr + " = T(0);");
+        continue;
+      }
+      line("    {");
+      line("      T v = " + (is(X(r), X(t)) ? at(X(r), X(t)) : std::string("T(0)")) + ";");
+      for (const std::string& term : terms) line("      v -= " + term + ";");
+      line("      " + jr + " = inv_mass[" + s(r) + "] * v;");
+      line("    }");
+    }
+  }
+  line("  }");
 }
 
 }  // namespace
@@ -149,7 +237,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   // fill: every entry as CircuitModel::fill sets it.
   line("  /// The full vector at state x: fixed values, then the states (stiff nodes: solve_stiff).");
   line("  template <class M, class X, typename T>");
-  line("  static void fill(const M& m, const X& x, " + zt + ") noexcept {");
+  line("  HSTMON_CIRCUIT_INLINE static void fill(const M& m, const X& x, " + zt + ") noexcept {");
   for (int k = 0; k < kz; ++k) {
     int st = -1;
     for (int i = 0; i < n; ++i) {
@@ -168,7 +256,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     const int i = stiff_z[static_cast<std::size_t>(j)];
     line("  /// Net inflow into " + z_name(i) + " [m³/s]; dF its slope by that pressure (≤ 0).");
     line("  template <class M, typename T>");
-    line("  static T balance_" + s(i) + "(const M& m, " + czt + ", T& dF) noexcept {");
+    line("  HSTMON_CIRCUIT_INLINE static T balance_" + s(i) + "(const M& m, " + czt + ", T& dF) noexcept {");
     line("    T F = T(0);");
     line("    dF = T(0);");
     for (int e = 0; e < d.n_elements; ++e) {
@@ -176,7 +264,8 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
       if (!circuit::has_ports(el.kind) || (el.a != i && el.b != i)) continue;
       const bool out = el.a == i;
       line("    {  // " + el_name(e));
-      line("      const circuit::Flow<T> f = " + flow_call(el, e, nn) + ";");
+      line("      circuit::Flow<T> f;");
+      line("      " + flow_call(el, e, nn) + ";");
       line(out ? "      F -= f.q;" : "      F += f.q;");
       line(out ? "      dF -= f.dpa;" : "      dF += f.dpb;");
       line("    }");
@@ -188,7 +277,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   // The Gauss–Seidel × Newton solve, nodes unrolled.
   line("  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged.");
   line("  template <class M, typename T, std::size_t G>");
-  line("  static bool solve_stiff(const M& m, " + zt + ", T (&guess)[G]) noexcept {");
+  line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt + ", T (&guess)[G]) noexcept {");
   if (m == 0) {
     line("    (void)m;");
     line("    (void)z;");
@@ -219,7 +308,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   // Rates (CircuitModel::rates).
   line("  /// The states' rates [Pa/s, rad/s²] into d.");
   line("  template <class M, class D, typename T>");
-  line("  static void rates(const M& m, " + czt + ", D& d) noexcept {");
+  line("  HSTMON_CIRCUIT_INLINE static void rates(const M& m, " + czt + ", D& d) noexcept {");
   for (int st = 0; st < n; ++st) {
     const int zs = state_z[static_cast<std::size_t>(st)];
     line("    {  // " + z_name(zs));
@@ -228,7 +317,11 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
       const circuit::Element& el = d.elements[e];
       if (zs < nn) {
         if (!circuit::has_ports(el.kind) || (el.a != zs && el.b != zs)) continue;
-        line(std::string("      g ") + (el.a == zs ? "-" : "+") + "= " + flow_call(el, e, nn) + ".q;  // " + el_name(e));
+        line("      {  // " + el_name(e));
+        line("        circuit::Flow<T> f;");
+        line("        " + flow_call(el, e, nn) + ";");
+        line(std::string("        g ") + (el.a == zs ? "-" : "+") + "= f.q;");
+        line("      }");
       } else {
         if (!circuit::has_shaft(el.kind) || el.shaft != zs - nn) continue;
         line("      {  // " + el_name(e));
@@ -245,7 +338,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   // Outputs (CircuitModel::outputs_at).
   line("  /// What each channel measures [SI] into y.");
   line("  template <class M, class Y, typename T>");
-  line("  static void outputs(const M& m, " + czt + ", Y& y) noexcept {");
+  line("  HSTMON_CIRCUIT_INLINE static void outputs(const M& m, " + czt + ", Y& y) noexcept {");
   bool uses_m = false;
   for (int ch = 0; ch < d.n_channels; ++ch) {
     const circuit::Channel& k = d.channels[ch];
@@ -255,7 +348,11 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     } else if (k.kind == circuit::ChannelKind::kSpeed) {
       line("    y[" + s(ch) + "] = z[" + s(nn + k.index) + "];" + note);
     } else {
-      line("    y[" + s(ch) + "] = " + flow_call(d.elements[k.index], k.index, nn) + ".q;" + note);
+      line("    {" + note);
+      line("      circuit::Flow<T> f;");
+      line("      " + flow_call(d.elements[k.index], k.index, nn) + ";");
+      line("      y[" + s(ch) + "] = f.q;");
+      line("    }");
       uses_m = true;
     }
   }
@@ -264,8 +361,14 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   line("");
   // The unknowns' Jacobian (CircuitModel::unknowns_jacobian), nonzeros in element order.
   line("  /// ∂(net of unknown r)/∂(unknown c) at z onto a zeroed G (CircuitModel::unknowns_jacobian).");
+  // Structural nonzeros of G, for the reduction below.
+  std::vector<std::vector<bool>> nz(static_cast<std::size_t>(nu), std::vector<bool>(static_cast<std::size_t>(nu), false));
+  auto G = [&](int r, int col) {
+    nz[static_cast<std::size_t>(r)][static_cast<std::size_t>(col)] = true;
+    return "G[" + s(r) + "][" + s(col) + "]";
+  };
   line("  template <class M, typename T, std::size_t U>");
-  line("  static void unknowns_jacobian(const M& m, " + czt + ", T (&G)[U][U]) noexcept {");
+  line("  HSTMON_CIRCUIT_INLINE static void unknowns_jacobian(const M& m, " + czt + ", T (&G)[U][U]) noexcept {");
   for (int e = 0; e < d.n_elements; ++e) {
     const circuit::Element& el = d.elements[e];
     const bool ports = circuit::has_ports(el.kind);
@@ -276,32 +379,35 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     if (!flow_rows && !torque_row) continue;
     line("    {  // " + el_name(e));
     if (flow_rows) {
-      line("      const circuit::Flow<T> f = " + flow_call(el, e, nn) + ";");
+      line("      circuit::Flow<T> f;");
+      line("      " + flow_call(el, e, nn) + ";");
       if (ua >= 0) {
-        line("      G[" + s(ua) + "][" + s(ua) + "] -= f.dpa;");
-        if (ub >= 0) line("      G[" + s(ua) + "][" + s(ub) + "] -= f.dpb;");
+        line("      " + G(ua, ua) + " -= f.dpa;");
+        if (ub >= 0) line("      " + G(ua, ub) + " -= f.dpb;");
       }
       if (ub >= 0) {
-        if (ua >= 0) line("      G[" + s(ub) + "][" + s(ua) + "] += f.dpa;");
-        line("      G[" + s(ub) + "][" + s(ub) + "] += f.dpb;");
+        if (ua >= 0) line("      " + G(ub, ua) + " += f.dpa;");
+        line("      " + G(ub, ub) + " += f.dpb;");
       }
       if (el.shaft >= 0 && us >= 0) {
-        if (ua >= 0) line("      G[" + s(ua) + "][" + s(us) + "] -= f.dw;");
-        if (ub >= 0) line("      G[" + s(ub) + "][" + s(us) + "] += f.dw;");
+        if (ua >= 0) line("      " + G(ua, us) + " -= f.dw;");
+        if (ub >= 0) line("      " + G(ub, us) + " += f.dw;");
       }
     }
     if (torque_row) {
       line("      T da, db, dw;");
       line("      (void)" + torque_call(el, e, nn) + ";");
       if (ports) {
-        if (ua >= 0) line("      G[" + s(us) + "][" + s(ua) + "] += da;");
-        if (ub >= 0) line("      G[" + s(us) + "][" + s(ub) + "] += db;");
+        if (ua >= 0) line("      " + G(us, ua) + " += da;");
+        if (ub >= 0) line("      " + G(us, ub) + " += db;");
       }
-      line("      G[" + s(us) + "][" + s(us) + "] += dw;");
+      line("      " + G(us, us) + " += dw;");
     }
     line("    }");
   }
   line("  }");
+  line("");
+  emit_schur(line, nz, stiff_u, state_u);
   line("};");
   line("");
   line("/// The Observer's model of this circuit, compiled (float in firmware, double on the host).");

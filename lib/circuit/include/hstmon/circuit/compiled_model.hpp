@@ -17,8 +17,9 @@
 /// (nodes + shafts), kN (states), kM (stiff nodes), kU (unknowns); kStateU[kN], kStiffU[kM]
 /// (rows of the unknowns' Jacobian) and kStateZ[kN], kStiffZ[kM] (full-vector entries); and,
 /// templated on the engine type M, fill(m, x, z), solve_stiff(m, z, guess) → converged,
-/// rates(m, z, d), outputs(m, z, y) and unknowns_jacobian(m, z, G) (nonzeros only, onto a
-/// zeroed G).
+/// rates(m, z, d), outputs(m, z, y), unknowns_jacobian(m, z, G) (nonzeros only, onto a
+/// zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp schur_reduce, unrolled for
+/// G's structure).
 
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/circuit/dense.hpp"
@@ -121,7 +122,7 @@ class CompiledModel {
   }
 
   /// Outputs at x: what each channel measures, in SI units.
-  Output outputs(const State& x) const noexcept {
+  HSTMON_CIRCUIT_NOINLINE Output outputs(const State& x) const noexcept {
     T z[kExtent<Kernel::kZ>];
     Kernel::fill(engine_, x, z);
     (void)solve(z);
@@ -181,7 +182,7 @@ class CompiledModel {
   void reduced_jacobian(const T (&z)[kExtent<Kernel::kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
     T G[kExtent<Kernel::kU>][kExtent<Kernel::kU>] = {};
     Kernel::unknowns_jacobian(engine_, z, G);
-    schur_reduce(G, Kernel::kStiffU, Kernel::kM, Kernel::kStateU, Kernel::kN, inv_mass_, jr, q);
+    Kernel::schur(G, inv_mass_, jr, q);
   }
 
   Engine engine_{};

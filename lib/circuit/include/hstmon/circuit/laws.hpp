@@ -47,22 +47,22 @@ constexpr bool has_shaft(ElementKind k) noexcept {
   return k == ElementKind::kMachine || k == ElementKind::kTorque || k == ElementKind::kFriction;
 }
 
+// Each law writes its flow and slopes into f, which the caller has value-initialised (a
+// law leaves the slopes it does not have at 0): one Flow object for a switch over kinds.
+
 /// Orifice: Q = c0·sq(pa − pb) [m³/s], sq the regularised signed root.
 template <typename T>
-inline Flow<T> orifice_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
-  Flow<T> f;
+inline void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   T s;
   f.q = k.c[0] * signed_root(pa - pb, k.c[1], s);
   f.dpa = k.c[0] * s;
   f.dpb = -f.dpa;
-  return f;
 }
 
 /// Poppet (relief or check valve): the orifice law through an opening that rises
 /// linearly from the cracking to the full-open pressure difference [m³/s].
 template <typename T>
-inline Flow<T> poppet_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
-  Flow<T> f;
+inline void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T dp = pa - pb;
   if (dp > c[2]) {
@@ -75,41 +75,33 @@ inline Flow<T> poppet_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
     f.dpa = c[0] * (x * s + (full ? T(0) : c[3] * r));
     f.dpb = -f.dpa;
   }
-  return f;
 }
 
 /// Laminar leakage: Q = (pa − pb)/R [m³/s].
 template <typename T>
-inline Flow<T> laminar_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
-  Flow<T> f;
+inline void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   f.q = k.c[0] * (pa - pb);
   f.dpa = k.c[0];
   f.dpb = -k.c[0];
-  return f;
 }
 
 /// Flow source: Q = q whatever the pressures [m³/s].
 template <typename T>
-inline Flow<T> source_flow(const Coeffs<T>& k) noexcept {
-  Flow<T> f;
+inline void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
   f.q = k.c[0];
-  return f;
 }
 
 /// Pump or motor: Q = ε·D·ω [m³/s].
 template <typename T>
-inline Flow<T> machine_flow(const Coeffs<T>& k, T w) noexcept {
-  Flow<T> f;
+inline void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
   f.q = k.c[0] * w;
   f.dw = k.c[0];
-  return f;
 }
 
 /// Pressure-compensated pump: delivery from a (suction) to b at the pressure rise
 /// pb − pa, pump_curve.hpp's three-region law [m³/s].
 template <typename T>
-inline Flow<T> comp_pump_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
-  Flow<T> f;
+inline void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T P = pb - pa;
   T q, s;
@@ -127,31 +119,37 @@ inline Flow<T> comp_pump_flow(const Coeffs<T>& k, T pa, T pb) noexcept {
   f.q = q;
   f.dpb = s;
   f.dpa = -s;
-  return f;
 }
 
 /// Flow of one element at port pressures pa, pb [Pa] and shaft speed w [rad/s]: the
 /// kind's law above (the compiled models call those directly).
 template <typename T>
 inline Flow<T> element_flow(ElementKind kind, const Coeffs<T>& k, T pa, T pb, T w) noexcept {
+  Flow<T> f;
   switch (kind) {
     case ElementKind::kOrifice:
-      return orifice_flow(k, pa, pb);
+      orifice_flow(k, pa, pb, f);
+      break;
     case ElementKind::kPoppet:
-      return poppet_flow(k, pa, pb);
+      poppet_flow(k, pa, pb, f);
+      break;
     case ElementKind::kLaminar:
-      return laminar_flow(k, pa, pb);
+      laminar_flow(k, pa, pb, f);
+      break;
     case ElementKind::kFlowSource:
-      return source_flow(k);
+      source_flow(k, f);
+      break;
     case ElementKind::kMachine:
-      return machine_flow(k, w);
+      machine_flow(k, w, f);
+      break;
     case ElementKind::kCompPump:
-      return comp_pump_flow(k, pa, pb);
+      comp_pump_flow(k, pa, pb, f);
+      break;
     case ElementKind::kTorque:
     case ElementKind::kFriction:
       break;
   }
-  return Flow<T>{};
+  return f;
 }
 
 /// Torque of an element on its shaft [N·m] at port pressures pa, pb [Pa] and speed w

@@ -28,7 +28,7 @@ struct Kernel {
 
   /// The full vector at state x: fixed values, then the states (stiff nodes: solve_stiff).
   template <class M, class X, typename T>
-  static void fill(const M& m, const X& x, T (&z)[8]) noexcept {
+  HSTMON_CIRCUIT_INLINE static void fill(const M& m, const X& x, T (&z)[8]) noexcept {
     z[0] = m.fixed_value(0);  // supply
     z[1] = m.fixed_value(1);  // tank
     z[2] = m.fixed_value(2);  // drain
@@ -41,26 +41,30 @@ struct Kernel {
 
   /// Net inflow into Pmi [m³/s]; dF its slope by that pressure (≤ 0).
   template <class M, typename T>
-  static T balance_4(const M& m, const T (&z)[8], T& dF) noexcept {
+  HSTMON_CIRCUIT_INLINE static T balance_4(const M& m, const T (&z)[8], T& dF) noexcept {
     T F = T(0);
     dF = T(0);
     {  // dcv.PA
-      const circuit::Flow<T> f = circuit::orifice_flow(m.coeffs(1), z[0], z[4]);
+      circuit::Flow<T> f;
+      circuit::orifice_flow(m.coeffs(1), z[0], z[4], f);
       F += f.q;
       dF += f.dpb;
     }
     {  // motor
-      const circuit::Flow<T> f = circuit::machine_flow(m.coeffs(3), z[7]);
+      circuit::Flow<T> f;
+      circuit::machine_flow(m.coeffs(3), z[7], f);
       F -= f.q;
       dF -= f.dpa;
     }
     {  // leak_in
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(4), z[4], z[2]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(4), z[4], z[2], f);
       F -= f.q;
       dF -= f.dpa;
     }
     {  // leak_cross
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(6), z[4], z[5]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(6), z[4], z[5], f);
       F -= f.q;
       dF -= f.dpa;
     }
@@ -69,26 +73,30 @@ struct Kernel {
 
   /// Net inflow into Pmo [m³/s]; dF its slope by that pressure (≤ 0).
   template <class M, typename T>
-  static T balance_5(const M& m, const T (&z)[8], T& dF) noexcept {
+  HSTMON_CIRCUIT_INLINE static T balance_5(const M& m, const T (&z)[8], T& dF) noexcept {
     T F = T(0);
     dF = T(0);
     {  // dcv.BT
-      const circuit::Flow<T> f = circuit::orifice_flow(m.coeffs(2), z[5], z[1]);
+      circuit::Flow<T> f;
+      circuit::orifice_flow(m.coeffs(2), z[5], z[1], f);
       F -= f.q;
       dF -= f.dpa;
     }
     {  // motor
-      const circuit::Flow<T> f = circuit::machine_flow(m.coeffs(3), z[7]);
+      circuit::Flow<T> f;
+      circuit::machine_flow(m.coeffs(3), z[7], f);
       F += f.q;
       dF += f.dpb;
     }
     {  // leak_out
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(5), z[5], z[2]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(5), z[5], z[2], f);
       F -= f.q;
       dF -= f.dpa;
     }
     {  // leak_cross
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(6), z[4], z[5]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(6), z[4], z[5], f);
       F += f.q;
       dF += f.dpb;
     }
@@ -97,7 +105,7 @@ struct Kernel {
 
   /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged.
   template <class M, typename T, std::size_t G>
-  static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[G]) noexcept {
+  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[G]) noexcept {
     z[4] = guess[0];
     z[5] = guess[1];
     const T p_env = m.pressure_envelope();
@@ -124,11 +132,19 @@ struct Kernel {
 
   /// The states' rates [Pa/s, rad/s²] into d.
   template <class M, class D, typename T>
-  static void rates(const M& m, const T (&z)[8], D& d) noexcept {
+  HSTMON_CIRCUIT_INLINE static void rates(const M& m, const T (&z)[8], D& d) noexcept {
     {  // Ppp
       T g = T(0);
-      g += circuit::machine_flow(m.coeffs(7), z[7]).q;  // loading_pump
-      g -= circuit::orifice_flow(m.coeffs(8), z[6], z[3]).q;  // prv
+      {  // loading_pump
+        circuit::Flow<T> f;
+        circuit::machine_flow(m.coeffs(7), z[7], f);
+        g += f.q;
+      }
+      {  // prv
+        circuit::Flow<T> f;
+        circuit::orifice_flow(m.coeffs(8), z[6], z[3], f);
+        g -= f.q;
+      }
       d[0] = m.node_stiffness(6) * g;
     }
     {  // motor
@@ -155,7 +171,7 @@ struct Kernel {
 
   /// What each channel measures [SI] into y.
   template <class M, class Y, typename T>
-  static void outputs(const M& m, const T (&z)[8], Y& y) noexcept {
+  HSTMON_CIRCUIT_INLINE static void outputs(const M& m, const T (&z)[8], Y& y) noexcept {
     y[0] = z[4];  // p_mi
     y[1] = z[5];  // p_mo
     y[2] = z[6];  // p_pp
@@ -165,22 +181,25 @@ struct Kernel {
 
   /// ∂(net of unknown r)/∂(unknown c) at z onto a zeroed G (CircuitModel::unknowns_jacobian).
   template <class M, typename T, std::size_t U>
-  static void unknowns_jacobian(const M& m, const T (&z)[8], T (&G)[U][U]) noexcept {
+  HSTMON_CIRCUIT_INLINE static void unknowns_jacobian(const M& m, const T (&z)[8], T (&G)[U][U]) noexcept {
     {  // motor.friction
       T da, db, dw;
       (void)circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(0), T(0), T(0), z[7], da, db, dw);
       G[3][3] += dw;
     }
     {  // dcv.PA
-      const circuit::Flow<T> f = circuit::orifice_flow(m.coeffs(1), z[0], z[4]);
+      circuit::Flow<T> f;
+      circuit::orifice_flow(m.coeffs(1), z[0], z[4], f);
       G[0][0] += f.dpb;
     }
     {  // dcv.BT
-      const circuit::Flow<T> f = circuit::orifice_flow(m.coeffs(2), z[5], z[1]);
+      circuit::Flow<T> f;
+      circuit::orifice_flow(m.coeffs(2), z[5], z[1], f);
       G[1][1] -= f.dpa;
     }
     {  // motor
-      const circuit::Flow<T> f = circuit::machine_flow(m.coeffs(3), z[7]);
+      circuit::Flow<T> f;
+      circuit::machine_flow(m.coeffs(3), z[7], f);
       G[0][0] -= f.dpa;
       G[0][1] -= f.dpb;
       G[1][0] += f.dpa;
@@ -194,22 +213,26 @@ struct Kernel {
       G[3][3] += dw;
     }
     {  // leak_in
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(4), z[4], z[2]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(4), z[4], z[2], f);
       G[0][0] -= f.dpa;
     }
     {  // leak_out
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(5), z[5], z[2]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(5), z[5], z[2], f);
       G[1][1] -= f.dpa;
     }
     {  // leak_cross
-      const circuit::Flow<T> f = circuit::laminar_flow(m.coeffs(6), z[4], z[5]);
+      circuit::Flow<T> f;
+      circuit::laminar_flow(m.coeffs(6), z[4], z[5], f);
       G[0][0] -= f.dpa;
       G[0][1] -= f.dpb;
       G[1][0] += f.dpa;
       G[1][1] += f.dpb;
     }
     {  // loading_pump
-      const circuit::Flow<T> f = circuit::machine_flow(m.coeffs(7), z[7]);
+      circuit::Flow<T> f;
+      circuit::machine_flow(m.coeffs(7), z[7], f);
       G[2][2] += f.dpb;
       G[2][3] += f.dw;
       T da, db, dw;
@@ -218,13 +241,68 @@ struct Kernel {
       G[3][3] += dw;
     }
     {  // prv
-      const circuit::Flow<T> f = circuit::orifice_flow(m.coeffs(8), z[6], z[3]);
+      circuit::Flow<T> f;
+      circuit::orifice_flow(m.coeffs(8), z[6], z[3], f);
       G[2][2] -= f.dpa;
     }
     {  // valve_friction
       T da, db, dw;
       (void)circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(9), T(0), T(0), z[7], da, db, dw);
       G[3][3] += dw;
+    }
+  }
+
+  /// Reduced Jacobian jr = M⁻¹(G_xx − G_xa·G_aa⁻¹·G_ax) and the stiff block's contraction factor q
+  /// (quasi_steady.hpp schur_reduce, unrolled); G's stiff rows are destroyed.
+  template <typename T, std::size_t U, std::size_t S, std::size_t N>
+  HSTMON_CIRCUIT_INLINE static void schur(T (&G)[U][U], const T (&inv_mass)[N], T (&jr)[S][S], T& q) noexcept {
+    q = T(0);
+    {
+      T off = T(0);
+      off += std::fabs(G[0][1]);
+      q = std::fmax(q, off / std::fabs(G[0][0]));
+    }
+    {
+      T off = T(0);
+      off += std::fabs(G[1][0]);
+      q = std::fmax(q, off / std::fabs(G[1][1]));
+    }
+    {
+      const T inv = T(1) / G[0][0];
+      {
+        const T f = G[1][0] * inv;
+        if (f != T(0)) {
+          G[1][1] -= f * G[0][1];
+          G[1][3] -= f * G[0][3];
+        }
+      }
+    }
+    {
+      T v = G[1][3];
+      G[1][3] = v / G[1][1];
+    }
+    {
+      T v = G[0][3];
+      v -= G[0][1] * G[1][3];
+      G[0][3] = v / G[0][0];
+    }
+    {
+      T v = G[2][2];
+      jr[0][0] = inv_mass[0] * v;
+    }
+    {
+      T v = G[2][3];
+      jr[0][1] = inv_mass[0] * v;
+    }
+    {
+      T v = G[3][2];
+      jr[1][0] = inv_mass[1] * v;
+    }
+    {
+      T v = G[3][3];
+      v -= G[3][0] * G[0][3];
+      v -= G[3][1] * G[1][3];
+      jr[1][1] = inv_mass[1] * v;
     }
   }
 };
