@@ -124,7 +124,7 @@ HSTMON_CIRCUIT_INLINE bool gauss_seidel(T p_env, bool coupled, SweepFn&& sweep) 
 /// @param jr        out: the n × n reduced Jacobian [1/s in state units]
 /// @param q         out: the contraction factor [-]
 template <typename T, std::size_t U, std::size_t S>
-void schur_reduce(T (&G)[U][U], const std::uint8_t* ia, int m, const std::uint8_t* ix, int n, const T* inv_mass,
+HSTMON_CIRCUIT_INLINE void schur_reduce(T (&G)[U][U], const std::uint8_t* ia, int m, const std::uint8_t* ix, int n, const T* inv_mass,
                   T (&jr)[S][S], T& q) noexcept {
   q = T(0);
   for (int a = 0; a < m; ++a) {
