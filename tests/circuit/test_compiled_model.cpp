@@ -59,6 +59,19 @@ TEST(CompiledThesis, FloatAgreesBitForBit) {
   for (int s = 0; s < 2; ++s) EXPECT_EQ(dc[s], de[s]);
 }
 
+TEST(CompiledThesis, ConfiguresFromParametersAlone) {
+  // Observer::configure(p, cfg): the model binds its own circuit on set_params.
+  hstmon::Observer<Model> a, b;
+  hstmon::Observer<Model>::Config cfg;
+  ASSERT_EQ(a.configure(params(), cfg), hstmon::Status::kOk);
+  ASSERT_EQ(b.configure(gen::kCircuit, params(), cfg), hstmon::Status::kOk);
+  EXPECT_TRUE(a.model().valid());
+  ASSERT_EQ(a.reset_steady(inputs()), hstmon::Status::kOk);
+  ASSERT_EQ(b.reset_steady(inputs()), hstmon::Status::kOk);
+  EXPECT_EQ(a.state()[0], b.state()[0]);
+  EXPECT_EQ(a.state()[1], b.state()[1]);
+}
+
 TEST(CompiledThesis, RefusesAnotherDescription) {
   const auto other = gen::kCircuit;  // a copy: not the circuit the code was generated for
   Model m;

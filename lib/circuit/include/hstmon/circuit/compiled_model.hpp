@@ -45,7 +45,7 @@ class CompiledModel {
   static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
   static_assert(Kernel::kZ == Cap::kNodes + Cap::kShafts, "the kernel's full vector is the capacity's");
 
-  /// Unbound (no states, no outputs) until bind() or the constructor below.
+  /// Unbound (no states, no outputs) until bind(), set_params() or the constructor below.
   CompiledModel() noexcept = default;
 
   /// Bound to the kernel's circuit, with values p and inputs u.
@@ -66,8 +66,10 @@ class CompiledModel {
   static bool params_valid(const Params& p) noexcept { return Engine::params_valid(p); }
   static bool inputs_valid(const Inputs& u) noexcept { return Engine::inputs_valid(u); }
 
-  /// Replaces the parameter values (CircuitModel::set_params). O(elements).
+  /// Replaces the parameter values (CircuitModel::set_params), binding the kernel's circuit
+  /// first if unbound (so Observer::configure(p, cfg) works too). O(elements).
   void set_params(const Params& p) noexcept {
+    if (engine_.description() == nullptr) (void)engine_.bind(Kernel::description());
     engine_.set_params(p);
     sync();
   }
