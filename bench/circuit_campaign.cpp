@@ -45,6 +45,7 @@
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace {
 
@@ -89,6 +90,8 @@ Timing timing(const LoadedCircuit& c) {
   return tm;
 }
 Timing g_timing;
+// The circuit's fault table, as hstmon replay --circuit builds it; read-only once the runs start.
+hstmon::circuit_tools::CircuitFaultTable g_table;
 
 // What one campaign run injects.
 struct Fault {
@@ -193,6 +196,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
     if (f.channel >= 0 && !log.sensors[f.channel].empty()) log.sensors[f.channel][k] += sensor_bias(c.file.sensors[f.channel]);
   }
   CircuitReplayOptions ro;
+  ro.table = &g_table;  // hstmon replay --circuit's (fdi::circuit_signature_table), built once
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
     r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin);
@@ -222,9 +226,8 @@ bool has_steady_state(const LoadedCircuit& c, int p, int i, double factor) {
 // The table's rows as faults to inject (in table order). A fault of the given magnitude
 // that leaves the circuit no steady state (the machine stalls, every channel collapses:
 // a different question) is injected at 10 %, as the table's own signs are then taken.
-std::vector<Fault> table_faults(const LoadedCircuit& c, double magnitude, std::vector<std::string>& undetectable,
-                                std::vector<std::string>& notes) {
-  const auto table = hstmon::circuit_tools::circuit_fault_table(c);
+std::vector<Fault> table_faults(const LoadedCircuit& c, const hstmon::circuit_tools::CircuitFaultTable& table,
+                                double magnitude, std::vector<std::string>& undetectable, std::vector<std::string>& notes) {
   undetectable = table.undetectable;
   std::vector<Fault> out;
   for (const std::string& name : table.names) {
@@ -288,7 +291,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> undetectable, fault_notes;
   std::vector<Fault> faults;
   try {
-    faults = table_faults(c, magnitude, undetectable, fault_notes);
+    g_table = hstmon::fdi::circuit_signature_table(c);
+    faults = table_faults(c, g_table, magnitude, undetectable, fault_notes);
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", circuit, e.what());
     return 2;

@@ -17,7 +17,8 @@
 # of a fault episode (neither is a per-tick cost at the nominal point).
 # Then the circuit engine on the generated circuit header (issue 14; main_circuit_footprint.cpp):
 # flash, RAM, setup and step stack and heap gated; instructions per tick reported, not gated while over.
-# Then a circuit's whole monitor (issue 15; main_circuit_monitor.cpp): flash, RAM, stack reported, heap gated.
+# Then a circuit's whole monitor (issue 15; main_circuit_monitor.cpp): flash, RAM, stack reported, heap gated;
+# and the same monitor through the circuit C API from C (main_circuit_c_api.c): reported, heap gated.
 #   scripts/footprint.sh [--build-dir DIR] [--no-build]
 # Exit status: 0 all budgets met; 1 a budget exceeded; 2 build or run failure.
 set -euo pipefail
@@ -147,4 +148,30 @@ printf "  %-44s %8s %-6s\n" "instructions per tick, whole replay (bound)" \
   "$(awk -v s="$(mfield counts_replay)" -v ci="$(mfield calib_instructions)" -v cc="$(mfield calib_counts)" \
     -v n="$(mfield ticks)" 'BEGIN { printf "%.0f", s * ci / cc / n }')" "instr"
 row "heap: malloc/_sbrk/new symbols in image" "$m_heap" "" 0
+
+# A circuit's C API (ports/c_api hstmon_circuit_c.h; main_circuit_c_api.c): the paper's
+# monitor from a C main, one monitor in the library's static pool. Reported, not gated
+# (the circuit monitor's budgets are the engine's, above). Flash: the image minus the C API
+# footprint image without a monitor (same C startup); RAM: data + bss minus the stack
+# reserve (the pool and the image's own statics); instructions per 5 ms step
+# at the steady state, stacks by painting; the image fails unless a fault episode is
+# detected.
+capi_json="$(fw circuit_c_api --no-build | grep '"type":"circuit_c_api"')" ||
+  { echo "footprint.sh: circuit C API image failed" >&2; exit 2; }
+afield() { echo "$capi_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+read -r t1 d1 b1 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_c_api.elf" | awk 'NR==2{print $1,$2,$3}')
+read -r t0 d0 b0 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
+a_heap=$(arm-none-eabi-nm "$build/bin/hstmon_fw_circuit_c_api.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+echo "circuit C API: hstmon_circuit_c.h for paper.json ($(afield channels) channels, $(afield faults) rows) from C, Cortex-M4F, -O2 (reported)"
+printf "  %-44s %8s %-6s\n" "flash (image − C API empty image)" "$(( (t1 + d1) - (t0 + d0) ))" "B"
+aelf="$build/bin/hstmon_fw_circuit_c_api.elf"
+asym() { arm-none-eabi-nm "$aelf" | awk -v n="$1" '$3==n{print $1}'; }
+printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$(( d1 + b1 - (16#$(asym __stack_top__) - 16#$(asym __stack_limit__)) ))" "B"
+printf "  %-44s %8s %-6s\n" "  of which one monitor of the pool" "$(afield monitor_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "stack, create + reset_steady (painting)" "$(afield stack_setup_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "stack, step (painting)" "$(afield stack_step_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "instructions per 5 ms step (qemu icount)" \
+  "$(awk -v s="$(afield counts_step_loop)" -v e="$(afield counts_empty_loop)" -v ci="$(afield calib_instructions)" \
+    -v cc="$(afield calib_counts)" -v n="$(afield ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')" "instr"
+row "heap: malloc/_sbrk/new symbols in image" "$a_heap" "" 0
 exit $fail

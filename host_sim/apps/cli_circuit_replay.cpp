@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "cli_circuit_replay_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::cli {
@@ -107,7 +109,8 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   if (r.table_rows == 0) {
     fmt::print("\n  diagnosis: not run (no fault table)\n");
   } else {
-    fmt::print("\n  fault table: {} hypotheses from the circuit's parameters and sensors (steady-state signatures)\n",
+    fmt::print("\n  fault table: {} hypotheses from the circuit's parameters and sensors (steady-state signs;"
+               " slopes and orders from its causal graph)\n",
                r.table_rows);
     if (!r.undetectable.empty()) {
       std::string joined;
@@ -162,28 +165,36 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   for (const auto& n : log.notes) fmt::print(stderr, "{}\n", n);
   if (log.error) {
     fmt::print(stderr, "{}\n", log.error->to_string());
-    return kExitBadInput;
+    if (!a.read.lenient || log.rows() == 0) return kExitBadInput;
+    fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
   }
   circuit_tools::CircuitReplayOptions o;
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
-  o.keep_trace = !a.residuals_csv.empty();
+  o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
+  o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   if (a.json) {
     print_json(a, c, r);
   } else {
     print_human(a, c, r);
   }
+  // An output that cannot be written is an error, after the others have been written; so
+  // is a lenient read that stopped early.
+  int code = log.error ? kExitBadInput : kExitOk;
   if (!a.residuals_csv.empty()) {
-    const std::string err = write_circuit_residuals(a.residuals_csv, c, r);
-    if (!err.empty()) {
+    if (const std::string err = write_circuit_residuals(a.residuals_csv, c, r); !err.empty()) {
       fmt::print(stderr, "hstmon replay: {}\n", err);
-      return kExitBadInput;
+      code = kExitBadInput;
+    } else if (!a.json) {
+      fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
-    if (!a.json) fmt::print("  residuals written to {}\n", a.residuals_csv);
   }
-  return kExitOk;
+  ReplayReport report = circuit_replay_report(a, c, r);
+  if (log.error) report.read_error = log.error->to_string();
+  if (!write_plot_and_report(a.plot, a.report, report, a.json)) code = kExitBadInput;
+  return code;
 }
 
 }  // namespace hstmon::cli

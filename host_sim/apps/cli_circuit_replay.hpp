@@ -17,6 +17,8 @@ struct CircuitReplayArgs {
   std::string init = "auto"; ///< auto | rest | steady
   bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
   std::string residuals_csv; ///< --residuals: measured, model and residual per row ("" = none)
+  std::string plot;          ///< --plot: figure of measured, model and residual (.svg/.png; "" = none)
+  std::string report;        ///< --report: report.md and report.html in this directory ("" = none)
   host::ReadOptions read;    ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 

@@ -1,6 +1,7 @@
 // `hstmon fleet SUMMARY.jsonl...`: which machines drift, from the summary lines of
 // `hstmon replay --summary` (one file, or the concatenated output of parallel or Slurm
-// tasks). Per machine, its logs in path order (name them by date); per channel the ratio
+// tasks). Per machine, its logs in path order (name them by date); per channel (the thesis
+// rig's or a circuit's sensors, by the names in the lines) the ratio
 // residual RMS / noise of each log; a channel drifts when the mean ratio of the machine's
 // last B logs (after its first B) is above k times that of its first B logs (docs/fleet.md).
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,8 +23,6 @@ namespace hstmon::cli {
 
 namespace {
 
-const char* const kChannels[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
-
 struct FleetArgs {
   std::vector<std::string> files;
   std::size_t baseline = 2;  // B: logs at each end
@@ -33,7 +33,7 @@ struct FleetArgs {
 struct LogSummary {
   std::string path;
   bool ok = false;
-  double ratio[4] = {NAN, NAN, NAN, NAN};  // residual RMS / noise per channel (NaN: not measured)
+  std::map<std::string, double> ratio;  // residual RMS / noise per measured channel, by name
 };
 
 // Reads every summary line; false (message printed) on a line that is not one.
@@ -58,14 +58,14 @@ bool read_summaries(const std::vector<std::string>& files, std::map<std::string,
       s.path = j["log"].get<std::string>();
       s.ok = j.value("status", "") == "ok";
       if (s.ok && j.contains("residuals") && j["residuals"].is_object()) {
-        for (int c = 0; c < 4; ++c) {
-          const auto it = j["residuals"].find(kChannels[c]);
-          if (it == j["residuals"].end() || !it->is_object()) continue;
-          const auto rms = it->find("rms");
-          const auto noise = it->find("noise");
-          if (rms == it->end() || noise == it->end() || !rms->is_number() || !noise->is_number()) continue;
+        // Whatever channels the replay had: the thesis rig's four or a circuit's sensors.
+        for (const auto& [name, ch] : j["residuals"].items()) {
+          if (!ch.is_object()) continue;
+          const auto rms = ch.find("rms");
+          const auto noise = ch.find("noise");
+          if (rms == ch.end() || noise == ch.end() || !rms->is_number() || !noise->is_number()) continue;
           const double n = noise->get<double>();
-          if (n > 0.0) s.ratio[c] = rms->get<double>() / n;
+          if (n > 0.0) s.ratio[name] = rms->get<double>() / n;
         }
       }
       out[j["machine"].get<std::string>()].push_back(s);
@@ -75,12 +75,13 @@ bool read_summaries(const std::vector<std::string>& files, std::map<std::string,
 }
 
 // Mean of the finite ratios of channel c over logs [b, e); NaN when there is none.
-double mean_ratio(const std::vector<const LogSummary*>& logs, std::size_t b, std::size_t e, int c) {
+double mean_ratio(const std::vector<const LogSummary*>& logs, std::size_t b, std::size_t e, const std::string& c) {
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t i = b; i < e; ++i) {
-    if (std::isfinite(logs[i]->ratio[c])) {
-      sum += logs[i]->ratio[c];
+    const auto it = logs[i]->ratio.find(c);
+    if (it != logs[i]->ratio.end() && std::isfinite(it->second)) {
+      sum += it->second;
       ++n;
     }
   }
@@ -108,20 +109,25 @@ int run_fleet(const FleetArgs& a) {
     const std::size_t m = std::min(a.baseline, ok.size() - b);
     nlohmann::json channels = nlohmann::json::object();
     std::string verdict = ok.size() > a.baseline ? "steady" : "too_few_logs";
-    int worst = -1;
-    double worst_growth = 0.0;
-    double first[4];
-    double last[4];
-    for (int c = 0; c < 4; ++c) {
-      first[c] = mean_ratio(ok, 0, b, c);
-      last[c] = m ? mean_ratio(ok, ok.size() - m, ok.size(), c) : NAN;
-      if (!std::isfinite(first[c]) || !std::isfinite(last[c])) continue;
-      const bool drifts = ok.size() > a.baseline && last[c] > a.k * first[c];
-      channels[kChannels[c]] = {{"first", first[c]}, {"last", last[c]}, {"drifts", drifts}};
+    // The channels any of its logs measured, in name order.
+    std::set<std::string> names;
+    for (const LogSummary* l : ok) {
+      for (const auto& kv : l->ratio) names.insert(kv.first);
+    }
+    std::string worst;
+    double worst_growth = 0.0, worst_first = NAN, worst_last = NAN;
+    for (const std::string& c : names) {
+      const double first = mean_ratio(ok, 0, b, c);
+      const double last = m ? mean_ratio(ok, ok.size() - m, ok.size(), c) : NAN;
+      if (!std::isfinite(first) || !std::isfinite(last)) continue;
+      const bool drifts = ok.size() > a.baseline && last > a.k * first;
+      channels[c] = {{"first", first}, {"last", last}, {"drifts", drifts}};
       if (drifts) verdict = "drifting";
-      if (last[c] / first[c] > worst_growth) {
-        worst_growth = last[c] / first[c];
+      if (last / first > worst_growth) {
+        worst_growth = last / first;
         worst = c;
+        worst_first = first;
+        worst_last = last;
       }
     }
     if (verdict == "drifting") ++drifting;
@@ -136,10 +142,10 @@ int run_fleet(const FleetArgs& a) {
                                     {"verdict", verdict}}
                          .dump());
     } else {
-      const std::string ch = worst >= 0 ? kChannels[worst] : "-";
-      rows.push_back(fmt::format("  {:<16} {:>5} {:>6}  {:<8} {:>9} {:>9}  {}", machine, logs.size(), failed, ch,
-                                 worst >= 0 ? fmt::format("{:.3g}", first[worst]) : "-",
-                                 worst >= 0 ? fmt::format("{:.3g}", last[worst]) : "-",
+      const bool any = !worst.empty();
+      rows.push_back(fmt::format("  {:<16} {:>5} {:>6}  {:<8} {:>9} {:>9}  {}", machine, logs.size(), failed,
+                                 any ? worst : "-", any ? fmt::format("{:.3g}", worst_first) : "-",
+                                 any ? fmt::format("{:.3g}", worst_last) : "-",
                                  verdict == "drifting" ? "DRIFTING" : verdict == "steady" ? "steady" : "too few logs"));
     }
   }

@@ -19,6 +19,7 @@
 #include "cli_events.hpp"
 #include "cli_log_options.hpp"
 #include "cli_log_replay.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
 
 namespace hstmon::cli {
 
@@ -89,47 +90,98 @@ const char* const kChannelNames[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
 
 }  // namespace
 
-std::string summary_line(const std::string& path, const FleetReplayArgs& args, bool* failed_out) {
-  nlohmann::json j = {{"type", "log"}, {"log", path}, {"machine", machine_of(path, args.machine)}};
-  host::ReplayOptions opt = args.replay;
-  opt.keep_trace = false;
-  opt.progress = nullptr;
-  const LogReplay lr = replay_log_file(path, args.read, args.params, args.inputs, opt);
-  const host::ReplayResult& r = lr.result;
-  // A strict read with an error has no valid rows; a lenient one replays those before it.
-  const bool failed = lr.error && (!args.read.lenient || r.rows == 0);
-  if (failed_out != nullptr) *failed_out = failed;
-  j["status"] = failed ? "error" : "ok";
-  if (lr.error) j["error"] = capped(lr.error->to_string());
-  if (failed) return j.dump();
-  j["rows"] = r.rows;
-  j["t_first"] = r.t_first;
-  j["t_last"] = r.t_last;
-  j["final_status"] = r.final_status;
-  j["events"] = r.events.size();
+namespace {
+
+// What a summary line says of one replay, whichever monitor ran it.
+struct SummaryFacts {
+  std::size_t rows = 0;
+  double t_first = 0.0, t_last = 0.0;
+  std::string final_status;
+  const std::vector<host::ReplayEvent>* events = nullptr;
+  std::uint32_t health = 0;
+  std::vector<std::pair<std::string, const host::ChannelStats*>> measured;  ///< by channel name
+  std::vector<std::string> notes;
+};
+
+void add_facts(nlohmann::json& j, SummaryFacts f) {
+  j["rows"] = f.rows;
+  j["t_first"] = f.t_first;
+  j["t_last"] = f.t_last;
+  j["final_status"] = f.final_status;
+  j["events"] = f.events->size();
   nlohmann::json first = nullptr;  // the first detection or isolation: when and what
-  for (const auto& e : r.events) {
+  for (const auto& e : *f.events) {
     if (e.event == "isolated" || e.event == "ambiguous" || e.event == "unexplained") {
       first = {{"t", e.t}, {"event", e.event}, {"fault", e.candidates.empty() ? "" : e.candidates.front().fault}};
       break;
     }
   }
   j["first_diagnosis"] = first;
-  j["health"] = host::health_names(r.health);
+  j["health"] = host::health_names(f.health);
   nlohmann::json res = nlohmann::json::object();
-  for (std::size_t c = 0; c < 4; ++c) {
-    if (!r.measured[c] || r.channels[c].n == 0) continue;
-    nlohmann::json s = {{"n", r.channels[c].n}};
-    add_residual_stats(s, r.channels[c]);
-    res[kChannelNames[c]] = s;
+  for (const auto& [name, stats] : f.measured) {
+    if (stats->n == 0) continue;
+    nlohmann::json s = {{"n", stats->n}};
+    add_residual_stats(s, *stats);
+    res[name] = s;
   }
   j["residuals"] = res;
-  std::vector<std::string> notes = lr.notes;
-  notes.insert(notes.end(), r.notes.begin(), r.notes.end());
-  if (notes.size() > kMaxNotes) notes.resize(kMaxNotes);
-  for (auto& n : notes) n = capped(n);
-  j["notes"] = notes;
+  if (f.notes.size() > kMaxNotes) f.notes.resize(kMaxNotes);
+  for (auto& n : f.notes) n = capped(n);
+  j["notes"] = f.notes;
+}
+
+std::string thesis_summary(nlohmann::json& j, const std::string& path, const FleetReplayArgs& args, bool& failed) {
+  host::ReplayOptions opt = args.replay;
+  opt.keep_trace = false;
+  opt.progress = nullptr;
+  const LogReplay lr = replay_log_file(path, args.read, args.params, args.inputs, opt);
+  const host::ReplayResult& r = lr.result;
+  // A strict read with an error has no valid rows; a lenient one replays those before it.
+  failed = lr.error && (!args.read.lenient || r.rows == 0);
+  j["status"] = failed ? "error" : "ok";
+  if (lr.error) j["error"] = capped(lr.error->to_string());
+  if (failed) return j.dump();
+  SummaryFacts f{r.rows, r.t_first, r.t_last, r.final_status, &r.events, r.health, {}, lr.notes};
+  for (std::size_t c = 0; c < 4; ++c) {
+    if (r.measured[c]) f.measured.emplace_back(kChannelNames[c], &r.channels[c]);
+  }
+  f.notes.insert(f.notes.end(), r.notes.begin(), r.notes.end());
+  add_facts(j, std::move(f));
   return j.dump();
+}
+
+std::string circuit_summary(nlohmann::json& j, const std::string& path, const FleetReplayArgs& args, bool& failed) {
+  const circuit_tools::LoadedCircuit& c = *args.circuit;
+  j["circuit"] = c.file.name;
+  const circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, args.read);
+  // As for the thesis logs: a lenient read replays the rows before its error.
+  failed = log.rows() == 0 || (log.error && !args.read.lenient);
+  j["status"] = failed ? "error" : "ok";
+  if (log.error) j["error"] = capped(log.error->to_string());
+  if (failed) return j.dump();
+  circuit_tools::CircuitReplayOptions o = args.circuit_replay;
+  o.keep_trace = false;
+  o.table = args.circuit_table.get();
+  const circuit_tools::CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
+  const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
+  SummaryFacts f{r.rows, r.t_first, r.t_last, status, &r.events, r.health, {}, log.notes};
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
+    if (r.measured[ch]) f.measured.emplace_back(c.file.sensors[ch].name, &r.channels[ch]);
+  }
+  f.notes.insert(f.notes.end(), r.notes.begin(), r.notes.end());
+  add_facts(j, std::move(f));
+  return j.dump();
+}
+
+}  // namespace
+
+std::string summary_line(const std::string& path, const FleetReplayArgs& args, bool* failed_out) {
+  nlohmann::json j = {{"type", "log"}, {"log", path}, {"machine", machine_of(path, args.machine)}};
+  bool failed = false;
+  std::string line = args.circuit ? circuit_summary(j, path, args, failed) : thesis_summary(j, path, args, failed);
+  if (failed_out != nullptr) *failed_out = failed;
+  return line;
 }
 
 int run_fleet_replay(const std::vector<std::string>& logs, const FleetReplayArgs& args) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -23,11 +24,11 @@
 #include "cli_log_replay.hpp"
 #include "cli_replay_report.hpp"
 #include "cli_validators.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
-#include "hstmon_plot/residual_plot.hpp"
 
 namespace hstmon::cli {
 
@@ -232,25 +233,9 @@ int run_replay(const ReplayArgs& a) {
       fmt::print("  residuals written to {}\n", a.residuals_csv);
     }
   }
-  if (!a.plot.empty()) {
-    const std::string err = plot_trace(r, "hstmon replay " + a.log, a.plot);
-    if (!err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
-      rc = kExitBadInput;
-    } else if (!a.json) {
-      fmt::print("  plot written to {}\n", a.plot);
-    }
-  }
-  if (!a.report.empty()) {
-    std::string plot_warning;
-    if (const std::string err = write_replay_report(a.report, a.log, r, !a.no_diagnosis, plot_warning); !err.empty()) {
-      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
-      rc = kExitBadInput;
-    } else {
-      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
-      if (!a.json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", a.report);
-    }
-  }
+  ReplayReport report = thesis_replay_report(a.log, r, !a.no_diagnosis);
+  if (lr.error) report.read_error = lr.error->to_string();
+  if (!write_plot_and_report(a.plot, a.report, report, a.json)) rc = kExitBadInput;
   return rc;
 }
 
@@ -280,14 +265,39 @@ int run_summaries(const ReplayArgs& a) {
     fmt::print(stderr, "hstmon replay: error: --machine-from {}\n", err);
     return kExitUsage;
   }
-  host::ParamsFileResult pf;
-  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
-  f.params = pf.params.value_or(ThesisParams<double>{});
-  f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
-  f.replay.tick = a.tick;
-  f.replay.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
-  f.replay.diagnose = !a.no_diagnosis;
-  if (pf.sensors) f.replay.sensors = *pf.sensors;
+  const host::InitMode init =
+      a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
+  if (!a.circuit.empty()) {
+    // One circuit for every log: loaded once, its monitor built per log.
+    auto c = std::make_shared<circuit_tools::LoadedCircuit>();
+    if (auto load_error = circuit_tools::load_circuit(a.circuit, a.io.params, *c)) {
+      fmt::print(stderr, "{}\n", load_error->to_string());
+      return kExitBadInput;
+    }
+    f.circuit_replay.tick = a.tick;
+    f.circuit_replay.init = init;
+    f.circuit_replay.diagnose = !a.no_diagnosis;
+    // The table `replay --circuit` runs on, built once for all the logs; a circuit it
+    // cannot be built for is replayed log by log, each saying why (residuals only).
+    f.circuit_replay.fault_table = fdi::circuit_signature_table;
+    if (f.circuit_replay.diagnose) {
+      try {
+        f.circuit_table = std::make_shared<const circuit_tools::CircuitFaultTable>(fdi::circuit_signature_table(*c));
+      } catch (const std::exception&) {
+        f.circuit_table.reset();
+      }
+    }
+    f.circuit = std::move(c);
+  } else {
+    host::ParamsFileResult pf;
+    if (!read_params_option(a.io.params, pf)) return kExitBadInput;
+    f.params = pf.params.value_or(ThesisParams<double>{});
+    f.inputs = pf.inputs.value_or(ThesisInputs<double>{});
+    f.replay.tick = a.tick;
+    f.replay.init = init;
+    f.replay.diagnose = !a.no_diagnosis;
+    if (pf.sensors) f.replay.sensors = *pf.sensors;
+  }
   f.jobs = a.jobs;
   const std::vector<std::string> logs = expand_logs(a.logs);
   if (logs.empty()) {
@@ -332,20 +342,11 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->callback([args, cmd, &exit_code]() {
     args->log = args->logs.front();
     if (wants_summaries(*args)) {
-      if (!args->circuit.empty()) {
-        fmt::print(stderr, "hstmon replay: error: --circuit takes one log (not several logs, a folder or --summary) (yet)\n");
-        exit_code = kExitUsage;
-        return;
-      }
       exit_code = run_summaries(*args);
       return;
     }
     if (args->circuit.empty()) {
       exit_code = run_replay(*args);
-      return;
-    }
-    if (!refuse_with_circuit(*cmd, {"--plot", "--report"})) {
-      exit_code = kExitUsage;
       return;
     }
     const std::optional<host::ReadOptions> ro = to_read_options(args->io, "replay");
@@ -363,6 +364,8 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     c.init = args->init;
     c.diagnose = !args->no_diagnosis;
     c.residuals_csv = args->residuals_csv;
+    c.plot = args->plot;
+    c.report = args->report;
     exit_code = run_circuit_replay(c);
   });
 }

@@ -16,17 +16,10 @@ namespace hstmon::cli {
 
 namespace {
 
-struct Channel {
-  const char* label;
-  const char* unit;
-  double scale;  // SI → display
-};
-const Channel kChannels[4] = {{"Pmi", "bar", 1e-5}, {"Pmo", "bar", 1e-5}, {"Ppp", "bar", 1e-5}, {"ωm", "rpm", 60.0 / (2.0 * M_PI)}};
-
 // The one sentence a reader needs first, and how alarming it is.
-std::string verdict(const host::ReplayResult& r, bool diagnosed, sim::VerdictTone& tone) {
+std::string verdict(const ReplayReport& r, sim::VerdictTone& tone) {
   std::string text;
-  if (!diagnosed) {
+  if (!r.diagnosed) {
     text = "diagnosis not run (--no-diagnosis): residuals only";
     tone = sim::VerdictTone::kNeutral;
   } else if (r.events.empty()) {
@@ -48,6 +41,10 @@ std::string verdict(const host::ReplayResult& r, bool diagnosed, sim::VerdictTon
            : r.final_status == "isolated" ? sim::VerdictTone::kBad
                                           : sim::VerdictTone::kWarning;
   }
+  if (!r.read_error.empty()) {
+    text += fmt::format("; only the {} rows before a bad row were replayed ({})", r.rows, r.read_error);
+    if (tone != sim::VerdictTone::kBad) tone = sim::VerdictTone::kWarning;
+  }
   const auto health = host::health_names(r.health);
   if (!health.empty()) {
     std::string joined;
@@ -58,23 +55,23 @@ std::string verdict(const host::ReplayResult& r, bool diagnosed, sim::VerdictTon
   return text;
 }
 
-std::vector<std::vector<std::string>> residual_rows(const host::ReplayResult& r) {
+std::vector<std::vector<std::string>> residual_rows(const ReplayReport& r) {
   std::vector<std::vector<std::string>> rows;
-  for (std::size_t c = 0; c < 4; ++c) {
-    const auto& s = r.channels[c];
-    const std::string label = fmt::format("{} [{}]", kChannels[c].label, kChannels[c].unit);
-    if (!r.measured[c]) {
+  for (const ReportChannel& ch : r.channels) {
+    const auto& s = ch.stats;
+    const std::string label = fmt::format("{} [{}]", ch.label, ch.unit);
+    if (!ch.measured) {
       rows.push_back({label, "not in log"});
       continue;
     }
-    const double k = kChannels[c].scale;
+    const double k = ch.scale;
     rows.push_back({label, fmt::format("{:.4g}", s.mean() * k), fmt::format("{:.4g}", s.rms() * k),
                     fmt::format("{:.4g}", s.noise() * k), fmt::format("{:.4g}", s.max_signed * k), fmt::format("{:.6g}", s.t_max)});
   }
   return rows;
 }
 
-std::vector<std::vector<std::string>> event_rows(const host::ReplayResult& r) {
+std::vector<std::vector<std::string>> event_rows(const ReplayReport& r) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& e : r.events) {
     rows.push_back({fmt::format("{:.3f}", e.t), e.event,
@@ -99,19 +96,44 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
 
 }  // namespace
 
-std::string write_replay_report(const std::string& dir, const std::string& log, const host::ReplayResult& r,
-                                bool diagnosed, std::string& plot_warning) {
+ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResult& r, bool diagnosed) {
+  ReplayReport rep;
+  rep.log = log;
+  rep.rows = r.rows;
+  rep.t_first = r.t_first;
+  rep.t_last = r.t_last;
+  rep.tick = r.tick;
+  rep.startup_hold = r.startup_hold;
+  rep.notes = r.notes;
+  const char* const label[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
+  for (std::size_t c = 0; c < 4; ++c) {
+    const bool speed = c == 3;
+    rep.channels.push_back({label[c], speed ? "rpm" : "bar", speed ? 60.0 / (2.0 * M_PI) : 1e-5, r.measured[c],
+                            r.channels[c]});
+  }
+  rep.events = r.events;
+  rep.final_status = r.final_status;
+  rep.health = r.health;
+  rep.unhealthy_rows = r.unhealthy_rows;
+  rep.diagnosed = diagnosed;
+  rep.plot = thesis_plot_trace(r);
+  return rep;
+}
+
+std::string write_replay_report(const std::string& dir, const ReplayReport& r, std::string& plot_warning) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return "cannot create " + dir + ": " + ec.message();
   const std::string plot = (fs::path(dir) / "residuals.svg").string();
-  plot_warning = plot_trace(r, "hstmon replay " + log, plot);
+  plot_warning = plot_replay(r.plot, "hstmon replay " + r.log, plot);
 
   sim::VerdictTone tone = sim::VerdictTone::kNeutral;
-  const std::string verdict_text = verdict(r, diagnosed, tone);
-  const std::string about = fmt::format("Log: {}; {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms; start-up hold-off {:.3g} ms.",
-                                        log, r.rows, r.t_first, r.t_last, r.tick * 1e3, r.startup_hold * 1e3);
+  const std::string verdict_text = verdict(r, tone);
+  const std::string about =
+      fmt::format("Log: {}{}; {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms; start-up hold-off {:.3g} ms.", r.log,
+                  r.circuit.empty() ? std::string() : "; " + r.circuit, r.rows, r.t_first, r.t_last, r.tick * 1e3,
+                  r.startup_hold * 1e3);
   const std::vector<std::string> residual_header = {"channel", "mean", "RMS", "noise", "peak", "at t [s]"};
   const std::vector<std::string> event_header = {"t [s]", "event", "candidates (score)"};
   const auto residuals = residual_rows(r);
@@ -123,7 +145,7 @@ std::string write_replay_report(const std::string& dir, const std::string& log, 
   for (const auto& n : r.notes) page.paragraph("note: " + n);
   page.heading("Residual (measured − model; noise from successive samples)");
   page.table(residual_header, residuals);
-  if (diagnosed) {
+  if (r.diagnosed) {
     page.heading("Diagnosis events (single-fault hypotheses, best first)");
     if (events.empty()) {
       page.paragraph("none: no fault detected");
@@ -143,13 +165,36 @@ std::string write_replay_report(const std::string& dir, const std::string& log, 
   md << "# hstmon replay report\n\n**Verdict:** " << verdict_text << "\n\n" << about << "\n\n";
   for (const auto& n : r.notes) md << "note: " << n << "\n\n";
   md << "## Residual (measured − model)\n\n" << markdown_table(residual_header, residuals) << "\n";
-  if (diagnosed) {
+  if (r.diagnosed) {
     md << "## Diagnosis events\n\n" << (events.empty() ? "none: no fault detected\n" : markdown_table(event_header, events)) << "\n";
   }
   md << (plot_warning.empty() ? "## Measured, model and residual\n\n![](residuals.svg)\n" : "(no plot: " + plot_warning + ")\n");
   md.close();
   if (!md) return "cannot write " + (fs::path(dir) / "report.md").string();
   return {};
+}
+
+bool write_plot_and_report(const std::string& plot, const std::string& report_dir, const ReplayReport& r, bool json) {
+  bool ok = true;
+  if (!plot.empty()) {
+    if (const std::string err = plot_replay(r.plot, "hstmon replay " + r.log, plot); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: plot: {}\n", err);
+      ok = false;
+    } else if (!json) {
+      fmt::print("  plot written to {}\n", plot);
+    }
+  }
+  if (!report_dir.empty()) {
+    std::string plot_warning;
+    if (const std::string err = write_replay_report(report_dir, r, plot_warning); !err.empty()) {
+      fmt::print(stderr, "hstmon replay: error: report: {}\n", err);
+      ok = false;
+    } else {
+      if (!plot_warning.empty()) fmt::print(stderr, "hstmon replay: warning: report without plot: {}\n", plot_warning);
+      if (!json) fmt::print("  report written to {0}/report.md and {0}/report.html\n", report_dir);
+    }
+  }
+  return ok;
 }
 
 }  // namespace hstmon::cli

@@ -9,6 +9,7 @@
 #include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_table_header.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace hstmon::fdi {
 
@@ -104,7 +105,9 @@ int run_table_header(const std::string& circuit, const std::string& params, cons
   if (!load(circuit, params, c)) return 2;
   std::string source = std::filesystem::path(circuit).filename().string();
   if (!c.params_path.empty()) source += " with " + std::filesystem::path(c.params_path).filename().string();
-  const std::string text = circuit_tools::circuit_table_header(c, circuit_tools::circuit_fault_table(c), name, source);
+  const circuit_tools::CircuitFaultTable table = circuit_signature_table(c);
+  for (const std::string& n : table.notes) std::cerr << "hstmon-fdi table: note: " << n << '\n';
+  const std::string text = circuit_tools::circuit_table_header(c, table, name, source);
   if (out == "-") {
     std::cout << text;
     return 0;

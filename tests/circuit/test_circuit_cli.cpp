@@ -98,9 +98,12 @@ TEST(CircuitCli, ReplayErrorsNameFileLineColumn) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find(bad_circuit + ":2:"), std::string::npos) << r.out;
 
+  // A figure that cannot be written is an error naming the file, after the summary.
   r = run(std::string(HSTMON_CLI) + " replay --circuit " + kDir + "test_stand.json " + kDir +
           "test_stand.csv --plot /dev/null 2>&1");
-  EXPECT_EQ(r.exit_code, 1) << r.out;  // not for circuits yet: refused, not ignored
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("observer health"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("error: plot: plot file must end in .svg or .png: /dev/null"), std::string::npos) << r.out;
 }
 
 // replay, identify and gap take the log options with --circuit as without: a logger's

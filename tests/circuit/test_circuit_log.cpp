@@ -96,6 +96,46 @@ TEST(CircuitLog, Spider8ExportLoadsWithRateAndMap) {
   EXPECT_TRUE(log.notes.empty()) << log.notes.front();
 }
 
+// Instrument layouts, by the thesis reader's rules (hstmon_host/log_layout.hpp): a units
+// row above the names (catman/Spider8), a metadata block above names and units (HYDAC
+// HMG), a units row below the names; a unit the circuit cannot take is located in the
+// units row, not the header.
+TEST(CircuitLog, InstrumentLayoutsAreRecognised) {
+  const ct::LoadedCircuit c = test_stand();
+  std::string rows;
+  for (int i = 0; i < 50; ++i) rows += std::to_string(i) + ",00\t1500\t1\t148,5\t67,1\r\n";  // t = i s
+  const ct::CircuitLog units_above =
+      ct::parse_circuit_log("s\trpm\t-\tbar\tL/min\r\nt\tn_pump\tthrottle\tp_line\tq\r\n" + rows, "spider8.txt", c.file);
+  ASSERT_TRUE(units_above.ok()) << units_above.error->to_string();
+  ASSERT_EQ(units_above.rows(), 50u);
+  EXPECT_DOUBLE_EQ(units_above.t[49], 49.0);
+  EXPECT_DOUBLE_EQ(units_above.sensors[0][0], 148.5e5);      // bar, from the units row
+  EXPECT_NEAR(units_above.sensors[1][0], 67.1 / 60000, 1e-15);  // L/min
+  EXPECT_TRUE(units_above.notes.empty());
+
+  const ct::CircuitLog hmg = ct::parse_circuit_log(
+      "Device;HMG 4000\nDate;2026-11-01\nChannels;4\nt;n_pump;p_line;q\ns;1/min;MPa;L/min\n0;1500;14,8;60\n1;1500;14,9;60\n",
+      "hmg.csv", c.file);
+  ASSERT_TRUE(hmg.ok()) << hmg.error->to_string();
+  ASSERT_EQ(hmg.rows(), 2u);
+  EXPECT_DOUBLE_EQ(hmg.sensors[0][1], 14.9e6);
+  ASSERT_EQ(hmg.notes.size(), 1u);
+  EXPECT_EQ(hmg.notes[0], "hmg.csv:1:1: note: lines 1-3 above the column names taken as metadata, not columns");
+
+  const ct::CircuitLog units_below = ct::parse_circuit_log("t,p_line,q\ns,MPa,L/s\n0,15,1\n0.1,15,1\n", "b.csv", c.file);
+  ASSERT_TRUE(units_below.ok()) << units_below.error->to_string();
+  EXPECT_DOUBLE_EQ(units_below.sensors[0][0], 15e6);
+  EXPECT_DOUBLE_EQ(units_below.sensors[1][0], 1e-3);
+
+  const ct::CircuitLog bad_unit = ct::parse_circuit_log("t,p_line,q\ns,bar,V\n0,15,1\n", "v.csv", c.file);
+  ASSERT_TRUE(bad_unit.error.has_value());
+  EXPECT_EQ(bad_unit.error->to_string().rfind("v.csv:2:7: error: column 'q': ", 0), 0u) << bad_unit.error->to_string();
+  // A text line below a header that states its units must agree with them.
+  const ct::CircuitLog text_row = ct::parse_circuit_log("t[s],p_line[bar]\nfoo,bar\n0,1\n", "f.csv", c.file);
+  ASSERT_TRUE(text_row.error.has_value());
+  EXPECT_EQ(text_row.error->to_string(), "f.csv:2:1: error: unit 'foo' of column 't' differs from 's' in the header");
+}
+
 TEST(CircuitLog, Spider8ExportWithoutRateNamesTheFix) {
   hstmon::host::ReadOptions o;
   o.column_number_map[1] = "t";

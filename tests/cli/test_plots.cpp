@@ -2,8 +2,9 @@
 // file names with '_' print as written, a flat signal (one load, no noise) gets a readable
 // axis, gnuplot's warnings never reach the user and a failed plot is one line, the figure
 // has one key (not one per panel), an unmeasured channel is drawn as model only with no
-// residual, the model's start-up transient does not set a residual's scale; and the
-// helpers behind them (ranges, quoting, HTML escaping, base64).
+// residual, the model's start-up transient does not set a residual's scale, a circuit's
+// replay draws its own sensors, a lenient replay's report says where reading stopped; and
+// the helpers behind them (ranges, quoting, HTML escaping, base64).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -158,6 +159,74 @@ TEST(Plots, FailedPlotIsOneLineNamingTheFile) {
   EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
   EXPECT_EQ(r.err.rfind("hstmon replay: error: plot: gnuplot failed", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("/nonexistent_dir/out.svg"), std::string::npos) << r.err;
+}
+
+// A circuit's replay draws one row per sensor of the circuit, titled with the sensor's
+// name and in the unit its file gives — not the thesis rig's four channels.
+TEST(Plots, CircuitReplayDrawsTheCircuitsSensorsInTheirUnits) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path svg = dir() / "test_stand.svg";
+  const std::string src = HSTMON_SOURCE_DIR;
+  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/test_stand.json' '" + src +
+                       "/examples/circuits/test_stand.csv' --no-diagnosis --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const std::string text = read(svg);
+  EXPECT_EQ(count(text, "p_line measured and model"), 1u);
+  EXPECT_EQ(count(text, "q residual (measured"), 1u);
+  EXPECT_EQ(count(text, "L/min"), 2u);  // the flow sensor's unit, on its two panels
+  EXPECT_EQ(count(text, "Pmi"), 0u);
+  EXPECT_EQ(count(text, "'model'") + count(text, ">model<"), 1u);  // one key
+}
+
+// --report with --circuit writes the report beside its figure, verdict first, naming the circuit.
+TEST(Plots, CircuitReplayReportNamesTheCircuitAndItsVerdict) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path out = dir() / "circuit_report";
+  const std::string src = HSTMON_SOURCE_DIR;
+  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/paper.json' '" + src +
+                       "/examples/circuits/paper_dm_fault.csv' --report '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = read(out / "report.md");
+  EXPECT_NE(md.find("**Verdict:** isolated at the end of the log (since t = 6.260 s): Dm- (1.000)"), std::string::npos) << md;
+  EXPECT_NE(md.find("circuit paper ("), std::string::npos);
+  EXPECT_NE(md.find("| w_m [rpm] |"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+  EXPECT_NE(read(out / "residuals.svg").find("p_pp residual"), std::string::npos);
+}
+
+// A lenient replay that stopped at a bad row says so in its report's verdict, for the
+// thesis rig's logs and a circuit's alike, and still exits 2.
+TEST(Plots, LenientReplayReportSaysWhereReadingStopped) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path thesis_log = flat_log("stops.csv", true);
+  {
+    std::ofstream f(thesis_log, std::ios::app);
+    f << "3.0,35,4.41e-8,33.1,oops,171.1,1677\n";
+  }
+  const fs::path out = dir() / "lenient_report";
+  CliRun r = run("replay '" + thesis_log.string() + "' --lenient --report '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  std::string md = read(out / "report.md");
+  EXPECT_NE(md.find("only the 300 rows before a bad row were replayed (" + thesis_log.string() + ":302:"),
+            std::string::npos)
+      << md;
+
+  const std::string src = HSTMON_SOURCE_DIR;
+  const fs::path circuit_log = dir() / "stand_stops.csv";
+  {
+    std::ifstream in(src + "/examples/circuits/test_stand.csv");
+    std::ofstream f(circuit_log);
+    std::string line;
+    for (int k = 0; k < 200 && std::getline(in, line); ++k) f << line << "\n";
+    f << "9.9,x,1,150,60\n";
+  }
+  const fs::path out2 = dir() / "lenient_circuit_report";
+  r = run("replay --circuit '" + src + "/examples/circuits/test_stand.json' '" + circuit_log.string() +
+          "' --lenient --report '" + out2.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  md = read(out2 / "report.md");
+  EXPECT_NE(md.find("rows before a bad row were replayed (" + circuit_log.string() + ":201:"), std::string::npos) << md;
 }
 
 TEST(PlotHelpers, ReadableRangeWidensFlatDataAndKeepsEveryValue) {

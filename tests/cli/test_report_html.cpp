@@ -182,6 +182,13 @@ int main() {
         "hstmon replay --report");
   check_page(chromium, replay_dir, 1, "replay");
 
+  // A circuit's replay: the same page, the circuit's sensors (paper.json: four, its Dm fault).
+  const fs::path circuit_dir = dir / "replay_circuit";
+  check(run(cli + " replay --circuit '" + HSTMON_SOURCE_DIR + "/examples/circuits/paper.json' '" + HSTMON_SOURCE_DIR +
+            "/examples/circuits/paper_dm_fault.csv' --report '" + circuit_dir.string() + "'") == 0,
+        "hstmon replay --circuit --report");
+  check_page(chromium, circuit_dir, 1, "replay --circuit");
+
   const fs::path id_dir = dir / "identify";
   check(run(cli + " identify '" + HSTMON_SOURCE_DIR + "/examples/prv_staircase_das.csv' --assume-steady --out '" +
             (dir / "identified.json").string() + "' --report '" + id_dir.string() + "'") == 0,

@@ -7,7 +7,10 @@
 #  - a repeated run gives byte-identical lines (idempotent);
 #  - the bad log has an error line and exit code 2, the others are all there;
 #  - `hstmon fleet` flags the blocked machine and only it;
-#  - --machine-from stem and regex:, and the options that take one log.
+#  - --machine-from stem and regex:, and the options that take one log;
+#  - with --circuit (the paper's HST): the summary lines name the circuit's sensors,
+#    1 and 2 threads agree, a bad log has its error line, and `hstmon fleet` flags the
+#    machine whose last logs carry the Dm fault and only it.
 #   bash fleet_recipes.sh HSTMON HSTMON_SIM SOURCE_DIR WORK_DIR
 set -euo pipefail
 hstmon=$1 sim=$2 src=$3 work=$4
@@ -71,4 +74,25 @@ grep -q -- "--residuals takes one log" err.txt || fail "--residuals with a folde
 mkdir -p empty
 expect_rc 2 "$hstmon" replay empty 2> err.txt
 grep -q "no logs" err.txt || fail "empty folder"
+# A circuit's logs: c01 four nominal days, c02 two nominal then two with Dm × 0.9.
+mkdir -p clogs/c01 clogs/c02
+for day in 1 2 3 4; do cp "$src/examples/circuits/paper.csv" "clogs/c01/2026-11-0$day.csv"; done
+cp "$src/examples/circuits/paper.csv" clogs/c02/2026-11-01.csv
+cp "$src/examples/circuits/paper.csv" clogs/c02/2026-11-02.csv
+cp "$src/examples/circuits/paper_dm_fault.csv" clogs/c02/2026-11-03.csv
+cp "$src/examples/circuits/paper_dm_fault.csv" clogs/c02/2026-11-04.csv
+printf 't[s],p_mi[bar]\n0,1\n0.005,x\n' > clogs/c02/2026-11-05.csv
+circuit=(--circuit "$src/examples/circuits/paper.json")
+expect_rc 2 "$hstmon" replay "${circuit[@]}" clogs --jobs 2 > circuit2.jsonl
+expect_rc 2 "$hstmon" replay "${circuit[@]}" clogs --jobs 1 > circuit1.jsonl
+cmp circuit1.jsonl circuit2.jsonl || fail "--circuit: 1 and 2 threads differ"
+[[ $(grep -c '"circuit":"paper"' circuit2.jsonl) == 9 ]] || fail "--circuit: want 9 lines naming the circuit"
+grep -q '"log":"clogs/c02/2026-11-05.csv","machine":"c02","status":"error"' circuit2.jsonl ||
+  fail "--circuit: no error line for the bad log"
+grep -q '"first_diagnosis":{"event":"isolated","fault":"Dm-"' circuit2.jsonl || fail "--circuit: Dm- not isolated"
+grep -q '"residuals":{"p_mi":' circuit2.jsonl || fail "--circuit: residuals not by the circuit's sensor names"
+"$hstmon" fleet --json --baseline 2 circuit2.jsonl > cfleet.jsonl
+grep -q '"machine":"c01".*"verdict":"steady"' cfleet.jsonl || fail "--circuit: c01 should be steady"
+grep -q '"machine":"c02".*"verdict":"drifting"' cfleet.jsonl || fail "--circuit: c02 should drift"
+grep -q '"drifting":1,"failed":1' cfleet.jsonl || fail "--circuit: fleet line"
 echo "fleet_recipes: ok"

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
 #include "hstmon_host/units.hpp"
 
@@ -151,8 +153,73 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     return fail(line, char_column(text.substr(start), z - start), "NUL byte: not a text log");
   }
 
-  std::vector<Target> targets;
+  // Where the names (and units) are: the first content line, or an instrument's layout
+  // (log_layout.hpp, the thesis reader's rules): a units row above or below the names, a
+  // metadata block above them.
+  std::size_t header_line = 0, units_line = 0;  // 0: not found / none
+  std::vector<host::LogField> unit_fields;
+  std::string_view units_text;  // the units row, for the columns of its messages
   char sep = ',';
+  {
+    struct Content {
+      std::size_t number;
+      std::string_view text;
+    };
+    std::vector<Content> block;
+    std::optional<Content> data;
+    std::size_t n = 0, at = 0;
+    while (at <= text.size() && block.size() <= host::kMaxPreambleLines) {
+      const std::size_t nl = text.find('\n', at);
+      std::string_view l = text.substr(at, (nl == std::string_view::npos ? text.size() : nl) - at);
+      at = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+      ++n;
+      if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+      const std::string_view b = trim(l);
+      if (b.empty() || b.front() == '#') continue;
+      if (host::looks_like_data_row(l)) {
+        data = Content{n, l};
+        break;
+      }
+      block.push_back({n, l});
+    }
+    if (!block.empty()) {
+      std::vector<std::string_view> texts;
+      for (const Content& line : block) texts.push_back(line.text);
+      const std::optional<host::PreambleLayout> layout =
+          data ? host::detect_preamble_layout(texts, data->text, o.separator) : std::nullopt;
+      std::optional<std::size_t> units;
+      std::size_t names = 0;
+      if (layout) {
+        sep = layout->sep;
+        names = layout->names;
+        units = layout->units;
+        const std::size_t top = layout->metadata();
+        if (top > 0) {
+          log.notes.push_back(log.path + ":" + std::to_string(block[0].number) + ":1: note: " +
+                              (top == 1 ? "line " + std::to_string(block[0].number)
+                                        : "lines " + std::to_string(block[0].number) + "-" +
+                                              std::to_string(block[top - 1].number)) +
+                              " above the column names taken as metadata, not columns");
+        }
+      } else {
+        sep = o.separator != 0 ? o.separator : host::detect_log_separator(block[0].text);
+        // The usual layout with a units row right below the names.
+        if (block.size() >= 2 &&
+            host::split_log_fields(block[1].text, sep).size() == host::split_log_fields(block[0].text, sep).size() &&
+            host::is_text_row(block[1].text, sep, sep != ',')) {
+          units = 1;
+        }
+      }
+      header_line = block[names].number;
+      if (units) {
+        units_line = block[*units].number;
+        units_text = block[*units].text;
+        unit_fields = host::split_log_fields(units_text, sep);
+      }
+    }
+  }
+
+  std::vector<Target> targets;
   bool header_seen = false;
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
@@ -167,12 +234,15 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     const std::string_view body = trim(line);
     if (body.empty() || body.front() == '#') continue;
 
+    if (!header_seen && line_no < header_line) continue;  // metadata, or units above the names
+    if (line_no == units_line) continue;                   // taken with the header
     if (!header_seen) {
       header_seen = true;
-      sep = o.separator != 0 ? o.separator
-                             : line.find('\t') != std::string_view::npos ? '\t'
-                             : (line.find(';') != std::string_view::npos ? ';' : ',');
       split(line, sep, fields, offs);
+      if (units_line != 0 && unit_fields.size() != fields.size()) {
+        return fail(units_line, 1, "units row has " + std::to_string(unit_fields.size()) + " fields, the header " +
+                                       std::to_string(fields.size()));
+      }
       for (const auto& [number, to] : o.column_number_map) {
         if (number < 1 || number > fields.size()) {
           return fail(line_no, 1, "--map #" + std::to_string(number) + ": the header has " + std::to_string(fields.size()) +
@@ -188,6 +258,24 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         name_and_unit(fields[k], name, unit, has_unit);
         const std::size_t lead = fields[k].find_first_not_of(" \t");
         const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
+        std::size_t unit_line_no = line_no, unit_col = col;  // where a unit error points
+        if (units_line != 0) {
+          std::string_view u = unit_fields[k].text;
+          if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
+            u = trim(u.substr(1, u.size() - 2));
+          }
+          if (has_unit && !u.empty() && u != unit) {
+            return fail(units_line, char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data())),
+                        "unit '" + std::string(u) + "' of column '" + std::string(name) + "' differs from '" +
+                            std::string(unit) + "' in the header");
+          }
+          if (!has_unit && !u.empty()) {
+            unit = u;
+            has_unit = true;
+            unit_line_no = units_line;
+            unit_col = char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data()));
+          }
+        }
         // --map: by column number first, then by name; the target keeps the column's unit.
         std::string mapped;
         bool is_mapped = false;
@@ -212,7 +300,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
           time_seen = true;
           tg.kind = Target::kTime;
           const host::UnitResult u = host::parse_unit(host::Quantity::kTime, has_unit ? unit : std::string_view("s"));
-          if (!u.ok()) return fail(line_no, col, u.error);
+          if (!u.ok()) return fail(unit_line_no, unit_col, u.error);
           tg.conv = u.conversion;
           continue;
         }
@@ -222,7 +310,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
           in_seen[i] = true;
           const host::UnitResult u =
               host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
-          if (!u.ok()) return fail(line_no, col, "column '" + std::string(name) + "': " + u.error);
+          if (!u.ok()) return fail(unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error);
           tg = Target{Target::kInput, static_cast<int>(i), u.conversion};
         }
         for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
@@ -231,7 +319,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
           s_seen[i] = true;
           const host::UnitResult u =
               host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
-          if (!u.ok()) return fail(line_no, col, "column '" + std::string(name) + "': " + u.error);
+          if (!u.ok()) return fail(unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error);
           tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
         }
         if (tg.kind == Target::kIgnored) {

@@ -97,15 +97,21 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   res.states = model.n_states();
   res.stiff_nodes = model.n_stiff();
 
-  CircuitFaultTable table;
+  CircuitFaultTable built;
+  const CircuitFaultTable* table = nullptr;
   if (o.diagnose) {
     try {
-      table = circuit_fault_table(c);
-      res.table_rows = table.rows.size();
-      res.undetectable = table.undetectable;
-      for (const auto& n : table.notes) res.notes.push_back("fault table: " + n);
-      if (table.rows.size() > 127) {
-        res.notes.push_back("fault table: " + std::to_string(table.rows.size()) + " rows, the first 127 used");
+      if (o.table != nullptr) {
+        table = o.table;
+      } else {
+        built = o.fault_table != nullptr ? o.fault_table(c) : circuit_fault_table(c);
+        table = &built;
+      }
+      res.table_rows = table->rows.size();
+      res.undetectable = table->undetectable;
+      for (const auto& n : table->notes) res.notes.push_back("fault table: " + n);
+      if (table->rows.size() > 127) {
+        res.notes.push_back("fault table: " + std::to_string(table->rows.size()) + " rows, the first 127 used");
         res.table_rows = 127;
       }
     } catch (const std::exception& e) {
@@ -148,7 +154,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
                           number(cfg.matcher.average_time) + " s");
     }
   }
-  if (mon->configure(model, cfg, table.rows.empty() ? nullptr : table.rows.data(),
+  if (mon->configure(model, cfg, table == nullptr || table->rows.empty() ? nullptr : table->rows.data(),
                      static_cast<int>(res.table_rows)) != Status::kOk) {
     res.notes.push_back("invalid monitor configuration: nothing replayed");
     return res;

@@ -1,5 +1,5 @@
 /// @file residual_plot.cpp
-/// The replay's figure: per channel, measured and model (left) and the residual (right).
+/// The replay's figure, for any channel set: per channel, measured and model (left) and the residual (right).
 /// One key for the whole figure, in the band above the panels (never over the data, never
 /// repeated); a channel the log does not have gets its model only and a note where its
 /// residual would be; every y range is readable even when the signal is flat, and a
@@ -12,6 +12,7 @@
 #include <fmt/os.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,17 +22,6 @@
 namespace hstmon::cli {
 
 namespace {
-
-struct Panel {
-  const char* name;
-  const char* unit;
-  double scale;      // SI → display
-  double min_span;   // narrowest y range shown [display unit]: below a sensor's resolution
-};
-const Panel kPanels[4] = {{"Pmi", "bar", 1e-5, 0.1},
-                          {"Pmo", "bar", 1e-5, 0.1},
-                          {"Ppp", "bar", 1e-5, 0.1},
-                          {"ωm", "rpm", 60.0 / (2.0 * M_PI), 1.0}};
 
 const char* const kMeasuredColour = "#888888";
 const char* const kModelColour = "#1f77b4";
@@ -51,27 +41,32 @@ double signal_span(const std::vector<double>& v, double floor) {
 
 }  // namespace
 
-std::string plot_trace(const host::ReplayResult& result, const std::string& title, const std::string& path) {
+std::string plot_replay(const PlotTrace& trace, const std::string& title, const std::string& path) {
   std::string terminal;
-  if (std::string err = sim::gnuplot_terminal(path, 1400, 1100, terminal); !err.empty()) return err;
-  if (result.trace.empty()) return "nothing to plot";
+  const std::size_t n = trace.channels.size();
+  if (n == 0 || trace.rows == 0 || !trace.row) return "nothing to plot";
+  // 1100 px for the thesis rig's four rows of panels; the same height per row for others.
+  const int height = 100 + 250 * static_cast<int>(n);
+  if (std::string err = sim::gnuplot_terminal(path, 1400, height, terminal); !err.empty()) return err;
 
   namespace fs = std::filesystem;
   const fs::path data = sim::gnuplot_temp_file("plot", "dat");
   // Per channel, display-unit columns for the ranges: measured, model, residual.
-  std::vector<double> cols[4][3];
+  std::vector<std::array<std::vector<double>, 3>> cols(n);
   std::vector<double> t;
   {
     auto out = fmt::output_file(data.string());
+    std::vector<double> y(n), y_hat(n), r(n);
     // Thin very long traces to ~20 000 points: the plot cannot show more.
-    const std::size_t stride = std::max<std::size_t>(1, result.trace.size() / 20000);
-    for (std::size_t i = 0; i < result.trace.size(); i += stride) {
-      const auto& r = result.trace[i];
-      out.print("{:.9g}", r.t);
-      t.push_back(r.t);
-      for (std::size_t c = 0; c < 4; ++c) {
-        const double s = kPanels[c].scale;
-        const double v[3] = {r.y[c] * s, r.y_hat[c] * s, r.r[c] * s};
+    const std::size_t stride = std::max<std::size_t>(1, trace.rows / 20000);
+    for (std::size_t i = 0; i < trace.rows; i += stride) {
+      double ti = 0.0;
+      trace.row(i, ti, y.data(), y_hat.data(), r.data());
+      out.print("{:.9g}", ti);
+      t.push_back(ti);
+      for (std::size_t c = 0; c < n; ++c) {
+        const double s = trace.channels[c].scale;
+        const double v[3] = {y[c] * s, y_hat[c] * s, r[c] * s};
         out.print(" {:.9g} {:.9g} {:.9g}", v[0], v[1], v[2]);
         for (int k = 0; k < 3; ++k) cols[c][k].push_back(v[k]);
       }
@@ -79,20 +74,22 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
     }
   }
   bool any_measured = false;
-  for (bool m : result.measured) any_measured = any_measured || m;
+  for (const PlotChannel& c : trace.channels) any_measured = any_measured || c.measured;
 
   const std::string file = sim::gnuplot_quote(data.string());
   std::string script = fmt::format("set terminal {}\nset output {}\nset datafile missing 'nan'\n", terminal,
                                    sim::gnuplot_quote(path));
   // Fixed margins leave the top band for the figure's title and its one key.
-  script += fmt::format("set multiplot layout 4,2 title {} margins 0.06,0.98,0.05,0.9 spacing 0.07,0.085\n",
-                        sim::gnuplot_quote(title));
+  // The band above the panels is 110 px whatever the height (0.1 of the thesis figure's).
+  const double top = 1.0 - 110.0 / height;
+  script += fmt::format("set multiplot layout {},2 title {} margins 0.06,0.98,{:.4f},{:.4f} spacing 0.07,{:.4f}\n", n,
+                        sim::gnuplot_quote(title), 55.0 / height, top, 93.5 / height);
   const sim::AxisRange span_t = t.back() > t.front() ? sim::AxisRange{t.front(), t.back()} : sim::readable_range(t, 1.0);
   script += fmt::format("set grid\nset xlabel 't [s]'\nset xrange {}\n", range(span_t));
-  for (std::size_t c = 0; c < 4; ++c) {
+  for (std::size_t c = 0; c < n; ++c) {
     const int col = 2 + 3 * static_cast<int>(c);
-    const Panel& p = kPanels[c];
-    const bool measured = result.measured[c];
+    const PlotChannel& p = trace.channels[c];
+    const bool measured = p.measured;
     std::vector<double> both = cols[c][1];
     if (measured) both.insert(both.end(), cols[c][0].begin(), cols[c][0].end());
     script += fmt::format("set ylabel '{}'\nset yrange {}\n", p.unit, range(sim::readable_range(both, signal_span(both, p.min_span))));
@@ -105,7 +102,8 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
     plot += fmt::format("{} using 1:{} with lines lw 1.5 lc rgb '{}' notitle", file, col + 1, kModelColour);
     if (c == 0) {
       // The figure's key: drawn once, from the first panel, as entries of no data.
-      script += "set key at screen 0.98,0.975 right top horizontal samplen 3 spacing 1.2\n";
+      script += fmt::format("set key at screen 0.98,{:.4f} right top horizontal samplen 3 spacing 1.2\n",
+                            1.0 - 27.5 / height);
       if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'measured'", kMeasuredColour);
       plot += fmt::format(", NaN with lines lw 1.5 lc rgb '{}' title 'model'", kModelColour);
       if (any_measured) plot += fmt::format(", NaN with lines lc rgb '{}' title 'residual'", kResidualColour);
@@ -123,7 +121,7 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
     // the scale and flatten the rest: the range covers what comes after it, and says so.
     std::vector<double> after_hold;
     for (std::size_t i = 0; i < t.size(); ++i) {
-      if (t[i] >= result.t_first + result.startup_hold) after_hold.push_back(cols[c][2][i]);
+      if (t[i] >= trace.t_first + trace.startup_hold) after_hold.push_back(cols[c][2][i]);
     }
     const sim::AxisRange all = sim::readable_range(cols[c][2], p.min_span);
     const sim::AxisRange shown = after_hold.empty() ? all : sim::readable_range(after_hold, p.min_span);
@@ -138,6 +136,28 @@ std::string plot_trace(const host::ReplayResult& result, const std::string& titl
   std::error_code ec;
   fs::remove(data, ec);
   return err.empty() ? err : err + " (writing " + path + ")";
+}
+
+PlotTrace thesis_plot_trace(const host::ReplayResult& result) {
+  PlotTrace trace;
+  const double rpm = 60.0 / (2.0 * M_PI);
+  trace.channels = {{"Pmi", "bar", 1e-5, 0.1, result.measured[0]},
+                    {"Pmo", "bar", 1e-5, 0.1, result.measured[1]},
+                    {"Ppp", "bar", 1e-5, 0.1, result.measured[2]},
+                    {"ωm", "rpm", rpm, 1.0, result.measured[3]}};
+  trace.rows = result.trace.size();
+  trace.row = [&result](std::size_t k, double& t, double* y, double* y_hat, double* r) {
+    const host::TraceRow& row = result.trace[k];
+    t = row.t;
+    for (std::size_t c = 0; c < 4; ++c) {
+      y[c] = row.y[c];
+      y_hat[c] = row.y_hat[c];
+      r[c] = row.r[c];
+    }
+  };
+  trace.t_first = result.t_first;
+  trace.startup_hold = result.startup_hold;
+  return trace;
 }
 
 }  // namespace hstmon::cli

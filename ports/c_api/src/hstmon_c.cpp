@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <new>
 
+#include "c_api_candidates.hpp"
+
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
 #include "hstmon/status.hpp"
@@ -219,14 +221,7 @@ hstmon_match hstmon_match_status(const hstmon_monitor* m) {
 }
 
 HSTMON_C_RARE int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* out, int max) {
-  if (m == nullptr) return 0;
-  const Mon::Matcher& mt = m->mon.matcher();
-  const int total = mt.candidate_count();
-  for (int r = 0; out != nullptr && r < total && r < max; ++r) {
-    const auto c = mt.candidate(r);
-    out[r] = hstmon_candidate{c.name, c.score};
-  }
-  return total;
+  return m != nullptr ? hstmon::c_api::copy_candidates(m->mon.matcher(), out, max) : 0;
 }
 
 HSTMON_C_RARE int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {

@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "fw_json.hpp"
-#include "hstmon/circuit/monitor_setup.hpp"
+#include "hstmon/circuit/generated_setup.hpp"
 
 namespace hstmon::fw {
 
@@ -44,6 +44,11 @@ int find_column(const LogView& log, const LogColumns& cols, const char* name) no
     if (same_name(cols.name[c], name)) return c;
   }
   return -1;
+}
+
+// The generated header's values, as the shared setup takes them.
+circuit::GeneratedValues<gen::Cap> generated_values() noexcept {
+  return {&gen::kCircuit, gen::kParams, gen::kNoiseSigma, gen::kRangeLo, gen::kRangeHi, gen::kUncertainty, gen::kTick};
 }
 
 void error_line(Line& line, const char* what, const char* column, const char* unit) noexcept {
@@ -146,47 +151,22 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
     }
   };
 
-  // Configuration: as replay_circuit, from the generated values.
-  const Status bound = g_model.bind(gen::kCircuit) == circuit::CircuitError::kOk ? Status::kOk : Status::kInvalidParams;
-  g_model.set_params(circuit_params());
-  g_model.set_inputs(nominal);
-  if (bound != Status::kOk || !g_model.valid()) {
+  // Configuration and start: as replay_circuit (`--init auto`), from the generated values.
+  const circuit::GeneratedValues<gen::Cap> values = generated_values();
+  const Inputs u0 = inputs_at(0);
+  const Status configured = circuit::configure_from_generated(mon, g_model, values, u0, sig::kSignatures,
+                                                              sig::kSignatureCount);
+  if (configured == Status::kInvalidParams) {
     error_line(line, "the generated circuit's values do not make a physical circuit", nullptr, nullptr);
     return ~0u;
   }
-  CircuitFwMonitor::Config cfg;
-  cfg.observer.tick = static_cast<float>(tick);
-  float noise[kCh] = {};
-  for (int i = 0; i < kCh; ++i) {
-    const double sigma = circuit::sensor_sigma(gen::kNoiseSigma[i], gen::kRangeLo[i], gen::kRangeHi[i]);
-    cfg.evaluator.noise_sigma[i] = static_cast<float>(sigma);
-    cfg.sensors.noise[i] = static_cast<float>(sigma);
-    cfg.sensors.range_lo[i] = static_cast<float>(gen::kRangeLo[i]);
-    cfg.sensors.range_hi[i] = static_cast<float>(gen::kRangeHi[i]);
-    noise[i] = static_cast<float>(gen::kNoiseSigma[i]);
-  }
-  for (int p = 0; p < gen::Cap::kParams; ++p) cfg.uncertainty.rel[p] = static_cast<float>(gen::kUncertainty[p]);
-  circuit::set_circuit_allowances(cfg);
-  (void)circuit::widen_matcher_windows(g_model, inputs_at(0), cfg.matcher);
-  g_model.set_inputs(nominal);
-  if (mon.configure(g_model, cfg, sig::kSignatures, sig::kSignatureCount) != Status::kOk) {
+  if (configured != Status::kOk) {
     error_line(line, "invalid monitor configuration", nullptr, nullptr);
     return ~0u;
   }
-
-  // Start: as `--init auto`.
-  const Inputs u0 = inputs_at(0);
   measurement_at(0);
   InitialState start = InitialState::kRest;
-  Status started = mon.reset_measured(u0, m, &start);
-  if (started == Status::kOk && circuit::at_steady_within_noise(g_model, u0, m.y, m.valid, noise, n_ch)) {
-    started = mon.reset_steady(u0);
-    start = InitialState::kSteady;
-  }
-  if (started != Status::kOk) {
-    (void)mon.reset_rest(u0);
-    start = InitialState::kRest;
-  }
+  (void)circuit::start_from_first_sample(mon, g_model, values, u0, m, start);
   for (std::uint64_t& c : clipped) c = 0;  // the first row is counted again below
 
   const auto& obs = mon.observer();

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "fw_replay.hpp"
+#include "hstmon/residual_stats.hpp"
 
 namespace hstmon::fw {
 
@@ -67,29 +68,7 @@ class Line {
   bool first_ = true;
 };
 
-/// Residual statistics of one channel; the fields and formulas of host::ChannelStats.
-struct Stats {
-  std::uint64_t n = 0, n_diff = 0;
-  double sum = 0, sumsq = 0, max_abs = 0, max_signed = 0, t_max = 0, sumsq_diff = 0, last = 0;
-  /// Counts residual r [SI] of the row at log time t [s].
-  void add(double r, double t) noexcept {
-    if (n > 0) {
-      sumsq_diff += (r - last) * (r - last);
-      ++n_diff;
-    }
-    last = r;
-    ++n;
-    sum += r;
-    sumsq += r * r;
-    if (std::fabs(r) > max_abs) {
-      max_abs = std::fabs(r);
-      max_signed = r;
-      t_max = t;
-    }
-  }
-  double mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
-  double rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
-  double noise() const noexcept { return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0; }
-};
+/// Residual statistics of one channel, as the host replay counts them (host::ChannelStats).
+using Stats = ResidualStats<double>;
 
 }  // namespace hstmon::fw

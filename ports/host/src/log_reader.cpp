@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "delimiter_scan.hpp"
+#include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
 #include "fast_decimal.hpp"
 #include "text_util.hpp"
@@ -37,11 +38,8 @@ struct Line {
   std::size_t number = 0;      ///< 1-based
 };
 
-/// One field of the header or units row.
-struct Field {
-  std::string_view text;  ///< trimmed, unquoted
-  const char* pos;        ///< first byte of the raw field (for its column)
-};
+/// One field of the header or units row (log_layout.hpp).
+using Field = LogField;
 
 /// A header cell split into name and unit.
 struct HeaderCell {
@@ -76,37 +74,14 @@ std::size_t estimate_rows(const char* p, const char* end) noexcept {
   return static_cast<std::size_t>(per_byte * static_cast<double>(total) * 1.1) + 16;
 }
 
-/// Strips surrounding double quotes from a trimmed field.
-std::string_view unquote(std::string_view s) noexcept {
-  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') return trim(s.substr(1, s.size() - 2));
-  return s;
-}
-
-/// Splits [begin, end) at `sep`; each field trimmed and unquoted.
+/// Splits [begin, end) at `sep`; each field trimmed and unquoted (log_layout.hpp).
 std::vector<Field> split_fields(const char* begin, const char* end, char sep) {
-  std::vector<Field> out;
-  const char* f = begin;
-  for (;;) {
-    const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(end - f)));
-    const char* fe = s != nullptr ? s : end;
-    out.push_back({unquote(trim(std::string_view(f, static_cast<std::size_t>(fe - f)))), f});
-    if (s == nullptr) break;
-    f = s + 1;
-  }
-  return out;
+  return split_log_fields(std::string_view(begin, static_cast<std::size_t>(end - begin)), sep);
 }
 
-/// Parses a whole field as a number (blanks, '+', decimal comma if allowed). Not the hot path.
-bool field_is_number(std::string_view s, bool decimal_comma) noexcept {
-  s = trim(s);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  if (s.empty() || s.size() > kMaxCommaField) return false;
-  char buf[kMaxCommaField];
-  std::memcpy(buf, s.data(), s.size());
-  if (decimal_comma) std::replace(buf, buf + s.size(), ',', '.');
-  double v;
-  const auto r = std::from_chars(buf, buf + s.size(), v);
-  return r.ec == std::errc() && r.ptr == buf + s.size();
+/// The text of a line, without its line break.
+std::string_view text_of(const Line& line) noexcept {
+  return {line.begin, static_cast<std::size_t>(line.end - line.begin)};
 }
 
 /// The file behind a streamed read (LogStream): one buffer refilled by read(2), so the
@@ -175,7 +150,7 @@ class Parser {
     }
     if (preamble_layout(header)) return;
     out_.header_line = header.number;
-    sep_ = opt_.separator != 0 ? opt_.separator : detect_separator(header);
+    sep_ = opt_.separator != 0 ? opt_.separator : detect_log_separator(text_of(header));
     decimal_comma_ = sep_ != ',';
     if (!parse_header(header)) return;
     Line first;
@@ -291,41 +266,22 @@ class Parser {
     Line data;
     bool found = false;
     while (block.size() <= kMaxPreambleLines && next_content_line(data)) {
-      if (looks_numeric(data)) {
+      if (looks_like_data_row(text_of(data))) {
         found = true;
         break;
       }
       block.push_back(data);
     }
-    const std::size_t n = block.size();
-    if (!found || n < 2) return rewind();
-    const char sep = opt_.separator != 0 ? opt_.separator : detect_separator(block.back());
-    const bool comma = sep != ',';
-    const std::vector<Field> data_fields = split_fields(data.begin, data.end, sep);
-    for (const Field& f : data_fields) {
-      if (!field_is_number(f.text, comma)) return rewind();
-    }
-    // A names or units row: one field per data field, none of them a number.
-    const auto fits = [&](const Line& l) {
-      return split_fields(l.begin, l.end, sep).size() == data_fields.size() && is_text_row(l, sep, comma);
-    };
-    if (!fits(block[n - 1])) return rewind();
-    const bool pair = fits(block[n - 2]);
-    const std::size_t score_last = unit_score(block[n - 1], sep);
-    const std::size_t score_prev = pair ? unit_score(block[n - 2], sep) : 0;
-    std::size_t names = n - 1;
-    std::optional<std::size_t> units;
-    if (pair && score_prev > score_last) {
-      units = n - 2;  // units above the names
-    } else if (n == 2) {
-      return rewind();  // names first: the usual layout
-    } else if (pair && score_last > score_prev) {
-      names = n - 2;
-      units = n - 1;
-    }
-    sep_ = sep;
-    decimal_comma_ = comma;
-    const std::size_t top = units ? std::min(names, *units) : names;
+    if (!found) return rewind();
+    std::vector<std::string_view> texts;
+    for (const Line& l : block) texts.push_back(text_of(l));
+    const std::optional<PreambleLayout> layout = detect_preamble_layout(texts, text_of(data), opt_.separator);
+    if (!layout) return rewind();
+    const std::size_t names = layout->names;
+    const std::optional<std::size_t> units = layout->units;
+    sep_ = layout->sep;
+    decimal_comma_ = layout->decimal_comma;
+    const std::size_t top = layout->metadata();
     if (top > 0) {
       const std::string lines = top == 1 ? "line " + std::to_string(block[0].number)
                                          : "lines " + std::to_string(block[0].number) + "-" +
@@ -340,50 +296,7 @@ class Parser {
     return true;
   }
 
-  /// Only characters of numbers and separators, and a digit: a data row candidate.
-  static bool looks_numeric(const Line& line) noexcept {
-    bool digit = false;
-    for (const char* p = line.begin; p < line.end; ++p) {
-      const char c = *p;
-      if (c >= '0' && c <= '9') {
-        digit = true;
-      } else if (std::strchr(".,;+-eE \t", c) == nullptr || c == '\0') {
-        return false;
-      }
-    }
-    return digit;
-  }
-
-  /// Fields of a units row that name a unit: one this port converts, or a common
-  /// instrument unit it does not (a Spider8 channel left in volts). Tells a units row
-  /// from a names row.
-  static std::size_t unit_score(const Line& line, char sep) {
-    static constexpr std::string_view kOther[] = {"V", "mV", "A", "mA", "°C", "degC", "K", "l/min", "L/min",
-                                                  "N", "kN", "Nm", "mm", "m", "%", "Hz", "kg", "g"};
-    std::size_t score = 0;
-    for (const Field& f : split_fields(line.begin, line.end, sep)) {
-      std::string_view u = f.text;
-      if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
-        u = trim(u.substr(1, u.size() - 2));
-      }
-      if (u.empty() || u == "-") continue;
-      bool known = std::find(std::begin(kOther), std::end(kOther), u) != std::end(kOther);
-      for (Quantity q : {Quantity::kPressure, Quantity::kSpeed, Quantity::kTime, Quantity::kArea, Quantity::kKp}) {
-        known = known || parse_unit(q, u).ok();
-      }
-      if (known) ++score;
-    }
-    return score;
-  }
-
   // ---- header --------------------------------------------------------------------------
-
-  static char detect_separator(const Line& header) noexcept {
-    const auto n = static_cast<std::size_t>(header.end - header.begin);
-    if (std::memchr(header.begin, '\t', n) != nullptr) return '\t';
-    if (std::memchr(header.begin, ';', n) != nullptr) return ';';
-    return ',';
-  }
 
   bool parse_header(const Line& header) {
     header_ = header;
@@ -420,7 +333,7 @@ class Parser {
       for (std::size_t j = 0; j < i; ++j) {
         if (detail::iequals(cells_[i].name, cells_[j].name)) {
           // Units taken for names ("V" twice): say so rather than only "duplicate".
-          const bool unit = unit_score(header, sep_) * 2 > cells_.size();
+          const bool unit = unit_score(text_of(header), sep_) * 2 > cells_.size();
           fail(header, cells_[i].name_pos, "duplicate column name '" + printable(cells_[i].name) +
                                                "' (also field " + std::to_string(j + 1) + ")" +
                                                (unit ? "; this line reads as a units row: the column names "
@@ -435,19 +348,7 @@ class Parser {
 
   /// A units row: same line after the header, all fields non-numeric or empty, at least
   /// one non-empty.
-  bool is_units_row(const Line& line) const { return is_text_row(line, sep_, decimal_comma_); }
-
-  /// No field a number, at least one non-empty: a units or names row.
-  static bool is_text_row(const Line& line, char sep, bool decimal_comma) {
-    const std::vector<Field> fields = split_fields(line.begin, line.end, sep);
-    bool any = false;
-    for (const Field& f : fields) {
-      if (f.text.empty()) continue;
-      if (field_is_number(f.text, decimal_comma)) return false;
-      any = true;
-    }
-    return any;
-  }
+  bool is_units_row(const Line& line) const { return is_text_row(text_of(line), sep_, decimal_comma_); }
 
   bool apply_units_row(const Line& line) {
     const std::vector<Field> fields = split_fields(line.begin, line.end, sep_);
@@ -1017,7 +918,6 @@ class Parser {
   /// Unknown columns that get a note of their own (then one note with the count).
   static constexpr std::size_t kMaxColumnNotes = 8;
   /// Lines looked at for a units row above the names or a metadata block.
-  static constexpr std::size_t kMaxPreambleLines = 64;
   /// Lowest sample rate option [Hz] (a smaller one is a unit mistake).
   static constexpr double kMinRate = 1e-6;
   /// Appended to "time not strictly increasing": the fix for a rounded time column.

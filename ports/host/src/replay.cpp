@@ -15,29 +15,6 @@ namespace hstmon::host {
 
 const std::array<Signal, 4> kMeasuredSignals = {Signal::kPMi, Signal::kPMo, Signal::kPPp, Signal::kWm};
 
-void ChannelStats::add(double r, double t, std::size_t row) noexcept {
-  if (n > 0) {
-    sumsq_diff += (r - last) * (r - last);
-    ++n_diff;
-  }
-  last = r;
-  ++n;
-  sum += r;
-  sumsq += r * r;
-  if (std::fabs(r) > max_abs) {
-    max_abs = std::fabs(r);
-    max_signed = r;
-    t_max = t;
-    row_max = row;
-  }
-}
-
-double ChannelStats::mean() const noexcept { return n ? sum / static_cast<double>(n) : 0.0; }
-double ChannelStats::rms() const noexcept { return n ? std::sqrt(sumsq / static_cast<double>(n)) : 0.0; }
-double ChannelStats::noise() const noexcept {
-  return n_diff ? std::sqrt(sumsq_diff / (2.0 * static_cast<double>(n_diff))) : 0.0;
-}
-
 std::vector<std::string> health_names(std::uint32_t flags) {
   static const std::pair<std::uint32_t, const char*> names[] = {
       {kHealthInputNonFinite, "input_non_finite"},     {kHealthMeasNonFinite, "measurement_non_finite"},

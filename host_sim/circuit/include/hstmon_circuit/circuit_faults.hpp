@@ -14,8 +14,9 @@
 /// inputs: the magnitude on a channel is the sign of the change for a ±10 % and a ±30 %
 /// fault when both agree and the 30 % change is at least one noise σ, kQualZero when
 /// neither reaches one σ, else kQualAny; the direction is the noise-scaled 10 % change.
-/// Slopes are kQualAny and orders 0: the transient part of a signature comes from the
-/// circuit's temporal causal graph, which is not derived for circuit files yet. A fault
+/// Slopes are kQualAny and orders 0 here: the transient part of a signature comes from the
+/// circuit's temporal causal graph, derived in host_sim/fdi (fdi::circuit_signature_table,
+/// which starts from this table; circuit_tools cannot depend on fdi). A fault
 /// that moves no channel by one σ even at ±30 % has no row (it is listed as
 /// undetectable at this operating point).
 
@@ -36,6 +37,7 @@ struct CircuitFaultTable {
   std::vector<Row> rows;
   std::vector<std::string> undetectable;  ///< faults without a row (see the file comment)
   std::vector<std::string> notes;         ///< what was assumed (no steady state for a 30 % fault, …)
+  std::vector<std::string> remarks;       ///< per row, in row order (or empty): why a slope or the orders were left open
 
   CircuitFaultTable() = default;
   CircuitFaultTable(CircuitFaultTable&&) = default;

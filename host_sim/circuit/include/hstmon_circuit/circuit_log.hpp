@@ -10,8 +10,9 @@
 ///  - data rows of decimal numbers (blanks around them allowed), time strictly rising
 ///    (or rebuilt from the row index: ReadOptions::rate);
 ///  - columns renamed by ReadOptions' maps (by name, or by number), as the thesis logs'.
-/// Instrument layouts (a units row above the names, a metadata block) are not detected:
-/// that is the thesis reader's (ports/host log_reader.cpp), whose columns are the rig's.
+///  - instrument layouts as the thesis reader finds them (hstmon_host/log_layout.hpp): a
+///    units row above or below the names, a block of metadata lines above them (noted);
+///    a unit in the units row fills a header cell without one and must agree with one.
 /// Columns the circuit does not know are ignored with a note. Every error (bad number,
 /// ragged row, unknown unit, duplicated column, no time column, no rows, time not rising,
 /// non-finite value, unreadable file) is a SourceError at file:line:column; nothing

@@ -2,8 +2,9 @@
 /// @file circuit_replay.hpp
 /// Replays a circuit log through the circuit's monitor (hstmon replay --circuit):
 /// circuit::CircuitMonitor — observer, sensor checks, residual evaluator with the model
-/// bound from the circuit's parameter uncertainty, and the fault matcher on the circuit's
-/// generated table (circuit_faults.hpp). The observer ticks at a fixed rate, each log row one measurement,
+/// bound from the circuit's parameter uncertainty, and the fault matcher on the table the
+/// caller's builder makes (CircuitReplayOptions::fault_table: `hstmon replay --circuit` passes
+/// fdi::circuit_signature_table, the committed headers' builder). The observer ticks at a fixed rate, each log row one measurement,
 /// inputs held from the last row, as the thesis replay (ports/host replay.hpp); it starts
 /// by hstmon::choose_initial_state (reset_measured) unless told otherwise, and then, when
 /// the first row lies within 3σ of the steady state's outputs on every channel (each with
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "hstmon/initial_state.hpp"
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_host/replay.hpp"
@@ -32,6 +34,13 @@ struct CircuitReplayOptions {
   host::InitMode init = host::InitMode::kAuto;
   bool diagnose = true;                      ///< run the fault matcher (false: residuals only)
   bool keep_trace = false;                   ///< keep measured, model and residual per row (CircuitReplayResult::trace)
+  /// Builds the matcher's table. nullptr: circuit_fault_table (steady-state signs only, slopes
+  /// `?`, orders 0); the host programs pass fdi::circuit_signature_table (slopes and orders
+  /// from the circuit's causal graph), which circuit_tools cannot call itself (fdi depends on it).
+  CircuitFaultTable (*fault_table)(const LoadedCircuit&) = nullptr;
+  /// A table already built for c by the caller (a campaign replaying many logs of one
+  /// circuit builds it once); when set, fault_table is not called. Must outlive the call.
+  const CircuitFaultTable* table = nullptr;
 };
 
 /// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).

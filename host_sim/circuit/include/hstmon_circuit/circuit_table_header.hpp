@@ -1,9 +1,11 @@
 #pragma once
 /// @file circuit_table_header.hpp
-/// A circuit's fault table (circuit_faults.hpp) as a constexpr C++ header for firmware
+/// A circuit's fault table (circuit_faults.hpp; with slopes and orders: host_sim/fdi
+/// circuit_signature_table.hpp) as a constexpr C++ header for firmware
 /// (`hstmon-fdi table --circuit FILE --out HEADER`): BasicFaultSignature<N> rows over the
 /// circuit's N sensor channels, in namespace hstmon::generated::<name>, so a firmware
-/// monitor of that circuit matches on the same table the host replay generates.
+/// monitor of that circuit matches on the same table the host replay generates. A row's
+/// remark (CircuitFaultTable::remarks) is a comment above it.
 
 #include <string>
 

@@ -1,14 +1,41 @@
 #pragma once
-// Plots a replay trace with gnuplot: measured against estimate, and the residual, for
-// each measured channel. SVG or PNG by the output file's extension.
+// Plots a replay trace with gnuplot: measured against model, and the residual, for each
+// channel. SVG or PNG by the output file's extension. Any channel set: the thesis rig's
+// four (thesis_plot_trace) or a circuit's sensors (PlotTrace filled by the circuit replay).
+#include <cstddef>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "hstmon_host/replay.hpp"
 
 namespace hstmon::cli {
 
-/// Writes the plot to `path` (.svg or .png). Returns an empty string on success, else
+/// One channel of the figure: a row of two panels.
+struct PlotChannel {
+  std::string name;       ///< panel title, e.g. "Pmi", "p_mi"
+  std::string unit;       ///< display unit, e.g. "bar"
+  double scale = 1.0;     ///< display unit per SI unit (1e-5 for Pa → bar)
+  double min_span = 0.0;  ///< narrowest y range shown [display unit]: about a sensor's resolution
+  bool measured = true;   ///< in the log; otherwise the model alone and no residual panel
+};
+
+/// A replay trace to plot. Row k's values come from row(k, t, y, y_hat, r), each array
+/// one value per channel in SI (NaN where absent), so no copy of the trace is made.
+struct PlotTrace {
+  std::vector<PlotChannel> channels;
+  std::size_t rows = 0;
+  std::function<void(std::size_t k, double& t, double* y, double* y_hat, double* r)> row;
+  double t_first = 0.0;       ///< [s]
+  double startup_hold = 0.0;  ///< the residual's range ignores t < t_first + this [s]
+};
+
+/// Writes the figure to `path` (.svg or .png). Returns an empty string on success, else
 /// a message saying what failed (gnuplot missing, unknown extension, …).
-std::string plot_trace(const host::ReplayResult& result, const std::string& title, const std::string& path);
+std::string plot_replay(const PlotTrace& trace, const std::string& title, const std::string& path);
+
+/// The thesis replay's trace as a PlotTrace (Pmi, Pmo, Ppp in bar, ωm in rpm); it refers
+/// to `result`, which must outlive it.
+PlotTrace thesis_plot_trace(const host::ReplayResult& result);
 
 }  // namespace hstmon::cli

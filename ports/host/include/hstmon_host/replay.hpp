@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hstmon/residual_stats.hpp"
 #include "hstmon/thesis_params.hpp"
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/initial_state.hpp"
@@ -40,28 +41,9 @@ struct ReplayOptions {
   std::function<void(double)> progress;
 };
 
-/// Residual statistics of one channel over the replay, in SI units.
-struct ChannelStats {
-  std::size_t n = 0;           ///< residuals counted
-  double sum = 0.0;            ///< Σ r
-  double sumsq = 0.0;          ///< Σ r²
-  double max_abs = 0.0;        ///< max |r|
-  double max_signed = 0.0;     ///< r at the max |r| (sign kept)
-  double t_max = 0.0;          ///< log time of the max |r| [s]
-  std::size_t row_max = 0;     ///< 0-based data row of the max |r|
-  std::size_t n_diff = 0;      ///< successive residual pairs counted
-  double sumsq_diff = 0.0;     ///< Σ (r_k − r_{k−1})² over successive rows
-  double last = 0.0;           ///< previous residual (for the differences)
-
-  /// Counts residual r [SI] of data row `row` at log time t [s].
-  void add(double r, double t, std::size_t row) noexcept;
-  double mean() const noexcept;  ///< Σ r / n (0 when n = 0)
-  double rms() const noexcept;   ///< √(Σ r² / n) (0 when n = 0)
-  /// Noise level estimated from successive differences, √(Σ Δr² / 2(n−1)): white sensor
-  /// noise shows up in full, slow model errors hardly at all, so RMS ≫ noise means the
-  /// model and the machine disagree beyond what the sensors scatter. 0 for n < 2.
-  double noise() const noexcept;
-};
+/// Residual statistics of one channel over the replay, in SI units (the firmware
+/// replays count the same: hstmon/residual_stats.hpp).
+using ChannelStats = ResidualStats<double>;
 
 /// Measured, estimated and residual values at one log row (SI units).
 struct TraceRow {

@@ -1,0 +1,87 @@
+// Plot and report of a circuit replay (cli_circuit_replay_report.hpp).
+#include "cli_circuit_replay_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+// A sensor's display unit and its factor from SI: the circuit file's unit, else SI.
+void display_unit(const host::CircuitSensor& s, std::string& unit, double& scale) {
+  const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
+  const bool stated = !s.unit.empty() && u.ok();
+  unit = stated ? s.unit : host::circuit_si_unit(s.quantity);
+  scale = stated ? 1.0 / u.conversion.factor : 1.0;
+}
+
+// Narrowest y range shown [display unit]: the sensor's noise, at least, so that a flat
+// signal is not drawn as rounding noise (the thesis panels use 0.1 bar and 1 rpm).
+double min_span(const host::CircuitSensor& s, double scale) {
+  const double floor = s.noise > 0.0 ? 4.0 * s.noise * scale : 0.0;
+  return floor > 0.0 && std::isfinite(floor) ? floor : 1e-9;
+}
+
+}  // namespace
+
+PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitReplayResult& r) {
+  PlotTrace trace;
+  const std::size_t n = r.measured.size();
+  for (std::size_t ch = 0; ch < n; ++ch) {
+    const host::CircuitSensor& s = c.file.sensors[ch];
+    PlotChannel p;
+    p.name = s.name;
+    display_unit(s, p.unit, p.scale);
+    p.min_span = min_span(s, p.scale);
+    p.measured = r.measured[ch];
+    trace.channels.push_back(p);
+  }
+  trace.rows = r.trace.size();
+  trace.row = [&r, n](std::size_t k, double& t, double* y, double* y_hat, double* res) {
+    const circuit_tools::CircuitTraceRow& row = r.trace[k];
+    t = row.t;
+    for (std::size_t ch = 0; ch < n; ++ch) {
+      y[ch] = row.y[ch];
+      y_hat[ch] = row.y_hat[ch];
+      res[ch] = row.r[ch];
+    }
+  };
+  trace.t_first = r.t_first;
+  trace.startup_hold = r.startup_hold;
+  return trace;
+}
+
+ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_tools::LoadedCircuit& c,
+                                   const circuit_tools::CircuitReplayResult& r) {
+  ReplayReport rep;
+  rep.log = a.log;
+  rep.circuit = fmt::format("circuit {} ({}{})", c.file.name, a.circuit,
+                            c.params_path.empty() ? std::string() : ", " + c.params_path);
+  rep.rows = r.rows;
+  rep.t_first = r.t_first;
+  rep.t_last = r.t_last;
+  rep.tick = r.tick;
+  rep.startup_hold = r.startup_hold;
+  rep.notes = r.notes;
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
+    ReportChannel rc;
+    rc.label = c.file.sensors[ch].name;
+    display_unit(c.file.sensors[ch], rc.unit, rc.scale);
+    rc.measured = r.measured[ch];
+    rc.stats = r.channels[ch];
+    rep.channels.push_back(rc);
+  }
+  rep.events = r.events;
+  rep.final_status = r.final_status;
+  rep.health = r.health;
+  rep.unhealthy_rows = r.unhealthy_rows;
+  rep.diagnosed = a.diagnose && r.table_rows > 0;
+  rep.plot = circuit_plot_trace(c, r);
+  return rep;
+}
+
+}  // namespace hstmon::cli

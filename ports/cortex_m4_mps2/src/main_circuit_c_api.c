@@ -1,0 +1,136 @@
+/* Circuit C API image: the paper's HST monitor through hstmon_circuit_c.h, from C, as C
+ * firmware would hold it (ports/c_api: hstmon_add_circuit_c_api, paper_circuit +
+ * paper_signatures, one monitor in the library's static pool). Under
+ * `qemu -icount shift=0` it measures (scripts/footprint.sh reports them, not gated):
+ *  - instructions per hstmon_circuit_step() at the steady state of the nominal inputs, the
+ *    generated 5 ms tick, every channel measured with ±σ-sized alternating noise (SysTick
+ *    calibrated on a loop of known length, loop overhead subtracted);
+ *  - the stack below main's frame (painting) over create + reset_steady (the setup's
+ *    steady-state solves and model bound), over the timed steps, and over a fault episode;
+ *  - that episode: p_mi 15 bar above the model for 2 s must be detected (events > 0).
+ * Prints one JSON line {"type":"circuit_c_api",…}; exit status 0 (10–12: setup failed,
+ * 13: the episode raised no event). */
+#include <stdint.h>
+#include <string.h>
+
+#include "hstmon_circuit_c.h"
+#include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/semihosting.h"
+#include "hstmon_mps2/stack_paint.h"
+
+enum { kTicks = 1000, kCalibLoop = 100000 };
+
+static char line[512];
+static volatile uint32_t sink;
+static unsigned pos;
+
+static void put(const char* s) {
+  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
+  line[pos] = '\0';
+}
+
+static void put_uint(const char* key, uint32_t v) {
+  char tmp[12];
+  int n = 0;
+  put(pos > 1u ? ",\"" : "\"");
+  put(key);
+  put("\":");
+  do {
+    tmp[n++] = (char)('0' + (int)(v % 10u));
+    v /= 10u;
+  } while (v != 0u);
+  while (n > 0) {
+    const char c[2] = {tmp[--n], '\0'};
+    put(c);
+  }
+}
+
+__attribute__((noinline)) static uint32_t empty_step(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s) {
+  __asm volatile("" ::"r"(m), "r"(s) : "memory");
+  return 0u;
+}
+
+typedef uint32_t (*step_fn)(hstmon_circuit_monitor*, const hstmon_circuit_sample*);
+
+/* Measurements around base: ±noise alternating (a constant reading is a stuck sensor). */
+static void dither(hstmon_circuit_sample* s, const float* base, const float* noise, int k) {
+  const float d = (k & 1) ? 1.0f : -1.0f;
+  for (int i = 0; i < hstmon_circuit_channels(); ++i) s->y[i] = base[i] + d * noise[i];
+}
+
+__attribute__((noinline)) static uint32_t time_ticks(step_fn f, hstmon_circuit_monitor* m, hstmon_circuit_sample* s,
+                                                     const float* base, const float* noise) {
+  const uint32_t a = cycles_now();
+  for (int k = 0; k < kTicks; ++k) {
+    dither(s, base, noise, k);
+    s->t_s += 0.005f;
+    sink = f(m, s);
+  }
+  return cycles_elapsed(a, cycles_now());
+}
+
+int main(void) {
+  cycles_start();
+  const uint32_t c1 = cycles_known_loop(kCalibLoop);
+  const uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
+  put("{\"type\":\"circuit_c_api\"");
+  put_uint("channels", (uint32_t)hstmon_circuit_channels());
+  put_uint("faults", (uint32_t)hstmon_circuit_faults());
+  put_uint("monitor_bytes", (uint32_t)hstmon_circuit_monitor_size());
+  put_uint("calib_instructions", 2u * kCalibLoop);
+  put_uint("calib_counts", c2 - c1);
+
+  uintptr_t sp_main;
+  __asm volatile("mov %0, sp" : "=r"(sp_main));
+  stack_paint();
+  hstmon_circuit_sample s;
+  memset(&s, 0, sizeof s);
+  hstmon_circuit_nominal_inputs(s.u);
+  hstmon_circuit_monitor* m = 0;
+  if (hstmon_circuit_create(&s, &m, 0) != HSTMON_OK) semihost_exit(10);
+  if (hstmon_circuit_reset_steady(m, s.u) != HSTMON_OK) semihost_exit(11);
+  hstmon_circuit_report r;
+  hstmon_circuit_read(m, &r);
+  const uint32_t stack_setup = (uint32_t)(sp_main - stack_low_water());
+
+  float base[HSTMON_CIRCUIT_MAX_CHANNELS], noise[HSTMON_CIRCUIT_MAX_CHANNELS];
+  for (int i = 0; i < hstmon_circuit_channels(); ++i) {
+    base[i] = r.estimate[i];
+    /* ±0.05 bar on pressures, ±0.5 rpm on speeds: about the paper's sensor σ */
+    noise[i] = base[i] > 1000.0f ? 5000.0f : 0.05f;
+  }
+  s.valid = (uint8_t)((1u << hstmon_circuit_channels()) - 1u);
+  dither(&s, base, noise, 0);
+  sink = hstmon_circuit_step(m, &s); /* the first step: the model bound for the inputs */
+  stack_paint();
+  const uint32_t counts_step = time_ticks(hstmon_circuit_step, m, &s, base, noise);
+  const uint32_t stack_step = (uint32_t)(sp_main - stack_low_water());
+  const uint32_t counts_empty = time_ticks(empty_step, m, &s, base, noise);
+  const uint32_t status_nominal = (uint32_t)hstmon_circuit_match_status(m);
+
+  /* A fault episode: p_mi (channel 1 of paper.json) 15 bar above the model for 2 s. */
+  stack_paint();
+  uint32_t events = 0u;
+  base[1] += 15e5f;
+  for (int k = 0; k < 400; ++k) {
+    dither(&s, base, noise, k);
+    s.t_s += 0.005f;
+    sink = hstmon_circuit_step(m, &s);
+    hstmon_event e;
+    while (hstmon_circuit_pop_event(m, &e)) ++events;
+  }
+  const uint32_t stack_episode = (uint32_t)(sp_main - stack_low_water());
+  hstmon_circuit_read(m, &r);
+  put_uint("ticks", kTicks);
+  put_uint("counts_step_loop", counts_step);
+  put_uint("counts_empty_loop", counts_empty);
+  put_uint("stack_setup_bytes", stack_setup);
+  put_uint("stack_step_bytes", stack_step);
+  put_uint("stack_episode_bytes", stack_episode);
+  put_uint("status_nominal", status_nominal);
+  put_uint("episode_events", events);
+  put_uint("health", r.health);
+  put("}\n");
+  semihost_write0(line);
+  return events > 0u ? 0 : 13;
+}
