@@ -6,6 +6,9 @@
 //   variants: engine_double engine_float   Observer<CircuitModel<T>> on thesis.json, 1 ms
 //             odeint_engine_double odeint_engine_float   Boost.Odeint runge_kutta4, one step
 //                                          per tick, on the same engine model
+//             compiled_double compiled_float   Observer<CompiledModel<T>>, the compiled thesis
+//                                          model (generated/thesis_circuit_compiled.hpp), 1 ms
+//             odeint_compiled_double odeint_compiled_float   runge_kutta4 on the compiled model
 //
 // Exit status 2 on bad usage or a circuit that does not load, 3 if the run left the
 // operating point.
@@ -33,10 +36,10 @@ __attribute__((noinline)) void tick(Sim& sim, const Inputs& u, const Measurement
   sim.step(u, m);
 }
 
-template <typename Sim, typename T>
-__attribute__((noinline)) void run(Sim& sim, const typename hstmon_bench::Engine<T>::Inputs& u0,
-                                   const EngineMeasurements<T>& table, std::uint64_t first, long n) {
-  typename hstmon_bench::Engine<T>::Inputs u = u0;
+template <typename Sim, typename T, typename Inputs>
+__attribute__((noinline)) void run(Sim& sim, const Inputs& u0, const EngineMeasurements<T>& table, std::uint64_t first,
+                                   long n) {
+  Inputs u = u0;
   for (long k = 0; k < n; ++k) {
     hstmon_bench::escape_engine(&u);  // inputs come from outside each tick
     tick(sim, u, table[first + static_cast<std::uint64_t>(k)]);
@@ -44,8 +47,8 @@ __attribute__((noinline)) void run(Sim& sim, const typename hstmon_bench::Engine
   }
 }
 
-template <typename Sim, typename T>
-void measure(Sim& sim, const typename hstmon_bench::Engine<T>::Inputs& u, const EngineMeasurements<T>& table, long n) {
+template <typename Sim, typename T, typename Inputs>
+void measure(Sim& sim, const Inputs& u, const EngineMeasurements<T>& table, long n) {
   run<Sim, T>(sim, u, table, 0, kWarmup);
   CALLGRIND_START_INSTRUMENTATION;
   run<Sim, T>(sim, u, table, kWarmup, n);
@@ -74,6 +77,27 @@ int odeint_engine(const ThesisCircuit& c, long n) {
   return plausible(w) ? 0 : 3;
 }
 
+template <typename T>
+int compiled(long n) {
+  auto sim = hstmon_bench::make_compiled_observer<T>(T(1e-3));
+  const EngineMeasurements<T> table(sim.estimate());
+  measure<decltype(sim), T>(sim, hstmon_bench::compiled_inputs<T>(), table, n);
+  const double w = static_cast<double>(sim.state()[1]);
+  std::printf("ticks=%ld substeps=%d health=0x%x w_m=%.6g\n", n, sim.substeps(), sim.last_health(), w);
+  return sim.last_health() == 0 && plausible(w) ? 0 : 3;
+}
+
+template <typename T>
+int odeint_compiled(long n) {
+  const auto o = hstmon_bench::make_compiled_observer<T>(T(1e-3));
+  hstmon_bench::OdeintEngine<T, hstmon_bench::Compiled<T>> sim(o.model(), o.state(), T(1e-3));
+  const EngineMeasurements<T> table(o.estimate());
+  measure<decltype(sim), T>(sim, hstmon_bench::compiled_inputs<T>(), table, n);
+  const double w = static_cast<double>(sim.state()[1]);
+  std::printf("ticks=%ld rk4_steps=1 w_m=%.6g\n", n, w);
+  return plausible(w) ? 0 : 3;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,6 +117,10 @@ int main(int argc, char** argv) {
     if (std::strcmp(v, "engine_float") == 0) return engine<float>(c, n);
     if (std::strcmp(v, "odeint_engine_double") == 0) return odeint_engine<double>(c, n);
     if (std::strcmp(v, "odeint_engine_float") == 0) return odeint_engine<float>(c, n);
+    if (std::strcmp(v, "compiled_double") == 0) return compiled<double>(n);
+    if (std::strcmp(v, "compiled_float") == 0) return compiled<float>(n);
+    if (std::strcmp(v, "odeint_compiled_double") == 0) return odeint_compiled<double>(n);
+    if (std::strcmp(v, "odeint_compiled_float") == 0) return odeint_compiled<float>(n);
     std::fprintf(stderr, "unknown variant '%s'\n", v);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "hstmon/circuit/engine.hpp"
+#include "hstmon/generated/thesis_circuit_compiled.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 
@@ -94,6 +95,40 @@ EngineObs<T> make_engine_observer(const ThesisCircuit& c, T tick) {
   return o;
 }
 
+/// The compiled thesis model (lib/circuit/include/hstmon/generated/thesis_circuit_compiled.hpp,
+/// what the firmware runs) and its observer at the nominal point, started steady.
+template <typename T>
+using Compiled = hstmon::generated::thesis_circuit::CompiledModel<T>;
+template <typename T>
+using CompiledObs = hstmon::Observer<Compiled<T>, false>;
+
+template <typename T>
+typename Compiled<T>::Params compiled_params() noexcept {
+  namespace gen = hstmon::generated::thesis_circuit;
+  typename Compiled<T>::Params p;
+  for (int i = 0; i < gen::Cap::kParams; ++i) p.v[i] = static_cast<T>(gen::kParams[i]);
+  return p;
+}
+template <typename T>
+typename Compiled<T>::Inputs compiled_inputs() noexcept {
+  namespace gen = hstmon::generated::thesis_circuit;
+  typename Compiled<T>::Inputs u;
+  for (int i = 0; i < gen::Cap::kInputs; ++i) u.v[i] = static_cast<T>(gen::kInputs[i]);
+  return u;
+}
+
+template <typename T>
+CompiledObs<T> make_compiled_observer(T tick) {
+  CompiledObs<T> o;
+  typename CompiledObs<T>::Config cfg;
+  cfg.tick = tick;
+  if (o.configure(hstmon::generated::thesis_circuit::kCircuit, compiled_params<T>(), cfg) != hstmon::Status::kOk ||
+      o.reset_steady(compiled_inputs<T>()) != hstmon::Status::kOk) {
+    throw std::runtime_error("compiled observer: no steady start");
+  }
+  return o;
+}
+
 /// Measurements: the steady outputs with a small deterministic perturbation (as
 /// MeasurementTable), all four channels valid.
 template <typename T>
@@ -119,19 +154,24 @@ struct EngineMeasurements {
 
 /// Boost.Odeint's runge_kutta4 as the observer, one step per tick, on the same engine
 /// model (outputs, residuals, one RK4 step of derivative(); no health checks).
-template <typename T>
+template <typename T, class M = Engine<T>>
 class OdeintEngine {
  public:
   using state_type = std::array<T, 2>;
-  using Model = Engine<T>;
+  using Model = M;
 
+  /// On the interpreting engine, from its observer's steady start.
   OdeintEngine(const ThesisCircuit& c, T tick) : dt_(tick) {
     const EngineObs<T> o = make_engine_observer<T>(c, tick);
     model_ = o.model();
     x_ = {o.state()[0], o.state()[1]};
   }
+  /// On any two-state model (the compiled one), from state x0.
+  OdeintEngine(const Model& model, const typename Model::State& x0, T tick) : model_(model), dt_(tick) {
+    x_ = {x0[0], x0[1]};
+  }
 
-  void step(const typename Model::Inputs& u, const typename EngineObs<T>::Measurement& m) noexcept {
+  void step(const typename Model::Inputs& u, const hstmon::ChannelSample<typename Model::Output>& m) noexcept {
     if (!(u == model_.inputs())) model_.set_inputs(u);
     typename Model::State xs;
     xs << x_[0], x_[1];

@@ -1,6 +1,7 @@
 // hstmon-circuit-header: writes a circuit (file + parameter file) as a C++ header for
-// firmware (circuit_header.hpp says what is in it).
-//   hstmon-circuit-header CIRCUIT.json [--params P.json] [--tick S] [--name NS] --out FILE
+// firmware (circuit_header.hpp says what is in it); with --compiled, the compiled model of
+// that circuit (straight-line code for its topology, next to the header <NS>.hpp).
+//   hstmon-circuit-header CIRCUIT.json [--params P.json] [--tick S] [--name NS] [--compiled] --out FILE
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -17,7 +18,8 @@ std::string base_name(const std::string& p) {
 }
 
 int usage() {
-  std::fputs("usage: hstmon-circuit-header CIRCUIT.json [--params P.json] [--tick S] [--name NS] --out FILE\n", stderr);
+  std::fputs("usage: hstmon-circuit-header CIRCUIT.json [--params P.json] [--tick S] [--name NS] [--compiled] --out FILE\n"
+      "  --compiled  write the compiled model (<NS>_compiled.hpp, includes <NS>.hpp) instead\n", stderr);
   return 2;
 }
 
@@ -25,6 +27,7 @@ int usage() {
 
 int main(int argc, char** argv) {
   std::string circuit, params, out;
+  bool compiled = false;
   hstmon::circuit_tools::CircuitHeaderOptions o;
   o.name = "circuit";
   for (int i = 1; i < argc; ++i) {
@@ -36,6 +39,8 @@ int main(int argc, char** argv) {
       o.tick = std::strtod(argv[++i], nullptr);
     } else if (a == "--name" && has_value) {
       o.name = argv[++i];
+    } else if (a == "--compiled") {
+      compiled = true;
     } else if (a == "--out" && has_value) {
       out = argv[++i];
     } else if (!a.empty() && a[0] != '-' && circuit.empty()) {
@@ -52,7 +57,8 @@ int main(int argc, char** argv) {
   }
   o.source_note = base_name(circuit) + (c.params_path.empty() ? "" : " + " + base_name(c.params_path));
   std::string error;
-  const std::string text = hstmon::circuit_tools::circuit_header(c, o, error);
+  const std::string text = compiled ? hstmon::circuit_tools::circuit_compiled_header(c, o, error)
+                                    : hstmon::circuit_tools::circuit_header(c, o, error);
   if (text.empty()) {
     std::fprintf(stderr, "hstmon-circuit-header: %s\n", error.c_str());
     return 1;

@@ -7,6 +7,7 @@
 #include "hstmon/generated/paper_signatures.hpp"
 #include "hstmon/generated/test_stand_signatures.hpp"
 #include "hstmon/generated/thesis_circuit.hpp"
+#include "hstmon/generated/thesis_circuit_compiled.hpp"
 #include "hstmon/observer.hpp"
 
 namespace hstmon::circuit {
@@ -16,6 +17,9 @@ template class CircuitModel<double, HostCapacity>;
 template class CircuitModel<float, FirmwareThesisCap>;
 // The firmware's own: thesis.json's generated header, its tight capacity.
 template class CircuitModel<float, generated::thesis_circuit::Cap>;
+// Its compiled model (hstmon-circuit-header --compiled), what the firmware images run.
+template class CompiledModel<float, generated::thesis_circuit::Kernel>;
+template class CompiledModel<double, generated::thesis_circuit::Kernel>;
 template std::uint32_t auto_stiff_mask<float, HostCapacity>(const Circuit<HostCapacity>&,
                                                            const CircuitModel<float, HostCapacity>::Params&,
                                                            const CircuitModel<float, HostCapacity>::Inputs&, float,

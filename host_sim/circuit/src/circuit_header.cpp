@@ -82,13 +82,16 @@ std::string list(int n, F f, int pad = 0, const char* zero = "0.0") {
 
 }  // namespace
 
+host::HostCircuit header_description(const LoadedCircuit& c, double tick, int* states) {
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, tick, 8.0, states);
+  return desc;
+}
+
 std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error) {
   error.clear();
   const host::CircuitFile& f = c.file;
-  host::HostCircuit desc = f.circuit;
-  int states = 0;
-  desc.stiff_mask =
-      circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, o.tick, 8.0, &states);
+  const host::HostCircuit desc = header_description(c, o.tick);
   const host::HostCircuitModel check(desc, c.values.params, c.values.inputs);
   if (check.error() != circuit::CircuitError::kOk || !check.valid()) {
     error = "circuit " + f.name + ": its values do not make a physical circuit";

@@ -9,6 +9,11 @@
 /// Another circuit: generate its header into an include directory and build with
 /// HSTMON_FW_CIRCUIT=<name> (the header <name>.hpp, namespace hstmon::generated::<name>;
 /// CMake cache variable HSTMON_FW_CIRCUIT, docs/firmware.md).
+///
+/// With HSTMON_FW_COMPILED=1 the model is the circuit's compiled model instead (the header
+/// <name>_compiled.hpp from `hstmon-circuit-header --compiled`, circuit::CompiledModel): the
+/// same numbers as the interpreter bit for bit, at a fraction of the instructions per tick
+/// (docs/circuits.md, "Compiled circuits"). The footprint and replay images use it.
 
 #include <cstdint>
 
@@ -19,17 +24,31 @@
 #ifndef HSTMON_FW_CIRCUIT
 #define HSTMON_FW_CIRCUIT thesis_circuit
 #endif
+#ifndef HSTMON_FW_COMPILED
+#define HSTMON_FW_COMPILED 0
+#endif
 #define HSTMON_FW_STR2(x) #x
 #define HSTMON_FW_STR(x) HSTMON_FW_STR2(x)
+#define HSTMON_FW_CAT2(a, b) a##b
+#define HSTMON_FW_CAT(a, b) HSTMON_FW_CAT2(a, b)
+#if HSTMON_FW_COMPILED
+#include HSTMON_FW_STR(hstmon/generated/HSTMON_FW_CAT(HSTMON_FW_CIRCUIT, _compiled).hpp)
+#else
 #include HSTMON_FW_STR(hstmon/generated/HSTMON_FW_CIRCUIT.hpp)
+#endif
 
 namespace hstmon::fw {
 
 /// The generated circuit's namespace (description, capacity, values).
 namespace gen = ::hstmon::generated::HSTMON_FW_CIRCUIT;
 
-/// The engine's model of the generated circuit, in float, sized by its tight capacity.
+/// The engine's model of the generated circuit, in float, sized by its tight capacity:
+/// compiled (HSTMON_FW_COMPILED) or interpreted.
+#if HSTMON_FW_COMPILED
+using CircuitFwModel = gen::CompiledModel<float>;
+#else
 using CircuitFwModel = circuit::CircuitModel<float, gen::Cap>;
+#endif
 /// The observer on it (the engine has no fused usual tick).
 using CircuitFwObserver = Observer<CircuitFwModel>;
 

@@ -25,4 +25,17 @@ struct CircuitHeaderOptions {
 /// @return "" with `error` set when the circuit has no valid description at these values
 std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error);
 
+/// The description the header holds: the file's, with the stiff mask
+/// circuit::auto_stiff_mask<double> picks at the tick (states: how many states that leaves).
+host::HostCircuit header_description(const LoadedCircuit& c, double tick, int* states = nullptr);
+
+/// The compiled model's header (`hstmon-circuit-header --compiled`): for the circuit of
+/// circuit_header() with the same options, a Kernel of straight-line code — the stiff
+/// nodes' balances and their Gauss–Seidel × Newton solve, the states' rates, the outputs
+/// and the unknowns' Jacobian — and `CompiledModel<T>` = circuit::CompiledModel<T, Kernel>
+/// (lib/circuit compiled_model.hpp), added to the namespace hstmon::generated::<name> of
+/// the header <name>.hpp, which it includes. Deterministic.
+/// @return "" with `error` set when the circuit has no valid description at these values
+std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error);
+
 }  // namespace hstmon::circuit_tools

@@ -28,6 +28,7 @@
 #include "hstmon/circuit/dense.hpp"
 #include "hstmon/circuit/laws.hpp"
 #include "hstmon/circuit/pseudo_transient.hpp"
+#include "hstmon/circuit/quasi_steady.hpp"
 #include "hstmon/circuit/validate.hpp"
 #include "hstmon/pump_curve.hpp"
 
@@ -70,8 +71,8 @@ class CircuitModel {
   };
 
   /// Gauss–Seidel sweeps and Newton iterations per node before a solve is declared failed.
-  static constexpr int kMaxSweeps = 40;
-  static constexpr int kMaxNewton = 60;
+  static constexpr int kMaxSweeps = circuit::kMaxSweeps;
+  static constexpr int kMaxNewton = circuit::kMaxNewton;
   /// Laminar transition of an orifice or poppet when the circuit does not give one [Pa].
   static constexpr double kDefaultDpT = 1e3;
 
@@ -190,6 +191,11 @@ class CircuitModel {
   T pressure_envelope() const noexcept { return p_env_; }  ///< [Pa]
   T speed_envelope() const noexcept { return w_env_; }     ///< [rad/s]
   const Coeffs<T>& coeffs(int e) const noexcept { return coef_[e]; }
+  /// Entry k of the full vector that no state sets: a boundary's pressure [Pa], a driven
+  /// shaft's speed [rad/s], else 0 (after the last set_inputs).
+  T fixed_value(int k) const noexcept { return fixed_z_[k]; }
+  /// Pressure of the j-th stiff node the next quasi-steady solve starts from [Pa].
+  T warm_start(int j) const noexcept { return guess_[j]; }
 
   /// Full vector z at state x: node pressures (boundaries, states, stiff nodes solved)
   /// then shaft speeds (states, driven).
@@ -678,72 +684,26 @@ class CircuitModel {
     return F;
   }
 
-  /// Solves node i's balance for z[i], the other entries held: Newton, kept inside the
-  /// bracket the signs of the balance have established, with a bisection whenever a
-  /// Newton step would leave it or would not halve the step before last (a root law makes
-  /// Newton cycle across zero flow otherwise), and a widening search while the balance is
-  /// flat (valves shut).
+  /// Solves node i's balance for z[i], the other entries held (quasi_steady.hpp's
+  /// safeguarded Newton).
   bool solve_node(int i, T (&z)[kExtent<kZ>]) const noexcept {
-    const T eps = std::numeric_limits<T>::epsilon();
-    const T floor = T(1e-6) * p_env_;
-    const T inf = std::numeric_limits<T>::infinity();
-    T p = z[i];
-    T lo = -inf, hi = inf;
-    T dx_old = inf, dx = inf;
-    for (int it = 0; it < kMaxNewton; ++it) {
+    return solve_node_newton(z[i], p_env_, [&](T p, T& dF) {
       z[i] = p;
-      T dF;
-      const T F = node_balance(i, z, dF);
-      if (F == T(0)) return true;
-      if (!(F == F)) return false;
-      if (F > T(0)) {
-        lo = p;
-      } else {
-        hi = p;
-      }
-      const bool bracketed = lo > -inf && hi < inf;
-      const T newton = dF < T(0) ? p - F / dF : std::numeric_limits<T>::quiet_NaN();
-      T p_new;
-      if (bracketed && (!(newton > lo && newton < hi) || std::fabs(T(2) * F) > std::fabs(dx_old * dF))) {
-        p_new = T(0.5) * (lo + hi);
-      } else if (newton == newton) {
-        p_new = newton;
-      } else {
-        p_new = p + (F > T(0) ? T(1) : T(-1)) * (std::fabs(p) + T(0.01) * p_env_);
-      }
-      dx_old = dx;
-      dx = p_new - p;
-      p = p_new;
-      if (std::fabs(dx) <= T(8) * eps * (std::fabs(p) + floor)) {
-        z[i] = p;
-        return true;
-      }
-    }
-    z[i] = p;
-    return false;
+      return node_balance(i, z, dF);
+    });
   }
 
   /// The quasi-steady solve: Gauss–Seidel sweeps over the stiff nodes from the last
-  /// solution until a sweep moves no pressure by more than 16ε relative.
+  /// solution (quasi_steady.hpp), kept as the next start when it converged.
   bool solve_stiff(T (&z)[kExtent<kZ>]) const noexcept {
     if (n_stiff_ == 0) return true;
     for (int j = 0; j < n_stiff_; ++j) z[stiff_[j]] = guess_[j];
-    const T eps = std::numeric_limits<T>::epsilon();
-    const T floor = T(1e-6) * p_env_;
-    bool conv = false;
-    for (int sweep = 0; sweep < kMaxSweeps && !conv; ++sweep) {
-      T change = T(0);
-      bool ok = true;
+    const bool conv = gauss_seidel(p_env_, stiff_coupled_, [&](Sweep<T>& w) {
       for (int j = 0; j < n_stiff_; ++j) {
         const int i = stiff_[j];
-        const T before = z[i];
-        ok = solve_node(i, z) && ok;
-        change = std::fmax(change, std::fabs(z[i] - before) / (std::fabs(z[i]) + floor));
+        w.node(z[i], [&] { return solve_node(i, z); });
       }
-      if (!ok) break;
-      // Uncoupled stiff nodes are exact after one sweep.
-      conv = !stiff_coupled_ || change <= T(16) * eps;
-    }
+    });
     if (conv) {
       for (int j = 0; j < n_stiff_; ++j) guess_[j] = z[stiff_[j]];
     }
@@ -810,42 +770,9 @@ class CircuitModel {
     // place on the stiff rows (G_aa, G_ax), which nothing reads afterwards: firmware stack.
     T G[kExtent<kU>][kExtent<kU>];
     unknowns_jacobian(z, G);
-    q = T(0);
-    const int n = n_states_;
-    const int m = n_stiff_;
-    const std::uint8_t* ia = stiff_u_;  // stiff node a's row/column in G
-    const std::uint8_t* ix = state_u_;  // state s's row/column in G
-    for (int a = 0; a < m; ++a) {
-      T off = T(0);
-      for (int b = 0; b < m; ++b) {
-        if (b != a) off += std::fabs(G[ia[a]][ia[b]]);
-      }
-      q = std::fmax(q, off / std::fabs(G[ia[a]][ia[a]]));
-    }
-    for (int k = 0; k < m; ++k) {
-      const T inv = T(1) / G[ia[k]][ia[k]];
-      for (int r = k + 1; r < m; ++r) {
-        const T f = G[ia[r]][ia[k]] * inv;
-        if (f == T(0)) continue;
-        for (int c = k + 1; c < m; ++c) G[ia[r]][ia[c]] -= f * G[ia[k]][ia[c]];
-        for (int s = 0; s < n; ++s) G[ia[r]][ix[s]] -= f * G[ia[k]][ix[s]];
-      }
-    }
-    for (int k = m - 1; k >= 0; --k) {
-      for (int s = 0; s < n; ++s) {
-        T v = G[ia[k]][ix[s]];
-        for (int c = k + 1; c < m; ++c) v -= G[ia[k]][ia[c]] * G[ia[c]][ix[s]];
-        G[ia[k]][ix[s]] = v / G[ia[k]][ia[k]];
-      }
-    }
-    for (int r = 0; r < n; ++r) {
-      const int zr = z_of_state_[r];
-      for (int s = 0; s < n; ++s) {
-        T v = G[ix[r]][ix[s]];
-        for (int a = 0; a < m; ++a) v -= G[ix[r]][ia[a]] * G[ia[a]][ix[s]];
-        jr[r][s] = inv_mass_[zr] * v;
-      }
-    }
+    T inv_mass[kExtent<kStates>] = {};
+    for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];
+    schur_reduce(G, stiff_u_, n_stiff_, state_u_, n_states_, inv_mass, jr, q);
   }
 
   const Description* c_ = nullptr;

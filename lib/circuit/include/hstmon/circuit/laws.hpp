@@ -47,67 +47,104 @@ constexpr bool has_shaft(ElementKind k) noexcept {
   return k == ElementKind::kMachine || k == ElementKind::kTorque || k == ElementKind::kFriction;
 }
 
-/// Flow of one element at port pressures pa, pb [Pa] and shaft speed w [rad/s].
+// Each law writes its flow and slopes into f, which the caller has value-initialised (a
+// law leaves the slopes it does not have at 0): one Flow object for a switch over kinds.
+
+/// Orifice: Q = c0·sq(pa − pb) [m³/s], sq the regularised signed root.
+template <typename T>
+inline void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+  T s;
+  f.q = k.c[0] * signed_root(pa - pb, k.c[1], s);
+  f.dpa = k.c[0] * s;
+  f.dpb = -f.dpa;
+}
+
+/// Poppet (relief or check valve): the orifice law through an opening that rises
+/// linearly from the cracking to the full-open pressure difference [m³/s].
+template <typename T>
+inline void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+  const T* c = k.c;
+  const T dp = pa - pb;
+  if (dp > c[2]) {
+    const T x_raw = (dp - c[2]) * c[3];
+    const bool full = x_raw >= T(1);
+    const T x = full ? T(1) : x_raw;
+    T s;
+    const T r = signed_root(dp, c[1], s);
+    f.q = c[0] * x * r;
+    f.dpa = c[0] * (x * s + (full ? T(0) : c[3] * r));
+    f.dpb = -f.dpa;
+  }
+}
+
+/// Laminar leakage: Q = (pa − pb)/R [m³/s].
+template <typename T>
+inline void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+  f.q = k.c[0] * (pa - pb);
+  f.dpa = k.c[0];
+  f.dpb = -k.c[0];
+}
+
+/// Flow source: Q = q whatever the pressures [m³/s].
+template <typename T>
+inline void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
+  f.q = k.c[0];
+}
+
+/// Pump or motor: Q = ε·D·ω [m³/s].
+template <typename T>
+inline void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
+  f.q = k.c[0] * w;
+  f.dw = k.c[0];
+}
+
+/// Pressure-compensated pump: delivery from a (suction) to b at the pressure rise
+/// pb − pa, pump_curve.hpp's three-region law [m³/s].
+template <typename T>
+inline void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+  const T* c = k.c;
+  const T P = pb - pa;
+  T q, s;
+  if (P <= c[2]) {
+    q = c[0] + c[1] * P;
+    s = c[1];
+  } else if (P <= c[3]) {
+    const T e = P - c[2];
+    q = c[4] + c[1] * e - c[5] * e * e;
+    s = c[1] - T(2) * c[5] * e;
+  } else {
+    q = c[6] + c[7] * (P - c[3]);
+    s = c[7];
+  }
+  f.q = q;
+  f.dpb = s;
+  f.dpa = -s;
+}
+
+/// Flow of one element at port pressures pa, pb [Pa] and shaft speed w [rad/s]: the
+/// kind's law above (the compiled models call those directly).
 template <typename T>
 inline Flow<T> element_flow(ElementKind kind, const Coeffs<T>& k, T pa, T pb, T w) noexcept {
   Flow<T> f;
-  const T* c = k.c;
   switch (kind) {
-    case ElementKind::kOrifice: {
-      T s;
-      f.q = c[0] * signed_root(pa - pb, c[1], s);
-      f.dpa = c[0] * s;
-      f.dpb = -f.dpa;
+    case ElementKind::kOrifice:
+      orifice_flow(k, pa, pb, f);
       break;
-    }
-    case ElementKind::kPoppet: {
-      const T dp = pa - pb;
-      if (dp > c[2]) {
-        // Opening x rises linearly from the cracking to the full-open difference; the
-        // flow through the opening is the orifice law.
-        const T x_raw = (dp - c[2]) * c[3];
-        const bool full = x_raw >= T(1);
-        const T x = full ? T(1) : x_raw;
-        T s;
-        const T r = signed_root(dp, c[1], s);
-        f.q = c[0] * x * r;
-        f.dpa = c[0] * (x * s + (full ? T(0) : c[3] * r));
-        f.dpb = -f.dpa;
-      }
+    case ElementKind::kPoppet:
+      poppet_flow(k, pa, pb, f);
       break;
-    }
     case ElementKind::kLaminar:
-      f.q = c[0] * (pa - pb);
-      f.dpa = c[0];
-      f.dpb = -c[0];
+      laminar_flow(k, pa, pb, f);
       break;
     case ElementKind::kFlowSource:
-      f.q = c[0];
+      source_flow(k, f);
       break;
     case ElementKind::kMachine:
-      f.q = c[0] * w;
-      f.dw = c[0];
+      machine_flow(k, w, f);
       break;
-    case ElementKind::kCompPump: {
-      // Delivery from a (suction) to b at the pressure rise pb − pa; pump_curve.hpp's law.
-      const T P = pb - pa;
-      T q, s;
-      if (P <= c[2]) {
-        q = c[0] + c[1] * P;
-        s = c[1];
-      } else if (P <= c[3]) {
-        const T e = P - c[2];
-        q = c[4] + c[1] * e - c[5] * e * e;
-        s = c[1] - T(2) * c[5] * e;
-      } else {
-        q = c[6] + c[7] * (P - c[3]);
-        s = c[7];
-      }
-      f.q = q;
-      f.dpb = s;
-      f.dpa = -s;
+    case ElementKind::kCompPump:
+      comp_pump_flow(k, pa, pb, f);
       break;
-    }
     case ElementKind::kTorque:
     case ElementKind::kFriction:
       break;

@@ -39,9 +39,10 @@ struct PtcConfig {
 template <typename T, std::size_t N, typename Eval>
 bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n, T (&u)[N],
                       const PtcConfig<T>& cfg = PtcConfig<T>{}) noexcept {
-  // The Newton matrix is built in J's storage: J is evaluated afresh at the top of every
-  // iteration, so one N × N array serves both (firmware stack).
-  T g[N], J[N][N], d[N], u_prev[N]{};  // u_prev zeroed: GCC cannot see it is set before use
+  // The Newton matrix is built in J's storage and the step in g's: both are evaluated
+  // afresh at the top of every iteration, so one array serves each pair (firmware stack).
+  T g[N], J[N][N], u_prev[N]{};  // u_prev zeroed: GCC cannot see it is set before use
+  T(&d)[N] = g;
   T dt = cfg.dt0;
   T prev_norm = T(-1);
   const T tol = T(64) * std::numeric_limits<T>::epsilon();
@@ -77,7 +78,6 @@ bool pseudo_transient(Eval& eval, const T (&mass)[N], const T (&scale)[N], int n
     for (int r = 0; r < n; ++r) {
       for (int c = 0; c < n; ++c) J[r][c] = -J[r][c];
       J[r][r] += mass[r] / dt;
-      d[r] = g[r];
     }
     if (!solve_dense(J, d, n)) {
       dt *= T(0.1);

@@ -1,0 +1,195 @@
+#pragma once
+/// @file compiled_model.hpp
+/// A circuit compiled at build time as the Observer's model: the hot path (quasi-steady
+/// solve, rates, outputs, reduced Jacobian) is straight-line code generated for one
+/// circuit's topology (`hstmon-circuit-header --compiled`, the Kernel), calling the same
+/// law functions (laws.hpp) and the same solve and reduction (quasi_steady.hpp) as the
+/// interpreting CircuitModel — so the results are the interpreter's bit for bit — without
+/// its per-element kind switches, index loads and Ref lookups (docs/circuits.md,
+/// "Compiled circuits"). Everything off the hot path (resolving the values on set_params
+/// and set_inputs, rest and steady state, plausibility, channels) is the interpreter's,
+/// held inside: one place for the physics.
+///
+/// No heap, no exceptions, no RTTI. The warm start of the quasi-steady solve is state, so a
+/// model must not be evaluated from two threads at once.
+///
+/// A Kernel (generated) provides: Cap; description() (the constexpr Circuit<Cap>); kZ
+/// (nodes + shafts), kN (states), kM (stiff nodes), kU (unknowns); kStateU[kN], kStiffU[kM]
+/// (rows of the unknowns' Jacobian) and kStateZ[kN], kStiffZ[kM] (full-vector entries); and,
+/// templated on the engine type M, fill(m, x, z), solve_stiff(m, z, guess) → converged,
+/// rates(m, z, d), outputs(m, z, y), unknowns_jacobian(m, z, G) (nonzeros only, onto a
+/// zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp schur_reduce, unrolled for
+/// G's structure).
+
+#include "hstmon/circuit/circuit_model.hpp"
+#include "hstmon/circuit/dense.hpp"
+#include "hstmon/circuit/quasi_steady.hpp"
+
+namespace hstmon::circuit {
+
+template <typename T, class Kernel>
+class CompiledModel {
+ public:
+  using Cap = typename Kernel::Cap;
+  /// The interpreter this model holds for everything off the hot path.
+  using Engine = CircuitModel<T, Cap>;
+  using Scalar = T;
+  using Description = Circuit<Cap>;
+  using Params = typename Engine::Params;
+  using Inputs = typename Engine::Inputs;
+  using State = typename Engine::State;
+  using Output = typename Engine::Output;
+  using StateMatrix = typename Engine::StateMatrix;
+  static constexpr int kStates = Engine::kStates;
+  static constexpr int kOutputs = Engine::kOutputs;
+  static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
+  static_assert(Kernel::kZ == Cap::kNodes + Cap::kShafts, "the kernel's full vector is the capacity's");
+
+  /// Unbound (no states, no outputs) until bind(), set_params() or the constructor below.
+  CompiledModel() noexcept = default;
+
+  /// Bound to the kernel's circuit, with values p and inputs u.
+  explicit CompiledModel(const Params& p, const Inputs& u = Inputs{}) noexcept : engine_(Kernel::description(), p, u) {
+    sync();
+  }
+
+  /// Binds the kernel's own circuit (the Observer's configure(d, p, cfg) calls it).
+  /// @param d  must be Kernel::description(): the code was generated for that circuit
+  /// @return kOk, the description's structural error, or kUnbound for another description
+  CircuitError bind(const Description& d) noexcept {
+    if (&d != &Kernel::description()) return CircuitError::kUnbound;
+    const CircuitError e = engine_.bind(d);
+    sync();
+    return e;
+  }
+
+  static bool params_valid(const Params& p) noexcept { return Engine::params_valid(p); }
+  static bool inputs_valid(const Inputs& u) noexcept { return Engine::inputs_valid(u); }
+
+  /// Replaces the parameter values (CircuitModel::set_params), binding the kernel's circuit
+  /// first if unbound (so Observer::configure(p, cfg) works too). O(elements).
+  void set_params(const Params& p) noexcept {
+    if (engine_.description() == nullptr) (void)engine_.bind(Kernel::description());
+    engine_.set_params(p);
+    sync();
+  }
+  /// Sets the inputs held over the next evaluations (CircuitModel::set_inputs); the
+  /// quasi-steady solve restarts from the rest state. O(elements).
+  void set_inputs(const Inputs& u) noexcept {
+    engine_.set_inputs(u);
+    sync();
+  }
+
+  const Params& params() const noexcept { return engine_.params(); }
+  const Inputs& inputs() const noexcept { return engine_.inputs(); }
+  /// The interpreter inside (resolved coefficients, envelope, bounds).
+  const Engine& engine() const noexcept { return engine_; }
+  bool valid() const noexcept { return engine_.valid(); }
+  int n_states() const noexcept { return engine_.n_states(); }
+  int n_stiff() const noexcept { return engine_.n_stiff(); }
+  int n_outputs() const noexcept { return engine_.n_outputs(); }
+  int state_channel(int s) const noexcept { return engine_.state_channel(s); }
+  bool state_plausible(const State& x) const noexcept { return engine_.state_plausible(x); }
+  State rest_state() const noexcept { return engine_.rest_state(); }
+
+  /// CircuitModel::steady_state; the quasi-steady solve then starts from it.
+  bool steady_state(State& x) const noexcept {
+    if (!engine_.steady_state(x)) return false;
+    for (int j = 0; j < Kernel::kM; ++j) guess_[j] = engine_.warm_start(j);
+    return true;
+  }
+
+  /// Time derivative of the states [Pa/s, rad/s²] and, if y is given, the outputs.
+  State derivative(const State& x, Output* y = nullptr) const noexcept {
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    (void)solve(z);
+    if (y != nullptr) *y = outputs_at(z);
+    return rates(z);
+  }
+
+  /// CircuitModel::tick_derivative, compiled: rho from the reduced Jacobian's bound
+  /// (dense.hpp radius_bound: its first, cheapest bound decides when it is ≤ rho_max).
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    const bool conv = solve(z);
+    y = outputs_at(z);
+    T jr[kExtent<kStates>][kExtent<kStates>];
+    T q = T(0);
+    reduced_jacobian(z, jr, q);
+    rho = radius_bound(jr, Kernel::kN, rho_max);
+    alg_ok = conv && q < T(0.5);
+    return rates(z);
+  }
+
+  /// Outputs at x: what each channel measures, in SI units.
+  HSTMON_CIRCUIT_NOINLINE Output outputs(const State& x) const noexcept {
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    (void)solve(z);
+    return outputs_at(z);
+  }
+
+  /// Jacobian ∂f/∂x at x (CircuitModel::jacobian) [1/s in state units].
+  void jacobian(const State& x, StateMatrix& J) const noexcept {
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    (void)solve(z);
+    T jr[kExtent<kStates>][kExtent<kStates>];
+    T q;
+    reduced_jacobian(z, jr, q);
+    J.setZero();
+    for (int r = 0; r < Kernel::kN; ++r) {
+      for (int c = 0; c < Kernel::kN; ++c) J(r, c) = jr[r][c];
+    }
+  }
+
+  /// Spectral radius of ∂f/∂x at x (tick_derivative's rho with rho_max = 0) [1/s].
+  T spectral_radius(const State& x) const noexcept {
+    Output y;
+    T rho;
+    bool ok;
+    (void)tick_derivative(x, T(0), y, rho, ok);
+    return rho;
+  }
+
+ private:
+  /// The warm start and the states' inverse masses from the engine (after it resolved).
+  void sync() noexcept {
+    for (int j = 0; j < Kernel::kM; ++j) guess_[j] = engine_.warm_start(j);
+    for (int r = 0; r < Kernel::kN; ++r) inv_mass_[r] = engine_.node_stiffness(Kernel::kStateZ[r]);
+  }
+
+  bool solve(T (&z)[kExtent<Kernel::kZ>]) const noexcept {
+    if constexpr (Kernel::kM == 0) {
+      return true;
+    } else {
+      return Kernel::solve_stiff(engine_, z, guess_);
+    }
+  }
+
+  State rates(const T (&z)[kExtent<Kernel::kZ>]) const noexcept {
+    State d = State::Zero();
+    Kernel::rates(engine_, z, d);
+    return d;
+  }
+
+  Output outputs_at(const T (&z)[kExtent<Kernel::kZ>]) const noexcept {
+    Output y = Output::Zero();
+    Kernel::outputs(engine_, z, y);
+    return y;
+  }
+
+  void reduced_jacobian(const T (&z)[kExtent<Kernel::kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
+    T G[kExtent<Kernel::kU>][kExtent<Kernel::kU>] = {};
+    Kernel::unknowns_jacobian(engine_, z, G);
+    Kernel::schur(G, inv_mass_, jr, q);
+  }
+
+  Engine engine_{};
+  T inv_mass_[kExtent<Kernel::kN>]{};  ///< K [Pa/m³] or 1/J of each state
+  mutable T guess_[kExtent<(Kernel::kM > 0 ? Kernel::kM : 1)>]{};  ///< last quasi-steady pressures [Pa]
+};
+
+}  // namespace hstmon::circuit

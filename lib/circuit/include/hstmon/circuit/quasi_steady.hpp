@@ -1,0 +1,162 @@
+#pragma once
+/// @file quasi_steady.hpp
+/// The quasi-steady solve of stiff nodes and the Schur reduction of their Jacobian block,
+/// written once for the interpreting CircuitModel (run-time loops over index lists) and the
+/// compiled models that hstmon-circuit-header --compiled generates (straight-line node
+/// balances passed in as callables): the same iterations, the same convergence tests, the
+/// same rounding. No heap, no exceptions.
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+/// Inlined into the caller even at -O2's limits: a compiled model's node solves, sweeps
+/// and Jacobian become one straight-line function with the full vector in registers.
+/// HSTMON_CIRCUIT_NOINLINE keeps an evaluation out of its callers, so that the caller's
+/// frame does not carry the evaluation's (firmware stack: frames on one path add up).
+#if defined(__GNUC__)
+#define HSTMON_CIRCUIT_INLINE inline __attribute__((always_inline))
+#define HSTMON_CIRCUIT_NOINLINE __attribute__((noinline))
+#else
+#define HSTMON_CIRCUIT_INLINE inline
+#define HSTMON_CIRCUIT_NOINLINE
+#endif
+
+namespace hstmon::circuit {
+
+/// Gauss–Seidel sweeps and Newton iterations per node before a solve is declared failed.
+inline constexpr int kMaxSweeps = 40;
+inline constexpr int kMaxNewton = 60;
+
+/// Solves one node's balance F(p) = 0 for its pressure p [Pa], the other pressures held:
+/// Newton, kept inside the bracket the signs of the balance have established, with a
+/// bisection whenever a Newton step would leave it or would not halve the step before last
+/// (a root law makes Newton cycle across zero flow otherwise), and a widening search while
+/// the balance is flat (valves shut).
+/// @param p        in: the start; out: the solution (or the last iterate) [Pa]
+/// @param p_env    the circuit's pressure envelope [Pa] (scales the tests)
+/// @param balance  F = balance(p, dF): net inflow [m³/s] at p with the other pressures
+///                 held, dF its slope by p (≤ 0); it must leave the node at p (z[i] = p)
+/// @return true when converged (a step below 8ε relative, or F exactly 0)
+template <typename T, class Balance>
+HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance) noexcept {
+  const T eps = std::numeric_limits<T>::epsilon();
+  const T floor = T(1e-6) * p_env;
+  const T inf = std::numeric_limits<T>::infinity();
+  T p = p_io;
+  T lo = -inf, hi = inf;
+  T dx_old = inf, dx = inf;
+  for (int it = 0; it < kMaxNewton; ++it) {
+    T dF;
+    const T F = balance(p, dF);
+    if (F == T(0)) return true;
+    if (!(F == F)) return false;
+    if (F > T(0)) {
+      lo = p;
+    } else {
+      hi = p;
+    }
+    const bool bracketed = lo > -inf && hi < inf;
+    const T newton = dF < T(0) ? p - F / dF : std::numeric_limits<T>::quiet_NaN();
+    T p_new;
+    if (bracketed && (!(newton > lo && newton < hi) || std::fabs(T(2) * F) > std::fabs(dx_old * dF))) {
+      p_new = T(0.5) * (lo + hi);
+    } else if (newton == newton) {
+      p_new = newton;
+    } else {
+      p_new = p + (F > T(0) ? T(1) : T(-1)) * (std::fabs(p) + T(0.01) * p_env);
+    }
+    dx_old = dx;
+    dx = p_new - p;
+    p = p_new;
+    if (std::fabs(dx) <= T(8) * eps * (std::fabs(p) + floor)) {
+      p_io = p;
+      return true;
+    }
+  }
+  p_io = p;
+  return false;
+}
+
+/// One Gauss–Seidel sweep's bookkeeping: whether every node solve converged and the
+/// largest relative move of a pressure.
+template <typename T>
+struct Sweep {
+  T floor{};      ///< 1e-6 of the pressure envelope [Pa]: the relative test's floor
+  T change{};     ///< largest |Δp|/(|p| + floor) of the sweep [-]
+  bool ok = true;  ///< every node solve converged
+
+  /// Solves one node (solve() updates p, its pressure, and says if it converged) and
+  /// records the move.
+  template <class Solve>
+  HSTMON_CIRCUIT_INLINE void node(T& p, Solve&& solve) noexcept {
+    const T before = p;
+    ok = solve() && ok;
+    change = std::fmax(change, std::fabs(p - before) / (std::fabs(p) + floor));
+  }
+};
+
+/// The quasi-steady solve: Gauss–Seidel sweeps (sweep(Sweep<T>&) solves every stiff node
+/// once, in order, through Sweep::node) until a sweep moves no pressure by more than 16ε
+/// relative, or after one sweep when no two stiff nodes are connected (each is then exact).
+/// @return true when converged within kMaxSweeps with every node solve converged
+template <typename T, class SweepFn>
+HSTMON_CIRCUIT_INLINE bool gauss_seidel(T p_env, bool coupled, SweepFn&& sweep) noexcept {
+  const T eps = std::numeric_limits<T>::epsilon();
+  bool conv = false;
+  for (int s = 0; s < kMaxSweeps && !conv; ++s) {
+    Sweep<T> w;
+    w.floor = T(1e-6) * p_env;
+    sweep(w);
+    if (!w.ok) break;
+    conv = !coupled || w.change <= T(16) * eps;
+  }
+  return conv;
+}
+
+/// Reduced Jacobian jr = M⁻¹(G_xx − G_xa·G_aa⁻¹·G_ax) (a: the m stiff nodes, x: the n states)
+/// from the unknowns' Jacobian G, and the local contraction factor q of the stiff block
+/// (the largest Σ_{b≠a}|G_ab|/|G_aa|). G_aa is strictly diagonally dominant wherever the
+/// solve contracts, so it is eliminated without pivoting, in place on the stiff rows.
+/// @param G         unknowns' Jacobian [m³/(s·Pa), N·m/Pa, …]; its stiff rows are destroyed
+/// @param ia, ix    row/column of stiff node a and of state s in G
+/// @param inv_mass  K [Pa/m³] or 1/J of state s's row
+/// @param jr        out: the n × n reduced Jacobian [1/s in state units]
+/// @param q         out: the contraction factor [-]
+template <typename T, std::size_t U, std::size_t S>
+HSTMON_CIRCUIT_INLINE void schur_reduce(T (&G)[U][U], const std::uint8_t* ia, int m, const std::uint8_t* ix, int n, const T* inv_mass,
+                  T (&jr)[S][S], T& q) noexcept {
+  q = T(0);
+  for (int a = 0; a < m; ++a) {
+    T off = T(0);
+    for (int b = 0; b < m; ++b) {
+      if (b != a) off += std::fabs(G[ia[a]][ia[b]]);
+    }
+    q = std::fmax(q, off / std::fabs(G[ia[a]][ia[a]]));
+  }
+  for (int k = 0; k < m; ++k) {
+    const T inv = T(1) / G[ia[k]][ia[k]];
+    for (int r = k + 1; r < m; ++r) {
+      const T f = G[ia[r]][ia[k]] * inv;
+      if (f == T(0)) continue;
+      for (int c = k + 1; c < m; ++c) G[ia[r]][ia[c]] -= f * G[ia[k]][ia[c]];
+      for (int s = 0; s < n; ++s) G[ia[r]][ix[s]] -= f * G[ia[k]][ix[s]];
+    }
+  }
+  for (int k = m - 1; k >= 0; --k) {
+    for (int s = 0; s < n; ++s) {
+      T v = G[ia[k]][ix[s]];
+      for (int c = k + 1; c < m; ++c) v -= G[ia[k]][ia[c]] * G[ia[c]][ix[s]];
+      G[ia[k]][ix[s]] = v / G[ia[k]][ia[k]];
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int s = 0; s < n; ++s) {
+      T v = G[ix[r]][ix[s]];
+      for (int a = 0; a < m; ++a) v -= G[ix[r]][ia[a]] * G[ia[a]][ix[s]];
+      jr[r][s] = inv_mass[r] * v;
+    }
+  }
+}
+
+}  // namespace hstmon::circuit

@@ -1,0 +1,41 @@
+// The generator works for every shipped circuit: the compiled models of paper.json (5 ms),
+// closed_loop_hst.json and test_stand.json (1 ms), generated at build time into the build
+// tree (tests/circuit/CMakeLists.txt), equal the interpreting CircuitModel on the same
+// description (compiled_equality.hpp): nominal inputs, the first input at 90 % from 1 s.
+#include <gtest/gtest.h>
+
+#include "compiled_equality.hpp"
+#include "hstmon/generated/test_closed_loop_hst_compiled.hpp"
+#include "hstmon/generated/test_paper_compiled.hpp"
+#include "hstmon/generated/test_test_stand_compiled.hpp"
+
+namespace {
+
+template <class Kernel, std::size_t P, std::size_t I>
+void check(const double (&params)[P], const double (&inputs)[I], double tick) {
+  using Model = hstmon::circuit::CompiledModel<double, Kernel>;
+  static_assert(hstmon::is_observer_model_v<Model>, "an observer model");
+  typename Model::Params p;
+  typename Model::Inputs u, u2;
+  for (std::size_t i = 0; i < P; ++i) p.v[i] = params[i];
+  for (std::size_t i = 0; i < I; ++i) u.v[i] = u2.v[i] = inputs[i];
+  u2.v[0] = u.v[0] * 0.9;
+  compiled_equality::expect_same_model<Kernel>(p, u, u2, tick);
+}
+
+TEST(CompiledShipped, Paper) {
+  namespace g = hstmon::generated::test_paper;
+  check<g::Kernel>(g::kParams, g::kInputs, g::kTick);
+}
+
+TEST(CompiledShipped, ClosedLoopHst) {
+  namespace g = hstmon::generated::test_closed_loop_hst;
+  check<g::Kernel>(g::kParams, g::kInputs, g::kTick);
+}
+
+TEST(CompiledShipped, TestStand) {
+  namespace g = hstmon::generated::test_test_stand;
+  check<g::Kernel>(g::kParams, g::kInputs, g::kTick);
+}
+
+}  // namespace
