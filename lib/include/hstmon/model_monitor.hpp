@@ -27,7 +27,11 @@
 ///    half the learned ADC step; in steady operation the widening is 0;
 ///  - optionally (Config::model_transient, on for circuit monitors) also by the envelope
 ///    of the model's distance from its steady state, decaying with τ_m: the parameter
-///    uncertainty's share of a long, lightly damped transient after an input step.
+///    uncertainty's share of a long, lightly damped transient after an input step;
+///  - optionally (Config::bound_carry, on for circuit monitors) by the model bound in
+///    force before the last input change, where it exceeds the new one, decaying with the
+///    slower of the two operating points' time constants: the machine leaves the old
+///    point's model error at its own pace, not at the model's.
 /// step() never allocates or throws.
 
 #include <cmath>
@@ -58,6 +62,17 @@ namespace hstmon {
 ///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
 /// @tparam UsualTick  the observer's usual tick (Observer); the C API turns it off so that
 ///   it computes the firmware's bits on every target
+/// True when ModelBound B's compute() also reports the slowest time constant over the
+/// models it solves (B::kSlowestTau; circuit_bound.hpp's does).
+template <class B, class = void>
+struct BoundReportsTau {
+  static constexpr bool value = false;
+};
+template <class B>
+struct BoundReportsTau<B, decltype(void(B::kSlowestTau))> {
+  static constexpr bool value = B::kSlowestTau;
+};
+
 template <class ModelT, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
           bool UsualTick = observer_detail::HasUsualTick<ModelT>::value>
 class ModelMonitor {
@@ -106,6 +121,16 @@ class ModelMonitor {
     /// where transients die within milliseconds (the thesis rig) 0 loses nothing and
     /// costs no steady solve per input change.
     T model_transient = T(0);
+    /// Share of the model bound in force before an input change that the residual may
+    /// still reach after it [-], ≥ 0; 0 = off. The bound is a steady-state one, so at the
+    /// change the residual is the old operating point's model error, up to the old bound,
+    /// and the machine leaves it at its own pace: where the step crosses a valve's opening
+    /// (a relief valve cracking in the model while the ±ε machine's stays shut, or the
+    /// reverse) the new bound is much smaller and the machine's side of the valve is several
+    /// times slower than the model's. The carried bound decays with the slower of the
+    /// model's slowest time constants at the old and the new operating point (one more
+    /// steady solve and eigenvalue problem per input change); 1 carries it whole.
+    T bound_carry = T(0);
   };
 
   ModelMonitor() noexcept = default;
@@ -125,7 +150,8 @@ class ModelMonitor {
   Status configure(const Model& model, const Config& c, const Signature* table, int count) noexcept {
     if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
           std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
-          c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0))) {
+          c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0) &&
+          std::isfinite(c.bound_carry) && c.bound_carry >= T(0))) {
       return Status::kInvalidConfig;
     }
     Status s = obs_.configure(model, c.observer);
@@ -138,6 +164,7 @@ class ModelMonitor {
     transient_factor_ = c.transient_factor;
     hold_max_ = c.startup_hold_max;
     model_transient_ = c.model_transient;
+    bound_carry_ = c.bound_carry;
     set_decay();
     reset_rest_of_chain();
     return Status::kOk;
@@ -212,10 +239,15 @@ class ModelMonitor {
   /// The transient allowance of channel i at the last sample [channel unit]: the model's
   /// own recent output variation times transient_factor, plus model_transient times the
   /// envelope of the model's distance from its steady state (0 unless configured), plus
-  /// half the learned ADC step (see the file comment).
+  /// half the learned ADC step, plus the carried bound's excess over the model bound
+  /// (0 unless configured; see the file comment).
   T transient_allowance(int i) const noexcept {
-    return transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
+    const T a = transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
+    return a + carry_[i];
   }
+  /// The carried model bound of channel i [channel unit]: the bound before the last input
+  /// changes times Config::bound_carry, decayed since (0 unless configured).
+  T carried_bound(int i) const noexcept { return carry_[i]; }
   /// Start-up hold-off after the last reset [s]: no detection for this long after the
   /// first step (see plan_startup).
   T startup_hold() const noexcept { return hold_; }
@@ -234,8 +266,10 @@ class ModelMonitor {
       gap_[i] = T(0);
       peak_[i] = T(0);
       env_[i] = T(0);
+      carry_[i] = T(0);
     }
     steady_ok_ = false;
+    carry_hold_ = false;
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
     settled_from_ = -std::numeric_limits<T>::infinity();
@@ -325,6 +359,14 @@ class ModelMonitor {
       peak_[i] = v > g ? v : g;
       gap_[i] = sampled ? T(0) : g;
     }
+    if (bound_carry_ > T(0)) {
+      // Held while the model is still more than 2σ from its new steady state: until then
+      // the machine follows it with the old model error; then it settles at its own pace.
+      for (int i = 0; i < kChannels; ++i) {
+        const bool moving = carry_hold_ && std::fabs(y[i] - y_steady_[i]) > T(2) * ev_.sigma(i);
+        if (!moving) carry_[i] *= carry_decay_;
+      }
+    }
     if (model_transient_ > T(0) && steady_ok_) {
       for (int i = 0; i < kChannels; ++i) {
         const T e = env_[i] * env_decay_;
@@ -381,6 +423,11 @@ class ModelMonitor {
   // Keeps the last good bound when the changed operating point has no steady state, and
   // the last steady outputs for the model transient's envelope likewise.
   void update_bound() noexcept {
+    if (bound_carry_ > T(0)) {
+      carry_bound();
+      bound_valid_ = true;
+      return;
+    }
     if (model_transient_ > T(0)) refresh_steady_outputs();
     T m[kN_];
     if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m) == Status::kOk) {
@@ -388,6 +435,45 @@ class ModelMonitor {
       (void)ev_.set_model_bound(bound_);
     }
     bound_valid_ = true;
+  }
+
+  // On an input change (Config::bound_carry): the bound before it carried, then the new
+  // bound, and the carry's decay from the slower of the old and the new operating point's
+  // slowest time constants, each over the model and the bound's perturbed copies where the
+  // bound reports them (a circuit's), else the model's own. On the first tick after a
+  // reset only the new point's is taken. Out of line: a monitor without the carry (the
+  // thesis firmware's) keeps its bound frame as it was.
+  HSTMON_NOINLINE void carry_bound() noexcept {
+    if (bound_valid_) {
+      for (int i = 0; i < kChannels; ++i) {
+        const T c = bound_carry_ * bound_[i];
+        carry_[i] = c > carry_[i] ? c : carry_[i];
+      }
+    } else {
+      tau_here_ = T(0);
+    }
+    // The carry is held while the model is still on its way to this steady state.
+    typename Model::State xs;
+    carry_hold_ = obs_.model().steady_state(xs);
+    if (carry_hold_) set_steady_outputs(xs);
+    T m[kN_];
+    T tau_new = T(0);
+    Status s;
+    if constexpr (BoundReportsTau<ModelBound<Model>>::value) {
+      s = ModelBound<Model>::compute(obs_.model(), uncertainty_, m, &tau_new);
+    } else {
+      s = ModelBound<Model>::compute(obs_.model(), uncertainty_, m);
+      if (s == Status::kOk && carry_hold_) {
+        const T rate = obs_.model().slowest_rate(xs);
+        tau_new = rate > T(0) ? T(1) / rate : T(0);
+      }
+    }
+    if (s != Status::kOk) return;  // the old bound, τ and decay stay
+    for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
+    (void)ev_.set_model_bound(bound_);
+    const T tau = tau_new > tau_here_ ? tau_new : tau_here_;
+    tau_here_ = tau_new;
+    carry_decay_ = tau > T(0) ? std::exp(-obs_.config().tick / tau) : T(0);
   }
 
   // set_steady_outputs at the current inputs' steady state, if they have one.
@@ -408,10 +494,14 @@ class ModelMonitor {
   T peak_[kN_] = {};   ///< max(var_, gap_) at the last tick [channel unit]
   T y_steady_[kN_] = {};  ///< outputs at the steady state of the current inputs [channel unit]
   T env_[kN_] = {};       ///< envelope of |ŷ − y_steady_|, decaying with τ_m [channel unit]
+  T carry_[kN_] = {};     ///< model bound carried over input changes, decaying [channel unit]
   T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
   T model_transient_ = T(0);    ///< Config::model_transient [-]
+  T bound_carry_ = T(0);        ///< Config::bound_carry [-]
+  T carry_decay_ = T(0);        ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
+  T tau_here_ = T(0);           ///< slowest time constant at the current inputs' steady state [s]
   T env_decay_ = T(0);          ///< e^(−tick/τ_m) [-]
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]
@@ -420,6 +510,7 @@ class ModelMonitor {
   T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
   bool bound_valid_ = false;
   bool steady_ok_ = false;      ///< y_steady_ holds the current inputs' steady outputs
+  bool carry_hold_ = false;     ///< y_steady_ is the steady state of the current inputs (bound_carry)
 };
 
 }  // namespace hstmon
