@@ -73,9 +73,26 @@ struct BoundReportsTau<B, decltype(void(B::kSlowestTau))> {
   static constexpr bool value = B::kSlowestTau;
 };
 
+namespace model_monitor_detail {
+/// State of Config::bound_carry; empty (no RAM: an empty base) for a model whose bound
+/// reports no time constant (the thesis rig's), whose monitor cannot carry.
+template <typename T, std::size_t N, bool On>
+struct CarryState {
+  T carry_[N] = {};         ///< model bound carried over input changes, decaying [channel unit]
+  T bound_carry_ = T(0);    ///< Config::bound_carry [-]
+  T carry_decay_ = T(0);    ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
+  T tau_here_ = T(0);       ///< slowest time constant at the current inputs' steady state [s]
+  bool carry_hold_ = false; ///< y_steady_ is the steady state of the current inputs
+};
+template <typename T, std::size_t N>
+struct CarryState<T, N, false> {};
+}  // namespace model_monitor_detail
+
 template <class ModelT, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
           bool UsualTick = observer_detail::HasUsualTick<ModelT>::value>
-class ModelMonitor {
+class ModelMonitor
+    : private model_monitor_detail::CarryState<typename ModelT::Scalar, static_cast<std::size_t>(ModelT::kOutputs),
+                                               BoundReportsTau<ModelBound<ModelT>>::value> {
  public:
   using Model = ModelT;
   using T = typename Model::Scalar;
@@ -90,6 +107,8 @@ class ModelMonitor {
   using Uncertainty = typename ModelBound<Model>::Uncertainty;
   using Measurement = typename Obs::Measurement;
   using Event = typename Matcher::Event;
+  /// True when the model's bound reports time constants, so Config::bound_carry may be on.
+  static constexpr bool kCanCarry = BoundReportsTau<ModelBound<Model>>::value;
 
   /// Configuration of the parts; each validated by its own configure().
   struct Config {
@@ -129,7 +148,8 @@ class ModelMonitor {
     /// reverse) the new bound is much smaller and the machine's side of the valve is several
     /// times slower than the model's. The carried bound decays with the slower of the
     /// model's slowest time constants at the old and the new operating point (one more
-    /// steady solve and eigenvalue problem per input change); 1 carries it whole.
+    /// steady solve and eigenvalue problem per input change); 1 carries it whole. Only
+    /// where kCanCarry (a circuit's monitor); elsewhere > 0 is kInvalidConfig.
     T bound_carry = T(0);
   };
 
@@ -151,7 +171,7 @@ class ModelMonitor {
     if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
           std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
           c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0) &&
-          std::isfinite(c.bound_carry) && c.bound_carry >= T(0))) {
+          std::isfinite(c.bound_carry) && c.bound_carry >= T(0) && (kCanCarry || c.bound_carry == T(0)))) {
       return Status::kInvalidConfig;
     }
     Status s = obs_.configure(model, c.observer);
@@ -164,7 +184,7 @@ class ModelMonitor {
     transient_factor_ = c.transient_factor;
     hold_max_ = c.startup_hold_max;
     model_transient_ = c.model_transient;
-    bound_carry_ = c.bound_carry;
+    if constexpr (kCanCarry) this->bound_carry_ = c.bound_carry;
     set_decay();
     reset_rest_of_chain();
     return Status::kOk;
@@ -243,11 +263,22 @@ class ModelMonitor {
   /// (0 unless configured; see the file comment).
   T transient_allowance(int i) const noexcept {
     const T a = transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
-    return a + carry_[i];
+    if constexpr (kCanCarry) {
+      return a + this->carry_[i];
+    } else {
+      return a;
+    }
   }
   /// The carried model bound of channel i [channel unit]: the bound before the last input
   /// changes times Config::bound_carry, decayed since (0 unless configured).
-  T carried_bound(int i) const noexcept { return carry_[i]; }
+  T carried_bound(int i) const noexcept {
+    if constexpr (kCanCarry) {
+      return this->carry_[i];
+    } else {
+      (void)i;
+      return T(0);
+    }
+  }
   /// Start-up hold-off after the last reset [s]: no detection for this long after the
   /// first step (see plan_startup).
   T startup_hold() const noexcept { return hold_; }
@@ -266,10 +297,10 @@ class ModelMonitor {
       gap_[i] = T(0);
       peak_[i] = T(0);
       env_[i] = T(0);
-      carry_[i] = T(0);
+      if constexpr (kCanCarry) this->carry_[i] = T(0);
     }
     steady_ok_ = false;
-    carry_hold_ = false;
+    if constexpr (kCanCarry) this->carry_hold_ = false;
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
     settled_from_ = -std::numeric_limits<T>::infinity();
@@ -359,19 +390,25 @@ class ModelMonitor {
       peak_[i] = v > g ? v : g;
       gap_[i] = sampled ? T(0) : g;
     }
-    if (bound_carry_ > T(0)) {
-      // Held while the model is still more than 2σ from its new steady state: until then
-      // the machine follows it with the old model error; then it settles at its own pace.
-      for (int i = 0; i < kChannels; ++i) {
-        const bool moving = carry_hold_ && std::fabs(y[i] - y_steady_[i]) > T(2) * ev_.sigma(i);
-        if (!moving) carry_[i] *= carry_decay_;
-      }
-    }
+    if constexpr (kCanCarry) carry_decay_tick(y);
     if (model_transient_ > T(0) && steady_ok_) {
       for (int i = 0; i < kChannels; ++i) {
         const T e = env_[i] * env_decay_;
         const T d = std::fabs(y[i] - y_steady_[i]);
         env_[i] = d > e ? d : e;
+      }
+    }
+  }
+
+  // One tick of the carried bound's decay (Config::bound_carry).
+  template <class Y>
+  void carry_decay_tick(const Y& y) noexcept {
+    if (this->bound_carry_ > T(0)) {
+      // Held while the model is still more than 2σ from its new steady state: until then
+      // the machine follows it with the old model error; then it settles at its own pace.
+      for (int i = 0; i < kChannels; ++i) {
+        const bool moving = this->carry_hold_ && std::fabs(y[i] - y_steady_[i]) > T(2) * ev_.sigma(i);
+        if (!moving) this->carry_[i] *= this->carry_decay_;
       }
     }
   }
@@ -423,10 +460,12 @@ class ModelMonitor {
   // Keeps the last good bound when the changed operating point has no steady state, and
   // the last steady outputs for the model transient's envelope likewise.
   void update_bound() noexcept {
-    if (bound_carry_ > T(0)) {
-      carry_bound();
-      bound_valid_ = true;
-      return;
+    if constexpr (kCanCarry) {
+      if (this->bound_carry_ > T(0)) {
+        carry_bound();
+        bound_valid_ = true;
+        return;
+      }
     }
     if (model_transient_ > T(0)) refresh_steady_outputs();
     T m[kN_];
@@ -439,41 +478,30 @@ class ModelMonitor {
 
   // On an input change (Config::bound_carry): the bound before it carried, then the new
   // bound, and the carry's decay from the slower of the old and the new operating point's
-  // slowest time constants, each over the model and the bound's perturbed copies where the
-  // bound reports them (a circuit's), else the model's own. On the first tick after a
-  // reset only the new point's is taken. Out of line: a monitor without the carry (the
-  // thesis firmware's) keeps its bound frame as it was.
+  // slowest time constants, each over the model and the bound's perturbed copies. On the
+  // first tick after a reset only the new point's is taken. Out of line, and only where
+  // kCanCarry: the thesis monitor keeps its bound frame and its size as they were.
   HSTMON_NOINLINE void carry_bound() noexcept {
     if (bound_valid_) {
       for (int i = 0; i < kChannels; ++i) {
-        const T c = bound_carry_ * bound_[i];
-        carry_[i] = c > carry_[i] ? c : carry_[i];
+        const T c = this->bound_carry_ * bound_[i];
+        this->carry_[i] = c > this->carry_[i] ? c : this->carry_[i];
       }
     } else {
-      tau_here_ = T(0);
+      this->tau_here_ = T(0);
     }
     // The carry is held while the model is still on its way to this steady state.
     typename Model::State xs;
-    carry_hold_ = obs_.model().steady_state(xs);
-    if (carry_hold_) set_steady_outputs(xs);
+    this->carry_hold_ = obs_.model().steady_state(xs);
+    if (this->carry_hold_) set_steady_outputs(xs);
     T m[kN_];
     T tau_new = T(0);
-    Status s;
-    if constexpr (BoundReportsTau<ModelBound<Model>>::value) {
-      s = ModelBound<Model>::compute(obs_.model(), uncertainty_, m, &tau_new);
-    } else {
-      s = ModelBound<Model>::compute(obs_.model(), uncertainty_, m);
-      if (s == Status::kOk && carry_hold_) {
-        const T rate = obs_.model().slowest_rate(xs);
-        tau_new = rate > T(0) ? T(1) / rate : T(0);
-      }
-    }
-    if (s != Status::kOk) return;  // the old bound, τ and decay stay
+    if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m, &tau_new) != Status::kOk) return;  // all stay
     for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
     (void)ev_.set_model_bound(bound_);
-    const T tau = tau_new > tau_here_ ? tau_new : tau_here_;
-    tau_here_ = tau_new;
-    carry_decay_ = tau > T(0) ? std::exp(-obs_.config().tick / tau) : T(0);
+    const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;
+    this->tau_here_ = tau_new;
+    this->carry_decay_ = tau > T(0) ? std::exp(-obs_.config().tick / tau) : T(0);
   }
 
   // set_steady_outputs at the current inputs' steady state, if they have one.
@@ -494,14 +522,10 @@ class ModelMonitor {
   T peak_[kN_] = {};   ///< max(var_, gap_) at the last tick [channel unit]
   T y_steady_[kN_] = {};  ///< outputs at the steady state of the current inputs [channel unit]
   T env_[kN_] = {};       ///< envelope of |ŷ − y_steady_|, decaying with τ_m [channel unit]
-  T carry_[kN_] = {};     ///< model bound carried over input changes, decaying [channel unit]
   T transducer_tau_ = T(0.01);  ///< Config::transducer_response [s]
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
   T model_transient_ = T(0);    ///< Config::model_transient [-]
-  T bound_carry_ = T(0);        ///< Config::bound_carry [-]
-  T carry_decay_ = T(0);        ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
-  T tau_here_ = T(0);           ///< slowest time constant at the current inputs' steady state [s]
   T env_decay_ = T(0);          ///< e^(−tick/τ_m) [-]
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]
@@ -510,7 +534,6 @@ class ModelMonitor {
   T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
   bool bound_valid_ = false;
   bool steady_ok_ = false;      ///< y_steady_ holds the current inputs' steady outputs
-  bool carry_hold_ = false;     ///< y_steady_ is the steady state of the current inputs (bound_carry)
 };
 
 }  // namespace hstmon
