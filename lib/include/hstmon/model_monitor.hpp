@@ -482,14 +482,10 @@ class ModelMonitor
   // first tick after a reset only the new point's is taken. Out of line, and only where
   // kCanCarry: the thesis monitor keeps its bound frame and its size as they were.
   HSTMON_NOINLINE void carry_bound() noexcept {
-    if (bound_valid_) {
-      for (int i = 0; i < kChannels; ++i) {
-        const T c = this->bound_carry_ * bound_[i];
-        this->carry_[i] = c > this->carry_[i] ? c : this->carry_[i];
-      }
-    } else {
-      this->tau_here_ = T(0);
-    }
+    // What the model error was allowed before the change: the old bound and its carry.
+    T before[kN_];
+    for (int i = 0; i < kChannels; ++i) before[i] = bound_valid_ ? bound_[i] + this->carry_[i] : T(0);
+    if (!bound_valid_) this->tau_here_ = T(0);
     // The carry is held while the model is still on its way to this steady state.
     typename Model::State xs;
     this->carry_hold_ = obs_.model().steady_state(xs);
@@ -497,7 +493,12 @@ class ModelMonitor
     T m[kN_];
     T tau_new = T(0);
     if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m, &tau_new) != Status::kOk) return;  // all stay
-    for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
+    for (int i = 0; i < kChannels; ++i) {
+      bound_[i] = m[i];
+      // Carried: the share of what was allowed before that the new bound does not allow.
+      const T c = this->bound_carry_ * (before[i] - m[i]);
+      this->carry_[i] = c > T(0) ? c : T(0);
+    }
     (void)ev_.set_model_bound(bound_);
     const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;
     this->tau_here_ = tau_new;
