@@ -28,10 +28,10 @@
 ///  - optionally (Config::model_transient, on for circuit monitors) also by the envelope
 ///    of the model's distance from its steady state, decaying with τ_m: the parameter
 ///    uncertainty's share of a long, lightly damped transient after an input step;
-///  - optionally (Config::bound_carry, on for circuit monitors) by the model bound in
-///    force before the last input change, where it exceeds the new one, decaying with the
-///    slower of the two operating points' time constants: the machine leaves the old
-///    point's model error at its own pace, not at the model's.
+///  - optionally (Config::bound_carry, on for circuit monitors) by what the model error
+///    was allowed before the last input change beyond the new bound, held while the model
+///    is on its way and then decaying with the slower of the two operating points' time
+///    constants: the machine leaves the old point's model error at its own pace.
 /// step() never allocates or throws.
 
 #include <cmath>
@@ -78,7 +78,7 @@ namespace model_monitor_detail {
 /// reports no time constant (the thesis rig's), whose monitor cannot carry.
 template <typename T, std::size_t N, bool On>
 struct CarryState {
-  T carry_[N] = {};         ///< model bound carried over input changes, decaying [channel unit]
+  T carry_[N] = {};         ///< allowance carried over input changes, decaying [channel unit]
   T bound_carry_ = T(0);    ///< Config::bound_carry [-]
   T carry_decay_ = T(0);    ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
   T tau_here_ = T(0);       ///< slowest time constant at the current inputs' steady state [s]
@@ -140,16 +140,18 @@ class ModelMonitor
     /// where transients die within milliseconds (the thesis rig) 0 loses nothing and
     /// costs no steady solve per input change.
     T model_transient = T(0);
-    /// Share of the model bound in force before an input change that the residual may
-    /// still reach after it [-], ≥ 0; 0 = off. The bound is a steady-state one, so at the
-    /// change the residual is the old operating point's model error, up to the old bound,
-    /// and the machine leaves it at its own pace: where the step crosses a valve's opening
-    /// (a relief valve cracking in the model while the ±ε machine's stays shut, or the
-    /// reverse) the new bound is much smaller and the machine's side of the valve is several
-    /// times slower than the model's. The carried bound decays with the slower of the
-    /// model's slowest time constants at the old and the new operating point (one more
-    /// steady solve and eigenvalue problem per input change); 1 carries it whole. Only
-    /// where kCanCarry (a circuit's monitor); elsewhere > 0 is kInvalidConfig.
+    /// Share carried over an input change of what the model error was allowed before it
+    /// (bound and carry) beyond the new bound [-], ≥ 0; 0 = off. The bound is a steady-state
+    /// one, so at the change the residual is the old operating point's model error, and
+    /// the machine leaves it for the new one at its own pace: where the step crosses a
+    /// valve's opening (a relief valve cracking in the model while the ±ε machine's stays
+    /// shut, or the reverse) the new bound is much smaller and the machine's side of the
+    /// valve is several times slower than the model's. The carry is held while the model
+    /// is more than 2σ from its new steady state (the machine follows it with the old
+    /// error), then decays with the slower of the slowest time constants at the old and
+    /// the new operating point, over the model and its bound's perturbed copies (one more
+    /// eigenvalue problem per steady solve of the bound); 1 carries it whole. Only where
+    /// kCanCarry (a circuit's monitor); elsewhere > 0 is kInvalidConfig.
     T bound_carry = T(0);
   };
 
@@ -259,8 +261,8 @@ class ModelMonitor
   /// The transient allowance of channel i at the last sample [channel unit]: the model's
   /// own recent output variation times transient_factor, plus model_transient times the
   /// envelope of the model's distance from its steady state (0 unless configured), plus
-  /// half the learned ADC step, plus the carried bound's excess over the model bound
-  /// (0 unless configured; see the file comment).
+  /// half the learned ADC step, plus the carried bound (0 unless configured; see the file
+  /// comment).
   T transient_allowance(int i) const noexcept {
     const T a = transient_factor_ * peak_[i] + model_transient_ * env_[i] + T(0.5) * sensors_.step(i);
     if constexpr (kCanCarry) {
@@ -269,8 +271,9 @@ class ModelMonitor
       return a;
     }
   }
-  /// The carried model bound of channel i [channel unit]: the bound before the last input
-  /// changes times Config::bound_carry, decayed since (0 unless configured).
+  /// The carried bound of channel i [channel unit]: Config::bound_carry times what the
+  /// model error was allowed before the last input change beyond the new bound, held and
+  /// decayed since (0 unless configured).
   T carried_bound(int i) const noexcept {
     if constexpr (kCanCarry) {
       return this->carry_[i];
@@ -476,8 +479,8 @@ class ModelMonitor
     bound_valid_ = true;
   }
 
-  // On an input change (Config::bound_carry): the bound before it carried, then the new
-  // bound, and the carry's decay from the slower of the old and the new operating point's
+  // On an input change (Config::bound_carry): the new bound, the carry of what was allowed
+  // before beyond it, and the carry's decay from the slower of the old and the new operating point's
   // slowest time constants, each over the model and the bound's perturbed copies. On the
   // first tick after a reset only the new point's is taken. Out of line, and only where
   // kCanCarry: the thesis monitor keeps its bound frame and its size as they were.

@@ -27,10 +27,11 @@ T sensor_sigma(T noise, T lo, T hi) noexcept {
 ///    (ModelMonitor::Config::model_transient = 1), decaying with the circuit's slowest time
 ///    constant — milliseconds for a PRV-loaded rig, a second for a lightly damped closed
 ///    circuit ringing at a few hertz;
-///  - its valves' opening in the ±ε machine: after an input step the bound of the old
-///    operating point is carried, decaying with the slower of the two points' time
-///    constants (ModelMonitor::Config::bound_carry = 1), since a machine whose relief valve
-///    stays shut where the model's cracks leaves the old model error at its own, slower pace;
+///  - its valves' opening in the ±ε machine: after an input step what the old operating
+///    point's bound allowed beyond the new one is carried, decaying with the slower of the
+///    two points' time constants (ModelMonitor::Config::bound_carry = 1), since a machine
+///    whose relief valve stays shut where the model's cracks leaves the old model error at
+///    its own, slower pace;
 ///  - how far a fault moves the model error with the operating point: a channel that moved
 ///    no further than the model bound reads as unchanged in a signature
 ///    (FaultMatcher::Config::k_zero_bound = 1).
