@@ -27,8 +27,8 @@ T sensor_sigma(T noise, T lo, T hi) noexcept {
 ///    (ModelMonitor::Config::model_transient = 1), decaying with the circuit's slowest time
 ///    constant — milliseconds for a PRV-loaded rig, a second for a lightly damped closed
 ///    circuit ringing at a few hertz;
-///  - its valves' opening in the ±ε machine: after an input step what the old operating
-///    point's bound allowed beyond the new one is carried, decaying with the slower of the
+///  - its valves' opening in the ±ε machine: after an input step the old operating
+///    point's bound is carried on top of the new one, decaying with the slower of the
 ///    two points' time constants (ModelMonitor::Config::bound_carry = 1), since a machine
 ///    whose relief valve stays shut where the model's cracks leaves the old model error at
 ///    its own, slower pace;
