@@ -5,7 +5,7 @@
 // scores. A benchmark program, not a test: nothing in CI runs it.
 //
 //   hstmon_circuit_campaign --circuit F [--params P] [--hours H] [--seeds N] [--jobs N]
-//                           [--magnitude M] [--json] [--verbose]
+//                           [--magnitude M] [--seed-base B] [--json] [--verbose]
 //
 // Conditions: start at the steady state or from rest (inputs on at the first sample), at
 // 1 kHz and 100 Hz. Every run has a machine 2 % off the file's values (each parameter the
@@ -270,6 +270,7 @@ int main(int argc, char** argv) {
   std::string circuit, params;
   double hours = 1.0, magnitude = 0.3;
   int seeds = 2;
+  std::uint64_t seed_base = 0;
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   bool json = false, verbose = false;
   app.add_option("--circuit", circuit, "circuit file")->required();
@@ -278,6 +279,9 @@ int main(int argc, char** argv) {
   app.add_option("--seeds", seeds, "fault runs per fault and condition")->check(CLI::PositiveNumber);
   app.add_option("--magnitude", magnitude, "parameter / input fault size M: factor 1 ± M")->check(CLI::Range(0.01, 0.9));
   app.add_option("--jobs", jobs, "threads")->check(CLI::PositiveNumber);
+  app.add_option("--seed-base", seed_base,
+                 "added to every run's seed (machine, load steps, noise): 0 = the recorded figures' runs; "
+                 "another value draws other runs, to check a figure is not these seeds'");
   app.add_flag("--json", json, "one JSON object with the figures");
   app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
   app.add_flag("--verbose", verbose, "print every fault run whose truth is not in the reported set");
@@ -303,11 +307,11 @@ int main(int argc, char** argv) {
   const int n_cond = static_cast<int>(kConditions.size());
   for (int ci = 0; ci < n_cond; ++ci) {
     for (int fi = 0; fi < static_cast<int>(faults.size()); ++fi) {
-      for (int s = 0; s < seeds; ++s) work.push_back({ci, fi, 1000003ull * static_cast<std::uint64_t>(ci * 7919 + fi) + static_cast<std::uint64_t>(s) + 1});
+      for (int s = 0; s < seeds; ++s) work.push_back({ci, fi, 1000003ull * static_cast<std::uint64_t>(ci * 7919 + fi) + static_cast<std::uint64_t>(s) + 1 + seed_base});
     }
   }
   const int segments = static_cast<int>(std::ceil(hours * 3600.0 / kSegment));
-  for (int k = 0; k < segments; ++k) work.push_back({k % n_cond, -1, 900000001ull + static_cast<std::uint64_t>(k)});
+  for (int k = 0; k < segments; ++k) work.push_back({k % n_cond, -1, 900000001ull + static_cast<std::uint64_t>(k) + seed_base});
 
   std::vector<RunResult> results(work.size());
   std::atomic<std::size_t> next{0};

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hstmon_circuit/circuit_faults.hpp"
@@ -169,3 +170,41 @@ TEST(CircuitMonitor, TableRowsAreNamedAfterTheCircuit) {
 }
 
 }  // namespace
+
+// Issue 15's false alarm on the test stand: a ±2 % machine (throttle and relief setting
+// 2 % up, pump 2 % down) stepped in drive speed from 160 bar to the model's just-cracked
+// relief valve. The machine's valve stays shut: it settles about 5 bar below the model,
+// more than the sum of single-parameter changes (the valve absorbs each alone), and at
+// its own, slower pace from the old point's model error. Neither is a fault (the corner
+// models in the bound, the carried bound); a pump leak in the same situation still is.
+TEST(CircuitMonitor, MachineWithShutReliefValveAtCrackingRaisesNoEventButLeakIsFound) {
+  const ct::LoadedCircuit c = load("test_stand");
+  ct::LoadedCircuit m = c;
+  for (const auto& [name, factor] : std::vector<std::pair<std::string, double>>{
+           {"k_throttle", 1.02}, {"p_crack", 1.02}, {"p_set", 1.02}, {"D", 0.98}}) {
+    const int p = c.file.param_index(name);
+    ASSERT_GE(p, 0) << name;
+    m.values.params.v[p] *= factor;
+  }
+  m.values.inputs.v[c.file.input_index("n_drive")] *= 1600.0 / 1500.0;
+  for (const bool leak : {false, true}) {
+    ct::CircuitSimOptions o;
+    o.duration = 8.0;
+    o.rate = 1000.0;
+    o.seed = 81;
+    o.steps.push_back(step(c, "n_drive=1780 rpm@2", false));
+    if (leak) o.steps.push_back(step(c, "R_leak=0.2@5", true));
+    const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
+    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+    if (!leak) {
+      EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
+      continue;
+    }
+    ASSERT_FALSE(r.events.empty()) << "R_leak- not detected";
+    EXPECT_EQ(r.events.front().event, "detected");
+    EXPECT_GE(r.events.front().t, 5.0) << describe(r);
+    bool in_set = false;
+    for (const auto& cand : r.events.back().candidates) in_set = in_set || cand.fault == "R_leak-";
+    EXPECT_TRUE(in_set) << describe(r);
+  }
+}

@@ -4,10 +4,17 @@
 /// over the circuit's parameters of the largest steady-state output change that a
 /// relative error of ±ε_k in parameter k makes at the current inputs — the thesis rig's
 /// rule (residual_bounds.hpp) with the circuit's parameters in place of Table 2.2's.
-/// Each parameter with ε_k > 0 costs two steady-state solves, so the bound runs once per
-/// input change, never per tick. Nothing here allocates.
+/// That sum is a linearisation: near a valve's kink (a relief valve just cracked) each
+/// parameter alone moves the output little, as the valve absorbs it, while all of them
+/// together take the machine to the shut side, where nothing does. So per channel the
+/// two corner models (every uncertain parameter at the side that moved the channel up, or
+/// every one at the other) are solved too, and the bound is the larger of the sum and
+/// their changes. Each parameter with ε_k > 0 costs two steady-state solves, each channel
+/// two more, so the bound runs once per input change, never per tick. Nothing here
+/// allocates.
 
 #include <cmath>
+#include <cstdint>
 
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/model_bound.hpp"
@@ -43,35 +50,80 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
   using Model = circuit::CircuitModel<T, Cap>;
   using Uncertainty = circuit::CircuitUncertainty<T, Cap>;
   static constexpr int kN = Model::kOutputs;
+  /// compute() can also report the slowest time constant over the models it solves.
+  static constexpr bool kSlowestTau = true;
 
   /// @param model  the observer's model (description, parameters and inputs set)
   /// @param eps    relative uncertainties, each finite, ≥ 0 and < 0.5
   /// @param m      out: bound per channel [channel unit] (unused channels 0; a partial sum after an error)
+  /// @param slowest_tau  out, optional: the slowest time constant over the model and its
+  ///                perturbed copies, each at its own steady state [s] (0 where none is
+  ///                stable): a ±ε machine may sit on the other side of a valve's opening,
+  ///                with that side's time constant; one eigenvalue problem per solve more
   /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState
-  static Status compute(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>]) noexcept {
+  static Status compute(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>],
+                        T* slowest_tau = nullptr) noexcept {
     for (int i = 0; i < kN; ++i) m[i] = T(0);
     for (int k = 0; k < Cap::kParams; ++k) {
       const T e = eps.rel[k];
       if (!(std::isfinite(e) && e >= T(0) && e < T(0.5))) return Status::kInvalidParams;
     }
     typename Model::Output y0, y;
-    if (!circuit::steady_outputs(model, y0)) return Status::kNoSteadyState;
+    typename Model::State xs;
+    if (!model.steady_state(xs)) return Status::kNoSteadyState;
+    y0 = model.outputs(xs);
+    const auto note_tau = [slowest_tau](const Model& mod, const typename Model::State& x) noexcept {
+      if (slowest_tau == nullptr) return;
+      const T rate = mod.slowest_rate(x);
+      if (rate > T(0) && T(1) > rate * *slowest_tau) *slowest_tau = T(1) / rate;
+    };
+    if (slowest_tau != nullptr) *slowest_tau = T(0);
+    note_tau(model, xs);
     const int n = model.description() != nullptr ? model.description()->n_params : 0;
     Model p = model;  // perturbed one parameter at a time
     typename Model::Params v = model.params();
+    // Bit k of up[i]: parameter k at +ε_k moved channel i up at least as far as −ε_k did.
+    constexpr int kWords = (Cap::kParams + 31) / 32;
+    std::uint32_t up[circuit::kExtent<kN>][circuit::kExtent<kWords>] = {};
     for (int k = 0; k < n; ++k) {
       const T e = eps.rel[k];
       if (e == T(0)) continue;
       const T v0 = v.v[k];
       T d[circuit::kExtent<kN>] = {};
+      T plus[circuit::kExtent<kN>] = {};
       for (const T side : {T(1) + e, T(1) - e}) {
         v.v[k] = v0 * side;
         p.set_params(v);
-        if (!p.valid() || !circuit::steady_outputs(p, y)) return Status::kNoSteadyState;
-        for (int i = 0; i < kN; ++i) d[i] = std::fmax(d[i], std::fabs(y[i] - y0[i]));
+        if (!p.valid() || !p.steady_state(xs)) return Status::kNoSteadyState;
+        y = p.outputs(xs);
+        note_tau(p, xs);
+        for (int i = 0; i < kN; ++i) {
+          d[i] = std::fmax(d[i], std::fabs(y[i] - y0[i]));
+          if (side > T(1)) {
+            plus[i] = y[i];
+          } else if (plus[i] >= y[i]) {
+            up[i][k / 32] |= std::uint32_t(1) << (k % 32);
+          }
+        }
       }
       v.v[k] = v0;
       for (int i = 0; i < kN; ++i) m[i] += d[i];
+    }
+    // The corners: channel i's "up" and "down" machines. A corner without a steady state
+    // (the machine stalls) adds nothing: the sum stands.
+    for (int i = 0; i < kN; ++i) {
+      for (const bool high : {true, false}) {
+        for (int k = 0; k < n; ++k) {
+          const T e = eps.rel[k];
+          const bool plus = ((up[i][k / 32] >> (k % 32)) & 1u) != 0;
+          v.v[k] = model.params().v[k] * (plus == high ? T(1) + e : T(1) - e);
+        }
+        p.set_params(v);
+        if (!p.valid() || !p.steady_state(xs)) continue;
+        y = p.outputs(xs);
+        note_tau(p, xs);
+        m[i] = std::fmax(m[i], std::fabs(y[i] - y0[i]));
+      }
     }
     return Status::kOk;
   }

@@ -27,15 +27,21 @@ T sensor_sigma(T noise, T lo, T hi) noexcept {
 ///    (ModelMonitor::Config::model_transient = 1), decaying with the circuit's slowest time
 ///    constant — milliseconds for a PRV-loaded rig, a second for a lightly damped closed
 ///    circuit ringing at a few hertz;
+///  - its valves' opening in the ±ε machine: after an input step the old operating
+///    point's bound is carried on top of the new one, decaying with the slower of the
+///    two points' time constants (ModelMonitor::Config::bound_carry = 1), since a machine
+///    whose relief valve stays shut where the model's cracks leaves the old model error at
+///    its own, slower pace;
 ///  - how far a fault moves the model error with the operating point: a channel that moved
 ///    no further than the model bound reads as unchanged in a signature
 ///    (FaultMatcher::Config::k_zero_bound = 1).
-/// The thesis rig's monitor (Monitor<T>) keeps both off: its transients are milliseconds
+/// The thesis rig's monitor (Monitor<T>) keeps all three off: its transients are milliseconds
 /// long and its table and thresholds are validated as they are.
 /// @param cfg  a ModelMonitor configuration, changed in place
 template <class MonitorConfig>
 void set_circuit_allowances(MonitorConfig& cfg) noexcept {
   cfg.model_transient = 1;
+  cfg.bound_carry = 1;
   cfg.matcher.k_zero_bound = 1;
 }
 
