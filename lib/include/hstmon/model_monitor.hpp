@@ -484,7 +484,11 @@ class ModelMonitor
   // slowest time constants, each over the model and the bound's perturbed copies. On the
   // first tick after a reset only the new point's is taken. Out of line, and only where
   // kCanCarry: the thesis monitor keeps its bound frame and its size as they were.
+  // A member template, so that an explicit instantiation of the thesis rig's monitor
+  // (lib/src/instantiate.cpp) does not instantiate it.
+  template <bool kOn = kCanCarry>
   HSTMON_NOINLINE void carry_bound() noexcept {
+    static_assert(kOn, "only a monitor whose model bound reports a time constant carries its bound");
     // The old bound, carried on top of the new one: the residual goes from the old model
     // error (up to the old bound) to the new one (up to the new bound), which may lie on
     // the other side (a closed circuit rings: carrying only the old bound's excess over
