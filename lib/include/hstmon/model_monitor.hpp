@@ -56,12 +56,6 @@
 
 namespace hstmon {
 
-/// @tparam ModelT  the model (see the file comment); its kOutputs are the channels
-/// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
-///   (table rows, queued events, candidates per event); firmware shrinks them (the C API
-///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
-/// @tparam UsualTick  the observer's usual tick (Observer); the C API turns it off so that
-///   it computes the firmware's bits on every target
 /// True when ModelBound B's compute() also reports the slowest time constant over the
 /// models it solves (B::kSlowestTau; circuit_bound.hpp's does).
 template <class B, class = void>
@@ -88,6 +82,12 @@ template <typename T, std::size_t N>
 struct CarryState<T, N, false> {};
 }  // namespace model_monitor_detail
 
+/// @tparam ModelT  the model (see the file comment); its kOutputs are the channels
+/// @tparam Capacity, QueueDepth, EventCandidates  storage sizes of the FaultMatcher
+///   (table rows, queued events, candidates per event); firmware shrinks them (the C API
+///   uses 26, 2, 1), the host keeps the defaults. The logic does not depend on them.
+/// @tparam UsualTick  the observer's usual tick (Observer); the C API turns it off so that
+///   it computes the firmware's bits on every target
 template <class ModelT, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
           bool UsualTick = observer_detail::HasUsualTick<ModelT>::value>
 class ModelMonitor
