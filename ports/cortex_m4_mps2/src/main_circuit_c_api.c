@@ -15,35 +15,15 @@
 
 #include "hstmon_circuit_c.h"
 #include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/report_line.h"
 #include "hstmon_mps2/semihosting.h"
 #include "hstmon_mps2/stack_paint.h"
 
 enum { kTicks = 1000, kCalibLoop = 100000 };
 
-static char line[512];
 static volatile uint32_t sink;
-static unsigned pos;
 
-static void put(const char* s) {
-  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
-  line[pos] = '\0';
-}
 
-static void put_uint(const char* key, uint32_t v) {
-  char tmp[12];
-  int n = 0;
-  put(pos > 1u ? ",\"" : "\"");
-  put(key);
-  put("\":");
-  do {
-    tmp[n++] = (char)('0' + (int)(v % 10u));
-    v /= 10u;
-  } while (v != 0u);
-  while (n > 0) {
-    const char c[2] = {tmp[--n], '\0'};
-    put(c);
-  }
-}
 
 __attribute__((noinline)) static uint32_t empty_step(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s) {
   __asm volatile("" ::"r"(m), "r"(s) : "memory");
@@ -73,12 +53,12 @@ int main(void) {
   cycles_start();
   const uint32_t c1 = cycles_known_loop(kCalibLoop);
   const uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
-  put("{\"type\":\"circuit_c_api\"");
-  put_uint("channels", (uint32_t)hstmon_circuit_channels());
-  put_uint("faults", (uint32_t)hstmon_circuit_faults());
-  put_uint("monitor_bytes", (uint32_t)hstmon_circuit_monitor_size());
-  put_uint("calib_instructions", 2u * kCalibLoop);
-  put_uint("calib_counts", c2 - c1);
+  report_begin("circuit_c_api");
+  report_uint("channels", (uint32_t)hstmon_circuit_channels());
+  report_uint("faults", (uint32_t)hstmon_circuit_faults());
+  report_uint("monitor_bytes", (uint32_t)hstmon_circuit_monitor_size());
+  report_uint("calib_instructions", 2u * kCalibLoop);
+  report_uint("calib_counts", c2 - c1);
 
   uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
@@ -121,16 +101,15 @@ int main(void) {
   }
   const uint32_t stack_episode = (uint32_t)(sp_main - stack_low_water());
   hstmon_circuit_read(m, &r);
-  put_uint("ticks", kTicks);
-  put_uint("counts_step_loop", counts_step);
-  put_uint("counts_empty_loop", counts_empty);
-  put_uint("stack_setup_bytes", stack_setup);
-  put_uint("stack_step_bytes", stack_step);
-  put_uint("stack_episode_bytes", stack_episode);
-  put_uint("status_nominal", status_nominal);
-  put_uint("episode_events", events);
-  put_uint("health", r.health);
-  put("}\n");
-  semihost_write0(line);
+  report_uint("ticks", kTicks);
+  report_uint("counts_step_loop", counts_step);
+  report_uint("counts_empty_loop", counts_empty);
+  report_uint("stack_setup_bytes", stack_setup);
+  report_uint("stack_step_bytes", stack_step);
+  report_uint("stack_episode_bytes", stack_episode);
+  report_uint("status_nominal", status_nominal);
+  report_uint("episode_events", events);
+  report_uint("health", r.health);
+  report_end();
   return events > 0u ? 0 : 13;
 }

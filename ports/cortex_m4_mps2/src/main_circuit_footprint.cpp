@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/report_line.h"
 #include "hstmon_mps2/semihosting.h"
 #include "hstmon_mps2/stack_paint.h"
 
@@ -28,30 +29,9 @@ namespace {
 constexpr int kTicks = 2000;
 constexpr std::uint32_t kCalibLoop = 100000;
 
-char line[512];
 volatile std::uint32_t sink;  // keeps results observable (in both images)
-unsigned pos;
 
-void put(const char* s) {
-  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
-  line[pos] = '\0';
-}
 
-void put_uint(const char* key, std::uint32_t v) {
-  char tmp[12];
-  int n = 0;
-  put(pos > 1u ? ",\"" : "\"");
-  put(key);
-  put("\":");
-  do {
-    tmp[n++] = static_cast<char>('0' + static_cast<int>(v % 10u));
-    v /= 10u;
-  } while (v != 0u);
-  while (n > 0) {
-    const char c[2] = {tmp[--n], '\0'};
-    put(c);
-  }
-}
 
 #if HSTMON_FW_WITH_ENGINE
 using hstmon::fw::CircuitFwObserver;
@@ -112,10 +92,10 @@ int main() {
   // Two loop lengths: the difference removes the fixed cost of the call and reads.
   const std::uint32_t c1 = cycles_known_loop(kCalibLoop);
   const std::uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
-  put("{\"type\":\"circuit_footprint\"");
-  put_uint("with_engine", HSTMON_FW_WITH_ENGINE);
-  put_uint("calib_instructions", 2u * kCalibLoop);
-  put_uint("calib_counts", c2 - c1);
+  report_begin("circuit_footprint");
+  report_uint("with_engine", HSTMON_FW_WITH_ENGINE);
+  report_uint("calib_instructions", 2u * kCalibLoop);
+  report_uint("calib_counts", c2 - c1);
   sink = c2 - c1;
 #if HSTMON_FW_WITH_ENGINE
   std::uintptr_t sp_main;
@@ -135,22 +115,21 @@ int main() {
   const std::uint32_t counts_empty = time_ticks(empty_step, u, m);
   const std::uint32_t counts_derivative = time_evaluations(false);
   const std::uint32_t counts_tick_derivative = time_evaluations(true);
-  put_uint("observer_bytes", static_cast<std::uint32_t>(sizeof obs));
+  report_uint("observer_bytes", static_cast<std::uint32_t>(sizeof obs));
   // What the monitor's model bound (circuit_bound.hpp) copies onto the stack.
-  put_uint("model_bytes", static_cast<std::uint32_t>(sizeof(hstmon::fw::CircuitFwModel)));
-  put_uint("states", static_cast<std::uint32_t>(obs.model().n_states()));
-  put_uint("stiff_nodes", static_cast<std::uint32_t>(obs.model().n_stiff()));
-  put_uint("ticks", kTicks);
-  put_uint("counts_step_loop", counts_step);
-  put_uint("counts_empty_loop", counts_empty);
-  put_uint("counts_derivative_loop", counts_derivative);
-  put_uint("counts_tick_derivative_loop", counts_tick_derivative);
-  put_uint("health", obs.health());
-  put_uint("max_substeps", obs.substeps());
-  put_uint("stack_setup_bytes", stack_setup);
-  put_uint("stack_step_bytes", stack_step);
+  report_uint("model_bytes", static_cast<std::uint32_t>(sizeof(hstmon::fw::CircuitFwModel)));
+  report_uint("states", static_cast<std::uint32_t>(obs.model().n_states()));
+  report_uint("stiff_nodes", static_cast<std::uint32_t>(obs.model().n_stiff()));
+  report_uint("ticks", kTicks);
+  report_uint("counts_step_loop", counts_step);
+  report_uint("counts_empty_loop", counts_empty);
+  report_uint("counts_derivative_loop", counts_derivative);
+  report_uint("counts_tick_derivative_loop", counts_tick_derivative);
+  report_uint("health", obs.health());
+  report_uint("max_substeps", obs.substeps());
+  report_uint("stack_setup_bytes", stack_setup);
+  report_uint("stack_step_bytes", stack_step);
 #endif
-  put("}\n");
-  semihost_write0(line);
+  report_end();
   return 0;
 }

@@ -19,6 +19,7 @@
 
 #include "hstmon_c.h"
 #include "hstmon_mps2/cycles.h"
+#include "hstmon_mps2/report_line.h"
 #include "hstmon_mps2/semihosting.h"
 #include "hstmon_mps2/stack_paint.h"
 
@@ -28,30 +29,9 @@
 
 enum { kTicks = 2000, kCalibLoop = 100000 };
 
-static char line[768];
 static volatile uint32_t sink; /* keeps results observable (in both images: not the monitor's RAM) */
-static unsigned pos;
 
-static void put(const char* s) {
-  while (*s != '\0' && pos + 1u < sizeof line) line[pos++] = *s++;
-  line[pos] = '\0';
-}
 
-static void put_uint(const char* key, uint32_t v) {
-  char tmp[12];
-  int n = 0;
-  put(pos > 1u ? ",\"" : "\"");
-  put(key);
-  put("\":");
-  do {
-    tmp[n++] = (char)('0' + (int)(v % 10u));
-    v /= 10u;
-  } while (v != 0u);
-  while (n > 0) {
-    const char c[2] = {tmp[--n], '\0'};
-    put(c);
-  }
-}
 
 #if HSTMON_FW_WITH_MONITOR
 static hstmon_monitor_storage storage; /* the monitor's RAM */
@@ -88,10 +68,10 @@ int main(void) {
   /* instructions per SysTick count = 2·kCalibLoop / (c2 − c1), as a ratio */
   const uint32_t calib_instr = 2u * kCalibLoop;
   const uint32_t calib_counts = c2 - c1;
-  put("{\"type\":\"footprint\"");
-  put_uint("with_monitor", HSTMON_FW_WITH_MONITOR);
-  put_uint("calib_instructions", calib_instr);
-  put_uint("calib_counts", calib_counts);
+  report_begin("footprint");
+  report_uint("with_monitor", HSTMON_FW_WITH_MONITOR);
+  report_uint("calib_instructions", calib_instr);
+  report_uint("calib_counts", calib_counts);
   sink = calib_counts;
 #if HSTMON_FW_WITH_MONITOR
   uintptr_t sp_main;
@@ -141,24 +121,23 @@ int main(void) {
   }
   const uint32_t stack_episode_bytes = (uint32_t)(sp_main - stack_low_water());
   const uint32_t status_episode = (uint32_t)hstmon_match_status(m);
-  put_uint("monitor_bytes", (uint32_t)hstmon_monitor_size());
-  put_uint("storage_bytes", (uint32_t)sizeof storage);
-  put_uint("ticks", kTicks);
-  put_uint("counts_step_loop", counts_step);
-  put_uint("counts_empty_loop", counts_empty);
-  put_uint("health", health_nominal);
-  put_uint("status_nominal", status_nominal);
-  put_uint("counts_bound_step", counts_bound);
-  put_uint("stack_bound_bytes", stack_bound_bytes);
-  put_uint("counts_episode_max", counts_episode_max);
-  put_uint("stack_episode_bytes", stack_episode_bytes);
-  put_uint("episode_events", events);
-  put_uint("status_episode", status_episode);
-  put_uint("max_substeps", r.substeps);
-  put_uint("stack_bytes", stack_bytes);
-  put_uint("stack_step_bytes", stack_step_bytes);
+  report_uint("monitor_bytes", (uint32_t)hstmon_monitor_size());
+  report_uint("storage_bytes", (uint32_t)sizeof storage);
+  report_uint("ticks", kTicks);
+  report_uint("counts_step_loop", counts_step);
+  report_uint("counts_empty_loop", counts_empty);
+  report_uint("health", health_nominal);
+  report_uint("status_nominal", status_nominal);
+  report_uint("counts_bound_step", counts_bound);
+  report_uint("stack_bound_bytes", stack_bound_bytes);
+  report_uint("counts_episode_max", counts_episode_max);
+  report_uint("stack_episode_bytes", stack_episode_bytes);
+  report_uint("episode_events", events);
+  report_uint("status_episode", status_episode);
+  report_uint("max_substeps", r.substeps);
+  report_uint("stack_bytes", stack_bytes);
+  report_uint("stack_step_bytes", stack_step_bytes);
 #endif
-  put("}\n");
-  semihost_write0(line);
+  report_end();
   return 0;
 }
