@@ -8,17 +8,10 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "c_check.h"
 #include "hstmon_c.h"
 
-static int failures = 0;
-
-#define CHECK(cond)                                                   \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
-      ++failures;                                                     \
-    }                                                                 \
-  } while (0)
+int failures = 0;
 
 static hstmon_monitor_storage storage; /* static: no heap anywhere */
 

@@ -13,17 +13,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "c_check.h"
 #include "hstmon_circuit_c.h"
 
-static int failures = 0;
-
-#define CHECK(cond)                                                              \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);   \
-      ++failures;                                                                \
-    }                                                                            \
-  } while (0)
+int failures = 0;
 
 #define MAX_COLS 32
 #define MAX_ROWS 20000
