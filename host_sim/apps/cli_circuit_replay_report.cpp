@@ -40,33 +40,15 @@ PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circui
     p.measured = r.measured[ch];
     trace.channels.push_back(p);
   }
-  trace.rows = r.trace.size();
-  trace.row = [&r, n](std::size_t k, double& t, double* y, double* y_hat, double* res) {
-    const circuit_tools::CircuitTraceRow& row = r.trace[k];
-    t = row.t;
-    for (std::size_t ch = 0; ch < n; ++ch) {
-      y[ch] = row.y[ch];
-      y_hat[ch] = row.y_hat[ch];
-      res[ch] = row.r[ch];
-    }
-  };
-  trace.t_first = r.t_first;
-  trace.startup_hold = r.startup_hold;
+  set_trace_rows(trace, r, n);
   return trace;
 }
 
 ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_tools::LoadedCircuit& c,
                                    const circuit_tools::CircuitReplayResult& r) {
-  ReplayReport rep;
-  rep.log = a.log;
+  ReplayReport rep = replay_report_facts(a.log, r);
   rep.circuit = fmt::format("circuit {} ({}{})", c.file.name, a.circuit,
                             c.params_path.empty() ? std::string() : ", " + c.params_path);
-  rep.rows = r.rows;
-  rep.t_first = r.t_first;
-  rep.t_last = r.t_last;
-  rep.tick = r.tick;
-  rep.startup_hold = r.startup_hold;
-  rep.notes = r.notes;
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     ReportChannel rc;
     rc.label = c.file.sensors[ch].name;
@@ -75,10 +57,6 @@ ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_too
     rc.stats = r.channels[ch];
     rep.channels.push_back(rc);
   }
-  rep.events = r.events;
-  rep.final_status = r.final_status;
-  rep.health = r.health;
-  rep.unhealthy_rows = r.unhealthy_rows;
   rep.diagnosed = a.diagnose && r.table_rows > 0;
   rep.plot = circuit_plot_trace(c, r);
   return rep;

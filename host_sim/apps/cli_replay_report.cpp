@@ -97,24 +97,13 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
 }  // namespace
 
 ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResult& r, bool diagnosed) {
-  ReplayReport rep;
-  rep.log = log;
-  rep.rows = r.rows;
-  rep.t_first = r.t_first;
-  rep.t_last = r.t_last;
-  rep.tick = r.tick;
-  rep.startup_hold = r.startup_hold;
-  rep.notes = r.notes;
+  ReplayReport rep = replay_report_facts(log, r);
   const char* const label[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
   for (std::size_t c = 0; c < 4; ++c) {
     const bool speed = c == 3;
     rep.channels.push_back({label[c], speed ? "rpm" : "bar", speed ? 60.0 / (2.0 * M_PI) : 1e-5, r.measured[c],
                             r.channels[c]});
   }
-  rep.events = r.events;
-  rep.final_status = r.final_status;
-  rep.health = r.health;
-  rep.unhealthy_rows = r.unhealthy_rows;
   rep.diagnosed = diagnosed;
   rep.plot = thesis_plot_trace(r);
   return rep;

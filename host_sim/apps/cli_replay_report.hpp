@@ -43,6 +43,26 @@ struct ReplayReport {
   PlotTrace plot;                         ///< the trace (rows = 0: no plot)
 };
 
+/// A report with what every replay result has (host::ReplayResult, a circuit's
+/// CircuitReplayResult): span, tick, hold-off, notes, events, final status, health. The
+/// caller adds the channels, the plot and whether the matcher ran.
+template <class Result>
+ReplayReport replay_report_facts(const std::string& log, const Result& r) {
+  ReplayReport rep;
+  rep.log = log;
+  rep.rows = r.rows;
+  rep.t_first = r.t_first;
+  rep.t_last = r.t_last;
+  rep.tick = r.tick;
+  rep.startup_hold = r.startup_hold;
+  rep.notes = r.notes;
+  rep.events = r.events;
+  rep.final_status = r.final_status;
+  rep.health = r.health;
+  rep.unhealthy_rows = r.unhealthy_rows;
+  return rep;
+}
+
 /// The thesis replay's report (r with its trace: ReplayOptions::keep_trace).
 ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResult& r, bool diagnosed);
 

@@ -145,18 +145,7 @@ PlotTrace thesis_plot_trace(const host::ReplayResult& result) {
                     {"Pmo", "bar", 1e-5, 0.1, result.measured[1]},
                     {"Ppp", "bar", 1e-5, 0.1, result.measured[2]},
                     {"ωm", "rpm", rpm, 1.0, result.measured[3]}};
-  trace.rows = result.trace.size();
-  trace.row = [&result](std::size_t k, double& t, double* y, double* y_hat, double* r) {
-    const host::TraceRow& row = result.trace[k];
-    t = row.t;
-    for (std::size_t c = 0; c < 4; ++c) {
-      y[c] = row.y[c];
-      y_hat[c] = row.y_hat[c];
-      r[c] = row.r[c];
-    }
-  };
-  trace.t_first = result.t_first;
-  trace.startup_hold = result.startup_hold;
+  set_trace_rows(trace, result, 4);
   return trace;
 }
 

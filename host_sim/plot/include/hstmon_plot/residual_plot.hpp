@@ -30,6 +30,26 @@ struct PlotTrace {
   double startup_hold = 0.0;  ///< the residual's range ignores t < t_first + this [s]
 };
 
+/// Sets trace's rows from a replay result with a per-row trace (t, y, y_hat, r indexable
+/// by channel) and its t_first and startup_hold; the trace refers to `result`, which must
+/// outlive it. The thesis replay's and a circuit's results both have that shape.
+/// @param channels  channels per row (trace.channels.size())
+template <class Result>
+void set_trace_rows(PlotTrace& trace, const Result& result, std::size_t channels) {
+  trace.rows = result.trace.size();
+  trace.row = [&result, channels](std::size_t k, double& t, double* y, double* y_hat, double* r) {
+    const auto& row = result.trace[k];
+    t = row.t;
+    for (std::size_t c = 0; c < channels; ++c) {
+      y[c] = row.y[c];
+      y_hat[c] = row.y_hat[c];
+      r[c] = row.r[c];
+    }
+  };
+  trace.t_first = result.t_first;
+  trace.startup_hold = result.startup_hold;
+}
+
 /// Writes the figure to `path` (.svg or .png). Returns an empty string on success, else
 /// a message saying what failed (gnuplot missing, unknown extension, …).
 std::string plot_replay(const PlotTrace& trace, const std::string& title, const std::string& path);
