@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <new>
 
-#include "c_api_candidates.hpp"
+#include "c_api_copy.hpp"
 
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
@@ -228,14 +228,7 @@ HSTMON_C_RARE int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {
   if (m == nullptr || out == nullptr) return 0;
   Mon::Event e;
   if (!m->mon.pop_event(e)) return 0;
-  out->t_s = e.time;
-  out->kind = static_cast<uint8_t>(e.kind);
-  out->consistent = e.consistent;
-  out->count = e.count;
-  for (int j = 0; j < HSTMON_EVENT_CANDIDATES; ++j) {
-    out->candidate[j] = j < e.count ? hstmon_candidate{e.candidate[j].name, e.candidate[j].score}
-                                    : hstmon_candidate{nullptr, 0.0f};
-  }
+  hstmon::c_api::copy_event(e, out);
   return 1;
 }
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <new>
 
-#include "c_api_candidates.hpp"
+#include "c_api_copy.hpp"
 
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/generated_setup.hpp"
@@ -186,12 +186,7 @@ int hstmon_circuit_pop_event(hstmon_circuit_monitor* m, hstmon_event* out) {
   if (m == nullptr || out == nullptr) return 0;
   Mon::Event e;
   if (!m->mon.pop_event(e)) return 0;
-  out->t_s = e.time;
-  out->kind = static_cast<uint8_t>(e.kind);
-  out->consistent = e.consistent;
-  out->count = e.count > 0 ? 1 : 0;  // hstmon_event carries the best one
-  out->candidate[0] = e.count > 0 ? hstmon_candidate{e.candidate[0].name, e.candidate[0].score}
-                                  : hstmon_candidate{nullptr, 0.0f};
+  hstmon::c_api::copy_event(e, out);
   return 1;
 }
 

@@ -1,0 +1,34 @@
+#pragma once
+// What the two C APIs (hstmon_c.cpp, hstmon_circuit_c.cpp) share: copying a matcher's
+// ranked candidates and its events into the C structs.
+#include "hstmon_c.h"
+
+namespace hstmon::c_api {
+
+/// Copies min(total, max) candidates of `mt` (best first) into out (may be NULL when max is 0).
+/// @return the number of consistent hypotheses in total
+template <class Matcher>
+int copy_candidates(const Matcher& mt, hstmon_candidate* out, int max) noexcept {
+  const int total = mt.candidate_count();
+  for (int r = 0; out != nullptr && r < total && r < max; ++r) {
+    const auto c = mt.candidate(r);
+    out[r] = hstmon_candidate{c.name, c.score};
+  }
+  return total;
+}
+
+/// Copies event e into out: its best HSTMON_EVENT_CANDIDATES candidates (the C struct's
+/// room; the full ranking is read live with copy_candidates), the rest as they are.
+template <class Event>
+void copy_event(const Event& e, hstmon_event* out) noexcept {
+  out->t_s = e.time;
+  out->kind = static_cast<uint8_t>(e.kind);
+  out->consistent = e.consistent;
+  out->count = static_cast<uint8_t>(e.count < HSTMON_EVENT_CANDIDATES ? e.count : HSTMON_EVENT_CANDIDATES);
+  for (int j = 0; j < HSTMON_EVENT_CANDIDATES; ++j) {
+    out->candidate[j] = j < out->count ? hstmon_candidate{e.candidate[j].name, e.candidate[j].score}
+                                       : hstmon_candidate{nullptr, 0.0f};
+  }
+}
+
+}  // namespace hstmon::c_api
