@@ -6,8 +6,8 @@
 ///   hstmon-fdi forward kp- [--order N] [--linearised] [--json]  predicted signature
 ///   hstmon-fdi crosscheck [--t-early S] [--json]     TCG vs the nonlinear model
 ///   hstmon-fdi header --out FILE [--sigma-p BAR] [--sigma-w RPM] [--step F] [--order N]
-///   hstmon-fdi isolability --circuit FILE [--params FILE] [--json]   any circuit: detectability, classes
-///   hstmon-fdi sensors --circuit FILE [--params FILE] [--json]       any circuit: added sensors ranked
+///   hstmon-fdi isolability --circuit FILE [--params FILE] [--json] [--steady-only]  any circuit: detectability, classes
+///   hstmon-fdi sensors --circuit FILE [--params FILE] [--json] [--steady-only]      any circuit: added sensors ranked
 ///   hstmon-fdi table --circuit FILE [--params FILE] --name NAME --out FILE  any circuit: constexpr fault table
 /// graph, tree, backward, forward and crosscheck take --circuit FILE [--params FILE] too: the
 /// circuit's own bond graph and TCG (docs/fdi.md, "Any circuit"), e.g.
@@ -107,6 +107,11 @@ int main(int argc, char** argv) {
     sub->add_option("--params", circuit_params, "its parameter file (default <stem>.params.json beside it)");
     sub->add_flag("--json", json, "JSON output");
   }
+  bool steady_only = false;
+  for (CLI::App* sub : {iso, place}) {
+    sub->add_flag("--steady-only", steady_only,
+                  "judge on the steady magnitudes and directions alone (default: with the slopes and orders the monitor's table has)");
+  }
 
   // The circuit versions of the thesis commands.
   std::vector<std::string> cases, fault_steps_opt;
@@ -140,8 +145,8 @@ int main(int argc, char** argv) {
       if (*fwd) return run_circuit_forward(src, fault, order, json);
       if (*check) return run_circuit_crosscheck(src, cases, fault_steps_opt, step, json);
     }
-    if (*iso) return hstmon::fdi::run_isolability(circuit, circuit_params, json);
-    if (*place) return hstmon::fdi::run_sensor_placement(circuit, circuit_params, json);
+    if (*iso) return hstmon::fdi::run_isolability(circuit, circuit_params, json, steady_only);
+    if (*place) return hstmon::fdi::run_sensor_placement(circuit, circuit_params, json, steady_only);
     if (*table) return hstmon::fdi::run_table_header(circuit, circuit_params, table_name, out);
     if (*graph) {
       const CausalGraph g = thesis_tcg(valves(!nonlinear));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "hstmon/fault_signature.hpp"
 
@@ -52,8 +53,8 @@ int only_channel(const Row& r) {
   return ch;
 }
 
-// 0 not isolable, 2 weakly, 1 isolable.
-int relation(const Row& a, const Row& b) {
+// The steady relation: 0 not isolable, 2 weakly, 1 isolable.
+int steady_relation(const Row& a, const Row& b) {
   if (a.sensor || b.sensor) {
     const Row& s = a.sensor ? a : b;
     const Row& f = a.sensor ? b : a;
@@ -63,6 +64,72 @@ int relation(const Row& a, const Row& b) {
   if (!consistent(a, b)) return 1;
   const double c = cosine(a, b);
   return c >= kParallel ? 0 : (c >= kWeak ? 2 : 1);
+}
+
+bool known(int q) { return q == kQualPlus || q == kQualMinus || q == kQualZero; }
+
+// A channel whose slope both rows know and on which they differ: the matcher reads the
+// sign at the channel's alarm onset, and a predicted 0 drops the row at any alarm there.
+bool slopes_split(const Row& a, const Row& b) {
+  for (int i = 0; i < kN; ++i) {
+    const int x = a.channel[i].slope, y = b.channel[i].slope;
+    if (known(x) && known(y) && x != y) return true;
+  }
+  return false;
+}
+
+// The matcher's responds(): a channel the row lets move.
+bool responds(const ChannelSignature& s) { return s.magnitude != kQualZero || s.slope != kQualZero; }
+
+// A row's orders are known unless all are 0 (the table's "any channel may come first").
+bool orders_known(const Row& r) {
+  if (r.sensor) return false;
+  for (int i = 0; i < kN; ++i) {
+    if (responds(r.channel[i]) && r.channel[i].order > 0) return true;
+  }
+  return false;
+}
+
+// Under fault a, b fails the matcher's order test (order_slack 0): none of a's fastest
+// responding channels (those that can alarm first) responds for b with b's smallest order
+// among the channels that alarm — counted only where a moves them by a ± magnitude, so
+// that b_min is one the matcher surely sees. Nothing is claimed when none of a's fastest
+// channels has a ± magnitude (which alarms first is then not predicted).
+bool order_excludes(const Row& a, const Row& b) {
+  auto moves = [](const ChannelSignature& s) { return s.magnitude == kQualPlus || s.magnitude == kQualMinus; };
+  int a_min = 255;
+  for (int i = 0; i < kN; ++i) {
+    if (responds(a.channel[i])) a_min = std::min(a_min, static_cast<int>(a.channel[i].order));
+  }
+  auto first = [&](int i) { return responds(a.channel[i]) && a.channel[i].order == a_min; };
+  int b_min = 255;
+  bool first_moves = false;
+  for (int i = 0; i < kN; ++i) {
+    first_moves = first_moves || (first(i) && moves(a.channel[i]));
+    if (moves(a.channel[i]) && responds(b.channel[i])) b_min = std::min(b_min, static_cast<int>(b.channel[i].order));
+  }
+  if (!first_moves || b_min == 255) return false;
+  for (int i = 0; i < kN; ++i) {
+    if (first(i) && responds(b.channel[i]) && b.channel[i].order <= b_min) return false;
+  }
+  return true;
+}
+
+bool orders_split(const Row& a, const Row& b) {
+  return orders_known(a) && orders_known(b) && (order_excludes(a, b) || order_excludes(b, a));
+}
+
+// SplitBy bits of the pair, and its matrix entry (0 not isolable, 2 weakly, 1 isolable).
+std::pair<unsigned, int> relation(const Row& a, const Row& b, SignatureParts parts) {
+  const int steady = steady_relation(a, b);
+  unsigned bits = steady == 1 ? kSplitSteady : (steady == 2 ? kSplitSteadyWeak : 0u);
+  if (parts == SignatureParts::kFull && !(a.sensor && b.sensor)) {
+    if (slopes_split(a, b)) bits |= kSplitSlope;
+    if (orders_split(a, b)) bits |= kSplitOrder;
+  }
+  // Weak only when nothing but the close steady directions tells them apart.
+  const int entry = bits == 0 ? 0 : (bits == kSplitSteadyWeak ? 2 : 1);
+  return {bits, entry};
 }
 
 std::vector<std::vector<std::string>> classes_of(const std::vector<std::string>& names,
@@ -106,14 +173,19 @@ double typical_sigma(const LoadedCircuit& c, host::CircuitQuantity q, double fal
 
 }  // namespace
 
-Isolability circuit_isolability(const CircuitFaultTable& t) {
+Isolability circuit_isolability(const CircuitFaultTable& t, SignatureParts parts) {
   Isolability r;
   const std::size_t n = t.rows.size();
   for (const auto& row : t.rows) r.faults.emplace_back(row.name);
   r.isolable.assign(n, std::vector<int>(n, 1));
+  r.split.assign(n, std::vector<unsigned>(n, 0u));
   for (std::size_t i = 0; i < n; ++i) {
     r.isolable[i][i] = 0;
-    for (std::size_t j = i + 1; j < n; ++j) r.isolable[i][j] = r.isolable[j][i] = relation(t.rows[i], t.rows[j]);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const auto [bits, entry] = relation(t.rows[i], t.rows[j], parts);
+      r.isolable[i][j] = r.isolable[j][i] = entry;
+      r.split[i][j] = r.split[j][i] = bits;
+    }
   }
   r.classes = classes_of(r.faults, r.isolable);
   for (std::size_t i = 0; i < n; ++i) {
@@ -125,8 +197,8 @@ Isolability circuit_isolability(const CircuitFaultTable& t) {
   return r;
 }
 
-std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c) {
-  const Isolability today = circuit_isolability(circuit_fault_table(c));
+std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c, FaultTableBuilder build, SignatureParts parts) {
+  const Isolability today = circuit_isolability(build(c), parts);
   const host::HostCircuit& d = c.file.circuit;
   std::vector<SensorCandidate> out;
   if (d.n_channels >= host::CircuitCap::kChannels) return out;
@@ -174,7 +246,7 @@ std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c) {
     a.file.sensors.push_back(s);
     Isolability with;
     try {
-      with = circuit_isolability(circuit_fault_table(a));
+      with = circuit_isolability(build(a), parts);
     } catch (const std::exception&) {
       continue;
     }
