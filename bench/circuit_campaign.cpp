@@ -41,6 +41,7 @@
 
 #include "campaign_score.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
@@ -391,12 +392,25 @@ int main(int argc, char** argv) {
     fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>9.0f} {:>6}\n", name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected),
                pct(t.best, t.detected), t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.early);
   }
-  fmt::print("\nconfusions (a fault in the reported set of another's detected runs, in ≥ 25 % of them):\n");
+  // The predicted relation is read off the table the matcher ran, slopes and orders too
+  // (hstmon-fdi isolability --circuit, docs/isolability.md).
+  const hstmon::circuit_tools::Isolability predicted = hstmon::circuit_tools::circuit_isolability(g_table);
+  const auto mark = [&](const std::string& a, const std::string& b) {
+    const auto at = [&](const std::string& f) {
+      return static_cast<std::size_t>(std::find(predicted.faults.begin(), predicted.faults.end(), f) - predicted.faults.begin());
+    };
+    const std::size_t i = at(a), j = at(b);
+    if (i >= predicted.faults.size() || j >= predicted.faults.size()) return "?";
+    const int v = predicted.isolable[i][j];
+    return v == 0 ? "x" : (v == 2 ? "~" : "!");
+  };
+  fmt::print("\nconfusions (a fault in the reported set of another's detected runs, in ≥ 25 % of them; predicted from the\n"
+             "matcher's table: x not isolable, ~ weakly, ! isolable — not predicted):\n");
   for (const auto& [truth, others] : confused) {
     std::vector<std::string> shown;
     const int n = by_fault[truth].detected;
     for (const auto& [other, k] : others) {
-      if (4 * k >= n) shown.push_back(fmt::format("{} {:.0f} %", other, pct(k, n)));
+      if (4 * k >= n) shown.push_back(fmt::format("{} {:.0f} % {}", other, pct(k, n), mark(truth, other)));
     }
     if (!shown.empty()) fmt::print("  {:<20} with {}\n", truth, fmt::join(shown, ", "));
   }

@@ -59,7 +59,15 @@ int steady_relation(const Row& a, const Row& b) {
     const Row& s = a.sensor ? a : b;
     const Row& f = a.sensor ? b : a;
     if (f.sensor) return 1;  // two sensors: different channels
-    return only_channel(f) >= 0 && only_channel(f) == only_channel(s) ? 0 : 1;
+    const int ch = only_channel(s);
+    if (ch < 0) return 1;
+    if (only_channel(f) == ch) return 0;
+    // The matcher scores a sensor row by the deviation's share on its channel: a fault
+    // that moves that channel nearly alone (the closed loop's charge pump on p_c) ranks
+    // with the sensor row, its other channels small enough to read as unchanged.
+    double norm = 0.0;
+    for (int i = 0; i < kN; ++i) norm += static_cast<double>(f.direction[i]) * static_cast<double>(f.direction[i]);
+    return norm > 0.0 && std::fabs(static_cast<double>(f.direction[ch])) / std::sqrt(norm) >= kWeak ? 2 : 1;
   }
   if (!consistent(a, b)) return 1;
   const double c = cosine(a, b);
@@ -123,7 +131,8 @@ bool orders_split(const Row& a, const Row& b) {
 std::pair<unsigned, int> relation(const Row& a, const Row& b, SignatureParts parts) {
   const int steady = steady_relation(a, b);
   unsigned bits = steady == 1 ? kSplitSteady : (steady == 2 ? kSplitSteadyWeak : 0u);
-  if (parts == SignatureParts::kFull && !(a.sensor && b.sensor)) {
+  // Sensor rows: the steady rule alone (see the header).
+  if (parts == SignatureParts::kFull && !a.sensor && !b.sensor) {
     if (slopes_split(a, b)) bits |= kSplitSlope;
     if (orders_split(a, b)) bits |= kSplitOrder;
   }

@@ -14,7 +14,9 @@
 ///    fault of the other kind shows), or the directions are not parallel (cosine below
 ///    1 − 1e-6; parallel: the same steady residual up to its size, e.g. a pump's
 ///    displacement and its stroke, which enter only as their product). A sensor row and a
-///    fault that moves its channel alone are not isolable this way;
+///    fault that moves its channel alone are not isolable this way, and weakly when the
+///    fault's direction is within ≈ 11° of that channel (the matcher scores a sensor row
+///    by the deviation's share on its channel);
 ///  - *slope*: on some channel both rows' slopes are known (not `?`) and differ — the
 ///    matcher reads the sign at the channel's alarm onset, and a predicted 0 is
 ///    contradicted by any alarm there;
@@ -23,6 +25,9 @@
 ///    other's order test fails: none of those channels has the other row's smallest
 ///    order among the channels the fault moves (± magnitude) or moves first
 ///    (order_slack 0, the monitor's).
+/// Sensor rows are judged on the steady rule alone: their slopes and orders are not the
+/// graph's, and their 0s are the structural zeros it already reads (a fault that moves
+/// another channel by a share too small to alarm there leaves a sensor row standing).
 /// The table decides what is known: the monitor's keeps a slope or a row's orders only
 /// where they hold for the nonlinear engine (docs/fdi.md §10), and the steady-state table
 /// (circuit_fault_table, or SignatureParts::kSteadyOnly) has none.
