@@ -1,6 +1,7 @@
 #include "hstmon_circuit/circuit_isolability.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -98,23 +99,41 @@ bool orders_known(const Row& r) {
   return false;
 }
 
+// The table's channels that exist: rows have CircuitCap::kChannels entries, and those past
+// the circuit's sensors read "0 magnitude, slope ?, order 0" — which would look like a
+// channel every row reaches first. A channel exists where some row has a direction or a
+// sensor row its own channel.
+using Live = std::array<bool, static_cast<std::size_t>(kN)>;
+
+Live live_channels(const std::vector<Row>& rows) {
+  Live live{};
+  for (const Row& r : rows) {
+    for (int i = 0; i < kN; ++i) {
+      live[static_cast<std::size_t>(i)] = live[static_cast<std::size_t>(i)] || r.direction[i] != 0.0f ||
+                                          (r.sensor && r.channel[i].magnitude != kQualZero);
+    }
+  }
+  return live;
+}
+
 // Under fault a, b fails the matcher's order test (order_slack 0): none of a's fastest
 // responding channels (those that can alarm first) responds for b with b's smallest order
 // among the channels that alarm — counted only where a moves them by a ± magnitude, so
 // that b_min is one the matcher surely sees. Nothing is claimed when none of a's fastest
 // channels has a ± magnitude (which alarms first is then not predicted).
-bool order_excludes(const Row& a, const Row& b) {
+bool order_excludes(const Row& a, const Row& b, const Live& live) {
   auto moves = [](const ChannelSignature& s) { return s.magnitude == kQualPlus || s.magnitude == kQualMinus; };
+  auto on = [&](int i) { return live[static_cast<std::size_t>(i)]; };
   int a_min = 255;
   for (int i = 0; i < kN; ++i) {
-    if (responds(a.channel[i])) a_min = std::min(a_min, static_cast<int>(a.channel[i].order));
+    if (on(i) && responds(a.channel[i])) a_min = std::min(a_min, static_cast<int>(a.channel[i].order));
   }
-  auto first = [&](int i) { return responds(a.channel[i]) && a.channel[i].order == a_min; };
+  auto first = [&](int i) { return on(i) && responds(a.channel[i]) && a.channel[i].order == a_min; };
   int b_min = 255;
   bool first_moves = false;
   for (int i = 0; i < kN; ++i) {
     first_moves = first_moves || (first(i) && moves(a.channel[i]));
-    if (moves(a.channel[i]) && responds(b.channel[i])) b_min = std::min(b_min, static_cast<int>(b.channel[i].order));
+    if (on(i) && moves(a.channel[i]) && responds(b.channel[i])) b_min = std::min(b_min, static_cast<int>(b.channel[i].order));
   }
   if (!first_moves || b_min == 255) return false;
   for (int i = 0; i < kN; ++i) {
@@ -123,18 +142,18 @@ bool order_excludes(const Row& a, const Row& b) {
   return true;
 }
 
-bool orders_split(const Row& a, const Row& b) {
-  return orders_known(a) && orders_known(b) && (order_excludes(a, b) || order_excludes(b, a));
+bool orders_split(const Row& a, const Row& b, const Live& live) {
+  return orders_known(a) && orders_known(b) && (order_excludes(a, b, live) || order_excludes(b, a, live));
 }
 
 // SplitBy bits of the pair, and its matrix entry (0 not isolable, 2 weakly, 1 isolable).
-std::pair<unsigned, int> relation(const Row& a, const Row& b, SignatureParts parts) {
+std::pair<unsigned, int> relation(const Row& a, const Row& b, SignatureParts parts, const Live& live) {
   const int steady = steady_relation(a, b);
   unsigned bits = steady == 1 ? kSplitSteady : (steady == 2 ? kSplitSteadyWeak : 0u);
   // Sensor rows: the steady rule alone (see the header).
   if (parts == SignatureParts::kFull && !a.sensor && !b.sensor) {
     if (slopes_split(a, b)) bits |= kSplitSlope;
-    if (orders_split(a, b)) bits |= kSplitOrder;
+    if (orders_split(a, b, live)) bits |= kSplitOrder;
   }
   // Weak only when nothing but the close steady directions tells them apart.
   const int entry = bits == 0 ? 0 : (bits == kSplitSteadyWeak ? 2 : 1);
@@ -188,10 +207,11 @@ Isolability circuit_isolability(const CircuitFaultTable& t, SignatureParts parts
   for (const auto& row : t.rows) r.faults.emplace_back(row.name);
   r.isolable.assign(n, std::vector<int>(n, 1));
   r.split.assign(n, std::vector<unsigned>(n, 0u));
+  const Live live = live_channels(t.rows);
   for (std::size_t i = 0; i < n; ++i) {
     r.isolable[i][i] = 0;
     for (std::size_t j = i + 1; j < n; ++j) {
-      const auto [bits, entry] = relation(t.rows[i], t.rows[j], parts);
+      const auto [bits, entry] = relation(t.rows[i], t.rows[j], parts, live);
       r.isolable[i][j] = r.isolable[j][i] = entry;
       r.split[i][j] = r.split[j][i] = bits;
     }
