@@ -81,14 +81,15 @@ TEST(CircuitIsolability, PumpFlowSensorSeparatesALeakFromALowDelivery) {
   EXPECT_EQ(it - ranked.begin(), 0) << "q(pump) should rank first, got " << ranked.front().name;
 }
 
-// A two-channel table of hand-made rows (the other channels structural zeros).
+// A two-channel table of hand-made rows; the entries past them read as circuit_fault_table
+// writes them (0, slope ?, order 0, no direction).
 struct Hand {
   ct::CircuitFaultTable t;
   void add(const std::string& name, ChannelSig ch0, ChannelSig ch1, float d0, float d1) {
     t.names.push_back(name);
     ct::CircuitFaultTable::Row r{};
     r.sensor = false;
-    for (int i = 0; i < ct::CircuitFaultTable::Row::kChannels; ++i) r.channel[i] = {hstmon::kQualZero, hstmon::kQualZero, 0};
+    for (int i = 0; i < ct::CircuitFaultTable::Row::kChannels; ++i) r.channel[i] = {hstmon::kQualZero, hstmon::kQualAny, 0};
     r.channel[0] = ch0;
     r.channel[1] = ch1;
     r.direction[0] = d0;
@@ -160,6 +161,18 @@ TEST(CircuitIsolability, MonitorTableKeepsTheThesisClassesTheCampaignConfuses) {
   // where it is the steady sign): Dm+/Dm- is split by both.
   const std::size_t p = at(full, "Dm+"), m = at(full, "Dm-");
   EXPECT_EQ(full.split[p][m], unsigned{ct::kSplitSteady | ct::kSplitSlope});
+}
+
+TEST(CircuitIsolability, ClosedLoopOrdersSplitTheMotorFromTheChargeCircuit) {
+  // The charge circuit's faults reach p_c first (order 1), the motor's displacement p_a,
+  // p_b and w_m (order 1) and p_c only at order 2: the matcher's order test tells them
+  // apart as well as their steady signatures do.
+  const ct::Isolability r = ct::circuit_isolability(hstmon::fdi::circuit_signature_table(load("closed_loop_hst")));
+  for (const char* charge : {"Dc+", "Dc-", "k_charge+", "p_charge-"}) {
+    EXPECT_TRUE(r.split[at(r, "Dm+")][at(r, charge)] & ct::kSplitOrder) << charge;
+    EXPECT_TRUE(r.split[at(r, "Dm-")][at(r, charge)] & ct::kSplitOrder) << charge;
+  }
+  EXPECT_EQ(r.split[at(r, "Dp+")][at(r, "eps+")], 0u);  // one product: nothing splits them
 }
 
 TEST(CircuitIsolability, AddedSensorsAreRankedOnTheMonitorsTable) {
