@@ -29,14 +29,16 @@ not because c_m+ looks like c_m-). The matrices mark with `s`, `o` or `b` a pair
 only a slope, the orders or both split; `--steady-only` gives the steady relation alone.
 
 On the four shipped circuits the transient splits **no pair** the steady signature does
-not already split: a table keeps a slope only where it is the steady sign (so two known
-slopes that differ are opposite magnitudes too, and no row keeps a 0 slope), and the rows
-that keep their orders either differ in their steady signature already or share their
-fastest path with their steady twins (a product such as Dp·eps or D·n, the charge
-circuit's four parameters entering at one point). Most of the thesis rig's rows have
-orders 0, because p_pp, their most visible channel, is not on their fastest path. The
-classes below are therefore those of the steady relation, now confirmed against what the
-monitor can read.
+not already split, so the classes and weak pairs below are those of the steady relation
+(`--steady-only` gives the same), now checked against what the monitor reads. Why: a
+table keeps a slope only where it is the steady sign (two known slopes that differ are
+opposite magnitudes too, and no fault row keeps a 0 slope), and the rows that keep their
+orders either differ in their steady signature already — the closed loop's motor
+displacement Dm± reaches p_a, p_b and w_m first, the charge circuit's faults p_c: 16 pairs
+split by the orders as well — or share their fastest path with their steady twins (a
+product such as Dp·eps or D·n; Dc, k_charge, p_charge, p_charge_crack entering at one
+point). Most of the thesis rig's rows have orders 0: p_pp, their most visible channel, is
+not on their fastest path.
 
 The sensor tables list the best five single added sensors — `p(node)`, `w(shaft)` or
 `q(component)` — by classes split, then faults made detectable, then weak pairs cleared,
