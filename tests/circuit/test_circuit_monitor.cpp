@@ -8,6 +8,8 @@
 //  - thesis.json through the engine gives the demo log the thesis monitor's diagnosis:
 //    detected at 80.03 s, kp− isolated at 80.18 s.
 //  - The generated table names its rows after the circuit's parameters and inputs.
+// Every replay runs on the table `hstmon replay --circuit` builds (fdi::circuit_signature_table:
+// the steady signs and directions with the causal graph's slopes and orders).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,6 +23,7 @@
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/log_reader.hpp"
 
 namespace {
@@ -34,6 +37,13 @@ ct::LoadedCircuit load(const std::string& name) {
   const auto err = ct::load_circuit(example("circuits/" + name + ".json"), "", c);
   EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
   return c;
+}
+
+// The CLI's replay options: its table, not circuit_fault_table's steady-only one.
+ct::CircuitReplayOptions cli_options() {
+  ct::CircuitReplayOptions o;
+  o.fault_table = hstmon::fdi::circuit_signature_table;
+  return o;
 }
 
 std::string describe(const ct::CircuitReplayResult& r) {
@@ -59,7 +69,7 @@ ct::CircuitReplayResult simulate_and_replay(const ct::LoadedCircuit& c, ct::Circ
   const ct::CircuitLog log = ct::simulate_circuit(c, o);
   const ct::CircuitLog back = ct::parse_circuit_log(ct::circuit_log_text(c.file, log), "sim.csv", c.file);
   EXPECT_TRUE(back.ok());
-  return ct::replay_circuit(c, back, {});
+  return ct::replay_circuit(c, back, cli_options());
 }
 
 TEST(CircuitMonitor, ShippedLogsRaiseNoEvent) {
@@ -67,7 +77,7 @@ TEST(CircuitMonitor, ShippedLogsRaiseNoEvent) {
     const ct::LoadedCircuit c = load(name);
     const ct::CircuitLog log = ct::read_circuit_log(example(std::string("circuits/") + name + ".csv"), c.file);
     ASSERT_TRUE(log.ok());
-    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options());
     EXPECT_GT(r.table_rows, c.file.sensors.size()) << name << ": parameter rows besides the sensor rows";
     EXPECT_TRUE(r.events.empty()) << name << describe(r);
     EXPECT_EQ(r.final_status, "nominal") << name;
@@ -141,7 +151,7 @@ TEST(CircuitMonitor, ThesisCircuitGivesTheDemoDiagnosis) {
   const ct::LoadedCircuit c = load("thesis");
   const ct::CircuitLog log = ct::read_circuit_log(example("prv_blockage.csv"), c.file);
   ASSERT_TRUE(log.ok()) << log.error->to_string();
-  const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+  const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options());
   ASSERT_GE(r.events.size(), 2u) << describe(r);
   EXPECT_EQ(r.events[0].event, "detected");
   EXPECT_NEAR(r.events[0].t, 80.03, 1e-9) << describe(r);
@@ -195,7 +205,7 @@ TEST(CircuitMonitor, MachineWithShutReliefValveAtCrackingRaisesNoEventButLeakIsF
     o.steps.push_back(step(c, "n_drive=1780 rpm@2", false));
     if (leak) o.steps.push_back(step(c, "R_leak=0.2@5", true));
     const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
-    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options());
     if (!leak) {
       EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
       continue;
