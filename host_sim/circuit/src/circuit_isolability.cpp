@@ -75,18 +75,6 @@ int steady_relation(const Row& a, const Row& b) {
   return c >= kParallel ? 0 : (c >= kWeak ? 2 : 1);
 }
 
-bool known(int q) { return q == kQualPlus || q == kQualMinus || q == kQualZero; }
-
-// A channel whose slope both rows know and on which they differ: the matcher reads the
-// sign at the channel's alarm onset, and a predicted 0 drops the row at any alarm there.
-bool slopes_split(const Row& a, const Row& b) {
-  for (int i = 0; i < kN; ++i) {
-    const int x = a.channel[i].slope, y = b.channel[i].slope;
-    if (known(x) && known(y) && x != y) return true;
-  }
-  return false;
-}
-
 // The matcher's responds(): a channel the row lets move.
 bool responds(const ChannelSignature& s) { return s.magnitude != kQualZero || s.slope != kQualZero; }
 
@@ -114,6 +102,18 @@ Live live_channels(const std::vector<Row>& rows) {
     }
   }
   return live;
+}
+
+bool slope_known(int q) { return q == kQualPlus || q == kQualMinus || q == kQualZero; }
+
+// A channel whose slope both rows know and on which they differ: the matcher reads the
+// sign at the channel's alarm onset, and a predicted 0 drops the row at any alarm there.
+bool slopes_split(const Row& a, const Row& b, const Live& live) {
+  for (int i = 0; i < kN; ++i) {
+    const int x = a.channel[i].slope, y = b.channel[i].slope;
+    if (live[static_cast<std::size_t>(i)] && slope_known(x) && slope_known(y) && x != y) return true;
+  }
+  return false;
 }
 
 // Under fault a, b fails the matcher's order test (order_slack 0): none of a's fastest
@@ -152,7 +152,7 @@ std::pair<unsigned, int> relation(const Row& a, const Row& b, SignatureParts par
   unsigned bits = steady == 1 ? kSplitSteady : (steady == 2 ? kSplitSteadyWeak : 0u);
   // Sensor rows: the steady rule alone (see the header).
   if (parts == SignatureParts::kFull && !a.sensor && !b.sensor) {
-    if (slopes_split(a, b)) bits |= kSplitSlope;
+    if (slopes_split(a, b, live)) bits |= kSplitSlope;
     if (orders_split(a, b, live)) bits |= kSplitOrder;
   }
   // Weak only when nothing but the close steady directions tells them apart.
