@@ -217,9 +217,17 @@ Isolability circuit_isolability(const CircuitFaultTable& t, SignatureParts parts
     }
   }
   r.classes = classes_of(r.faults, r.isolable);
+  // A weak pair inside a class says nothing more: the class already joins them (T_L+ and
+  // sensor_p_b, both with c_m+ that moves p_b alone).
+  auto together = [&](const std::string& a, const std::string& b) {
+    for (const auto& cls : r.classes) {
+      if (std::find(cls.begin(), cls.end(), a) != cls.end() && std::find(cls.begin(), cls.end(), b) != cls.end()) return true;
+    }
+    return false;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
-      if (r.isolable[i][j] == 2) r.weak.emplace_back(r.faults[i], r.faults[j]);
+      if (r.isolable[i][j] == 2 && !together(r.faults[i], r.faults[j])) r.weak.emplace_back(r.faults[i], r.faults[j]);
     }
   }
   r.undetectable = t.undetectable;
