@@ -401,11 +401,13 @@ int main(int argc, char** argv) {
     };
     const std::size_t i = at(a), j = at(b);
     if (i >= predicted.faults.size() || j >= predicted.faults.size()) return "?";
-    const int v = predicted.isolable[i][j];
-    return v == 0 ? "x" : (v == 2 ? "~" : "!");
+    for (const auto& cls : predicted.classes) {  // one class: not isolable, even if this pair is directly
+      if (std::count(cls.begin(), cls.end(), a) > 0 && std::count(cls.begin(), cls.end(), b) > 0) return "x";
+    }
+    return predicted.isolable[i][j] == 2 ? "~" : "!";
   };
   fmt::print("\nconfusions (a fault in the reported set of another's detected runs, in ≥ 25 % of them; predicted from the\n"
-             "matcher's table: x not isolable, ~ weakly, ! isolable — not predicted):\n");
+             "matcher's table: x in one class, ~ weakly isolable, ! isolable — not predicted):\n");
   for (const auto& [truth, others] : confused) {
     std::vector<std::string> shown;
     const int n = by_fault[truth].detected;
