@@ -349,8 +349,56 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     line(std::string("    const bool conv = circuit::gauss_seidel(p_env, ") + (coupled ? "true" : "false") +
          ", [&](circuit::Sweep<T>& w) HSTMON_CIRCUIT_LAMBDA_INLINE {");
     for (int j = 0; j < m; ++j) {
-      const std::string i = s(stiff_z[static_cast<std::size_t>(j)]);
+      const int iz = stiff_z[static_cast<std::size_t>(j)];
+      const std::string i = s(iz);
       line("      w.node(z[" + i + "], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {");
+      // CircuitModel::solve_node's closed form where the node's elements allow it: one
+      // orifice, the rest linear in the pressure; the same terms in the same order.
+      int orifice = -1;
+      bool linear = true;
+      for (int e = 0; e < d.n_elements; ++e) {
+        const circuit::Element& el = d.elements[e];
+        if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
+        if (el.kind == ElementKind::kOrifice) {
+          linear = linear && orifice < 0;
+          orifice = e;
+        } else if (el.kind != ElementKind::kLaminar && el.kind != ElementKind::kMachine &&
+                   el.kind != ElementKind::kFlowSource) {
+          linear = false;
+        }
+      }
+      if (linear && orifice >= 0) {
+        line("        // One orifice (" + el_name(orifice) + ") and flows linear in the pressure: closed form.");
+        line("        T lin = T(0), B = T(0);");
+        for (int e = 0; e < d.n_elements; ++e) {
+          const circuit::Element& el = d.elements[e];
+          if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
+          const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
+          switch (el.kind) {
+            case ElementKind::kLaminar:
+              line("        lin += " + c0 + " * z[" + s(el.a == iz ? el.b : el.a) + "];  // " + el_name(e));
+              line("        B += " + c0 + ";");
+              break;
+            case ElementKind::kMachine:
+              line(std::string("        lin ") + (el.a == iz ? "-" : "+") + "= " + c0 + " * z[" + s(nn + el.shaft) +
+                   "];  // " + el_name(e));
+              break;
+            case ElementKind::kFlowSource:
+              line(std::string("        lin ") + (el.a == iz ? "-" : "+") + "= " + c0 + ";  // " + el_name(e));
+              break;
+            default: break;
+          }
+        }
+        const circuit::Element& oe = d.elements[orifice];
+        line("        if (circuit::solve_node_orifice(z[" + i + "], z[" + s(oe.a == iz ? oe.b : oe.a) + "], m.coeffs(" +
+             s(orifice) + ").c[0], m.coeffs(" + s(orifice) + ").c[1], lin, B)) {");
+        line("          if constexpr (kRow) {");
+        line("            T dF;");
+        line("            (void)balance_" + i + "<true>(m, z, dF, G);");
+        line("          }");
+        line("          return true;");
+        line("        }");
+      }
       line("        return circuit::solve_node_newton(z[" + i + "], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {");
       line("          z[" + i + "] = p;");
       line("          return balance_" + i + "<kRow>(m, z, dF, G);");

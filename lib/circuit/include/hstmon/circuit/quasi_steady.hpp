@@ -102,6 +102,33 @@ HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance
   return solve_node_newton_bracketed(p_io, p_env, balance);
 }
 
+/// A node whose balance is one orifice to pressure u plus flows linear in its pressure p,
+///   F(p) = c0·sq(u − p) + lin − B·p   (sq: signed_root.hpp's regularised root),
+/// solved in closed form: with Δ = u − p and c = lin − B·u, F = c0·sq(Δ) + B·Δ + c rises
+/// strictly with Δ, and beyond the transition |Δ| ≥ ΔP_t it is the quadratic
+/// B·s² + c0·s − |c| = 0 in s = √|Δ|, whose root s = 2|c|/(c0 + √(c0² + 4B|c|)) has no
+/// cancellation. The exact node solve Gauss–Seidel needs (the contraction argument of
+/// docs/circuits.md is unchanged), at one square root instead of Newton iterations.
+/// @param p_io  out: the node's pressure when solved [Pa]; untouched otherwise
+/// @param u     the orifice's other port [Pa]
+/// @param c0    orifice coefficient k·opening [m³/(s·√Pa)]
+/// @param x_t   its transition pressure ΔP_t [Pa]
+/// @param lin   the linear flows' constant part: Σ g·p_other + Σ fixed inflows [m³/s]
+/// @param B     Σ g of the linear flows [m³/(s·Pa)], ≥ 0
+/// @return false when the root lies in the laminar band (|Δ| < ΔP_t, the cubic law), the
+///         orifice is shut, or a value is not finite: the caller then uses Newton
+template <typename T>
+HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B) noexcept {
+  const T c = lin - B * u;
+  const T a = std::fabs(c);
+  if (!(c0 > T(0))) return false;
+  const T s = T(2) * a / (c0 + std::sqrt(c0 * c0 + T(4) * B * a));
+  const T d = s * s;
+  if (!(d >= x_t) || !(d <= std::numeric_limits<T>::max())) return false;
+  p_io = c > T(0) ? u + d : u - d;
+  return true;
+}
+
 /// One Gauss–Seidel sweep's bookkeeping: whether every node solve converged and the
 /// largest relative move of a pressure.
 template <typename T>

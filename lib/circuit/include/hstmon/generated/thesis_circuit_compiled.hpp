@@ -158,12 +158,40 @@ struct Kernel {
     const T p_env = m.pressure_envelope();
     const bool conv = circuit::gauss_seidel(p_env, true, [&](circuit::Sweep<T>& w) HSTMON_CIRCUIT_LAMBDA_INLINE {
       w.node(z[4], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
+        // One orifice (dcv.PA) and flows linear in the pressure: closed form.
+        T lin = T(0), B = T(0);
+        lin -= m.coeffs(3).c[0] * z[7];  // motor
+        lin += m.coeffs(4).c[0] * z[2];  // leak_in
+        B += m.coeffs(4).c[0];
+        lin += m.coeffs(6).c[0] * z[5];  // leak_cross
+        B += m.coeffs(6).c[0];
+        if (circuit::solve_node_orifice(z[4], z[0], m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B)) {
+          if constexpr (kRow) {
+            T dF;
+            (void)balance_4<true>(m, z, dF, G);
+          }
+          return true;
+        }
         return circuit::solve_node_newton(z[4], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {
           z[4] = p;
           return balance_4<kRow>(m, z, dF, G);
         });
       });
       w.node(z[5], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
+        // One orifice (dcv.BT) and flows linear in the pressure: closed form.
+        T lin = T(0), B = T(0);
+        lin += m.coeffs(3).c[0] * z[7];  // motor
+        lin += m.coeffs(5).c[0] * z[2];  // leak_out
+        B += m.coeffs(5).c[0];
+        lin += m.coeffs(6).c[0] * z[4];  // leak_cross
+        B += m.coeffs(6).c[0];
+        if (circuit::solve_node_orifice(z[5], z[1], m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B)) {
+          if constexpr (kRow) {
+            T dF;
+            (void)balance_5<true>(m, z, dF, G);
+          }
+          return true;
+        }
         return circuit::solve_node_newton(z[5], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {
           z[5] = p;
           return balance_5<kRow>(m, z, dF, G);
