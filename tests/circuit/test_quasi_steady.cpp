@@ -24,7 +24,10 @@ struct Node {
     dF = -k * s - g;
     return q - q_out - g * (p - p_d);
   }
-  bool closed_form(T& p) const { return circuit::solve_node_orifice(p, u, k, x_t, g * p_d - q_out, g); }
+  bool closed_form(T& p) const {
+    T root;
+    return circuit::solve_node_orifice(p, u, k, x_t, g * p_d - q_out, g, root);
+  }
   // The balance leaves the node at the pressure it is evaluated at, as the solves require.
   bool newton(T& p) const {
     return circuit::solve_node_newton_bracketed(p, T(4e7), [&](T x, T& dF) {
@@ -68,9 +71,11 @@ TEST(QuasiSteady, ClosedFormDeclinesWhereItDoesNotApply) {
   double q = p;
   EXPECT_TRUE(laminar.newton(q));  // Newton, the caller's fallback, solves it
   // A shut orifice, no flow at all, and a value that is not finite.
-  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 0.0, 1e3, -6e-4, 1e-12));
-  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 1.2e-6, 1e3, 35e5 * 1e-12, 1e-12));
-  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 1.2e-6, 1e3, std::nan(""), 1e-12));
+  double root = -1.0;
+  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 0.0, 1e3, -6e-4, 1e-12, root));
+  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 1.2e-6, 1e3, 35e5 * 1e-12, 1e-12, root));
+  EXPECT_FALSE(circuit::solve_node_orifice(p, 35e5, 1.2e-6, 1e3, std::nan(""), 1e-12, root));
+  EXPECT_EQ(root, -1.0);
   EXPECT_EQ(p, 123.0);
 }
 

@@ -390,11 +390,35 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
           }
         }
         const circuit::Element& oe = d.elements[orifice];
+        line("        T root;");
         line("        if (circuit::solve_node_orifice(z[" + i + "], z[" + s(oe.a == iz ? oe.b : oe.a) + "], m.coeffs(" +
-             s(orifice) + ").c[0], m.coeffs(" + s(orifice) + ").c[1], lin, B)) {");
+             s(orifice) + ").c[0], m.coeffs(" + s(orifice) + ").c[1], lin, B, root)) {");
+        // The node's row from the closed form's own numbers: each law's slopes at the
+        // solution (the orifice's c0/(2·root), turbulent there), in unknowns_jacobian's order.
         line("          if constexpr (kRow) {");
-        line("            T dF;");
-        line("            (void)balance_" + i + "<true>(m, z, dF, G);");
+        zero_row(uz(iz), "            ");
+        for (int e = 0; e < d.n_elements; ++e) {
+          const circuit::Element& el = d.elements[e];
+          if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
+          const std::vector<std::string> rows = row_lines(uz(iz), el, "              ");
+          if (rows.empty()) continue;
+          const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
+          line("            {  // " + el_name(e));
+          line("              circuit::Flow<T> f;");
+          if (el.kind == ElementKind::kOrifice) {
+            line("              f.dpa = " + c0 + " * (T(0.5) / root);");
+            line("              f.dpb = -f.dpa;");
+          } else if (el.kind == ElementKind::kLaminar) {
+            line("              f.dpa = " + c0 + ";");
+            line("              f.dpb = -" + c0 + ";");
+          } else if (el.kind == ElementKind::kMachine) {
+            line("              f.dw = " + c0 + ";");
+          }
+          for (const std::string& t : rows) line(t);
+          line("            }");
+        }
+        line("          } else {");
+        line("            (void)root;");
         line("          }");
         line("          return true;");
         line("        }");

@@ -725,7 +725,8 @@ class CircuitModel {
     }
     if (linear && orifice >= 0) {
       const Element& o = c_->elements[orifice];
-      if (solve_node_orifice(z[i], z[o.a == i ? o.b : o.a], coef_[orifice].c[0], coef_[orifice].c[1], lin, B)) {
+      T root;
+      if (solve_node_orifice(z[i], z[o.a == i ? o.b : o.a], coef_[orifice].c[0], coef_[orifice].c[1], lin, B, root)) {
         return true;
       }
     }

@@ -115,10 +115,11 @@ HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance
 /// @param x_t   its transition pressure ΔP_t [Pa]
 /// @param lin   the linear flows' constant part: Σ g·p_other + Σ fixed inflows [m³/s]
 /// @param B     Σ g of the linear flows [m³/(s·Pa)], ≥ 0
+/// @param root  out: √|Δ| at the solution [√Pa] (the orifice's slope is c0/(2·root))
 /// @return false when the root lies in the laminar band (|Δ| < ΔP_t, the cubic law), the
 ///         orifice is shut, or a value is not finite: the caller then uses Newton
 template <typename T>
-HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B) noexcept {
+HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B, T& root) noexcept {
   const T c = lin - B * u;
   const T a = std::fabs(c);
   if (!(c0 > T(0))) return false;
@@ -126,6 +127,7 @@ HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, 
   const T d = s * s;
   if (!(d >= x_t) || !(d <= std::numeric_limits<T>::max())) return false;
   p_io = c > T(0) ? u + d : u - d;
+  root = s;
   return true;
 }
 

@@ -165,10 +165,40 @@ struct Kernel {
         B += m.coeffs(4).c[0];
         lin += m.coeffs(6).c[0] * z[5];  // leak_cross
         B += m.coeffs(6).c[0];
-        if (circuit::solve_node_orifice(z[4], z[0], m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B)) {
+        T root;
+        if (circuit::solve_node_orifice(z[4], z[0], m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B, root)) {
           if constexpr (kRow) {
-            T dF;
-            (void)balance_4<true>(m, z, dF, G);
+            G[0][0] = T(0);
+            G[0][1] = T(0);
+            G[0][3] = T(0);
+            {  // dcv.PA
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(1).c[0] * (T(0.5) / root);
+              f.dpb = -f.dpa;
+              G[0][0] += f.dpb;
+            }
+            {  // motor
+              circuit::Flow<T> f;
+              f.dw = m.coeffs(3).c[0];
+              G[0][0] -= f.dpa;
+              G[0][1] -= f.dpb;
+              G[0][3] -= f.dw;
+            }
+            {  // leak_in
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(4).c[0];
+              f.dpb = -m.coeffs(4).c[0];
+              G[0][0] -= f.dpa;
+            }
+            {  // leak_cross
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(6).c[0];
+              f.dpb = -m.coeffs(6).c[0];
+              G[0][0] -= f.dpa;
+              G[0][1] -= f.dpb;
+            }
+          } else {
+            (void)root;
           }
           return true;
         }
@@ -185,10 +215,40 @@ struct Kernel {
         B += m.coeffs(5).c[0];
         lin += m.coeffs(6).c[0] * z[4];  // leak_cross
         B += m.coeffs(6).c[0];
-        if (circuit::solve_node_orifice(z[5], z[1], m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B)) {
+        T root;
+        if (circuit::solve_node_orifice(z[5], z[1], m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B, root)) {
           if constexpr (kRow) {
-            T dF;
-            (void)balance_5<true>(m, z, dF, G);
+            G[1][0] = T(0);
+            G[1][1] = T(0);
+            G[1][3] = T(0);
+            {  // dcv.BT
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(2).c[0] * (T(0.5) / root);
+              f.dpb = -f.dpa;
+              G[1][1] -= f.dpa;
+            }
+            {  // motor
+              circuit::Flow<T> f;
+              f.dw = m.coeffs(3).c[0];
+              G[1][0] += f.dpa;
+              G[1][1] += f.dpb;
+              G[1][3] += f.dw;
+            }
+            {  // leak_out
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(5).c[0];
+              f.dpb = -m.coeffs(5).c[0];
+              G[1][1] -= f.dpa;
+            }
+            {  // leak_cross
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(6).c[0];
+              f.dpb = -m.coeffs(6).c[0];
+              G[1][0] += f.dpa;
+              G[1][1] += f.dpb;
+            }
+          } else {
+            (void)root;
           }
           return true;
         }
