@@ -684,9 +684,52 @@ class CircuitModel {
     return F;
   }
 
-  /// Solves node i's balance for z[i], the other entries held (quasi_steady.hpp's
-  /// safeguarded Newton).
+  /// Solves node i's balance for z[i], the other entries held: in closed form when its
+  /// elements are one orifice and flows linear in z[i] (quasi_steady.hpp
+  /// solve_node_orifice, the terms summed in incidence order as the compiled kernels sum
+  /// them), else and wherever that does not apply by the safeguarded Newton.
   bool solve_node(int i, T (&z)[kExtent<kZ>]) const noexcept {
+    int orifice = -1;
+    bool linear = true;
+    T lin = T(0), B = T(0);
+    for (int k = inc_start_[i]; k < inc_start_[i + 1] && linear; ++k) {
+      const int e = inc_[k];
+      const Element& el = c_->elements[e];
+      const T c0 = coef_[e].c[0];
+      switch (el.kind) {
+        case ElementKind::kOrifice:
+          linear = orifice < 0;
+          orifice = e;
+          break;
+        case ElementKind::kLaminar:
+          lin += c0 * z[el.a == i ? el.b : el.a];
+          B += c0;
+          break;
+        case ElementKind::kMachine:
+          if (el.a == i) {
+            lin -= c0 * z[kNodes + el.shaft];
+          } else {
+            lin += c0 * z[kNodes + el.shaft];
+          }
+          break;
+        case ElementKind::kFlowSource:
+          if (el.a == i) {
+            lin -= c0;
+          } else {
+            lin += c0;
+          }
+          break;
+        default:
+          linear = false;
+      }
+    }
+    if (linear && orifice >= 0) {
+      const Element& o = c_->elements[orifice];
+      T root;
+      if (solve_node_orifice(z[i], z[o.a == i ? o.b : o.a], coef_[orifice].c[0], coef_[orifice].c[1], lin, B, root)) {
+        return true;
+      }
+    }
     return solve_node_newton(z[i], p_env_, [&](T p, T& dF) {
       z[i] = p;
       return node_balance(i, z, dF);

@@ -16,10 +16,12 @@
 /// A Kernel (generated) provides: Cap; description() (the constexpr Circuit<Cap>); kZ
 /// (nodes + shafts), kN (states), kM (stiff nodes), kU (unknowns); kStateU[kN], kStiffU[kM]
 /// (rows of the unknowns' Jacobian) and kStateZ[kN], kStiffZ[kM] (full-vector entries); and,
-/// templated on the engine type M, fill(m, x, z), solve_stiff(m, z, guess) → converged,
-/// rates(m, z, d), outputs(m, z, y), unknowns_jacobian(m, z, G) (nonzeros only, onto a
-/// zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp schur_reduce, unrolled for
-/// G's structure).
+/// templated on the engine type M, fill(m, x, z), solve_stiff<kRow>(m, z, guess, G) →
+/// converged, rates<kRow>(m, z, d, G), outputs(m, z, y), unknowns_jacobian(m, z, G)
+/// (nonzeros only, onto a zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp
+/// schur_reduce, unrolled for G's structure). With kRow, the solve and the rates also
+/// write the rows of G from the law values they evaluate anyway, so the observer's
+/// stiffness (tick_derivative's rho) costs the reduction, not a second pass over the laws.
 
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/circuit/dense.hpp"
@@ -110,17 +112,25 @@ class CompiledModel {
 
   /// CircuitModel::tick_derivative, compiled: rho from the reduced Jacobian's bound
   /// (dense.hpp radius_bound: its first, cheapest bound decides when it is ≤ rho_max).
+  /// The Jacobian's rows come from the evaluations the solve and the rates make anyway:
+  /// a stiff node's row from its balance's last evaluation, at most 8ε (Newton's step
+  /// test) and 16ε (the sweep's) relative from z — the interpreter's unknowns_jacobian
+  /// at z to rounding, which is all a substep count needs.
   State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
     T z[kExtent<Kernel::kZ>];
     Kernel::fill(engine_, x, z);
-    const bool conv = solve(z);
+    T G[kExtent<Kernel::kU>][kExtent<Kernel::kU>];  // every row captured; schur assigns its fill-ins
+    bool conv = true;
+    if constexpr (Kernel::kM > 0) conv = Kernel::template solve_stiff<true>(engine_, z, guess_, G);
     y = outputs_at(z);
+    State d = State::Zero();
+    Kernel::template rates<true>(engine_, z, d, G);
     T jr[kExtent<kStates>][kExtent<kStates>];
     T q = T(0);
-    reduced_jacobian(z, jr, q);
+    Kernel::schur(G, inv_mass_, jr, q);
     rho = radius_bound(jr, Kernel::kN, rho_max);
     alg_ok = conv && q < T(0.5);
-    return rates(z);
+    return d;
   }
 
   /// Outputs at x: what each channel measures, in SI units.
@@ -165,13 +175,15 @@ class CompiledModel {
     if constexpr (Kernel::kM == 0) {
       return true;
     } else {
-      return Kernel::solve_stiff(engine_, z, guess_);
+      NoRows none;
+      return Kernel::template solve_stiff<false>(engine_, z, guess_, none);
     }
   }
 
   State rates(const T (&z)[kExtent<Kernel::kZ>]) const noexcept {
     State d = State::Zero();
-    Kernel::rates(engine_, z, d);
+    NoRows none;
+    Kernel::template rates<false>(engine_, z, d, none);
     return d;
   }
 
@@ -186,6 +198,9 @@ class CompiledModel {
     Kernel::unknowns_jacobian(engine_, z, G);
     Kernel::schur(G, inv_mass_, jr, q);
   }
+
+  /// What the kernel's solve and rates take for G when they capture no rows.
+  struct NoRows {};
 
   Engine engine_{};
   T inv_mass_[kExtent<Kernel::kN>]{};  ///< K [Pa/m³] or 1/J of each state

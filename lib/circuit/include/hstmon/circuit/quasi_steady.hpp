@@ -12,14 +12,18 @@
 
 /// Inlined into the caller even at -O2's limits: a compiled model's node solves, sweeps
 /// and Jacobian become one straight-line function with the full vector in registers.
+/// HSTMON_CIRCUIT_LAMBDA_INLINE does the same for a generated node balance's lambda (called
+/// from the inline first Newton step and from the bracketed solve).
 /// HSTMON_CIRCUIT_NOINLINE keeps an evaluation out of its callers, so that the caller's
 /// frame does not carry the evaluation's (firmware stack: frames on one path add up).
 #if defined(__GNUC__)
 #define HSTMON_CIRCUIT_INLINE inline __attribute__((always_inline))
 #define HSTMON_CIRCUIT_NOINLINE __attribute__((noinline))
+#define HSTMON_CIRCUIT_LAMBDA_INLINE __attribute__((always_inline))
 #else
 #define HSTMON_CIRCUIT_INLINE inline
 #define HSTMON_CIRCUIT_NOINLINE
+#define HSTMON_CIRCUIT_LAMBDA_INLINE
 #endif
 
 namespace hstmon::circuit {
@@ -39,7 +43,7 @@ inline constexpr int kMaxNewton = 60;
 ///                 held, dF its slope by p (≤ 0); it must leave the node at p (z[i] = p)
 /// @return true when converged (a step below 8ε relative, or F exactly 0)
 template <typename T, class Balance>
-HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance) noexcept {
+bool solve_node_newton_bracketed(T& p_io, T p_env, Balance&& balance) noexcept {
   const T eps = std::numeric_limits<T>::epsilon();
   const T floor = T(1e-6) * p_env;
   const T inf = std::numeric_limits<T>::infinity();
@@ -78,6 +82,55 @@ HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance
   return false;
 }
 
+/// solve_node_newton_bracketed's first iteration, inline: the usual call (warm-started from
+/// the last solution, converged after one Newton step) then costs one balance and a
+/// division, without the bracket's bookkeeping. Any other case restarts the bracketed
+/// solve from p_io, which repeats this iteration bit for bit (the balance is a function of
+/// p and the held pressures), so both give the same result.
+template <typename T, class Balance>
+HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance) noexcept {
+  T dF;
+  const T F = balance(p_io, dF);
+  if (F == T(0)) return true;
+  if (dF < T(0)) {
+    const T p = p_io - F / dF;
+    if (std::fabs(p - p_io) <= T(8) * std::numeric_limits<T>::epsilon() * (std::fabs(p) + T(1e-6) * p_env)) {
+      p_io = p;
+      return true;
+    }
+  }
+  return solve_node_newton_bracketed(p_io, p_env, balance);
+}
+
+/// A node whose balance is one orifice to pressure u plus flows linear in its pressure p,
+///   F(p) = c0·sq(u − p) + lin − B·p   (sq: signed_root.hpp's regularised root),
+/// solved in closed form: with Δ = u − p and c = lin − B·u, F = c0·sq(Δ) + B·Δ + c rises
+/// strictly with Δ, and beyond the transition |Δ| ≥ ΔP_t it is the quadratic
+/// B·s² + c0·s − |c| = 0 in s = √|Δ|, whose root s = 2|c|/(c0 + √(c0² + 4B|c|)) has no
+/// cancellation. The exact node solve Gauss–Seidel needs (the contraction argument of
+/// docs/circuits.md is unchanged), at one square root instead of Newton iterations.
+/// @param p_io  out: the node's pressure when solved [Pa]; untouched otherwise
+/// @param u     the orifice's other port [Pa]
+/// @param c0    orifice coefficient k·opening [m³/(s·√Pa)]
+/// @param x_t   its transition pressure ΔP_t [Pa]
+/// @param lin   the linear flows' constant part: Σ g·p_other + Σ fixed inflows [m³/s]
+/// @param B     Σ g of the linear flows [m³/(s·Pa)], ≥ 0
+/// @param root  out: √|Δ| at the solution [√Pa] (the orifice's slope is c0/(2·root))
+/// @return false when the root lies in the laminar band (|Δ| < ΔP_t, the cubic law), the
+///         orifice is shut, or a value is not finite: the caller then uses Newton
+template <typename T>
+HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B, T& root) noexcept {
+  const T c = lin - B * u;
+  const T a = std::fabs(c);
+  if (!(c0 > T(0))) return false;
+  const T s = T(2) * a / (c0 + std::sqrt(c0 * c0 + T(4) * B * a));
+  const T d = s * s;
+  if (!(d >= x_t) || !(d <= std::numeric_limits<T>::max())) return false;
+  p_io = c > T(0) ? u + d : u - d;
+  root = s;
+  return true;
+}
+
 /// One Gauss–Seidel sweep's bookkeeping: whether every node solve converged and the
 /// largest relative move of a pressure.
 template <typename T>
@@ -92,7 +145,9 @@ struct Sweep {
   HSTMON_CIRCUIT_INLINE void node(T& p, Solve&& solve) noexcept {
     const T before = p;
     ok = solve() && ok;
-    change = std::fmax(change, std::fabs(p - before) / (std::fabs(p) + floor));
+    // Not std::fmax: a library call on Cortex-M4 (no VMAXNM); NaN moves are ignored alike.
+    const T move = std::fabs(p - before) / (std::fabs(p) + floor);
+    if (move > change) change = move;
   }
 };
 
@@ -132,7 +187,8 @@ HSTMON_CIRCUIT_INLINE void schur_reduce(T (&G)[U][U], const std::uint8_t* ia, in
     for (int b = 0; b < m; ++b) {
       if (b != a) off += std::fabs(G[ia[a]][ia[b]]);
     }
-    q = std::fmax(q, off / std::fabs(G[ia[a]][ia[a]]));
+    const T qa = off / std::fabs(G[ia[a]][ia[a]]);
+    if (qa > q) q = qa;  // not std::fmax (a call on Cortex-M4); NaN is skipped alike
   }
   for (int k = 0; k < m; ++k) {
     const T inv = T(1) / G[ia[k]][ia[k]];

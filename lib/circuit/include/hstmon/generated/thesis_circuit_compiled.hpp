@@ -39,87 +39,222 @@ struct Kernel {
     z[7] = x[1];  // motor
   }
 
-  /// Net inflow into Pmi [m³/s]; dF its slope by that pressure (≤ 0).
-  template <class M, typename T>
-  HSTMON_CIRCUIT_INLINE static T balance_4(const M& m, const T (&z)[8], T& dF) noexcept {
+  /// Net inflow into Pmi [m³/s]; dF its slope by that pressure (≤ 0); with kRow,
+  /// also its row of the unknowns' Jacobian into G (as unknowns_jacobian writes it).
+  template <bool kRow, class M, typename T, class GM>
+  HSTMON_CIRCUIT_INLINE static T balance_4(const M& m, const T (&z)[8], T& dF, GM& G) noexcept {
     T F = T(0);
     dF = T(0);
+    if constexpr (kRow) {
+      G[0][0] = T(0);
+      G[0][1] = T(0);
+      G[0][3] = T(0);
+    } else {
+      (void)G;
+    }
     {  // dcv.PA
       circuit::Flow<T> f;
       circuit::orifice_flow(m.coeffs(1), z[0], z[4], f);
       F += f.q;
       dF += f.dpb;
+      if constexpr (kRow) {
+        G[0][0] += f.dpb;
+      }
     }
     {  // motor
       circuit::Flow<T> f;
       circuit::machine_flow(m.coeffs(3), z[7], f);
       F -= f.q;
       dF -= f.dpa;
+      if constexpr (kRow) {
+        G[0][0] -= f.dpa;
+        G[0][1] -= f.dpb;
+        G[0][3] -= f.dw;
+      }
     }
     {  // leak_in
       circuit::Flow<T> f;
       circuit::laminar_flow(m.coeffs(4), z[4], z[2], f);
       F -= f.q;
       dF -= f.dpa;
+      if constexpr (kRow) {
+        G[0][0] -= f.dpa;
+      }
     }
     {  // leak_cross
       circuit::Flow<T> f;
       circuit::laminar_flow(m.coeffs(6), z[4], z[5], f);
       F -= f.q;
       dF -= f.dpa;
+      if constexpr (kRow) {
+        G[0][0] -= f.dpa;
+        G[0][1] -= f.dpb;
+      }
     }
     return F;
   }
 
-  /// Net inflow into Pmo [m³/s]; dF its slope by that pressure (≤ 0).
-  template <class M, typename T>
-  HSTMON_CIRCUIT_INLINE static T balance_5(const M& m, const T (&z)[8], T& dF) noexcept {
+  /// Net inflow into Pmo [m³/s]; dF its slope by that pressure (≤ 0); with kRow,
+  /// also its row of the unknowns' Jacobian into G (as unknowns_jacobian writes it).
+  template <bool kRow, class M, typename T, class GM>
+  HSTMON_CIRCUIT_INLINE static T balance_5(const M& m, const T (&z)[8], T& dF, GM& G) noexcept {
     T F = T(0);
     dF = T(0);
+    if constexpr (kRow) {
+      G[1][0] = T(0);
+      G[1][1] = T(0);
+      G[1][3] = T(0);
+    } else {
+      (void)G;
+    }
     {  // dcv.BT
       circuit::Flow<T> f;
       circuit::orifice_flow(m.coeffs(2), z[5], z[1], f);
       F -= f.q;
       dF -= f.dpa;
+      if constexpr (kRow) {
+        G[1][1] -= f.dpa;
+      }
     }
     {  // motor
       circuit::Flow<T> f;
       circuit::machine_flow(m.coeffs(3), z[7], f);
       F += f.q;
       dF += f.dpb;
+      if constexpr (kRow) {
+        G[1][0] += f.dpa;
+        G[1][1] += f.dpb;
+        G[1][3] += f.dw;
+      }
     }
     {  // leak_out
       circuit::Flow<T> f;
       circuit::laminar_flow(m.coeffs(5), z[5], z[2], f);
       F -= f.q;
       dF -= f.dpa;
+      if constexpr (kRow) {
+        G[1][1] -= f.dpa;
+      }
     }
     {  // leak_cross
       circuit::Flow<T> f;
       circuit::laminar_flow(m.coeffs(6), z[4], z[5], f);
       F += f.q;
       dF += f.dpb;
+      if constexpr (kRow) {
+        G[1][0] += f.dpa;
+        G[1][1] += f.dpb;
+      }
     }
     return F;
   }
 
-  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged.
-  template <class M, typename T, std::size_t G>
-  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[G]) noexcept {
+  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged;
+  /// with kRow, the stiff nodes' rows of the unknowns' Jacobian at the last evaluations into G.
+  template <bool kRow, class M, typename T, std::size_t NG, class GM>
+  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[NG], GM& G) noexcept {
     z[4] = guess[0];
     z[5] = guess[1];
     const T p_env = m.pressure_envelope();
-    const bool conv = circuit::gauss_seidel(p_env, true, [&](circuit::Sweep<T>& w) {
-      w.node(z[4], [&] {
-        return circuit::solve_node_newton(z[4], p_env, [&](T p, T& dF) {
+    const bool conv = circuit::gauss_seidel(p_env, true, [&](circuit::Sweep<T>& w) HSTMON_CIRCUIT_LAMBDA_INLINE {
+      w.node(z[4], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
+        // One orifice (dcv.PA) and flows linear in the pressure: closed form.
+        T lin = T(0), B = T(0);
+        lin -= m.coeffs(3).c[0] * z[7];  // motor
+        lin += m.coeffs(4).c[0] * z[2];  // leak_in
+        B += m.coeffs(4).c[0];
+        lin += m.coeffs(6).c[0] * z[5];  // leak_cross
+        B += m.coeffs(6).c[0];
+        T root;
+        if (circuit::solve_node_orifice(z[4], z[0], m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B, root)) {
+          if constexpr (kRow) {
+            G[0][0] = T(0);
+            G[0][1] = T(0);
+            G[0][3] = T(0);
+            {  // dcv.PA
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(1).c[0] * (T(0.5) / root);
+              f.dpb = -f.dpa;
+              G[0][0] += f.dpb;
+            }
+            {  // motor
+              circuit::Flow<T> f;
+              f.dw = m.coeffs(3).c[0];
+              G[0][0] -= f.dpa;
+              G[0][1] -= f.dpb;
+              G[0][3] -= f.dw;
+            }
+            {  // leak_in
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(4).c[0];
+              f.dpb = -m.coeffs(4).c[0];
+              G[0][0] -= f.dpa;
+            }
+            {  // leak_cross
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(6).c[0];
+              f.dpb = -m.coeffs(6).c[0];
+              G[0][0] -= f.dpa;
+              G[0][1] -= f.dpb;
+            }
+          } else {
+            (void)root;
+          }
+          return true;
+        }
+        return circuit::solve_node_newton(z[4], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {
           z[4] = p;
-          return balance_4(m, z, dF);
+          return balance_4<kRow>(m, z, dF, G);
         });
       });
-      w.node(z[5], [&] {
-        return circuit::solve_node_newton(z[5], p_env, [&](T p, T& dF) {
+      w.node(z[5], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
+        // One orifice (dcv.BT) and flows linear in the pressure: closed form.
+        T lin = T(0), B = T(0);
+        lin += m.coeffs(3).c[0] * z[7];  // motor
+        lin += m.coeffs(5).c[0] * z[2];  // leak_out
+        B += m.coeffs(5).c[0];
+        lin += m.coeffs(6).c[0] * z[4];  // leak_cross
+        B += m.coeffs(6).c[0];
+        T root;
+        if (circuit::solve_node_orifice(z[5], z[1], m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B, root)) {
+          if constexpr (kRow) {
+            G[1][0] = T(0);
+            G[1][1] = T(0);
+            G[1][3] = T(0);
+            {  // dcv.BT
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(2).c[0] * (T(0.5) / root);
+              f.dpb = -f.dpa;
+              G[1][1] -= f.dpa;
+            }
+            {  // motor
+              circuit::Flow<T> f;
+              f.dw = m.coeffs(3).c[0];
+              G[1][0] += f.dpa;
+              G[1][1] += f.dpb;
+              G[1][3] += f.dw;
+            }
+            {  // leak_out
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(5).c[0];
+              f.dpb = -m.coeffs(5).c[0];
+              G[1][1] -= f.dpa;
+            }
+            {  // leak_cross
+              circuit::Flow<T> f;
+              f.dpa = m.coeffs(6).c[0];
+              f.dpb = -m.coeffs(6).c[0];
+              G[1][0] += f.dpa;
+              G[1][1] += f.dpb;
+            }
+          } else {
+            (void)root;
+          }
+          return true;
+        }
+        return circuit::solve_node_newton(z[5], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {
           z[5] = p;
-          return balance_5(m, z, dF);
+          return balance_5<kRow>(m, z, dF, G);
         });
       });
     });
@@ -130,20 +265,38 @@ struct Kernel {
     return conv;
   }
 
-  /// The states' rates [Pa/s, rad/s²] into d.
-  template <class M, class D, typename T>
-  HSTMON_CIRCUIT_INLINE static void rates(const M& m, const T (&z)[8], D& d) noexcept {
+  /// The states' rates [Pa/s, rad/s²] into d; with kRow, the states' rows of the unknowns'
+  /// Jacobian into G (as unknowns_jacobian writes them).
+  template <bool kRow, class M, class D, typename T, class GM>
+  HSTMON_CIRCUIT_INLINE static void rates(const M& m, const T (&z)[8], D& d, GM& G) noexcept {
+    if constexpr (kRow) {
+      G[2][2] = T(0);
+      G[2][3] = T(0);
+      G[3][0] = T(0);
+      G[3][1] = T(0);
+      G[3][2] = T(0);
+      G[3][3] = T(0);
+    } else {
+      (void)G;
+    }
     {  // Ppp
       T g = T(0);
       {  // loading_pump
         circuit::Flow<T> f;
         circuit::machine_flow(m.coeffs(7), z[7], f);
         g += f.q;
+        if constexpr (kRow) {
+          G[2][2] += f.dpb;
+          G[2][3] += f.dw;
+        }
       }
       {  // prv
         circuit::Flow<T> f;
         circuit::orifice_flow(m.coeffs(8), z[6], z[3], f);
         g -= f.q;
+        if constexpr (kRow) {
+          G[2][2] -= f.dpa;
+        }
       }
       d[0] = m.node_stiffness(6) * g;
     }
@@ -152,18 +305,33 @@ struct Kernel {
       {  // motor.friction
         T da, db, dw;
         g += circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(0), T(0), T(0), z[7], da, db, dw);
+        if constexpr (kRow) {
+          G[3][3] += dw;
+        }
       }
       {  // motor
         T da, db, dw;
         g += circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(3), z[4], z[5], z[7], da, db, dw);
+        if constexpr (kRow) {
+          G[3][0] += da;
+          G[3][1] += db;
+          G[3][3] += dw;
+        }
       }
       {  // loading_pump
         T da, db, dw;
         g += circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(7), z[3], z[6], z[7], da, db, dw);
+        if constexpr (kRow) {
+          G[3][2] += db;
+          G[3][3] += dw;
+        }
       }
       {  // valve_friction
         T da, db, dw;
         g += circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(9), T(0), T(0), z[7], da, db, dw);
+        if constexpr (kRow) {
+          G[3][3] += dw;
+        }
       }
       d[1] = m.node_stiffness(7) * g;
     }
@@ -260,12 +428,14 @@ struct Kernel {
     {
       T off = T(0);
       off += std::fabs(G[0][1]);
-      q = std::fmax(q, off / std::fabs(G[0][0]));
+      const T qa = off / std::fabs(G[0][0]);
+      if (qa > q) q = qa;
     }
     {
       T off = T(0);
       off += std::fabs(G[1][0]);
-      q = std::fmax(q, off / std::fabs(G[1][1]));
+      const T qa = off / std::fabs(G[1][1]);
+      if (qa > q) q = qa;
     }
     {
       const T inv = T(1) / G[0][0];
