@@ -1,11 +1,16 @@
 # Install rules and the exported package (docs/packaging.md). Included by the top-level
 # CMakeLists when HSTMON_INSTALL is on (the default when hstmon is the top-level project).
 #
-#   include/            core and engine headers (lib/include, lib/circuit/include), hstmon_c.h
+#   include/            core and engine headers (lib/include, lib/circuit/include), hstmon_c.h,
+#                       hstmon_circuit_c.h
 #   lib/libhstmon_c.a   the C API
-#   lib/cmake/hstmon/   hstmonConfig.cmake, hstmonConfigVersion.cmake, hstmonTargets*.cmake
+#   lib/cmake/hstmon/   hstmonConfig.cmake, hstmonConfigVersion.cmake, hstmonTargets*.cmake,
+#                       HstmonCircuitCApi.cmake (hstmon_add_circuit_c_api)
+#   share/hstmon/c_api/ the circuit C API's source, compiled by hstmon_add_circuit_c_api for
+#                       the user's own generated circuit header and fault table
 #   lib/pkgconfig/      hstmon-c.pc (the C API for Make/Meson/plain-C builds)
-#   bin/                hstmon, hstmon-sim, hstmon-fdi, hstmon-gap-synth (host builds)
+#   bin/                hstmon, hstmon-sim, hstmon-fdi, hstmon-gap-synth, hstmon-circuit-header
+#                       (host builds)
 #
 # Components: `development` (all but the programs) and `programs`, so a firmware team can
 # install the headers and the library alone: cmake --install B --component development.
@@ -29,13 +34,21 @@ if(TARGET hstmon_cpu_cm4f)
 endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ ${PROJECT_SOURCE_DIR}/lib/circuit/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
-install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_circuit_c.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
+# A circuit's C API is built by the user, for the circuit they generated: its source (and
+# the one header it includes beside it) and the CMake function that compiles them.
+set(HSTMON_C_API_SOURCE_DIR ${CMAKE_INSTALL_DATADIR}/hstmon/c_api)
+install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/src/hstmon_circuit_c.cpp ${PROJECT_SOURCE_DIR}/ports/c_api/src/c_api_copy.hpp
+  DESTINATION ${HSTMON_C_API_SOURCE_DIR} COMPONENT development)
+install(FILES ${PROJECT_SOURCE_DIR}/cmake/HstmonCircuitCApi.cmake DESTINATION ${HSTMON_INSTALL_CMAKEDIR}
   COMPONENT development)
 install(EXPORT hstmonTargets NAMESPACE hstmon:: DESTINATION ${HSTMON_INSTALL_CMAKEDIR}
   COMPONENT development)
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/install/hstmonConfig.cmake.in
-  ${PROJECT_BINARY_DIR}/hstmonConfig.cmake INSTALL_DESTINATION ${HSTMON_INSTALL_CMAKEDIR})
+  ${PROJECT_BINARY_DIR}/hstmonConfig.cmake INSTALL_DESTINATION ${HSTMON_INSTALL_CMAKEDIR}
+  PATH_VARS HSTMON_C_API_SOURCE_DIR)
 # SameMajorVersion: 0.x and 1.x are different APIs; not ARCH_INDEPENDENT, since the C API
 # is a compiled library (a 32-bit Cortex-M package does not satisfy a 64-bit host build).
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/hstmonConfigVersion.cmake
@@ -53,7 +66,7 @@ install(FILES ${PROJECT_BINARY_DIR}/hstmon-c.pc DESTINATION ${CMAKE_INSTALL_LIBD
 
 # Host programs, where this build has them.
 set(_hstmon_programs)
-foreach(program hstmon hstmon-sim hstmon-fdi hstmon-gap-synth)
+foreach(program hstmon hstmon-sim hstmon-fdi hstmon-gap-synth hstmon-circuit-header)
   if(TARGET ${program})
     list(APPEND _hstmon_programs ${program})
   endif()

@@ -11,8 +11,10 @@ mkdir -p "$(dirname "$HSTMON_PREFIX")"
 cmake --install "$build" --prefix "$HSTMON_PREFIX" --component development >"$HSTMON_PREFIX.log" 2>&1 ||
   { cat "$HSTMON_PREFIX.log"; exit 1; }
 cd "$HSTMON_PREFIX"
-for f in include/hstmon/hstmon.hpp include/hstmon_c.h lib/libhstmon_c.a lib/cmake/hstmon/hstmonConfig.cmake \
-         lib/cmake/hstmon/hstmonConfigVersion.cmake lib/cmake/hstmon/hstmonTargets.cmake lib/pkgconfig/hstmon-c.pc; do
+for f in include/hstmon/hstmon.hpp include/hstmon_c.h include/hstmon_circuit_c.h lib/libhstmon_c.a \
+         lib/cmake/hstmon/hstmonConfig.cmake lib/cmake/hstmon/hstmonConfigVersion.cmake \
+         lib/cmake/hstmon/hstmonTargets.cmake lib/cmake/hstmon/HstmonCircuitCApi.cmake \
+         share/hstmon/c_api/hstmon_circuit_c.cpp lib/pkgconfig/hstmon-c.pc; do
   [ -f "$f" ] || { echo "install: $f missing"; exit 1; }
 done
 grep -q "^Version: $version\$" lib/pkgconfig/hstmon-c.pc || { echo "install: hstmon-c.pc is not version $version"; exit 1; }
