@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,8 @@
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/circuit/circuit_monitor.hpp"
+#include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_host/log_reader.hpp"
 
 namespace {
@@ -278,4 +281,27 @@ TEST(CircuitMonitor, BoundExistsWhereNewtonCycledAtAReliefValvesKink) {
             hstmon::Status::kOk);
   ASSERT_EQ(c.file.sensors[3].name, "w_m");
   EXPECT_GT(bound[3], 4.30) << "the machine's steady offset [rad/s]";
+}
+
+// Config::timing_lead takes the bound carry's time constants and steady state: without
+// the carry, or negative, or not finite, it is an invalid configuration.
+TEST(CircuitMonitor, TimingLeadNeedsTheBoundCarry) {
+  using Mon = hstmon::circuit::CircuitMonitor<double, hstmon::host::CircuitCap>;
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  const Mon::Model model(c.file.circuit, c.values.params, c.values.inputs);
+  auto mon = std::make_unique<Mon>();
+  Mon::Config cfg;
+  cfg.uncertainty = ct::default_uncertainty(c.file);
+  hstmon::circuit::set_circuit_allowances(cfg);
+  EXPECT_EQ(mon->configure(model, cfg, nullptr, 0), hstmon::Status::kOk);
+  for (const double lead : {-1.0, std::nan("")}) {
+    Mon::Config bad = cfg;
+    bad.timing_lead = lead;
+    EXPECT_EQ(mon->configure(model, bad, nullptr, 0), hstmon::Status::kInvalidConfig) << lead;
+  }
+  Mon::Config no_carry = cfg;
+  no_carry.bound_carry = 0;
+  EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kInvalidConfig);
+  no_carry.timing_lead = 0;
+  EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kOk);
 }
