@@ -18,10 +18,14 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/circuit/circuit_monitor.hpp"
+#include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
@@ -225,4 +229,97 @@ TEST(CircuitMonitor, MachineWithShutReliefValveAtCrackingRaisesNoEventButLeakIsF
     for (const auto& cand : r.events.back().candidates) in_set = in_set || cand.fault == "R_leak-";
     EXPECT_TRUE(in_set) << describe(r);
   }
+}
+
+// Issue 15's last false alarms on the closed loop: a ±2 % machine (the campaign's nominal
+// run 1000900000254, `--seed-base 1000000000000`) stepped in swash from 0.56 to 0.40
+// between two samples, as the campaign's load steps are. 0.16 s later line A falls below
+// the charge pressure and the check valve opens: the machine's p_c drops 1.8 bar some
+// 3 ms before the model's, since its transient runs a little ahead. The allowance from
+// the model's past change cannot cover a machine that leads; the model's change over the
+// next ε·τ (Config::timing_lead) does (before it: detected at 3.659 s). A displacement
+// loss after the step is still found.
+TEST(CircuitMonitor, MachineWhoseCheckValveLeadsTheModelsRaisesNoEventButPumpLossIsFound) {
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  ct::LoadedCircuit m = c;
+  for (const auto& [name, factor] : std::vector<std::pair<std::string, double>>{
+           {"Dp", 0.9956}, {"Dm", 1.0100}, {"Dc", 0.9825}, {"beta", 1.0186}, {"c_m", 1.0027},
+           {"R_case", 0.9989}, {"k_check", 1.0112}, {"p_check", 0.9991}, {"p_check_open", 0.9874},
+           {"k_charge", 1.0165}, {"p_charge_crack", 0.9810}, {"p_charge", 1.0014}, {"k_hp", 0.9964},
+           {"p_hp_crack", 1.0126}, {"p_hp", 1.0014}}) {
+    const int p = c.file.param_index(name);
+    ASSERT_GE(p, 0) << name;
+    m.values.params.v[p] *= factor;
+  }
+  m.values.inputs.v[c.file.input_index("n_e")] *= 2298.01808 / 2000.0;  // the file's 2000 rpm
+  m.values.inputs.v[c.file.input_index("eps")] = 0.561629545;
+  m.values.inputs.v[c.file.input_index("T_L")] *= 182.224125 / 150.0;  // the file's 150 N·m
+  for (const bool loss : {false, true}) {
+    ct::CircuitSimOptions o;
+    o.duration = 6.0;
+    o.rate = 1000.0;
+    o.seed = 254;
+    o.steps.push_back(step(c, "eps=0.403959747@3.5004", false));  // after the start-up hold-off
+    if (loss) o.steps.push_back(step(c, "Dp=0.8@4.5", true));
+    const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
+    const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
+    if (!loss) {
+      EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
+      continue;
+    }
+    ASSERT_FALSE(r.events.empty()) << "Dp- not detected";
+    EXPECT_EQ(r.events.front().event, "detected");
+    EXPECT_GE(r.events.front().t, 4.5) << describe(r);
+    EXPECT_LE(r.events.front().t, 5.5) << describe(r);
+    bool in_set = false;
+    for (const auto& cand : r.events.back().candidates) in_set = in_set || cand.fault == "Dp-";
+    EXPECT_TRUE(in_set) << describe(r);
+  }
+}
+
+// Issue 15's steady w_m false alarm (nominal run 1000900000074, `--seed-base
+// 1000000000000`): after a swash step 0.41 → 0.60 the machine ran 4.30 rad/s faster than
+// the model, within the bound at 0.60 (5.1 rad/s), but the monitor judged it against the
+// bound at 0.41 (3.45 rad/s): at 0.60 the steady solve of the ±2 % k_hp model cycled
+// between two Newton iterates at the shut crossport relief's kink, the bound failed, and
+// the old one stayed. The solve now falls back to the circuit's transient and converges.
+TEST(CircuitMonitor, BoundExistsWhereNewtonCycledAtAReliefValvesKink) {
+  using Model = hstmon::host::HostCircuitModel;
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  Model::Inputs u = c.values.inputs;
+  u.v[c.file.input_index("eps")] = 0.599057844;
+  Model::Params p = c.values.params;
+  p.v[c.file.param_index("k_hp")] *= 1.02;
+  const Model k_hp_up(c.file.circuit, p, u);
+  Model::State xs;
+  EXPECT_TRUE(k_hp_up.steady_state(xs)) << "k_hp +2 % at swash 0.6";
+  const Model model(c.file.circuit, c.values.params, u);
+  double bound[hstmon::circuit::kExtent<Model::kOutputs>];
+  ASSERT_EQ(hstmon::ModelBound<Model>::compute(model, ct::default_uncertainty(c.file), bound),
+            hstmon::Status::kOk);
+  ASSERT_EQ(c.file.sensors[3].name, "w_m");
+  EXPECT_GT(bound[3], 4.30) << "the machine's steady offset [rad/s]";
+}
+
+// Config::timing_lead takes the bound carry's time constants and steady state: without
+// the carry, or negative, or not finite, it is an invalid configuration.
+TEST(CircuitMonitor, TimingLeadNeedsTheBoundCarry) {
+  using Mon = hstmon::circuit::CircuitMonitor<double, hstmon::host::CircuitCap>;
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  const Mon::Model model(c.file.circuit, c.values.params, c.values.inputs);
+  auto mon = std::make_unique<Mon>();
+  Mon::Config cfg;
+  cfg.uncertainty = ct::default_uncertainty(c.file);
+  hstmon::circuit::set_circuit_allowances(cfg);
+  EXPECT_EQ(mon->configure(model, cfg, nullptr, 0), hstmon::Status::kOk);
+  for (const double lead : {-1.0, std::nan("")}) {
+    Mon::Config bad = cfg;
+    bad.timing_lead = lead;
+    EXPECT_EQ(mon->configure(model, bad, nullptr, 0), hstmon::Status::kInvalidConfig) << lead;
+  }
+  Mon::Config no_carry = cfg;
+  no_carry.bound_carry = 0;
+  EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kInvalidConfig);
+  no_carry.timing_lead = 0;
+  EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kOk);
 }

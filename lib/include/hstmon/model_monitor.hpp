@@ -31,7 +31,13 @@
 ///  - optionally (Config::bound_carry, on for circuit monitors) by the model bound in
 ///    force before the last input change, held while the model is on its way and then
 ///    decaying with the slower of the two operating points' time
-///    constants: the machine leaves the old point's model error at its own pace.
+///    constants: the machine leaves the old point's model error at its own pace;
+///  - optionally (Config::timing_lead, on for circuit monitors) by the model's own change
+///    over the next Δ = timing_lead·ε·τ while it is on its way to a new operating point
+///    (ε the largest relative parameter uncertainty, τ the slowest time constant): a ±ε
+///    machine runs its transient up to that much ahead of the model, and where a valve
+///    opens on the way (a check valve as a line falls below the charge pressure) its
+///    outputs jump that much earlier. A copy of the model run Δ ahead gives that change.
 /// step() never allocates or throws.
 
 #include <cmath>
@@ -68,18 +74,44 @@ struct BoundReportsTau<B, decltype(void(B::kSlowestTau))> {
 };
 
 namespace model_monitor_detail {
-/// State of Config::bound_carry; empty (no RAM: an empty base) for a model whose bound
-/// reports no time constant (the thesis rig's), whose monitor cannot carry.
-template <typename T, std::size_t N, bool On>
+/// State of Config::bound_carry and Config::timing_lead; empty (no RAM: an empty base) for
+/// a model whose bound reports no time constant (the thesis rig's), whose monitor cannot
+/// carry or lead.
+template <class Obs, typename T, std::size_t N, bool On>
 struct CarryState {
   T carry_[N] = {};         ///< model bound carried over input changes, decaying [channel unit]
   T bound_carry_ = T(0);    ///< Config::bound_carry [-]
   T carry_decay_ = T(0);    ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
   T tau_here_ = T(0);       ///< slowest time constant at the current inputs' steady state [s]
   bool carry_hold_ = false; ///< y_steady_ is the steady state of the current inputs
+  Obs lead_{};              ///< the observer's model, lead_ticks_ ticks ahead under the held inputs
+  T timing_lead_ = T(0);    ///< Config::timing_lead [-]
+  int lead_ticks_ = 0;      ///< ticks lead_ runs ahead [-]; 0 = no copy running
 };
-template <typename T, std::size_t N>
-struct CarryState<T, N, false> {};
+template <class Obs, typename T, std::size_t N>
+struct CarryState<Obs, T, N, false> {};
+
+/// ModelMonitor::Config's part that only a monitor that can carry has (an empty base
+/// elsewhere, so the thesis rig's configuration is as it was).
+template <typename T, bool On>
+struct LeadConfig {
+  /// How far ahead of the model the machine may run its transient after an input
+  /// change, as a share of ε·τ [-], ≥ 0; 0 = off. ε is the largest relative parameter
+  /// uncertainty, τ the slowest time constant at the new operating point over the model
+  /// and its bound's perturbed and corner models: a ±ε machine's rates differ by about
+  /// ε, so over the transient's first time constant its events come up to ε·τ early.
+  /// Where a valve opens on the way (a check valve as a main line falls below the
+  /// charge pressure) the machine's outputs then jump before the model's, which the
+  /// transient allowance from the model's past change cannot cover. While the model is
+  /// more than 2σ from its new steady state on some channel, a copy of it runs that far
+  /// ahead under the held inputs, and the transient allowance's variation is at least
+  /// the copy's distance from the model (one more observer tick per tick then, and one
+  /// observer of RAM); 1 allows ε·τ. Only with bound_carry > 0 (whose time constants and
+  /// steady state it takes); otherwise > 0 is kInvalidConfig.
+  T timing_lead = T(0);
+};
+template <typename T>
+struct LeadConfig<T, false> {};
 }  // namespace model_monitor_detail
 
 /// @tparam ModelT  the model (see the file comment); its kOutputs are the channels
@@ -91,7 +123,8 @@ struct CarryState<T, N, false> {};
 template <class ModelT, int Capacity = 64, int QueueDepth = 4, int EventCandidates = 8,
           bool UsualTick = observer_detail::HasUsualTick<ModelT>::value>
 class ModelMonitor
-    : private model_monitor_detail::CarryState<typename ModelT::Scalar, static_cast<std::size_t>(ModelT::kOutputs),
+    : private model_monitor_detail::CarryState<Observer<ModelT, UsualTick>, typename ModelT::Scalar,
+                                               static_cast<std::size_t>(ModelT::kOutputs),
                                                BoundReportsTau<ModelBound<ModelT>>::value> {
  public:
   using Model = ModelT;
@@ -110,8 +143,9 @@ class ModelMonitor
   /// True when the model's bound reports time constants, so Config::bound_carry may be on.
   static constexpr bool kCanCarry = BoundReportsTau<ModelBound<Model>>::value;
 
-  /// Configuration of the parts; each validated by its own configure().
-  struct Config {
+  /// Configuration of the parts; each validated by its own configure(). Where kCanCarry
+  /// also Config::timing_lead (model_monitor_detail::LeadConfig; an empty base elsewhere).
+  struct Config : model_monitor_detail::LeadConfig<T, kCanCarry> {
     typename Obs::Config observer{};          ///< tick, substeps, injection gain
     typename Evaluator::Config evaluator{};   ///< noise σ per channel, CUSUM factors
     typename Sensors::Config sensors{};       ///< transmitter ranges, stuck window
@@ -173,7 +207,8 @@ class ModelMonitor
     if (!(std::isfinite(c.transducer_response) && c.transducer_response >= T(0) &&
           std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
           c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0) &&
-          std::isfinite(c.bound_carry) && c.bound_carry >= T(0) && (kCanCarry || c.bound_carry == T(0)))) {
+          std::isfinite(c.bound_carry) && c.bound_carry >= T(0) && (kCanCarry || c.bound_carry == T(0)) &&
+          lead_ok(c))) {
       return Status::kInvalidConfig;
     }
     Status s = obs_.configure(model, c.observer);
@@ -186,7 +221,10 @@ class ModelMonitor
     transient_factor_ = c.transient_factor;
     hold_max_ = c.startup_hold_max;
     model_transient_ = c.model_transient;
-    if constexpr (kCanCarry) this->bound_carry_ = c.bound_carry;
+    if constexpr (kCanCarry) {
+      this->bound_carry_ = c.bound_carry;
+      this->timing_lead_ = c.timing_lead;
+    }
     set_decay();
     reset_rest_of_chain();
     return Status::kOk;
@@ -303,10 +341,23 @@ class ModelMonitor
       if constexpr (kCanCarry) this->carry_[i] = T(0);
     }
     steady_ok_ = false;
-    if constexpr (kCanCarry) this->carry_hold_ = false;
+    if constexpr (kCanCarry) {
+      this->carry_hold_ = false;
+      this->lead_ticks_ = 0;
+    }
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
     settled_from_ = -std::numeric_limits<T>::infinity();
+  }
+
+  // Config::timing_lead valid: finite, ≥ 0, and 0 without bound_carry (true where there is none).
+  static bool lead_ok(const Config& c) noexcept {
+    if constexpr (kCanCarry) {
+      return std::isfinite(c.timing_lead) && c.timing_lead >= T(0) && (c.bound_carry > T(0) || c.timing_lead == T(0));
+    } else {
+      (void)c;
+      return true;
+    }
   }
 
   // Start-up hold-off: the time the model needs to come from its initial state to the
@@ -403,17 +454,59 @@ class ModelMonitor
     }
   }
 
-  // One tick of the carried bound's decay (Config::bound_carry).
+  // One tick of the carried bound's decay (Config::bound_carry) and of the lead copy
+  // (Config::timing_lead).
   template <class Y>
   void carry_decay_tick(const Y& y) noexcept {
-    if (this->bound_carry_ > T(0)) {
+    bool any_moving = false;
+    if (this->bound_carry_ > T(0) || this->lead_ticks_ > 0) {
       // Held while the model is still more than 2σ from its new steady state: until then
       // the machine follows it with the old model error; then it settles at its own pace.
       for (int i = 0; i < kChannels; ++i) {
         const bool moving = this->carry_hold_ && std::fabs(y[i] - y_steady_[i]) > T(2) * ev_.sigma(i);
+        any_moving = any_moving || moving;
         if (!moving) this->carry_[i] *= this->carry_decay_;
       }
     }
+    if (this->lead_ticks_ > 0) {
+      if (any_moving) {
+        lead_tick(y);
+      } else {
+        this->lead_ticks_ = 0;  // settled: the machine can no longer be ahead by much
+      }
+    }
+  }
+
+  // Config::timing_lead: the copy advances a tick under the model's inputs, and its
+  // distance from the model is the model's own change over the lead time ahead, which a
+  // machine that runs ahead may already show.
+  template <class Y>
+  HSTMON_NOINLINE void lead_tick(const Y& y) noexcept {
+    const Measurement none{};
+    (void)this->lead_.step(obs_.model().inputs(), none);
+    const auto& ahead = this->lead_.estimate();
+    for (int i = 0; i < kChannels; ++i) {
+      const T d = std::fabs(ahead[i] - y[i]);
+      peak_[i] = d > peak_[i] ? d : peak_[i];
+    }
+  }
+
+  // Starts the lead copy at the model's state, timing_lead·ε·τ ahead (at least a tick)
+  // under the new inputs; τ [s] the slowest time constant at the new operating point.
+  // A member template for the reason carry_bound is one.
+  template <bool kOn = kCanCarry>
+  HSTMON_NOINLINE void start_lead(T tau) noexcept {
+    static_assert(kOn, "only a monitor whose model bound reports a time constant leads");
+    this->lead_ticks_ = 0;
+    const T tick = obs_.config().tick;
+    const T ahead = this->timing_lead_ * ModelBound<Model>::largest_uncertainty(uncertainty_) * tau;
+    if (!(ahead > T(0) && tick > T(0) && this->carry_hold_)) return;
+    const T n = std::ceil(ahead / tick);
+    const int ticks = n < T(100000) ? static_cast<int>(n) : 100000;  // a bounded start-up cost
+    this->lead_ = obs_;
+    const Measurement none{};
+    for (int k = 0; k < ticks; ++k) (void)this->lead_.step(obs_.model().inputs(), none);
+    this->lead_ticks_ = ticks;
   }
 
   // On an input change the logged change happened somewhere within the last sample
@@ -489,6 +582,7 @@ class ModelMonitor
   template <bool kOn = kCanCarry>
   HSTMON_NOINLINE void carry_bound() noexcept {
     static_assert(kOn, "only a monitor whose model bound reports a time constant carries its bound");
+    this->lead_ticks_ = 0;  // restarted below under the new inputs
     // The old bound, carried on top of the new one: the residual goes from the old model
     // error (up to the old bound) to the new one (up to the new bound), which may lie on
     // the other side (a closed circuit rings: carrying only the old bound's excess over
@@ -513,6 +607,7 @@ class ModelMonitor
     const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;
     this->tau_here_ = tau_new;
     this->carry_decay_ = tau > T(0) ? std::exp(-obs_.config().tick / tau) : T(0);
+    if (this->timing_lead_ > T(0) && bound_valid_) start_lead(tau_new);
   }
 
   // set_steady_outputs at the current inputs' steady state, if they have one.

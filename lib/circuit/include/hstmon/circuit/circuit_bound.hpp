@@ -53,6 +53,13 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
   /// compute() can also report the slowest time constant over the models it solves.
   static constexpr bool kSlowestTau = true;
 
+  /// The largest relative uncertainty over the parameters [-] (0 when none is uncertain).
+  static T largest_uncertainty(const Uncertainty& eps) noexcept {
+    T e = T(0);
+    for (int k = 0; k < Cap::kParams; ++k) e = std::fmax(e, eps.rel[k]);
+    return e;
+  }
+
   /// @param model  the observer's model (description, parameters and inputs set)
   /// @param eps    relative uncertainties, each finite, ≥ 0 and < 0.5
   /// @param m      out: bound per channel [channel unit] (unused channels 0; a partial sum after an error)

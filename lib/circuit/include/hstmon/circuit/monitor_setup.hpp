@@ -32,16 +32,22 @@ T sensor_sigma(T noise, T lo, T hi) noexcept {
 ///    two points' time constants (ModelMonitor::Config::bound_carry = 1), since a machine
 ///    whose relief valve stays shut where the model's cracks leaves the old model error at
 ///    its own, slower pace;
+///  - the timing of its valves' opening in the ±ε machine: after an input step the machine
+///    may run its transient up to ε·τ ahead of the model (ModelMonitor::Config::timing_lead
+///    = 1), so a valve on the way (a check valve as a main line falls below the charge
+///    pressure) opens that much earlier in the machine, and the model's own change over
+///    that time ahead counts as model error;
 ///  - how far a fault moves the model error with the operating point: a channel that moved
 ///    no further than the model bound reads as unchanged in a signature
 ///    (FaultMatcher::Config::k_zero_bound = 1).
-/// The thesis rig's monitor (Monitor<T>) keeps all three off: its transients are milliseconds
+/// The thesis rig's monitor (Monitor<T>) keeps all four off: its transients are milliseconds
 /// long and its table and thresholds are validated as they are.
 /// @param cfg  a ModelMonitor configuration, changed in place
 template <class MonitorConfig>
 void set_circuit_allowances(MonitorConfig& cfg) noexcept {
   cfg.model_transient = 1;
   cfg.bound_carry = 1;
+  cfg.timing_lead = 1;
   cfg.matcher.k_zero_bound = 1;
 }
 
