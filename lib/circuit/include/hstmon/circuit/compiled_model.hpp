@@ -113,9 +113,10 @@ class CompiledModel {
   /// CircuitModel::tick_derivative, compiled: rho from the reduced Jacobian's bound
   /// (dense.hpp radius_bound: its first, cheapest bound decides when it is ≤ rho_max).
   /// The Jacobian's rows come from the evaluations the solve and the rates make anyway:
-  /// a stiff node's row from its balance's last evaluation, at most 8ε (Newton's step
-  /// test) and 16ε (the sweep's) relative from z — the interpreter's unknowns_jacobian
-  /// at z to rounding, which is all a substep count needs.
+  /// a closed-form stiff node's row from its own root (the orifice's slope c0/(2·root)),
+  /// a Newton node's from its balance's last evaluation, at most 8ε (Newton's step test)
+  /// and 16ε (the sweep's) relative from z — the interpreter's unknowns_jacobian at z to
+  /// rounding, which is all a substep count needs.
   State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
     T z[kExtent<Kernel::kZ>];
     Kernel::fill(engine_, x, z);
