@@ -60,7 +60,10 @@ __attribute__((noinline)) std::uint32_t time_evaluations(bool with_jacobian) {
   const std::uint32_t a = cycles_now();
   for (int k = 0; k < kTicks; ++k) {
     const auto d = with_jacobian ? model.tick_derivative(x, 800.0f, y, rho, ok) : model.derivative(x);
-    sink = static_cast<std::uint32_t>(d[0] > 0.0f);
+    // Every rate observed (one would let the compiler drop the others' laws).
+    float all = 0.0f;
+    for (int i = 0; i < d.size(); ++i) all += d[i];
+    sink = static_cast<std::uint32_t>(all > 0.0f);
   }
   return cycles_elapsed(a, cycles_now());
 }
