@@ -301,6 +301,34 @@ TEST(CircuitMonitor, BoundExistsWhereNewtonCycledAtAReliefValvesKink) {
   EXPECT_GT(bound[3], 4.30) << "the machine's steady offset [rad/s]";
 }
 
+// A parameter file's stated uncertainty (circuit_uncertainty) replaces the default 2 %:
+// without one the monitor's uncertainty is the default; with Dm known to ±20 % the model
+// bound widens on some channel and narrows on none.
+TEST(CircuitMonitor, StatedUncertaintyWidensTheModelBound) {
+  using Model = hstmon::host::HostCircuitModel;
+  const ct::LoadedCircuit c = load("paper");
+  const auto dflt = ct::default_uncertainty(c.file);
+  const auto as_read = ct::circuit_uncertainty(c);
+  for (std::size_t k = 0; k < c.file.params.size(); ++k) EXPECT_EQ(as_read.rel[k], dflt.rel[k]) << c.file.params[k].name;
+  ct::LoadedCircuit loose = c;
+  const int dm = c.file.param_index("Dm");
+  ASSERT_GE(dm, 0);
+  loose.values.uncertainty[static_cast<std::size_t>(dm)] = 0.2;
+  const auto stated = ct::circuit_uncertainty(loose);
+  EXPECT_EQ(stated.rel[dm], 0.2);
+  const Model model(c.file.circuit, c.values.params, c.values.inputs);
+  double tight[hstmon::circuit::kExtent<Model::kOutputs>];
+  double wide[hstmon::circuit::kExtent<Model::kOutputs>];
+  ASSERT_EQ(hstmon::ModelBound<Model>::compute(model, as_read, tight), hstmon::Status::kOk);
+  ASSERT_EQ(hstmon::ModelBound<Model>::compute(model, stated, wide), hstmon::Status::kOk);
+  bool wider = false;
+  for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+    EXPECT_GE(wide[ch], tight[ch]) << c.file.sensors[ch].name;
+    wider = wider || wide[ch] > 1.5 * tight[ch];
+  }
+  EXPECT_TRUE(wider) << "Dm at ±20 % moves some channel's bound";
+}
+
 // Config::timing_lead takes the bound carry's time constants and steady state: without
 // the carry, or negative, or not finite, it is an invalid configuration.
 TEST(CircuitMonitor, TimingLeadNeedsTheBoundCarry) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "hstmon_host/circuit_file.hpp"
 #include "hstmon_host/circuit_values.hpp"
@@ -99,12 +100,38 @@ TEST(CircuitReader, ParameterFileErrors) {
  "params": {"k": "1e-7 bar"}})", "p.json:2:18: error: k: unknown"},
       {R"({"circuit": "tiny", "params": {"k": 1e-7}})", "p.json:1:1: error: input 'q' has no nominal value"},
       {R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": [1]}})", "p.json:1:60: error: q must be a number"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"kk": 0.1}})", "p.json:1:57: error: no parameter 'kk' in circuit 'tiny'"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": "5 bar"}})", "p.json:1:62: error: k: '5 bar' is not a percentage such as \"5 %\""},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": 0.8}})", "p.json:1:62: error: k: a relative uncertainty must be from 0 to 50 %"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": "-1 %"}})", "p.json:1:62: error: k: a relative uncertainty must be from 0 to 50 %"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": [0.1]}})", "p.json:1:62: error: k must be a fraction (0.05) or a percentage"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": 0.1})", "p.json:1:56: error: 'uncertainty' must be an object"},
   };
   for (const Case& c : cases) {
     const auto v = parse_circuit_values_json(c.text, "p.json", cf);
     ASSERT_FALSE(v.ok()) << c.text;
     const std::string e = v.error->to_string();
     EXPECT_EQ(e.substr(0, std::string(c.expect).size()), c.expect) << "got: " << e;
+  }
+}
+
+// The optional "uncertainty" section: a fraction or a percentage per parameter, the rest
+// left to the monitor's default.
+TEST(CircuitReader, ParameterFileStatesUncertainty) {
+  const auto r = parse_circuit_json(kGood, "c.json");
+  ASSERT_TRUE(r.ok());
+  using hstmon::host::parse_circuit_values_json;
+  const auto none = parse_circuit_values_json(R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": 1}})", "p.json", *r.file);
+  ASSERT_TRUE(none.ok()) << none.error->to_string();
+  ASSERT_EQ(none.values->uncertainty.size(), r.file->params.size());
+  for (const auto& e : none.values->uncertainty) EXPECT_FALSE(e.has_value());
+  const auto k = static_cast<std::size_t>(r.file->param_index("k"));
+  for (const auto& [text, want] : {std::pair<const char*, double>{R"("5 %")", 0.05}, {R"(" 12.5% ")", 0.125}, {"0.3", 0.3}, {"0", 0.0}}) {
+    const std::string file = std::string(R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": 1}, "uncertainty": {"k": )") + text + "}}";
+    const auto v = parse_circuit_values_json(file, "p.json", *r.file);
+    ASSERT_TRUE(v.ok()) << v.error->to_string();
+    ASSERT_TRUE(v.values->uncertainty[k].has_value()) << text;
+    EXPECT_DOUBLE_EQ(*v.values->uncertainty[k], want) << text;
   }
 }
 

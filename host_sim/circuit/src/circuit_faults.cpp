@@ -50,6 +50,15 @@ circuit::CircuitUncertainty<double, host::CircuitCap> default_uncertainty(const 
   return e;
 }
 
+circuit::CircuitUncertainty<double, host::CircuitCap> circuit_uncertainty(const LoadedCircuit& c) {
+  circuit::CircuitUncertainty<double, host::CircuitCap> e = default_uncertainty(c.file);
+  const auto& stated = c.values.uncertainty;
+  for (std::size_t k = 0; k < stated.size() && k < c.file.params.size(); ++k) {
+    if (stated[k]) e.rel[k] = *stated[k];
+  }
+  return e;
+}
+
 CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
   CircuitFaultTable t;
   host::HostCircuit desc = c.file.circuit;

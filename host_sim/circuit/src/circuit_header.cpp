@@ -105,7 +105,7 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   const int cap_s = check.n_states() < 1 ? 1 : check.n_states();
   const int unknowns = check.n_states() + check.n_stiff();  // volume nodes + free shafts
   const int cap_u = unknowns < cap_s ? cap_s : unknowns;
-  const circuit::CircuitUncertainty<double, host::CircuitCap> eps = default_uncertainty(f);
+  const circuit::CircuitUncertainty<double, host::CircuitCap> eps = circuit_uncertainty(c);
 
   std::string h;
   auto line = [&h](const std::string& s) { h += s + "\n"; };
@@ -189,7 +189,7 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kParams[" + std::to_string(cap_p) + "] = " +
        list(n_p, [&](int i) { return num(c.values.params.v[i]); }, cap_p - n_p) + ";");
   names("kParamNames", n_p, cap_p, [&](std::size_t i) { return f.params[i].name; });
-  line("/// Relative uncertainty of each parameter for the model bound [-] (host default_uncertainty).");
+  line("/// Relative uncertainty of each parameter for the model bound [-] (host circuit_uncertainty: the parameter file's, else the default).");
   line("inline constexpr double kUncertainty[" + std::to_string(cap_p) + "] = " +
        list(n_p, [&](int i) { return num(eps.rel[i]); }, cap_p - n_p) + ";");
   line("/// Nominal inputs by index [SI] (unused capacity 0).");

@@ -139,7 +139,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     cfg.sensors.range_lo[i] = lo;
     cfg.sensors.range_hi[i] = hi;
   }
-  cfg.uncertainty = default_uncertainty(c.file);
+  cfg.uncertainty = circuit_uncertainty(c);
   // What a circuit file does not say (its damping, how far a fault moves the model error)
   // the monitor allows for (circuit::set_circuit_allowances, shared with the firmware).
   circuit::set_circuit_allowances(cfg);

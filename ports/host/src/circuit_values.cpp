@@ -1,6 +1,7 @@
 #include "hstmon_host/circuit_values.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "json_locations.hpp"
@@ -16,6 +17,7 @@ using Json = nlohmann::json;
 void defaults(const CircuitFile& cf, CircuitValues& v, std::vector<bool>& p_set, std::vector<bool>& u_set) {
   p_set.assign(cf.params.size(), false);
   u_set.assign(cf.inputs.size(), false);
+  v.uncertainty.assign(cf.params.size(), std::nullopt);
   for (std::size_t i = 0; i < cf.params.size(); ++i) {
     if (cf.params[i].value) {
       v.params.v[i] = *cf.params[i].value;
@@ -69,9 +71,10 @@ class Reader {
       return;
     }
     for (auto it = j.begin(); it != j.end(); ++it) {
-      if (it.key() != "circuit" && it.key() != "description" && it.key() != "params" && it.key() != "inputs") {
-        fail_key("/" + detail::json_pointer_token(it.key()),
-                 "unknown key '" + detail::printable(it.key()) + "' (known: circuit, description, params, inputs)");
+      if (it.key() != "circuit" && it.key() != "description" && it.key() != "params" && it.key() != "inputs" &&
+          it.key() != "uncertainty") {
+        fail_key("/" + detail::json_pointer_token(it.key()), "unknown key '" + detail::printable(it.key()) +
+                                                                 "' (known: circuit, description, params, inputs, uncertainty)");
         return;
       }
     }
@@ -92,6 +95,7 @@ class Reader {
     }
     if (const auto p = j.find("params"); p != j.end() && !section(*p, "params", true, v, p_set)) return;
     if (const auto u = j.find("inputs"); u != j.end() && !section(*u, "inputs", false, v, u_set)) return;
+    if (const auto e = j.find("uncertainty"); e != j.end() && !uncertainty(*e, v)) return;
     const std::string m = missing(cf_, p_set, u_set);
     if (!m.empty()) {
       fail(0, m + " (give it in this file or in the circuit file)");
@@ -136,6 +140,47 @@ class Reader {
       }
       (params ? v.params.v : v.inputs.v)[i] = x;
       set[static_cast<std::size_t>(i)] = true;
+    }
+    return true;
+  }
+
+  /// The "uncertainty" section: parameter name → relative uncertainty, a fraction or "N %".
+  bool uncertainty(const Json& obj, CircuitValues& v) {
+    if (!obj.is_object()) {
+      fail_value("/uncertainty", "'uncertainty' must be an object of parameter: relative uncertainty pairs");
+      return false;
+    }
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      const std::string ptr = "/uncertainty/" + detail::json_pointer_token(it.key());
+      const int i = cf_.param_index(it.key());
+      if (i < 0) {
+        fail_key(ptr, "no parameter '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
+        return false;
+      }
+      double x = std::nan("");
+      if (it->is_number()) {
+        x = it->get<double>();
+      } else if (it->is_string()) {
+        const std::string t(detail::trim(it->get<std::string>()));
+        if (t.size() > 1 && t.back() == '%') {
+          const std::string number(detail::trim(std::string_view(t).substr(0, t.size() - 1)));
+          char* end = nullptr;
+          const double pct = std::strtod(number.c_str(), &end);
+          if (!number.empty() && end == number.c_str() + number.size()) x = pct / 100.0;
+        }
+        if (std::isnan(x)) {
+          fail_value(ptr, it.key() + ": '" + detail::printable(t) + "' is not a percentage such as \"5 %\"");
+          return false;
+        }
+      } else {
+        fail_value(ptr, it.key() + " must be a fraction (0.05) or a percentage (\"5 %\")");
+        return false;
+      }
+      if (!(x >= 0.0 && x <= 0.5)) {
+        fail_value(ptr, it.key() + ": a relative uncertainty must be from 0 to 50 %");
+        return false;
+      }
+      v.uncertainty[static_cast<std::size_t>(i)] = x;
     }
     return true;
   }

@@ -56,6 +56,10 @@ double sensor_sigma(const host::CircuitSensor& s);
 /// the rest and on literals.
 circuit::CircuitUncertainty<double, host::CircuitCap> default_uncertainty(const host::CircuitFile& f);
 
+/// The relative uncertainty the monitor's model bound takes for c: what its parameter
+/// file's "uncertainty" section states, and default_uncertainty's for the rest.
+circuit::CircuitUncertainty<double, host::CircuitCap> circuit_uncertainty(const LoadedCircuit& c);
+
 /// True when parameter p can be a fault row / is uncertain (see the file comment).
 bool moves_steady_state(const host::CircuitParam& p);
 

@@ -5,15 +5,20 @@
 ///
 ///     {"circuit": "thesis", "description": "Table 2.2",
 ///      "params": {"Dm": 7.96e-6, "kf": 3.226e-6, "K": "1e14"},
-///      "inputs": {"Psupl": "35 bar", "kp": 4.41e-8}}
+///      "inputs": {"Psupl": "35 bar", "kp": 4.41e-8},
+///      "uncertainty": {"Dm": "5 %", "Rlkg": 0.3}}
 ///
 /// Values are SI numbers or strings with a unit of the parameter's quantity. The circuit
 /// file's own values (declared "value"s, literals) are the defaults; a parameter or input
-/// left without a value is an error. Errors carry file:line:column.
+/// left without a value is an error. The optional "uncertainty" section states how well a
+/// parameter's value is known, relative (a fraction, or a string in %), from 0 to 50 %:
+/// the monitor's model bound takes it instead of its default (circuit_tools::
+/// circuit_uncertainty). Errors carry file:line:column.
 
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "hstmon_host/circuit_file.hpp"
 #include "hstmon_host/source_error.hpp"
@@ -24,6 +29,9 @@ namespace hstmon::host {
 struct CircuitValues {
   HostCircuitModel::Params params{};
   HostCircuitModel::Inputs inputs{};
+  /// Relative uncertainty stated per parameter [-], by parameter index (as many as the
+  /// circuit has); empty where the parameter file states none.
+  std::vector<std::optional<double>> uncertainty;
   std::string description;
 };
 

@@ -23,9 +23,10 @@
 namespace hstmon::circuit {
 
 /// Relative uncertainty of each parameter of a circuit [-], by parameter index
-/// (0 = exact; 0.02 = ±2 %). The host sets it from the parameters' quantities
-/// (circuit_tools::default_uncertainty): what moves a steady state (displacements,
-/// resistances, orifices, curve pressures) is uncertain, capacitances and inertias are not.
+/// (0 = exact; 0.02 = ±2 %). The host takes a parameter file's stated `uncertainty`, else
+/// sets it from the parameters' quantities (circuit_tools::circuit_uncertainty): what
+/// moves a steady state (displacements, resistances, orifices, curve pressures) ±2 %,
+/// capacitances and inertias exact.
 template <typename T, class Cap>
 struct CircuitUncertainty {
   T rel[kExtent<Cap::kParams>]{};

@@ -54,7 +54,7 @@ inline constexpr circuit::Circuit<Cap> kCircuit = {
 /// Parameter values by index [SI unit of each parameter's quantity].
 inline constexpr double kParams[20] = {0.0001995, 600000000000.0, 7500000.0, 8700000.0, 9000000.0, 100000000000.0, 100000000000.0, 100000000000.0, 6.7400000000000003e-07, 6.1200000000000003e-07, 600000000000.0, 600000000000.0, 0.014, 0.014999999999999999, 870.0, 0.60999999999999999, 1000.0, 0.0, 20000000.0, 314.15926535897933};
 inline constexpr const char* const kParamNames[20] = {"Q0", "Rpump", "Pc", "Pk", "Pmax", "Kpmp", "Kpm", "Kpp", "Dm", "Dp", "Rmlkg", "Rplkg", "Rfric", "J", "rho", "Cd", "dp_t", "tank.boundary", "envelope.pressure", "envelope.speed"};
-/// Relative uncertainty of each parameter for the model bound [-] (host default_uncertainty).
+/// Relative uncertainty of each parameter for the model bound [-] (host circuit_uncertainty: the parameter file's, else the default).
 inline constexpr double kUncertainty[20] = {0.02, 0.02, 0.02, 0.02, 0.02, 0.0, 0.0, 0.0, 0.02, 0.02, 0.02, 0.02, 0.02, 0.0, 0.0, 0.02, 0.02, 0.0, 0.0, 0.0};
 /// Nominal inputs by index [SI] (unused capacity 0).
 inline constexpr double kInputs[2] = {4.9999999999999996e-06, 3.5249999999999997e-06};

@@ -59,7 +59,7 @@ inline constexpr circuit::Circuit<Cap> kCircuit = {
 /// Parameter values by index [SI unit of each parameter's quantity].
 inline constexpr double kParams[15] = {7.96e-06, 1.00745e-06, 64779000000000000.0, 1.697088e+19, 0.00159154, 0.047587320000000002, 3.2260000000000001e-06, 0.001, 100000000000000.0, 1000.0, 100000.0, 0.0, 1.0, 40000000.0, 628.31853071795865};
 inline constexpr const char* const kParamNames[15] = {"Dm", "Dp", "Rlkg", "Ripl", "Rf", "Rbl", "kf", "J", "K", "dp_t_dcv", "dp_t_prv", "drain.boundary", "dcv.spool", "envelope.pressure", "envelope.speed"};
-/// Relative uncertainty of each parameter for the model bound [-] (host default_uncertainty).
+/// Relative uncertainty of each parameter for the model bound [-] (host circuit_uncertainty: the parameter file's, else the default).
 inline constexpr double kUncertainty[15] = {0.02, 0.02, 0.02, 0.02, 0.02, 0.02, 0.02, 0.0, 0.0, 0.02, 0.02, 0.0, 0.0, 0.0, 0.0};
 /// Nominal inputs by index [SI] (unused capacity 0).
 inline constexpr double kInputs[4] = {3500000.0, 0.0, 1000000.0, 4.4099999999999998e-08};
