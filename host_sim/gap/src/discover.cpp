@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "autocorr.hpp"
+#include "hstmon_gap/shrink.hpp"
 
 namespace hstmon::gap {
 
@@ -258,9 +259,9 @@ std::optional<Discovery> discover(const ArrData& fit, const ArrData& check, int 
   d.equation = equation_names()[e];
   d.rms_w_before_check = before;
   d.rms_w_after_check = after[pick];
-  d.shrink_check = 1.0 - after[pick] / before;
+  d.shrink_check = shrink(before, after[pick]);
   const double before_fit = std::sqrt(y.squaredNorm() / static_cast<double>(y.size()));
-  d.shrink_fit = 1.0 - std::sqrt(res.squaredNorm() / static_cast<double>(y.size())) / before_fit;
+  d.shrink_fit = shrink(before_fit, std::sqrt(res.squaredNorm() / static_cast<double>(y.size())));
   std::vector<std::pair<double, std::size_t>> order;
   for (std::size_t j = 0; j < act.size(); ++j) {
     order.emplace_back(std::fabs(beta[static_cast<Eigen::Index>(j)]) * Xa.col(static_cast<Eigen::Index>(j)).norm(), j);

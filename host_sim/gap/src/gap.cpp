@@ -11,6 +11,7 @@
 #include "hstmon_ident/least_squares.hpp"
 #include "autocorr.hpp"
 #include "load_bins.hpp"
+#include "hstmon_gap/shrink.hpp"
 
 namespace hstmon::gap {
 
@@ -275,7 +276,7 @@ class Analysis {
     f.model = L.model(p_, lm.x);
     const double ssr = lm.finite ? lm.ssr : std::numeric_limits<double>::infinity();
     f.delta_bic_fit = bic(ssr, m, L.size()) - bic(ssr_nominal_a, m, 0);
-    f.shrink_fit = 1.0 - std::sqrt(ssr / static_cast<double>(m)) / rms_w_nominal_a;
+    f.shrink_fit = shrink(rms_w_nominal_a, std::sqrt(ssr / static_cast<double>(m)));
     // Uncertainty: linearised covariance at the optimum.
     std::vector<double> se(L.size(), std::numeric_limits<double>::infinity());
     if (lm.finite) {
@@ -337,7 +338,7 @@ class Analysis {
     } else {
       f.rms_w_after_check = std::numeric_limits<double>::infinity();
     }
-    f.shrink_check = rms_w_nominal_b > 0 ? 1.0 - f.rms_w_after_check / rms_w_nominal_b : 0.0;
+    f.shrink_check = shrink(rms_w_nominal_b, f.rms_w_after_check);
     if (!std::isfinite(f.shrink_check)) f.shrink_check = -1.0;
     return f;
   }
@@ -353,7 +354,11 @@ class Analysis {
   std::string start_;  // how the last simulation started
 };
 
-double score(const EffectFit& f) { return f.shrink_check - 0.005 * (f.k - 1); }
+// The ranking: the check log's RMS after the set (as the plain ratio, so that the penalty
+// of 0.005 per extra parameter weighs the same near the noise as far from it).
+double score(const EffectFit& f) {
+  return plain_shrink(f.rms_w_before_check, f.rms_w_after_check) - 0.005 * (f.k - 1);
+}
 
 // The logger's timing of input steps (InputSeries::step_lead): the nominal run at 0, ¼, ½,
 // ¾ and 1 of a sample interval; the smallest residual wins, 0 unless another is 1 %
@@ -583,9 +588,11 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     {
       EffectFit pf = an.fit(st, ssr0, rmsw_a, rmsw_b, yb);
       const EffectFit& bi = useful.front();  // best single effect overall
-      // Needed: better on the fit log (BIC) and on the check log — 0.05 more shrink, or a
-      // third less of what the best single leaves (near noise the latter cannot happen).
-      const bool better_check = pf.shrink_check >= bi.shrink_check + 0.05 ||
+      // Needed: better on the fit log (BIC) and on the check log — 0.05 more of the plain
+      // ratio 1 − a/b, or a third less of what the best single leaves (near noise the
+      // latter cannot happen).
+      const bool better_check = plain_shrink(pf.rms_w_before_check, pf.rms_w_after_check) >=
+                                    plain_shrink(bi.rms_w_before_check, bi.rms_w_after_check) + 0.05 ||
                                 pf.rms_w_after_check <= 0.7 * bi.rms_w_after_check;
       const bool needed = better_check && pf.delta_bic_fit < bi.delta_bic_fit - 10.0 &&
                           std::all_of(pf.params.begin(), pf.params.end(), [](const ParamEstimate& q) {
@@ -611,7 +618,9 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
       const bool disjoint = std::none_of(f.effects.begin(), f.effects.end(), [&](Effect e) {
         return std::find(best.effects.begin(), best.effects.end(), e) != best.effects.end();
       });
-      if (disjoint && best.shrink_check - f.shrink_check < 0.02 && f.delta_bic_fit - best.delta_bic_fit < 10.0) {
+      const double lead = plain_shrink(best.rms_w_before_check, best.rms_w_after_check) -
+                          plain_shrink(f.rms_w_before_check, f.rms_w_after_check);
+      if (disjoint && lead < 0.02 && f.delta_bic_fit - best.delta_bic_fit < 10.0) {
         if (res.cannot_tell_apart.empty()) res.cannot_tell_apart.push_back(best.name);
         res.cannot_tell_apart.push_back(f.name);
       }
@@ -635,7 +644,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
           const auto y = an.sim(m, B, ok);
           if (ok) {
             d->simulated = true;
-            d->model_shrink_check = 1.0 - pooled_rms_w(B, y) / rmsw_b;
+            d->model_shrink_check = shrink(rmsw_b, pooled_rms_w(B, y));
             for (std::size_t c = 0; c < kChannels; ++c) {
               double s2 = 0;
               for (std::size_t k = 0; k < y.size(); ++k) s2 += std::pow(B.y[k][c] - y[k][c], 2);

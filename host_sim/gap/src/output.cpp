@@ -214,7 +214,7 @@ std::string to_text(const GapResult& r) {
             r.step_lead_fit, r.step_lead_check);
   where("fit log", r.where_fit);
   where("check log", r.where_check);
-  o << "\nranking (fit on the fit log, shrink = 1 - RMS_after/RMS_before on the check log, noise-weighted):\n";
+  o << "\nranking (fit on the fit log, judged on the check log; shrink = share of its gap above the noise removed):\n";
   int i = 0;
   for (const auto& f : r.ranking) {
     o << sfmt("  %d. %-40s shrink_check %5.1f %%  dBIC_fit %.4g\n", ++i, f.name.c_str(),

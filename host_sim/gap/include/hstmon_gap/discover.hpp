@@ -26,7 +26,7 @@ struct DiscoveredTerm {
 struct Discovery {
   std::string equation;               ///< "flow:p_pp"
   std::vector<DiscoveredTerm> terms;  ///< largest contribution first
-  double shrink_fit = 0;              ///< 1 − RMS/noise after / before, equation imbalance, fit log
+  double shrink_fit = 0;              ///< share of the equation imbalance above noise removed, fit log (shrink.hpp)
   double shrink_check = 0;            ///< same on the check log (the judge)
   double rms_w_before_check = 0, rms_w_after_check = 0;
   std::string reading;                ///< in words: "a flow loss at the loading-pump node ∝ Ppp: leakage R = …"
@@ -34,7 +34,7 @@ struct Discovery {
   /// The nominal model with the terms, simulated on the check log (state equations
   /// flow:p_pp and torque:w_m only; simulated false otherwise): the channels' gap.
   bool simulated = false;
-  double model_shrink_check = 0;      ///< 1 − rms_w_after/rms_w_before, channels pooled, noise-weighted
+  double model_shrink_check = 0;      ///< share of the check log's gap above noise removed, channels pooled (shrink.hpp)
   std::array<double, kChannels> channel_rms_w_after_check{};  ///< per channel, RMS/noise (NaN: absent)
 };
 

@@ -69,7 +69,7 @@ struct EffectFit {
   std::vector<ParamEstimate> params;
   int k = 0;                          ///< fitted parameters
   double delta_bic_fit = 0;           ///< BIC(set) − BIC(nominal) on the fit log (< 0: better)
-  double shrink_fit = 0;              ///< 1 − rms_w_after / rms_w_before on the fit log
+  double shrink_fit = 0;              ///< share of the fit log's gap above the noise removed (shrink.hpp)
   double shrink_check = 0;            ///< same on the check log
   std::array<double, kChannels> rms_before_check{}, rms_after_check{};  ///< SI, NaN if absent
   double rms_w_before_check = 0, rms_w_after_check = 0;
