@@ -101,7 +101,7 @@ TEST(CircuitReader, ParameterFileErrors) {
       {R"({"circuit": "tiny", "params": {"k": 1e-7}})", "p.json:1:1: error: input 'q' has no nominal value"},
       {R"({"circuit": "tiny", "params": {"k": 1e-7}, "inputs": {"q": [1]}})", "p.json:1:60: error: q must be a number"},
       {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"kk": 0.1}})", "p.json:1:57: error: no parameter 'kk' in circuit 'tiny'"},
-      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": "5 bar"}})", "p.json:1:62: error: k: '5 bar' is not a percentage such as \"5 %\""},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": "5 bar"}})", "p.json:1:62: error: k: unknown fraction unit 'bar'"},
       {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": 0.8}})", "p.json:1:62: error: k: a relative uncertainty must be from 0 to 50 %"},
       {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": "-1 %"}})", "p.json:1:62: error: k: a relative uncertainty must be from 0 to 50 %"},
       {R"({"circuit": "tiny", "inputs": {"q": 1}, "uncertainty": {"k": [0.1]}})", "p.json:1:62: error: k must be a fraction (0.05) or a percentage"},

@@ -8,10 +8,10 @@
 #include <limits>
 #include <numeric>
 
+#include "hstmon_gap/shrink.hpp"
 #include "hstmon_ident/least_squares.hpp"
 #include "autocorr.hpp"
 #include "load_bins.hpp"
-#include "hstmon_gap/shrink.hpp"
 
 namespace hstmon::gap {
 

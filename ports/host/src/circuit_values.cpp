@@ -1,7 +1,6 @@
 #include "hstmon_host/circuit_values.hpp"
 
 #include <cmath>
-#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "json_locations.hpp"
@@ -144,7 +143,8 @@ class Reader {
     return true;
   }
 
-  /// The "uncertainty" section: parameter name → relative uncertainty, a fraction or "N %".
+  /// The "uncertainty" section: parameter name → relative uncertainty, a fraction or a
+  /// string with a fraction unit ("5 %"), read as any value of that quantity.
   bool uncertainty(const Json& obj, CircuitValues& v) {
     if (!obj.is_object()) {
       fail_value("/uncertainty", "'uncertainty' must be an object of parameter: relative uncertainty pairs");
@@ -157,21 +157,16 @@ class Reader {
         fail_key(ptr, "no parameter '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
         return false;
       }
-      double x = std::nan("");
+      double x;
       if (it->is_number()) {
         x = it->get<double>();
       } else if (it->is_string()) {
-        const std::string t(detail::trim(it->get<std::string>()));
-        if (t.size() > 1 && t.back() == '%') {
-          const std::string number(detail::trim(std::string_view(t).substr(0, t.size() - 1)));
-          char* end = nullptr;
-          const double pct = std::strtod(number.c_str(), &end);
-          if (!number.empty() && end == number.c_str() + number.size()) x = pct / 100.0;
-        }
-        if (std::isnan(x)) {
-          fail_value(ptr, it.key() + ": '" + detail::printable(t) + "' is not a percentage such as \"5 %\"");
+        const ValueResult r = parse_circuit_value(CircuitQuantity::kFraction, it->get<std::string>());
+        if (!r.ok()) {
+          fail_value(ptr, it.key() + ": " + r.error);
           return false;
         }
+        x = r.value;
       } else {
         fail_value(ptr, it.key() + " must be a fraction (0.05) or a percentage (\"5 %\")");
         return false;
