@@ -2,8 +2,8 @@
 // The compiled model of a generated circuit (hstmon-circuit-header --compiled) against the
 // interpreting CircuitModel on the same description and values: derivative, outputs,
 // tick_derivative (rho, alg_ok), Jacobian and steady state at a few states, and a 2-s
-// observer run with an input change, to 1e-12 relative (in practice they agree bit for bit:
-// the same laws, the same solve, sums in the same order).
+// observer run with an input change, to 1e-12 relative (in practice they agree bit for bit,
+// but for the sign of a zero sum: the same laws, the same solve, sums in the same order).
 #include <gtest/gtest.h>
 
 #include <algorithm>

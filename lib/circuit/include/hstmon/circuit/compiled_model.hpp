@@ -4,11 +4,12 @@
 /// solve, rates, outputs, reduced Jacobian) is straight-line code generated for one
 /// circuit's topology (`hstmon-circuit-header --compiled`, the Kernel), calling the same
 /// law functions (laws.hpp) and the same solve and reduction (quasi_steady.hpp) as the
-/// interpreting CircuitModel — so the results are the interpreter's bit for bit — without
-/// its per-element kind switches, index loads and Ref lookups (docs/circuits.md,
-/// "Compiled circuits"). Everything off the hot path (resolving the values on set_params
-/// and set_inputs, rest and steady state, plausibility, channels) is the interpreter's,
-/// held inside: one place for the physics.
+/// interpreting CircuitModel, summing in its order — so the results are the interpreter's
+/// bit for bit but for the sign of a sum that is zero (a generated sum starts from its first
+/// term, not from +0) — without its per-element kind switches, index loads and Ref lookups
+/// (docs/circuits.md, "Compiled circuits"). Everything off the hot path (resolving the
+/// values on set_params and set_inputs, rest and steady state, channels) is the
+/// interpreter's, held inside: one place for the physics.
 ///
 /// No heap, no exceptions, no RTTI. The warm start of the quasi-steady solve is state, so a
 /// model must not be evaluated from two threads at once.
@@ -16,7 +17,8 @@
 /// A Kernel (generated) provides: Cap; description() (the constexpr Circuit<Cap>); kZ
 /// (nodes + shafts), kN (states), kM (stiff nodes), kU (unknowns); kStateU[kN], kStiffU[kM]
 /// (rows of the unknowns' Jacobian) and kStateZ[kN], kStiffZ[kM] (full-vector entries); and,
-/// templated on the engine type M, fill(m, x, z), solve_stiff<kRow>(m, z, guess, G) →
+/// templated on the engine type M, fill(m, x, z) (the states only: fixed entries are read
+/// as m.fixed_value, stiff ones written by the solve), solve_stiff<kRow>(m, z, guess, G) →
 /// converged, rates<kRow>(m, z, d, G), outputs(m, z, y), unknowns_jacobian(m, z, G)
 /// (nonzeros only, onto a zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp
 /// schur_reduce, unrolled for G's structure). With kRow, the solve and the rates also
@@ -91,7 +93,19 @@ class CompiledModel {
   int n_stiff() const noexcept { return engine_.n_stiff(); }
   int n_outputs() const noexcept { return engine_.n_outputs(); }
   int state_channel(int s) const noexcept { return engine_.state_channel(s); }
-  bool state_plausible(const State& x) const noexcept { return engine_.state_plausible(x); }
+  /// CircuitModel::state_plausible with the kernel's states known at compile time (the
+  /// observer asks every tick): each state within twice its envelope (false for NaN and
+  /// ±Inf), any capacity beyond the kernel's states finite.
+  bool state_plausible(const State& x) const noexcept {
+    for (int s = 0; s < Kernel::kN; ++s) {
+      const T lim = Kernel::kStateZ[s] < Cap::kNodes ? p_lim_ : w_lim_;
+      if (!(std::fabs(x[s]) <= lim)) return false;
+    }
+    for (int s = Kernel::kN; s < kStates; ++s) {
+      if (!(x[s] * T(0) == T(0))) return false;
+    }
+    return true;
+  }
   State rest_state() const noexcept { return engine_.rest_state(); }
 
   /// CircuitModel::steady_state; the quasi-steady solve then starts from it.
@@ -170,6 +184,8 @@ class CompiledModel {
   void sync() noexcept {
     for (int j = 0; j < Kernel::kM; ++j) guess_[j] = engine_.warm_start(j);
     for (int r = 0; r < Kernel::kN; ++r) inv_mass_[r] = engine_.node_stiffness(Kernel::kStateZ[r]);
+    p_lim_ = T(2) * engine_.pressure_envelope();
+    w_lim_ = T(2) * engine_.speed_envelope();
   }
 
   bool solve(T (&z)[kExtent<Kernel::kZ>]) const noexcept {
@@ -205,6 +221,7 @@ class CompiledModel {
 
   Engine engine_{};
   T inv_mass_[kExtent<Kernel::kN>]{};  ///< K [Pa/m³] or 1/J of each state
+  T p_lim_{}, w_lim_{};  ///< state_plausible's bounds, twice the envelopes [Pa], [rad/s]
   mutable T guess_[kExtent<(Kernel::kM > 0 ? Kernel::kM : 1)>]{};  ///< last quasi-steady pressures [Pa]
 };
 

@@ -26,15 +26,11 @@ struct Kernel {
   static constexpr std::uint8_t kStiffZ[2] = {4, 5};
   static constexpr std::uint8_t kStiffU[2] = {0, 1};
 
-  /// The full vector at state x: fixed values, then the states (stiff nodes: solve_stiff).
+  /// The states into the full vector at x (fixed entries: m.fixed_value; stiff nodes:
+  /// solve_stiff, which every caller of fill runs next).
   template <class M, class X, typename T>
   HSTMON_CIRCUIT_INLINE static void fill(const M& m, const X& x, T (&z)[8]) noexcept {
-    z[0] = m.fixed_value(0);  // supply
-    z[1] = m.fixed_value(1);  // tank
-    z[2] = m.fixed_value(2);  // drain
-    z[3] = m.fixed_value(3);  // booster
-    z[4] = m.fixed_value(4);  // Pmi
-    z[5] = m.fixed_value(5);  // Pmo
+    (void)m;
     z[6] = x[0];  // Ppp
     z[7] = x[1];  // motor
   }
@@ -54,11 +50,11 @@ struct Kernel {
     }
     {  // dcv.PA
       circuit::Flow<T> f;
-      circuit::orifice_flow(m.coeffs(1), z[0], z[4], f);
+      circuit::orifice_flow(m.coeffs(1), m.fixed_value(0), z[4], f);
       F += f.q;
       dF += f.dpb;
       if constexpr (kRow) {
-        G[0][0] += f.dpb;
+        G[0][0] = f.dpb;
       }
     }
     {  // motor
@@ -68,13 +64,13 @@ struct Kernel {
       dF -= f.dpa;
       if constexpr (kRow) {
         G[0][0] -= f.dpa;
-        G[0][1] -= f.dpb;
-        G[0][3] -= f.dw;
+        G[0][1] = -(f.dpb);
+        G[0][3] = -(f.dw);
       }
     }
     {  // leak_in
       circuit::Flow<T> f;
-      circuit::laminar_flow(m.coeffs(4), z[4], z[2], f);
+      circuit::laminar_flow(m.coeffs(4), z[4], m.fixed_value(2), f);
       F -= f.q;
       dF -= f.dpa;
       if constexpr (kRow) {
@@ -109,11 +105,11 @@ struct Kernel {
     }
     {  // dcv.BT
       circuit::Flow<T> f;
-      circuit::orifice_flow(m.coeffs(2), z[5], z[1], f);
+      circuit::orifice_flow(m.coeffs(2), z[5], m.fixed_value(1), f);
       F -= f.q;
       dF -= f.dpa;
       if constexpr (kRow) {
-        G[1][1] -= f.dpa;
+        G[1][1] = -(f.dpa);
       }
     }
     {  // motor
@@ -122,14 +118,14 @@ struct Kernel {
       F += f.q;
       dF += f.dpb;
       if constexpr (kRow) {
-        G[1][0] += f.dpa;
+        G[1][0] = f.dpa;
         G[1][1] += f.dpb;
-        G[1][3] += f.dw;
+        G[1][3] = f.dw;
       }
     }
     {  // leak_out
       circuit::Flow<T> f;
-      circuit::laminar_flow(m.coeffs(5), z[5], z[2], f);
+      circuit::laminar_flow(m.coeffs(5), z[5], m.fixed_value(2), f);
       F -= f.q;
       dF -= f.dpa;
       if constexpr (kRow) {
@@ -160,13 +156,13 @@ struct Kernel {
       w.node(z[4], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
         // One orifice (dcv.PA) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
-        lin -= m.coeffs(3).c[0] * z[7];  // motor
-        lin += m.coeffs(4).c[0] * z[2];  // leak_in
-        B += m.coeffs(4).c[0];
+        lin = -(m.coeffs(3).c[0] * z[7]);  // motor
+        lin += m.coeffs(4).c[0] * m.fixed_value(2);  // leak_in
+        B = m.coeffs(4).c[0];
         lin += m.coeffs(6).c[0] * z[5];  // leak_cross
         B += m.coeffs(6).c[0];
         T root;
-        if (circuit::solve_node_orifice(z[4], z[0], m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B, root)) {
+        if (circuit::solve_node_orifice(z[4], m.fixed_value(0), m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B, root)) {
           if constexpr (kRow) {
             G[0][0] = T(0);
             G[0][1] = T(0);
@@ -175,14 +171,14 @@ struct Kernel {
               circuit::Flow<T> f;
               f.dpa = m.coeffs(1).c[0] * (T(0.5) / root);
               f.dpb = -f.dpa;
-              G[0][0] += f.dpb;
+              G[0][0] = f.dpb;
             }
             {  // motor
               circuit::Flow<T> f;
               f.dw = m.coeffs(3).c[0];
               G[0][0] -= f.dpa;
-              G[0][1] -= f.dpb;
-              G[0][3] -= f.dw;
+              G[0][1] = -(f.dpb);
+              G[0][3] = -(f.dw);
             }
             {  // leak_in
               circuit::Flow<T> f;
@@ -210,13 +206,13 @@ struct Kernel {
       w.node(z[5], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {
         // One orifice (dcv.BT) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
-        lin += m.coeffs(3).c[0] * z[7];  // motor
-        lin += m.coeffs(5).c[0] * z[2];  // leak_out
-        B += m.coeffs(5).c[0];
+        lin = m.coeffs(3).c[0] * z[7];  // motor
+        lin += m.coeffs(5).c[0] * m.fixed_value(2);  // leak_out
+        B = m.coeffs(5).c[0];
         lin += m.coeffs(6).c[0] * z[4];  // leak_cross
         B += m.coeffs(6).c[0];
         T root;
-        if (circuit::solve_node_orifice(z[5], z[1], m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B, root)) {
+        if (circuit::solve_node_orifice(z[5], m.fixed_value(1), m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B, root)) {
           if constexpr (kRow) {
             G[1][0] = T(0);
             G[1][1] = T(0);
@@ -225,14 +221,14 @@ struct Kernel {
               circuit::Flow<T> f;
               f.dpa = m.coeffs(2).c[0] * (T(0.5) / root);
               f.dpb = -f.dpa;
-              G[1][1] -= f.dpa;
+              G[1][1] = -(f.dpa);
             }
             {  // motor
               circuit::Flow<T> f;
               f.dw = m.coeffs(3).c[0];
-              G[1][0] += f.dpa;
+              G[1][0] = f.dpa;
               G[1][1] += f.dpb;
-              G[1][3] += f.dw;
+              G[1][3] = f.dw;
             }
             {  // leak_out
               circuit::Flow<T> f;
@@ -284,15 +280,15 @@ struct Kernel {
       {  // loading_pump
         circuit::Flow<T> f;
         circuit::machine_flow(m.coeffs(7), z[7], f);
-        g += f.q;
+        g = f.q;
         if constexpr (kRow) {
-          G[2][2] += f.dpb;
-          G[2][3] += f.dw;
+          G[2][2] = f.dpb;
+          G[2][3] = f.dw;
         }
       }
       {  // prv
         circuit::Flow<T> f;
-        circuit::orifice_flow(m.coeffs(8), z[6], z[3], f);
+        circuit::orifice_flow(m.coeffs(8), z[6], m.fixed_value(3), f);
         g -= f.q;
         if constexpr (kRow) {
           G[2][2] -= f.dpa;
@@ -304,25 +300,25 @@ struct Kernel {
       T g = T(0);
       {  // motor.friction
         T da, db, dw;
-        g += circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(0), T(0), T(0), z[7], da, db, dw);
+        g = circuit::element_torque(circuit::ElementKind::kFriction, m.coeffs(0), T(0), T(0), z[7], da, db, dw);
         if constexpr (kRow) {
-          G[3][3] += dw;
+          G[3][3] = dw;
         }
       }
       {  // motor
         T da, db, dw;
         g += circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(3), z[4], z[5], z[7], da, db, dw);
         if constexpr (kRow) {
-          G[3][0] += da;
-          G[3][1] += db;
+          G[3][0] = da;
+          G[3][1] = db;
           G[3][3] += dw;
         }
       }
       {  // loading_pump
         T da, db, dw;
-        g += circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(7), z[3], z[6], z[7], da, db, dw);
+        g += circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(7), m.fixed_value(3), z[6], z[7], da, db, dw);
         if constexpr (kRow) {
-          G[3][2] += db;
+          G[3][2] = db;
           G[3][3] += dw;
         }
       }
@@ -357,12 +353,12 @@ struct Kernel {
     }
     {  // dcv.PA
       circuit::Flow<T> f;
-      circuit::orifice_flow(m.coeffs(1), z[0], z[4], f);
+      circuit::orifice_flow(m.coeffs(1), m.fixed_value(0), z[4], f);
       G[0][0] += f.dpb;
     }
     {  // dcv.BT
       circuit::Flow<T> f;
-      circuit::orifice_flow(m.coeffs(2), z[5], z[1], f);
+      circuit::orifice_flow(m.coeffs(2), z[5], m.fixed_value(1), f);
       G[1][1] -= f.dpa;
     }
     {  // motor
@@ -382,12 +378,12 @@ struct Kernel {
     }
     {  // leak_in
       circuit::Flow<T> f;
-      circuit::laminar_flow(m.coeffs(4), z[4], z[2], f);
+      circuit::laminar_flow(m.coeffs(4), z[4], m.fixed_value(2), f);
       G[0][0] -= f.dpa;
     }
     {  // leak_out
       circuit::Flow<T> f;
-      circuit::laminar_flow(m.coeffs(5), z[5], z[2], f);
+      circuit::laminar_flow(m.coeffs(5), z[5], m.fixed_value(2), f);
       G[1][1] -= f.dpa;
     }
     {  // leak_cross
@@ -404,13 +400,13 @@ struct Kernel {
       G[2][2] += f.dpb;
       G[2][3] += f.dw;
       T da, db, dw;
-      (void)circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(7), z[3], z[6], z[7], da, db, dw);
+      (void)circuit::element_torque(circuit::ElementKind::kMachine, m.coeffs(7), m.fixed_value(3), z[6], z[7], da, db, dw);
       G[3][2] += db;
       G[3][3] += dw;
     }
     {  // prv
       circuit::Flow<T> f;
-      circuit::orifice_flow(m.coeffs(8), z[6], z[3], f);
+      circuit::orifice_flow(m.coeffs(8), z[6], m.fixed_value(3), f);
       G[2][2] -= f.dpa;
     }
     {  // valve_friction
