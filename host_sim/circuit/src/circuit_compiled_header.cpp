@@ -2,7 +2,8 @@
 // Kernel of lib/circuit compiled_model.hpp). Every loop of the interpreting CircuitModel
 // over elements, incidence lists and channels is unrolled here, in the interpreter's order,
 // so each sum is accumulated in the same order and the compiled model's numbers are the
-// interpreter's bit for bit; the laws themselves are called, never written out.
+// interpreter's bit for bit (but for the sign of a zero sum, see Sums); the laws themselves
+// are called, never written out.
 #include <cmath>
 #include <cstdio>
 #include <set>
