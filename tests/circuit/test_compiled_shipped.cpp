@@ -2,11 +2,14 @@
 // closed_loop_hst.json and test_stand.json (1 ms), generated at build time into the build
 // tree (tests/circuit/CMakeLists.txt), equal the interpreting CircuitModel on the same
 // description (compiled_equality.hpp): nominal inputs, the first input at 90 % from 1 s.
+// And test_stand.json with sensors on the drive speed and the tank, which the compiled
+// outputs read from the engine rather than from the integrated vector.
 #include <gtest/gtest.h>
 
 #include "compiled_equality.hpp"
 #include "hstmon/generated/test_closed_loop_hst_compiled.hpp"
 #include "hstmon/generated/test_paper_compiled.hpp"
+#include "hstmon/generated/test_stand_fixed_sensors_compiled.hpp"
 #include "hstmon/generated/test_test_stand_compiled.hpp"
 
 namespace {
@@ -36,6 +39,23 @@ TEST(CompiledShipped, ClosedLoopHst) {
 TEST(CompiledShipped, TestStand) {
   namespace g = hstmon::generated::test_test_stand;
   check<g::Kernel>(g::kParams, g::kInputs, g::kTick);
+}
+
+TEST(CompiledShipped, SensorsOnFixedEntries) {
+  namespace g = hstmon::generated::test_stand_fixed_sensors;
+  static_assert(g::Cap::kChannels == 4, "p_line, q, n_drive, p_tank");
+  check<g::Kernel>(g::kParams, g::kInputs, g::kTick);
+  // The drive-speed channel reads the input, the tank channel the boundary.
+  using Model = hstmon::circuit::CompiledModel<double, g::Kernel>;
+  typename Model::Params p;
+  typename Model::Inputs u;
+  for (int i = 0; i < g::Cap::kParams; ++i) p.v[i] = g::kParams[i];
+  for (int i = 0; i < g::Cap::kInputs; ++i) u.v[i] = g::kInputs[i];
+  const Model m(p, u);
+  const auto y = m.outputs(m.rest_state());
+  EXPECT_DOUBLE_EQ(y[2], m.engine().fixed_value(g::Kernel::kZ - 1));
+  EXPECT_GT(y[2], 0.0);
+  EXPECT_EQ(y[3], 0.0);
 }
 
 }  // namespace
