@@ -98,8 +98,8 @@ class CompiledModel {
   /// ±Inf), any capacity beyond the kernel's states finite.
   bool state_plausible(const State& x) const noexcept {
     for (int s = 0; s < Kernel::kN; ++s) {
-      const T lim = Kernel::kStateZ[s] < Cap::kNodes ? p_lim_ : w_lim_;
-      if (!(std::fabs(x[s]) <= lim)) return false;
+      const T lim = Kernel::kStateZ[s] < Cap::kNodes ? engine_.pressure_envelope() : engine_.speed_envelope();
+      if (!(std::fabs(x[s]) <= T(2) * lim)) return false;
     }
     for (int s = Kernel::kN; s < kStates; ++s) {
       if (!(x[s] * T(0) == T(0))) return false;
@@ -184,8 +184,6 @@ class CompiledModel {
   void sync() noexcept {
     for (int j = 0; j < Kernel::kM; ++j) guess_[j] = engine_.warm_start(j);
     for (int r = 0; r < Kernel::kN; ++r) inv_mass_[r] = engine_.node_stiffness(Kernel::kStateZ[r]);
-    p_lim_ = T(2) * engine_.pressure_envelope();
-    w_lim_ = T(2) * engine_.speed_envelope();
   }
 
   bool solve(T (&z)[kExtent<Kernel::kZ>]) const noexcept {
@@ -221,7 +219,6 @@ class CompiledModel {
 
   Engine engine_{};
   T inv_mass_[kExtent<Kernel::kN>]{};  ///< K [Pa/m³] or 1/J of each state
-  T p_lim_{}, w_lim_{};  ///< state_plausible's bounds, twice the envelopes [Pa], [rad/s]
   mutable T guess_[kExtent<(Kernel::kM > 0 ? Kernel::kM : 1)>]{};  ///< last quasi-steady pressures [Pa]
 };
 
