@@ -29,6 +29,7 @@
 #include "hstmon/circuit/laws.hpp"
 #include "hstmon/circuit/pseudo_transient.hpp"
 #include "hstmon/circuit/quasi_steady.hpp"
+#include "hstmon/circuit/stiffness_certificate.hpp"
 #include "hstmon/circuit/validate.hpp"
 #include "hstmon/pump_curve.hpp"
 
@@ -497,6 +498,86 @@ class CircuitModel {
     }
   }
 
+  /// unknowns_jacobian bounded entrywise over the box lo ≤ z ≤ hi (full vectors; a fixed
+  /// entry's bounds are its value): each element's conductance over its ports' pressure
+  /// range (laws.hpp conductance_range); the machines' displacement and every torque slope
+  /// are constants of the laws.
+  void unknowns_jacobian_range(const T (&lo)[kExtent<kZ>], const T (&hi)[kExtent<kZ>], T (&J_lo)[kExtent<kU>][kExtent<kU>],
+                               T (&J_hi)[kExtent<kU>][kExtent<kU>]) const noexcept {
+    for (int r = 0; r < n_unknowns_; ++r) {
+      for (int c = 0; c < n_unknowns_; ++c) J_lo[r][c] = J_hi[r][c] = T(0);
+    }
+    if (c_ == nullptr) return;
+    for (int e = 0; e < c_->n_elements; ++e) {
+      const Element& el = c_->elements[e];
+      const int ua = el_unknown_[e][0], ub = el_unknown_[e][1], us = el_unknown_[e][2];
+      const T w = el.shaft >= 0 ? lo[kNodes + el.shaft] : T(0);
+      if (has_ports(el.kind) && (ua >= 0 || ub >= 0)) {
+        T g_lo, g_hi;
+        conductance_range(el.kind, coef_[e], lo[el.a] - hi[el.b], hi[el.a] - lo[el.b], g_lo, g_hi);
+        const T dw = element_flow(el.kind, coef_[e], lo[el.a], lo[el.b], w).dw;
+        if (ua >= 0) {
+          J_lo[ua][ua] -= g_hi;
+          J_hi[ua][ua] -= g_lo;
+          if (ub >= 0) {
+            J_lo[ua][ub] += g_lo;
+            J_hi[ua][ub] += g_hi;
+          }
+        }
+        if (ub >= 0) {
+          if (ua >= 0) {
+            J_lo[ub][ua] += g_lo;
+            J_hi[ub][ua] += g_hi;
+          }
+          J_lo[ub][ub] -= g_hi;
+          J_hi[ub][ub] -= g_lo;
+        }
+        if (el.shaft >= 0 && us >= 0) {
+          if (ua >= 0) {
+            J_lo[ua][us] -= dw;
+            J_hi[ua][us] -= dw;
+          }
+          if (ub >= 0) {
+            J_lo[ub][us] += dw;
+            J_hi[ub][us] += dw;
+          }
+        }
+      }
+      if (has_shaft(el.kind) && us >= 0) {
+        T da, db, dw;
+        const T pa = has_ports(el.kind) ? lo[el.a] : T(0);
+        const T pb = has_ports(el.kind) ? lo[el.b] : T(0);
+        (void)element_torque(el.kind, coef_[e], pa, pb, w, da, db, dw);
+        if (has_ports(el.kind)) {
+          if (ua >= 0) {
+            J_lo[us][ua] += da;
+            J_hi[us][ua] += da;
+          }
+          if (ub >= 0) {
+            J_lo[us][ub] += db;
+            J_hi[us][ub] += db;
+          }
+        }
+        J_lo[us][us] += dw;
+        J_hi[us][us] += dw;
+      }
+    }
+  }
+
+  /// Stiffness certificate over the box lo ≤ z ≤ hi (full vectors, fixed entries at their
+  /// values; stiffness_certificate.hpp): true when at every z in it the quasi-steady solve
+  /// contracts by q < 0.5 and the reduced Jacobian's spectral radius is at most rho_max
+  /// [1/s] (+∞: the contraction only), each with kCertificateMargin to spare. O(elements +
+  /// unknowns³), two square roots per orifice.
+  bool certify_box(const T (&lo)[kExtent<kZ>], const T (&hi)[kExtent<kZ>], T rho_max) const noexcept {
+    if (!valid()) return false;
+    T G_lo[kExtent<kU>][kExtent<kU>], G_hi[kExtent<kU>][kExtent<kU>];
+    unknowns_jacobian_range(lo, hi, G_lo, G_hi);
+    T inv_mass[kExtent<kStates>] = {};
+    for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];
+    return certify_reduced(G_lo, G_hi, stiff_u_, n_stiff_, state_u_, n_states_, inv_mass, rho_max);
+  }
+
  private:
   bool is_stiff(int i) const noexcept { return c_ != nullptr && ((c_->stiff_mask >> i) & 1u) != 0; }
 
@@ -811,7 +892,8 @@ class CircuitModel {
   void reduced_jacobian(const T (&z)[kExtent<kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
     // Only the unknowns' rows and columns (kU × kU, not kZ × kZ), and the elimination in
     // place on the stiff rows (G_aa, G_ax), which nothing reads afterwards: firmware stack.
-    T G[kExtent<kU>][kExtent<kU>];
+    // Zeroed: GCC cannot see that only the n_unknowns_ rows it fills are read.
+    T G[kExtent<kU>][kExtent<kU>] = {};
     unknowns_jacobian(z, G);
     T inv_mass[kExtent<kStates>] = {};
     for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];

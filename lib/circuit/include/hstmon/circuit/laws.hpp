@@ -7,8 +7,10 @@
 /// contracts"); the conductance bounds below are its numbers.
 
 #include <cmath>
+#include <limits>
 
 #include "hstmon/circuit/circuit.hpp"
+#include "hstmon/circuit/inlining.hpp"
 #include "hstmon/signed_root.hpp"
 
 namespace hstmon::circuit {
@@ -49,10 +51,12 @@ constexpr bool has_shaft(ElementKind k) noexcept {
 
 // Each law writes its flow and slopes into f, which the caller has value-initialised (a
 // law leaves the slopes it does not have at 0): one Flow object for a switch over kinds.
+// Always inlined: a few instructions each, called from the compiled kernels' stages, where
+// a call costs more than the law (and GCC outlined the orifice from a fused RK4 tick).
 
 /// Orifice: Q = c0·sq(pa − pb) [m³/s], sq the regularised signed root.
 template <typename T>
-inline void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   T s;
   f.q = k.c[0] * signed_root(pa - pb, k.c[1], s);
   f.dpa = k.c[0] * s;
@@ -62,7 +66,7 @@ inline void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
 /// Poppet (relief or check valve): the orifice law through an opening that rises
 /// linearly from the cracking to the full-open pressure difference [m³/s].
 template <typename T>
-inline void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T dp = pa - pb;
   if (dp > c[2]) {
@@ -79,7 +83,7 @@ inline void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
 
 /// Laminar leakage: Q = (pa − pb)/R [m³/s].
 template <typename T>
-inline void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   f.q = k.c[0] * (pa - pb);
   f.dpa = k.c[0];
   f.dpb = -k.c[0];
@@ -87,13 +91,13 @@ inline void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
 
 /// Flow source: Q = q whatever the pressures [m³/s].
 template <typename T>
-inline void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
   f.q = k.c[0];
 }
 
 /// Pump or motor: Q = ε·D·ω [m³/s].
 template <typename T>
-inline void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
   f.q = k.c[0] * w;
   f.dw = k.c[0];
 }
@@ -101,7 +105,7 @@ inline void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
 /// Pressure-compensated pump: delivery from a (suction) to b at the pressure rise
 /// pb − pa, pump_curve.hpp's three-region law [m³/s].
 template <typename T>
-inline void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_INLINE void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T P = pb - pa;
   T q, s;
@@ -192,6 +196,54 @@ inline T max_conductance(ElementKind kind, const Coeffs<T>& k) noexcept {
     }
     default:
       return T(0);
+  }
+}
+
+/// Range of an element's conductance g = ∂Q/∂pa = −∂Q/∂pb [m³/(s·Pa)] while its pressure
+/// difference pa − pb stays within [dp_lo, dp_hi] [Pa] (the stiffness certificate's box,
+/// stiffness_certificate.hpp): exact for orifices (the regularised slope falls with |Δp|),
+/// laminar leaks and the compensated pump's three regions; for a poppet 0 while it stays
+/// shut, else from 0 to max_conductance. Machines and sources: 0 (their flow does not
+/// depend on pressure; ∂Q/∂ω is their constant c[0]).
+template <typename T>
+inline void conductance_range(ElementKind kind, const Coeffs<T>& k, T dp_lo, T dp_hi, T& g_lo, T& g_hi) noexcept {
+  const T* c = k.c;
+  g_lo = g_hi = T(0);
+  switch (kind) {
+    case ElementKind::kOrifice: {
+      const T far = std::fmax(std::fabs(dp_lo), std::fabs(dp_hi));
+      const T near = (dp_lo <= T(0) && dp_hi >= T(0)) ? T(0) : std::fmin(std::fabs(dp_lo), std::fabs(dp_hi));
+      g_lo = c[0] * signed_root_slope(far, c[1]);
+      g_hi = c[0] * signed_root_slope(near, c[1]);
+      break;
+    }
+    case ElementKind::kPoppet:
+      if (dp_hi > c[2]) g_hi = max_conductance(kind, k);
+      break;
+    case ElementKind::kLaminar:
+      g_lo = g_hi = std::fabs(c[0]);
+      break;
+    case ElementKind::kCompPump: {
+      // g = −s(P) at the pressure rise P = pb − pa ∈ [−dp_hi, −dp_lo]: constant in regions 1
+      // and 3, linear in region 2, so its extremes lie at the ends of each region met.
+      const T P_lo = -dp_hi, P_hi = -dp_lo;
+      T lo = std::numeric_limits<T>::infinity(), hi = -lo;
+      const auto take = [&](T g) {
+        lo = std::fmin(lo, g);
+        hi = std::fmax(hi, g);
+      };
+      if (P_lo <= c[2]) take(-c[1]);
+      if (P_hi > c[2] && P_lo <= c[3]) {
+        take(-(c[1] - T(2) * c[5] * (std::fmax(P_lo, c[2]) - c[2])));
+        take(-(c[1] - T(2) * c[5] * (std::fmin(P_hi, c[3]) - c[2])));
+      }
+      if (P_hi > c[3]) take(-c[7]);
+      g_lo = lo;
+      g_hi = hi;
+      break;
+    }
+    default:
+      break;
   }
 }
 

@@ -1,0 +1,20 @@
+#pragma once
+/// @file inlining.hpp
+/// The circuit engine's inlining controls, shared by the laws, the quasi-steady solve and
+/// the generated kernels.
+
+/// Inlined into the caller even at -O2's limits: a compiled model's node solves, sweeps
+/// and Jacobian become one straight-line function with the full vector in registers.
+/// HSTMON_CIRCUIT_LAMBDA_INLINE does the same for a generated node balance's lambda (called
+/// from the inline first Newton step and from the bracketed solve).
+/// HSTMON_CIRCUIT_NOINLINE keeps an evaluation out of its callers, so that the caller's
+/// frame does not carry the evaluation's (firmware stack: frames on one path add up).
+#if defined(__GNUC__)
+#define HSTMON_CIRCUIT_INLINE inline __attribute__((always_inline))
+#define HSTMON_CIRCUIT_NOINLINE __attribute__((noinline))
+#define HSTMON_CIRCUIT_LAMBDA_INLINE __attribute__((always_inline))
+#else
+#define HSTMON_CIRCUIT_INLINE inline
+#define HSTMON_CIRCUIT_NOINLINE
+#define HSTMON_CIRCUIT_LAMBDA_INLINE
+#endif
