@@ -1,16 +1,20 @@
 // The generator works for every shipped circuit: the compiled models of paper.json (5 ms),
 // closed_loop_hst.json and test_stand.json (1 ms), generated at build time into the build
 // tree (tests/circuit/CMakeLists.txt), equal the interpreting CircuitModel on the same
-// description (compiled_equality.hpp): nominal inputs, the first input at 90 % from 1 s.
+// description (compiled_equality.hpp): nominal inputs, the first input at 90 % from 1 s; and
+// their fused usual tick equals their general tick bit for bit (usual_tick_equality.hpp).
 // And test_stand.json with sensors on the drive speed and the tank, which the compiled
 // outputs read from the engine rather than from the integrated vector.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "compiled_equality.hpp"
 #include "hstmon/generated/test_closed_loop_hst_compiled.hpp"
 #include "hstmon/generated/test_paper_compiled.hpp"
 #include "hstmon/generated/test_stand_fixed_sensors_compiled.hpp"
 #include "hstmon/generated/test_test_stand_compiled.hpp"
+#include "usual_tick_equality.hpp"
 
 namespace {
 
@@ -32,6 +36,9 @@ void check(const double (&params)[P], const double (&inputs)[I], double tick) {
   typename Model::Inputs u2 = u;
   u2.v[0] = u.v[0] * 0.9;
   compiled_equality::expect_same_model<Kernel>(p, u, u2, tick);
+  // The fused usual tick (hosts) against the general tick (firmware): bit for bit.
+  const auto taken = usual_tick_equality::expect_same<double, Kernel>(p, u, u2, tick);
+  std::printf("usual tick: %ld of %ld steady-run ticks\n", taken.usual, taken.ticks);
 }
 
 TEST(CompiledShipped, Paper) {

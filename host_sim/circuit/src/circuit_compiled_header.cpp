@@ -240,6 +240,11 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
 
   std::string h;
   auto line = [&h](const std::string& t) { h += t + "\n"; };
+  // A placeholder written before its text was known, replaced at its last occurrence.
+  auto replace_placeholder = [&h](const std::string& ph, const std::string& with) {
+    const std::size_t at = h.rfind(ph);
+    if (at != std::string::npos) h.replace(at, ph.size(), with);
+  };
   // Structural nonzeros of the unknowns' Jacobian G, element by element as
   // unknowns_jacobian writes them: the rows the balances and rates capture, and the
   // reduction's structure.
@@ -362,8 +367,20 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   // The Gauss–Seidel × Newton solve, nodes unrolled.
   line("  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged;");
   line("  /// with kRow, the stiff nodes' rows of the unknowns' Jacobian at the last evaluations into G.");
-  line("  template <bool kRow, class M, typename T, std::size_t NG, class GM>");
-  line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt + ", T (&guess)[NG], GM& G) noexcept {");
+  line("  /// fold: where the closed-form solves' input-constant subexpressions come from — computed");
+  line("  /// in place (circuit::Unfolded) or folded once per input change by fold() (circuit::Folded).");
+  line("  template <bool kRow, class M, typename T, std::size_t NG, class GM, class Fold = circuit::Unfolded>");
+  line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt +
+       ", T (&guess)[NG], GM& G, const Fold& fold = Fold{}) noexcept {");
+  // fold(): each closed-form node's B, c0², 4·B and its laminar terms to fixed pressures,
+  // written as solve_stiff computes them (the same expressions, so the same values).
+  std::vector<std::string> folded;
+  const auto fold_at = [&](const std::string& expr) {
+    folded.push_back(expr);
+    return "fold.at(" + s(static_cast<int>(folded.size()) - 1) + ", " + expr + ")";
+  };
+  std::vector<std::string> fold_body;
+  line("    (void)fold;");
   if (m == 0) {
     line("    (void)m;");
     line("    (void)z;");
@@ -398,16 +415,27 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
         line("        // One orifice (" + el_name(orifice) + ") and flows linear in the pressure: closed form.");
         line("        T lin = T(0), B = T(0);");
         Sums sums;
+        std::vector<std::string> b_terms;
+        std::vector<std::string> fixed_terms;  // folded after B, c0², 4·B
         for (int e = 0; e < d.n_elements; ++e) {
           const circuit::Element& el = d.elements[e];
           if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
           const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
           const char sign = el.a == iz ? '-' : '+';
           switch (el.kind) {
-            case ElementKind::kLaminar:
-              line("        " + sums.add("lin", '+', c0 + " * " + zr(el.a == iz ? el.b : el.a)) + "  // " + el_name(e));
-              line("        " + sums.add("B", '+', c0));
+            case ElementKind::kLaminar: {
+              const int other = el.a == iz ? el.b : el.a;
+              std::string term = c0 + " * " + zr(other);
+              if (zr.fixed[static_cast<std::size_t>(other)]) {
+                fixed_terms.push_back(term);
+                term = "@FIXED" + s(static_cast<int>(fixed_terms.size()) - 1) + "@";
+              }
+              line("        " + sums.add("lin", '+', term) + "  // " + el_name(e));
+              const std::string b = sums.add("B", '+', c0);
+              b_terms.push_back(b);
+              line("        " + b);
               break;
+            }
             case ElementKind::kMachine:
               line("        " + sums.add("lin", sign, c0 + " * " + zr(nn + el.shaft)) + "  // " + el_name(e));
               break;
@@ -418,9 +446,26 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
           }
         }
         const circuit::Element& oe = d.elements[orifice];
+        const std::string oc0 = "m.coeffs(" + s(orifice) + ").c[0]";
+        line("        B = " + fold_at("B") + ";");
+        const std::string c0sq = fold_at(oc0 + " * " + oc0);
+        const std::string fourB = fold_at("T(4) * B");
+        fold_body.push_back("    {  // " + z_name(iz));
+        fold_body.push_back("      T B = T(0);");
+        for (const std::string& b : b_terms) fold_body.push_back("      " + b);
+        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 3) + "] = B;");
+        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 2) + "] = " + oc0 + " * " + oc0 + ";");
+        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = T(4) * B;");
+        // The laminar terms to fixed pressures, in the sum's order (placeholders above).
+        for (std::size_t t = 0; t < fixed_terms.size(); ++t) {
+          const std::string call = fold_at(fixed_terms[t]);
+          fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = " + fixed_terms[t] + ";");
+          replace_placeholder("@FIXED" + s(static_cast<int>(t)) + "@", call);
+        }
+        fold_body.push_back("    }");
         line("        T root;");
-        line("        if (circuit::solve_node_orifice(z[" + i + "], " + zr(oe.a == iz ? oe.b : oe.a) + ", m.coeffs(" +
-             s(orifice) + ").c[0], m.coeffs(" + s(orifice) + ").c[1], lin, B, root)) {");
+        line("        if (circuit::solve_node_orifice(z[" + i + "], " + zr(oe.a == iz ? oe.b : oe.a) + ", " + oc0 + ", " +
+             c0sq + ", m.coeffs(" + s(orifice) + ").c[1], lin, B, " + fourB + ", root)) {");
         // The node's row from the closed form's own numbers: each law's slopes at the
         // solution (the orifice's c0/(2·root), turbulent there), in unknowns_jacobian's order.
         line("          if constexpr (kRow) {");
@@ -464,6 +509,17 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     line("    }");
     line("    return conv;");
   }
+  line("  }");
+  line("");
+  line("  /// Number of values fold() writes (at least 1: an array's extent).");
+  line("  static constexpr int kFolded = " + s(folded.empty() ? 1 : static_cast<int>(folded.size())) + ";");
+  line("  /// solve_stiff's input-constant subexpressions under m's current values, computed as");
+  line("  /// solve_stiff computes them (the same expressions: the same values), for circuit::Folded.");
+  line("  template <class M, typename T>");
+  line("  static void fold(const M& m, T (&v)[kFolded]) noexcept {");
+  line("    (void)m;");
+  if (folded.empty()) line("    v[0] = T(0);");
+  for (const std::string& t : fold_body) line(t);
   line("  }");
   line("");
   // Rates (CircuitModel::rates).

@@ -15,11 +15,14 @@
 ///
 /// Usual tick: a model may offer a fused form of steps 1 and 4 for its usual operating
 /// region (Model::kHasUsualTick, usual_tick_coeffs, usual_tick, usual_plausible,
-/// tick_radius; ThesisReducedModel off Arm M-profile). step() tries it first when every
-/// input is unchanged and there is no injection gain: one fused step where one substep is
-/// known to suffice, else n fused substeps with n from the general path's own ρ; and it
-/// takes the general path above when the state or a stage is outside the region. The same
-/// model, RK4 and substep count, to rounding. Observer<Model, false> has no usual tick
+/// tick_radius; ThesisReducedModel and circuit::CompiledModel off Arm M-profile). step()
+/// tries it first when every input is unchanged and there is no injection gain: one fused
+/// step where one substep is known to suffice, else n fused substeps with n from the
+/// general path's own ρ; and it takes the general path above when the state or a stage is
+/// outside the region. The same model, RK4 and substep count, to rounding. The region's
+/// coefficients are computed once the inputs have held for a tick; a model whose region is
+/// centred on a state (usual_tick_coeffs(h, rho_max, x): CompiledModel's certified box) has
+/// it re-centred where the state has left it. Observer<Model, false> has no usual tick
 /// (every tick on the general path, and no storage for it: the C API, and any build that
 /// must compute the firmware's bits).
 ///
@@ -74,13 +77,24 @@ struct HasUsualTick : std::false_type {};
 template <typename M>
 struct HasUsualTick<M, std::void_t<decltype(M::kHasUsualTick)>> : std::bool_constant<M::kHasUsualTick> {};
 
+/// True when M::usual_tick_coeffs takes the state its region is centred on (h, rho_max,
+/// x): the region then moves with the state, and is re-centred when the state leaves it.
+template <typename M, typename = void>
+struct UsualTickCentred : std::false_type {};
+template <typename M>
+struct UsualTickCentred<M, std::void_t<decltype(std::declval<const M&>().usual_tick_coeffs(
+                               typename M::Scalar(), typename M::Scalar(), std::declval<const typename M::State&>()))>>
+    : std::true_type {};
+
 /// The observer's usual-tick coefficients, and nothing for an observer without a usual tick.
 template <typename M, bool>
 struct UsualTickState {
   typename M::UsualTick c{};   ///< Model::usual_tick_coeffs for one step of the tick (stiffness box)
   typename M::UsualTick cn{};  ///< the same for a substep of tick/n, validity box only (n ≥ 2)
   std::uint64_t ticks = 0;     ///< ticks since the last reset that took the usual tick
+  std::uint64_t recentre_at = 0;  ///< centred regions: the first tick that may re-centre c
   int n = 0;                   ///< the substep count cn is for; 0: none yet (inputs changed)
+  bool stale = true;           ///< c is not for the current inputs (computed on first use)
   bool on = false;             ///< no injection gain
 };
 template <typename M>
@@ -182,7 +196,12 @@ class Observer {
     r_.setZero();
     r_valid_ = 0;
     ticks_ = 0;
-    if constexpr (kUsualTick) usual_.ticks = 0;
+    if constexpr (kUsualTick) {
+      usual_.ticks = 0;
+      usual_.recentre_at = 0;
+      // A region centred on the old state is of no use at x0.
+      if (observer_detail::UsualTickCentred<Model>::value) inputs_changed();
+    }
     substeps_ = 0;
     health_ = 0;
     last_health_ = 0;
@@ -241,6 +260,7 @@ class Observer {
       // has (only valid inputs are ever stored), neither their check nor the model's
       // input-dependent coefficients need redoing.
       if (usual_.on && same_bytes(u, model_.inputs())) {
+        if (usual_.stale) refresh_usual();
         State dx;
         if (model_.usual_tick(usual_.c, s_.x, yhat_, dx)) {
           const State x_before = s_.x;
@@ -291,9 +311,16 @@ class Observer {
     if constexpr (kUsualTick) {
       const T rho = model_.tick_radius(s_.x, rho_one_);
       const int n = rho > T(0) ? substep_count(rho) : 0;
+      if (rho == T(0) && observer_detail::UsualTickCentred<Model>::value && ticks_ >= usual_.recentre_at) {
+        // One substep suffices here but the state has left the region c was centred on:
+        // centre it here for the ticks that follow (at most every kRecentreTicks ticks, so
+        // that a transient does not pay for a certificate every tick).
+        usual_.recentre_at = ticks_ + kRecentreTicks;
+        refresh_usual();
+      }
       if (n > 0) {
         if (n != usual_.n) {
-          usual_.cn = model_.usual_tick_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
+          usual_.cn = usual_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
           usual_.n = n;
         }
         CompensatedState<State> s = s_;
@@ -311,6 +338,7 @@ class Observer {
           s_ = s;
           return finish_usual(m, x_before, n, usual_.cn);
         }
+        if (observer_detail::UsualTickCentred<Model>::value) usual_.n = 0;  // re-centred next time
       }
     }
     return general_step(u, m);
@@ -440,11 +468,33 @@ class Observer {
            cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite();
   }
 
-  /// Brings what depends on the model's inputs up to date: the usual tick's coefficients.
+  /// Marks what depends on the model's inputs out of date: the usual tick's coefficients,
+  /// computed when the inputs have held for a tick (refresh_usual), so that inputs logged
+  /// with noise, new every tick, never pay for them.
   void inputs_changed() noexcept {
     if constexpr (kUsualTick) {
-      usual_.c = model_.usual_tick_coeffs(cfg_.tick, rho_one_);
+      usual_.stale = true;
       usual_.n = 0;
+    }
+  }
+
+  /// The usual tick's coefficients for one step of the tick, at the current state.
+  HSTMON_OFF_USUAL_PATH void refresh_usual() noexcept {
+    if constexpr (kUsualTick) {
+      usual_.c = usual_coeffs(cfg_.tick, rho_one_);
+      usual_.stale = false;
+    }
+  }
+
+  /// Model::usual_tick_coeffs for a step of h [s] and spectral radius bound rho_max [1/s],
+  /// centred on the current state where the model's region is.
+  /// (A template: only observers with a usual tick ask it of their model.)
+  template <typename M = Model>
+  typename M::UsualTick usual_coeffs(T h, T rho_max) const noexcept {
+    if constexpr (observer_detail::UsualTickCentred<M>::value) {
+      return model_.usual_tick_coeffs(h, rho_max, s_.x);
+    } else {
+      return model_.usual_tick_coeffs(h, rho_max);
     }
   }
 
@@ -503,6 +553,8 @@ class Observer {
 
   Model model_{};
   Config cfg_{};
+  /// Ticks between two re-centrings of a centred usual-tick region (usual_substeps).
+  static constexpr std::uint64_t kRecentreTicks = 8;
   static constexpr unsigned kAllChannels = (1u << kOutputs) - 1u;
   T rho_one_ = T(0.8) / T(1e-3);            ///< largest ρ that one substep covers [1/s]
   Rk4Step<T> one_step_{T(1e-3)};            ///< RK4 factors of one substep per tick

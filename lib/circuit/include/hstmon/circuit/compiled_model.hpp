@@ -28,6 +28,8 @@
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/circuit/dense.hpp"
 #include "hstmon/circuit/quasi_steady.hpp"
+#include "hstmon/code_size.hpp"
+#include "hstmon/rk4.hpp"
 
 namespace hstmon::circuit {
 
@@ -48,6 +50,12 @@ class CompiledModel {
   static constexpr int kOutputs = Engine::kOutputs;
   static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
   static_assert(Kernel::kZ == Cap::kNodes + Cap::kShafts, "the kernel's full vector is the capacity's");
+
+ private:
+  /// Room for the stiff nodes' warm start (at least one entry).
+  static constexpr int kGuesses = Kernel::kM > 0 ? Kernel::kM : 1;
+
+ public:
 
   /// Unbound (no states, no outputs) until bind(), set_params() or the constructor below.
   CompiledModel() noexcept = default;
@@ -148,6 +156,140 @@ class CompiledModel {
     return d;
   }
 
+  /// True where this build has the fused usual tick (usual_tick): everywhere but Arm
+  /// M-profile, where flash is scarce and the observer's general tick serves (code_size.hpp).
+  static constexpr bool kHasUsualTick = !HSTMON_FLASH_LEAN;
+
+  /// What usual_tick needs for one RK4 step of h: the step's factors and a box of the
+  /// unknowns certified around a state (stiffness_certificate.hpp) — everywhere in it the
+  /// general tick takes one substep and finds the quasi-steady solve contracting.
+  struct UsualTick {
+    Rk4Step<T> step{};                           ///< h, h/2, h/6 [s], as the general tick's
+    T x_lo[kExtent<Kernel::kN>]{};               ///< the box on the states [Pa, rad/s]
+    T x_hi[kExtent<Kernel::kN>]{};
+    T a_lo[kExtent<kGuesses>]{};                 ///< the box on the stiff nodes' pressures [Pa]
+    T a_hi[kExtent<kGuesses>]{};
+    T lim[kExtent<Kernel::kN>]{};                ///< state_plausible's |x_s| ≤ lim_s [Pa, rad/s]
+    Folded<T, Kernel::kFolded> fold{};           ///< the solves' input-constant values (Kernel::fold)
+    bool certified = false;                      ///< false: no box (usual_tick declines)
+  };
+
+  /// usual_tick's coefficients for one RK4 step of h under the current inputs, the box
+  /// centred on x: the states and the stiff pressures solved at x, ± α of the envelope
+  /// (pressure or speed), for the largest α in 1/8, 1/32, …, 1/2048 that certify_box
+  /// proves. Uncertified where none does (a stiff point: start from rest, a shut valve)
+  /// or the solve fails at x. O(5·(elements + unknowns³)); the observer asks once the
+  /// inputs have held for a tick, and again when the state has left the box.
+  /// @param h        RK4 step [s], > 0
+  /// @param rho_max  the spectral radius one step covers, λh_max/h [1/s]; +∞: the solve's
+  ///                 contraction only (the observer's substeps, whose count it chose)
+  /// @param x        the state to centre the box on [Pa, rad/s]
+  UsualTick usual_tick_coeffs(T h, T rho_max, const State& x) const noexcept {
+    UsualTick c;
+    c.step = Rk4Step<T>(h);
+    Kernel::fold(engine_, c.fold.v);
+    for (int s = 0; s < Kernel::kN; ++s) {
+      c.lim[s] = T(2) * (Kernel::kStateZ[s] < Cap::kNodes ? engine_.pressure_envelope() : engine_.speed_envelope());
+    }
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    T guess[kExtent<kGuesses>];
+    for (int j = 0; j < kGuesses; ++j) guess[j] = guess_[j];
+    NoRows none;
+    if constexpr (Kernel::kM > 0) {
+      if (!Kernel::template solve_stiff<false>(engine_, z, guess, none)) return c;
+    }
+    T lo[kExtent<Kernel::kZ>], hi[kExtent<Kernel::kZ>];
+    for (int k = 0; k < Kernel::kZ; ++k) lo[k] = hi[k] = engine_.fixed_value(k);
+    for (T alpha = T(0.125); alpha >= T(1.0 / 2048.0); alpha *= T(0.25)) {
+      const T dp = alpha * engine_.pressure_envelope();
+      const T dw = alpha * engine_.speed_envelope();
+      const auto widen = [&](int k) {
+        const T d = k < Cap::kNodes ? dp : dw;
+        lo[k] = z[k] - d;
+        hi[k] = z[k] + d;
+      };
+      for (int s = 0; s < Kernel::kN; ++s) widen(Kernel::kStateZ[s]);
+      for (int j = 0; j < Kernel::kM; ++j) widen(Kernel::kStiffZ[j]);
+      if (engine_.certify_box(lo, hi, rho_max)) {
+        for (int s = 0; s < Kernel::kN; ++s) {
+          c.x_lo[s] = lo[Kernel::kStateZ[s]];
+          c.x_hi[s] = hi[Kernel::kStateZ[s]];
+        }
+        for (int j = 0; j < Kernel::kM; ++j) {
+          c.a_lo[j] = lo[Kernel::kStiffZ[j]];
+          c.a_hi[j] = hi[Kernel::kStiffZ[j]];
+        }
+        c.certified = true;
+        return c;
+      }
+    }
+    return c;
+  }
+
+  /// One RK4 step of h from x inside c's box, fused: the outputs at x and the four stages
+  /// as one straight-line function, with no reduction and no spectral radius (c's box
+  /// certifies them). The general tick's arithmetic (tick_derivative's k1, rk4_step's
+  /// stages and sum, the same warm starts), so its results bit for bit.
+  /// @param c   usual_tick_coeffs(h, rho_max, ·) under the current inputs
+  /// @param x   state [Pa, rad/s]
+  /// @param y   out: outputs at x, SI
+  /// @param dx  out: the RK4 increment over h [Pa, rad/s]
+  /// @return    false (nothing written, the warm start unchanged) when c is uncertified,
+  ///            x or its stiff pressures lie outside the box, or the solve at x fails
+  __attribute__((flatten)) bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
+    if (!c.certified) return false;
+    for (int s = 0; s < Kernel::kN; ++s) {
+      if (!(x[s] >= c.x_lo[s] && x[s] <= c.x_hi[s])) return false;  // NaN too
+    }
+    // The warm start in a local: stores to a member the compiler cannot tell from the
+    // engine's coefficients would make it reload them at every stage.
+    T guess[kExtent<kGuesses>];
+    for (int j = 0; j < kGuesses; ++j) guess[j] = guess_[j];
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    NoRows none;
+    if constexpr (Kernel::kM > 0) {
+      if (!Kernel::template solve_stiff<false>(engine_, z, guess, none, c.fold)) return false;
+      for (int j = 0; j < Kernel::kM; ++j) {
+        const T p = z[Kernel::kStiffZ[j]];
+        if (!(p >= c.a_lo[j] && p <= c.a_hi[j])) return false;
+      }
+    }
+    Output y1 = Output::Zero();
+    Kernel::outputs(engine_, z, y1);
+    State k1 = State::Zero();
+    Kernel::template rates<false>(engine_, z, k1, none);
+    const State k2 = stage(x + c.step.half * k1, guess, c.fold);
+    const State k3 = stage(x + c.step.half * k2, guess, c.fold);
+    const State k4 = stage(x + c.step.h * k3, guess, c.fold);
+    for (int j = 0; j < kGuesses; ++j) guess_[j] = guess[j];
+    y = y1;
+    dx = c.step.sixth * (k1 + T(2) * (k2 + k3) + k4);
+    return true;
+  }
+
+  /// tick_derivative's rho at x, bit for bit, without its side effect on the warm start
+  /// (so the general tick that may follow starts where it would have) [1/s].
+  T tick_radius(const State& x, T rho_max) const noexcept {
+    T saved[kExtent<kGuesses>];
+    for (int j = 0; j < kGuesses; ++j) saved[j] = guess_[j];
+    Output y;
+    T rho;
+    bool ok;
+    (void)tick_derivative(x, rho_max, y, rho, ok);
+    for (int j = 0; j < kGuesses; ++j) guess_[j] = saved[j];
+    return rho;
+  }
+
+  /// state_plausible(x) with usual_tick_coeffs' bounds (no engine read).
+  static bool usual_plausible(const UsualTick& c, const State& x) noexcept {
+    bool ok = true;
+    for (int s = 0; s < Kernel::kN; ++s) ok = ok & (std::fabs(x[s]) <= c.lim[s]);
+    for (int s = Kernel::kN; s < kStates; ++s) ok = ok & (x[s] * T(0) == T(0));
+    return ok;
+  }
+
   /// Outputs at x: what each channel measures, in SI units.
   HSTMON_CIRCUIT_NOINLINE Output outputs(const State& x) const noexcept {
     T z[kExtent<Kernel::kZ>];
@@ -217,9 +359,22 @@ class CompiledModel {
   /// What the kernel's solve and rates take for G when they capture no rows.
   struct NoRows {};
 
+  /// derivative(x) with the warm start in guess and the folded constants (usual_tick's
+  /// stages 2–4).
+  HSTMON_CIRCUIT_INLINE State stage(const State& x, T (&guess)[kExtent<kGuesses>],
+                                    const Folded<T, Kernel::kFolded>& fold) const noexcept {
+    T z[kExtent<Kernel::kZ>];
+    Kernel::fill(engine_, x, z);
+    NoRows none;
+    if constexpr (Kernel::kM > 0) (void)Kernel::template solve_stiff<false>(engine_, z, guess, none, fold);
+    State d = State::Zero();
+    Kernel::template rates<false>(engine_, z, d, none);
+    return d;
+  }
+
   Engine engine_{};
   T inv_mass_[kExtent<Kernel::kN>]{};  ///< K [Pa/m³] or 1/J of each state
-  mutable T guess_[kExtent<(Kernel::kM > 0 ? Kernel::kM : 1)>]{};  ///< last quasi-steady pressures [Pa]
+  mutable T guess_[kExtent<kGuesses>]{};  ///< last quasi-steady pressures [Pa]
 };
 
 }  // namespace hstmon::circuit

@@ -7,24 +7,11 @@
 /// same rounding. No heap, no exceptions.
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
-/// Inlined into the caller even at -O2's limits: a compiled model's node solves, sweeps
-/// and Jacobian become one straight-line function with the full vector in registers.
-/// HSTMON_CIRCUIT_LAMBDA_INLINE does the same for a generated node balance's lambda (called
-/// from the inline first Newton step and from the bracketed solve).
-/// HSTMON_CIRCUIT_NOINLINE keeps an evaluation out of its callers, so that the caller's
-/// frame does not carry the evaluation's (firmware stack: frames on one path add up).
-#if defined(__GNUC__)
-#define HSTMON_CIRCUIT_INLINE inline __attribute__((always_inline))
-#define HSTMON_CIRCUIT_NOINLINE __attribute__((noinline))
-#define HSTMON_CIRCUIT_LAMBDA_INLINE __attribute__((always_inline))
-#else
-#define HSTMON_CIRCUIT_INLINE inline
-#define HSTMON_CIRCUIT_NOINLINE
-#define HSTMON_CIRCUIT_LAMBDA_INLINE
-#endif
+#include "hstmon/circuit/inlining.hpp"
 
 namespace hstmon::circuit {
 
@@ -42,8 +29,9 @@ inline constexpr int kMaxNewton = 60;
 /// @param balance  F = balance(p, dF): net inflow [m³/s] at p with the other pressures
 ///                 held, dF its slope by p (≤ 0); it must leave the node at p (z[i] = p)
 /// @return true when converged (a step below 8ε relative, or F exactly 0)
+/// Out of line: the rare case, kept out of the fused ticks that inline everything else.
 template <typename T, class Balance>
-bool solve_node_newton_bracketed(T& p_io, T p_env, Balance&& balance) noexcept {
+HSTMON_CIRCUIT_NOINLINE bool solve_node_newton_bracketed(T& p_io, T p_env, Balance&& balance) noexcept {
   const T eps = std::numeric_limits<T>::epsilon();
   const T floor = T(1e-6) * p_env;
   const T inf = std::numeric_limits<T>::infinity();
@@ -112,24 +100,50 @@ HSTMON_CIRCUIT_INLINE bool solve_node_newton(T& p_io, T p_env, Balance&& balance
 /// @param p_io  out: the node's pressure when solved [Pa]; untouched otherwise
 /// @param u     the orifice's other port [Pa]
 /// @param c0    orifice coefficient k·opening [m³/(s·√Pa)]
+/// @param c0_sq c0·c0 [m⁶/(s²·Pa)]
 /// @param x_t   its transition pressure ΔP_t [Pa]
 /// @param lin   the linear flows' constant part: Σ g·p_other + Σ fixed inflows [m³/s]
 /// @param B     Σ g of the linear flows [m³/(s·Pa)], ≥ 0
+/// @param four_B 4·B [m³/(s·Pa)]
 /// @param root  out: √|Δ| at the solution [√Pa] (the orifice's slope is c0/(2·root))
 /// @return false when the root lies in the laminar band (|Δ| < ΔP_t, the cubic law), the
 ///         orifice is shut, or a value is not finite: the caller then uses Newton
 template <typename T>
-HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B, T& root) noexcept {
+HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T c0_sq, T x_t, T lin, T B, T four_B, T& root) noexcept {
   const T c = lin - B * u;
   const T a = std::fabs(c);
   if (!(c0 > T(0))) return false;
-  const T s = T(2) * a / (c0 + std::sqrt(c0 * c0 + T(4) * B * a));
+  const T s = T(2) * a / (c0 + std::sqrt(c0_sq + four_B * a));
   const T d = s * s;
   if (!(d >= x_t) || !(d <= std::numeric_limits<T>::max())) return false;
   p_io = c > T(0) ? u + d : u - d;
   root = s;
   return true;
 }
+
+/// solve_node_orifice with c0² and 4·B computed here (the interpreter's call; the compiled
+/// kernels pass them, folded once per input change where the usual tick asks).
+template <typename T>
+HSTMON_CIRCUIT_INLINE bool solve_node_orifice(T& p_io, T u, T c0, T x_t, T lin, T B, T& root) noexcept {
+  return solve_node_orifice(p_io, u, c0, c0 * c0, x_t, lin, B, T(4) * B, root);
+}
+
+/// Where a compiled kernel's solve takes its input-constant subexpressions from (its
+/// fold.at(i, expr)): computed in place — the general tick, firmware, derivative().
+struct Unfolded {
+  template <typename T>
+  HSTMON_CIRCUIT_INLINE static T at(int, T computed) noexcept {
+    return computed;
+  }
+};
+
+/// ... or read from N values folded once per input change (the kernel's fold(), the usual
+/// tick's coefficients): the same values, without their multiplies and loads per solve.
+template <typename T, std::size_t N>
+struct Folded {
+  T v[N]{};  ///< Kernel::fold's values [SI, per expression]
+  HSTMON_CIRCUIT_INLINE T at(int i, T) const noexcept { return v[i]; }
+};
 
 /// One Gauss–Seidel sweep's bookkeeping: whether every node solve converged and the
 /// largest relative move of a pressure.
@@ -161,10 +175,11 @@ struct Sweep {
 template <typename T, class SweepFn>
 HSTMON_CIRCUIT_INLINE bool gauss_seidel(T p_env, bool coupled, SweepFn&& sweep) noexcept {
   const T eps = std::numeric_limits<T>::epsilon();
+  const T floor = T(1e-6) * p_env;
   bool conv = false;
   for (int s = 0; s < kMaxSweeps && !conv; ++s) {
     Sweep<T> w;
-    w.floor = T(1e-6) * p_env;
+    w.floor = floor;
     sweep(w);
     if (!w.ok) break;
     conv = !coupled || w.change <= T(16) * eps;

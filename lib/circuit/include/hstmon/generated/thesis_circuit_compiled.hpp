@@ -147,8 +147,11 @@ struct Kernel {
 
   /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged;
   /// with kRow, the stiff nodes' rows of the unknowns' Jacobian at the last evaluations into G.
-  template <bool kRow, class M, typename T, std::size_t NG, class GM>
-  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[NG], GM& G) noexcept {
+  /// fold: where the closed-form solves' input-constant subexpressions come from — computed
+  /// in place (circuit::Unfolded) or folded once per input change by fold() (circuit::Folded).
+  template <bool kRow, class M, typename T, std::size_t NG, class GM, class Fold = circuit::Unfolded>
+  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, T (&z)[8], T (&guess)[NG], GM& G, const Fold& fold = Fold{}) noexcept {
+    (void)fold;
     z[4] = guess[0];
     z[5] = guess[1];
     const T p_env = m.pressure_envelope();
@@ -157,12 +160,13 @@ struct Kernel {
         // One orifice (dcv.PA) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
         lin = -(m.coeffs(3).c[0] * z[7]);  // motor
-        lin += m.coeffs(4).c[0] * m.fixed_value(2);  // leak_in
+        lin += fold.at(3, m.coeffs(4).c[0] * m.fixed_value(2));  // leak_in
         B = m.coeffs(4).c[0];
         lin += m.coeffs(6).c[0] * z[5];  // leak_cross
         B += m.coeffs(6).c[0];
+        B = fold.at(0, B);
         T root;
-        if (circuit::solve_node_orifice(z[4], m.fixed_value(0), m.coeffs(1).c[0], m.coeffs(1).c[1], lin, B, root)) {
+        if (circuit::solve_node_orifice(z[4], m.fixed_value(0), m.coeffs(1).c[0], fold.at(1, m.coeffs(1).c[0] * m.coeffs(1).c[0]), m.coeffs(1).c[1], lin, B, fold.at(2, T(4) * B), root)) {
           if constexpr (kRow) {
             G[0][0] = T(0);
             G[0][1] = T(0);
@@ -207,12 +211,13 @@ struct Kernel {
         // One orifice (dcv.BT) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
         lin = m.coeffs(3).c[0] * z[7];  // motor
-        lin += m.coeffs(5).c[0] * m.fixed_value(2);  // leak_out
+        lin += fold.at(7, m.coeffs(5).c[0] * m.fixed_value(2));  // leak_out
         B = m.coeffs(5).c[0];
         lin += m.coeffs(6).c[0] * z[4];  // leak_cross
         B += m.coeffs(6).c[0];
+        B = fold.at(4, B);
         T root;
-        if (circuit::solve_node_orifice(z[5], m.fixed_value(1), m.coeffs(2).c[0], m.coeffs(2).c[1], lin, B, root)) {
+        if (circuit::solve_node_orifice(z[5], m.fixed_value(1), m.coeffs(2).c[0], fold.at(5, m.coeffs(2).c[0] * m.coeffs(2).c[0]), m.coeffs(2).c[1], lin, B, fold.at(6, T(4) * B), root)) {
           if constexpr (kRow) {
             G[1][0] = T(0);
             G[1][1] = T(0);
@@ -259,6 +264,33 @@ struct Kernel {
       guess[1] = z[5];
     }
     return conv;
+  }
+
+  /// Number of values fold() writes (at least 1: an array's extent).
+  static constexpr int kFolded = 8;
+  /// solve_stiff's input-constant subexpressions under m's current values, computed as
+  /// solve_stiff computes them (the same expressions: the same values), for circuit::Folded.
+  template <class M, typename T>
+  static void fold(const M& m, T (&v)[kFolded]) noexcept {
+    (void)m;
+    {  // Pmi
+      T B = T(0);
+      B = m.coeffs(4).c[0];
+      B += m.coeffs(6).c[0];
+      v[0] = B;
+      v[1] = m.coeffs(1).c[0] * m.coeffs(1).c[0];
+      v[2] = T(4) * B;
+      v[3] = m.coeffs(4).c[0] * m.fixed_value(2);
+    }
+    {  // Pmo
+      T B = T(0);
+      B = m.coeffs(5).c[0];
+      B += m.coeffs(6).c[0];
+      v[4] = B;
+      v[5] = m.coeffs(2).c[0] * m.coeffs(2).c[0];
+      v[6] = T(4) * B;
+      v[7] = m.coeffs(5).c[0] * m.fixed_value(2);
+    }
   }
 
   /// The states' rates [Pa/s, rad/s²] into d; with kRow, the states' rows of the unknowns'
