@@ -19,10 +19,11 @@
 /// tries it first when every input is unchanged and there is no injection gain: one fused
 /// step where one substep is known to suffice, else n fused substeps with n from the
 /// general path's own ρ; and it takes the general path above when the state or a stage is
-/// outside the region. The same model, RK4 and substep count, to rounding. The region's
-/// coefficients are computed once the inputs have held for a tick; a model whose region is
-/// centred on a state (usual_tick_coeffs(h, rho_max, x): CompiledModel's certified box) has
-/// it re-centred where the state has left it. Observer<Model, false> has no usual tick
+/// outside the region. The same model, RK4 and substep count, to rounding (CompiledModel:
+/// bit for bit). The region's coefficients are computed when the inputs change; a region
+/// centred on a state (usual_tick_coeffs(h, rho_max, x): CompiledModel's certified box) is
+/// computed once the inputs have held for a tick, and re-centred where the state has left
+/// it. Observer<Model, false> has no usual tick
 /// (every tick on the general path, and no storage for it: the C API, and any build that
 /// must compute the firmware's bits).
 ///
@@ -94,7 +95,7 @@ struct UsualTickState {
   std::uint64_t ticks = 0;     ///< ticks since the last reset that took the usual tick
   std::uint64_t recentre_at = 0;  ///< centred regions: the first tick that may re-centre c
   int n = 0;                   ///< the substep count cn is for; 0: none yet (inputs changed)
-  bool stale = true;           ///< c is not for the current inputs (computed on first use)
+  bool stale = true;           ///< centred regions: c is not for the current inputs and state yet
   bool on = false;             ///< no injection gain
 };
 template <typename M>
@@ -260,7 +261,9 @@ class Observer {
       // has (only valid inputs are ever stored), neither their check nor the model's
       // input-dependent coefficients need redoing.
       if (usual_.on && same_bytes(u, model_.inputs())) {
-        if (usual_.stale) refresh_usual();
+        if constexpr (observer_detail::UsualTickCentred<Model>::value) {
+          if (usual_.stale) refresh_usual();
+        }
         State dx;
         if (model_.usual_tick(usual_.c, s_.x, yhat_, dx)) {
           const State x_before = s_.x;
@@ -468,13 +471,18 @@ class Observer {
            cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite();
   }
 
-  /// Marks what depends on the model's inputs out of date: the usual tick's coefficients,
-  /// computed when the inputs have held for a tick (refresh_usual), so that inputs logged
-  /// with noise, new every tick, never pay for them.
+  /// Brings what depends on the model's inputs up to date: the usual tick's coefficients —
+  /// at once where they are a few operations (a region that does not move), else once the
+  /// inputs have held for a tick (a centred region's certificate: refresh_usual, from
+  /// step), so that inputs logged with noise, new every tick, never pay for it.
   void inputs_changed() noexcept {
     if constexpr (kUsualTick) {
-      usual_.stale = true;
       usual_.n = 0;
+      if constexpr (observer_detail::UsualTickCentred<Model>::value) {
+        usual_.stale = true;
+      } else {
+        refresh_usual();
+      }
     }
   }
 

@@ -49,7 +49,9 @@ using CircuitFwModel = gen::CompiledModel<float>;
 #else
 using CircuitFwModel = circuit::CircuitModel<float, gen::Cap>;
 #endif
-/// The observer on it (the engine has no fused usual tick).
+/// The observer on it: the general tick on Arm M-profile; on hosts the compiled model's
+/// fused usual tick, bit for bit the same (firmware.circuit_bitexact compares the two on a
+/// whole log: every tick of its host replay is a usual tick).
 using CircuitFwObserver = Observer<CircuitFwModel>;
 
 /// The generated parameter values, rounded to float [SI].

@@ -18,12 +18,18 @@
 /// (nodes + shafts), kN (states), kM (stiff nodes), kU (unknowns); kStateU[kN], kStiffU[kM]
 /// (rows of the unknowns' Jacobian) and kStateZ[kN], kStiffZ[kM] (full-vector entries); and,
 /// templated on the engine type M, fill(m, x, z) (the states only: fixed entries are read
-/// as m.fixed_value, stiff ones written by the solve), solve_stiff<kRow>(m, z, guess, G) →
-/// converged, rates<kRow>(m, z, d, G), outputs(m, z, y), unknowns_jacobian(m, z, G)
-/// (nonzeros only, onto a zeroed G) and schur(G, inv_mass, jr, q) (quasi_steady.hpp
-/// schur_reduce, unrolled for G's structure). With kRow, the solve and the rates also
-/// write the rows of G from the law values they evaluate anyway, so the observer's
-/// stiffness (tick_derivative's rho) costs the reduction, not a second pass over the laws.
+/// as m.fixed_value, stiff ones written by the solve), solve_stiff<kRow>(m, z, guess, G
+/// [, fold]) → converged, rates<kRow>(m, z, d, G), outputs(m, z, y), unknowns_jacobian(m,
+/// z, G) (nonzeros only, onto a zeroed G), schur(G, inv_mass, jr, q) (quasi_steady.hpp
+/// schur_reduce, unrolled for G's structure), and kFolded with fold(m, v) (the solve's
+/// input-constant subexpressions). With kRow, the solve and the rates also write the rows
+/// of G from the law values they evaluate anyway, so the observer's stiffness
+/// (tick_derivative's rho) costs the reduction, not a second pass over the laws.
+///
+/// On hosts it also has a fused usual tick (usual_tick_coeffs, usual_tick): a box of the
+/// unknowns proved once to need one substep (stiffness_certificate.hpp), the four RK4
+/// stages in one function with the folded constants — the general tick's arithmetic, so
+/// its results bit for bit (docs/circuits.md, "The usual tick on hosts").
 
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/circuit/dense.hpp"
@@ -56,7 +62,6 @@ class CompiledModel {
   static constexpr int kGuesses = Kernel::kM > 0 ? Kernel::kM : 1;
 
  public:
-
   /// Unbound (no states, no outputs) until bind(), set_params() or the constructor below.
   CompiledModel() noexcept = default;
 

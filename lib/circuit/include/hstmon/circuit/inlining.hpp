@@ -3,6 +3,8 @@
 /// The circuit engine's inlining controls, shared by the laws, the quasi-steady solve and
 /// the generated kernels.
 
+#include "hstmon/code_size.hpp"
+
 /// Inlined into the caller even at -O2's limits: a compiled model's node solves, sweeps
 /// and Jacobian become one straight-line function with the full vector in registers.
 /// HSTMON_CIRCUIT_LAMBDA_INLINE does the same for a generated node balance's lambda (called
@@ -17,4 +19,13 @@
 #define HSTMON_CIRCUIT_INLINE inline
 #define HSTMON_CIRCUIT_NOINLINE
 #define HSTMON_CIRCUIT_LAMBDA_INLINE
+#endif
+
+/// A rare path (the bracketed Newton solve) kept out of line on hosts, where the fused
+/// usual tick inlines everything else into one function (its size, its registers); left to
+/// the compiler on firmware, where a call frame of its own would add to the stack.
+#if defined(__GNUC__) && !HSTMON_FLASH_LEAN
+#define HSTMON_CIRCUIT_RARE __attribute__((noinline))
+#else
+#define HSTMON_CIRCUIT_RARE
 #endif

@@ -29,9 +29,8 @@ inline constexpr int kMaxNewton = 60;
 /// @param balance  F = balance(p, dF): net inflow [m³/s] at p with the other pressures
 ///                 held, dF its slope by p (≤ 0); it must leave the node at p (z[i] = p)
 /// @return true when converged (a step below 8ε relative, or F exactly 0)
-/// Out of line: the rare case, kept out of the fused ticks that inline everything else.
 template <typename T, class Balance>
-HSTMON_CIRCUIT_NOINLINE bool solve_node_newton_bracketed(T& p_io, T p_env, Balance&& balance) noexcept {
+HSTMON_CIRCUIT_RARE bool solve_node_newton_bracketed(T& p_io, T p_env, Balance&& balance) noexcept {
   const T eps = std::numeric_limits<T>::epsilon();
   const T floor = T(1e-6) * p_env;
   const T inf = std::numeric_limits<T>::infinity();
