@@ -7,7 +7,10 @@
 //             odeint_engine_double odeint_engine_float   Boost.Odeint runge_kutta4, one step
 //                                          per tick, on the same engine model
 //             compiled_double compiled_float   Observer<CompiledModel<T>>, the compiled thesis
-//                                          model (generated/thesis_circuit_compiled.hpp), 1 ms
+//                                          model (generated/thesis_circuit_compiled.hpp), 1 ms,
+//                                          as hosts run it (the fused usual tick)
+//             compiled_general_double compiled_general_float   the same on the general tick
+//                                          alone (Observer<…, false>: what firmware runs)
 //             odeint_compiled_double odeint_compiled_float   runge_kutta4 on the compiled model
 //
 // Exit status 2 on bad usage or a circuit that does not load, 3 if the run left the
@@ -77,13 +80,14 @@ int odeint_engine(const ThesisCircuit& c, long n) {
   return plausible(w) ? 0 : 3;
 }
 
-template <typename T>
+template <typename T, class Obs = hstmon_bench::CompiledObs<T>>
 int compiled(long n) {
-  auto sim = hstmon_bench::make_compiled_observer<T>(T(1e-3));
+  auto sim = hstmon_bench::make_compiled_observer<T, Obs>(T(1e-3));
   const EngineMeasurements<T> table(sim.estimate());
   measure<decltype(sim), T>(sim, hstmon_bench::compiled_inputs<T>(), table, n);
   const double w = static_cast<double>(sim.state()[1]);
-  std::printf("ticks=%ld substeps=%d health=0x%x w_m=%.6g\n", n, sim.substeps(), sim.last_health(), w);
+  std::printf("ticks=%ld substeps=%d health=0x%x usual=%llu w_m=%.6g\n", n, sim.substeps(), sim.last_health(),
+              static_cast<unsigned long long>(sim.usual_ticks()), w);
   return sim.last_health() == 0 && plausible(w) ? 0 : 3;
 }
 
@@ -119,6 +123,10 @@ int main(int argc, char** argv) {
     if (std::strcmp(v, "odeint_engine_float") == 0) return odeint_engine<float>(c, n);
     if (std::strcmp(v, "compiled_double") == 0) return compiled<double>(n);
     if (std::strcmp(v, "compiled_float") == 0) return compiled<float>(n);
+    if (std::strcmp(v, "compiled_general_double") == 0) {
+      return compiled<double, hstmon_bench::CompiledGeneralObs<double>>(n);
+    }
+    if (std::strcmp(v, "compiled_general_float") == 0) return compiled<float, hstmon_bench::CompiledGeneralObs<float>>(n);
     if (std::strcmp(v, "odeint_compiled_double") == 0) return odeint_compiled<double>(n);
     if (std::strcmp(v, "odeint_compiled_float") == 0) return odeint_compiled<float>(n);
     std::fprintf(stderr, "unknown variant '%s'\n", v);

@@ -96,11 +96,16 @@ EngineObs<T> make_engine_observer(const ThesisCircuit& c, T tick) {
 }
 
 /// The compiled thesis model (lib/circuit/include/hstmon/generated/thesis_circuit_compiled.hpp,
-/// what the firmware runs) and its observer at the nominal point, started steady.
+/// what the firmware runs) and its observers at the nominal point, started steady: the
+/// host's (the fused usual tick in front of the general one) and the general tick alone
+/// (what firmware runs, and the usual tick's fallback).
 template <typename T>
 using Compiled = hstmon::generated::thesis_circuit::CompiledModel<T>;
 template <typename T>
-using CompiledObs = hstmon::Observer<Compiled<T>, false>;
+using CompiledObs = hstmon::Observer<Compiled<T>>;
+template <typename T>
+using CompiledGeneralObs = hstmon::Observer<Compiled<T>, false>;
+static_assert(CompiledObs<double>::kUsualTick, "host builds: the compiled model's usual tick");
 
 template <typename T>
 typename Compiled<T>::Params compiled_params() noexcept {
@@ -117,10 +122,10 @@ typename Compiled<T>::Inputs compiled_inputs() noexcept {
   return u;
 }
 
-template <typename T>
-CompiledObs<T> make_compiled_observer(T tick) {
-  CompiledObs<T> o;
-  typename CompiledObs<T>::Config cfg;
+template <typename T, class Obs = CompiledObs<T>>
+Obs make_compiled_observer(T tick) {
+  Obs o;
+  typename Obs::Config cfg;
   cfg.tick = tick;
   if (o.configure(hstmon::generated::thesis_circuit::kCircuit, compiled_params<T>(), cfg) != hstmon::Status::kOk ||
       o.reset_steady(compiled_inputs<T>()) != hstmon::Status::kOk) {

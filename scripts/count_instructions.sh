@@ -13,7 +13,8 @@
 #                   double tick (hot spots in lib/)
 #   --keep          keep the callgrind.out files (their directory is printed)
 #   --target R      target ratio ours/naive (default 0.8); a miss prints MISS
-#   --strict        exit 1 when the target is missed (default: report only)
+#   --strict        exit 1 when a target is missed — the hand-written observer's or the
+#                   compiled circuit engine's (default: report only)
 #
 # Variants (bench/count_ticks.cpp, workload in bench/bench_common.hpp): our
 # Observer<ThesisReducedModel<T>>::step at 1 ms, T = double and float, at the nominal
@@ -26,10 +27,11 @@
 # Also, informational: a 10 ms tick (PLC scan), ours against odeint's runge_kutta4 with the
 # same number of steps per tick (5 at the nominal point; one step would be unstable there).
 # The circuit engine (bench/count_engine_ticks.cpp): Observer<CircuitModel<T>> (the
-# interpreter) and Observer<CompiledModel<T>> (the compiled thesis model, what firmware
-# runs) on examples/circuits/thesis.json at 1 ms, each against Boost.Odeint's runge_kutta4
-# (one step per tick) on the same model, and against the hand-written reduced model above:
-# printed; --engine-strict gates issue 14's 0.8x on the compiled model.
+# interpreter) and Observer<CompiledModel<T>> (the compiled thesis model) on
+# examples/circuits/thesis.json at 1 ms, each against Boost.Odeint's runge_kutta4 (one
+# step per tick) on the same model, and against the hand-written reduced model above. The
+# compiled model as hosts run it (its fused usual tick) is held to the same 0.8x (issue
+# 14); on its general tick alone (Observer<…, false>, what firmware runs) it is printed.
 # Each tick is one out-of-line call. Only the N ticks are counted
 # (CALLGRIND_START/STOP_INSTRUMENTATION, --instr-atstart=no).
 #
@@ -46,7 +48,6 @@ annotate=0
 keep=0
 target=0.8
 strict=0
-engine_strict=0
 
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -57,7 +58,6 @@ while [[ $# -gt 0 ]]; do
     --keep) keep=1; shift ;;
     --target) target=${2:?}; shift 2 ;;
     --strict) strict=1; shift ;;
-    --engine-strict) engine_strict=1; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ {sub(/^# ?/, ""); print; next} NR > 1 {exit}' "$0"; exit 0 ;;
     -*) echo "unknown option: $1" >&2; exit 2 ;;
     *) build=$1; shift ;;
@@ -109,7 +109,8 @@ done
 engine_bin="$build/bin/hstmon_count_engine_ticks"
 engine_variants=()
 [[ -x "$engine_bin" ]] && engine_variants=(engine_double engine_float odeint_engine_double odeint_engine_float
-  compiled_double compiled_float odeint_compiled_double odeint_compiled_float)
+  compiled_double compiled_float compiled_general_double compiled_general_float odeint_compiled_double
+  odeint_compiled_float)
 for v in "${engine_variants[@]}"; do
   total=$(count "$v" "$ticks" "$engine_bin") || exit 2
   per[$v]=$(awk -v t="$total" -v n="$ticks" 'BEGIN {printf "%.1f", t / n}')
@@ -152,12 +153,15 @@ if [[ ${#engine_variants[@]} -gt 0 ]]; then
     printf '%-38s %11s\n' "odeint rk4 engine<$T>, naive" "$b"
   done
   for T in double float; do
-    e=${per[compiled_$T]} b=${per[odeint_compiled_$T]} h=${per[ours_$T]}
+    e=${per[compiled_$T]} g=${per[compiled_general_$T]} b=${per[odeint_compiled_$T]} h=${per[ours_$T]}
     r=$(awk -v o="$e" -v b="$b" 'BEGIN {printf "%.3f", o / b}')
     ok=$(awk -v r="$r" -v t="$target" 'BEGIN {print (r <= t) ? "PASS" : "MISS"}')
     [[ $ok == PASS ]] || engine_missed=1
     printf '%-38s %11s %11s %14s %6s\n' "Observer<CompiledModel<$T>>::step" "$e" "$r" \
       "$(awk -v o="$e" -v h="$h" 'BEGIN {printf "%.1fx", o / h}')" "$ok"
+    printf '%-38s %11s %11s %14s %6s\n' "  its general tick (firmware's)" "$g" \
+      "$(awk -v o="$g" -v b="$b" 'BEGIN {printf "%.3f", o / b}')" \
+      "$(awk -v o="$g" -v h="$h" 'BEGIN {printf "%.1fx", o / h}')" "(info)"
     printf '%-38s %11s\n' "odeint rk4 compiled<$T>, naive" "$b"
   done
 fi
@@ -181,6 +185,8 @@ if [[ $annotate -eq 1 ]]; then
   fi
 fi
 if [[ $keep -eq 1 ]]; then echo "callgrind.out files kept in $tmp"; fi
-if [[ $missed -eq 1 && $strict -eq 1 ]]; then exit 1; fi
-if [[ $engine_missed -eq 1 && $engine_strict -eq 1 ]]; then exit 1; fi
+if [[ $engine_missed -eq 1 ]]; then
+  echo "MISS: the compiled circuit engine's tick above ${target}x Boost.Odeint's rk4 on the same model."
+fi
+if [[ ($missed -eq 1 || $engine_missed -eq 1) && $strict -eq 1 ]]; then exit 1; fi
 exit 0
