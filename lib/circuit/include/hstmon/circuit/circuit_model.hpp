@@ -31,6 +31,7 @@
 #include "hstmon/circuit/quasi_steady.hpp"
 #include "hstmon/circuit/stiffness_certificate.hpp"
 #include "hstmon/circuit/validate.hpp"
+#include "hstmon/code_size.hpp"
 #include "hstmon/pump_curve.hpp"
 
 namespace hstmon::circuit {
@@ -889,15 +890,20 @@ class CircuitModel {
   /// Reduced Jacobian jr = M⁻¹(G_xx − G_xa·G_aa⁻¹·G_ax) at z (a: stiff nodes) and the local
   /// contraction factor q of the stiff block. G_aa is strictly diagonally dominant
   /// wherever the solve contracts, so it is eliminated without pivoting.
-  void reduced_jacobian(const T (&z)[kExtent<kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>], T& q) const noexcept {
+  /// Out of line on firmware: inlined into slowest_rate it would add its kU × kU scratch
+  /// to the eigenvalue problem's frame (the C API's create stack).
+  HSTMON_LEAN_NOINLINE void reduced_jacobian(const T (&z)[kExtent<kZ>], T (&jr)[kExtent<kStates>][kExtent<kStates>],
+                                             T& q) const noexcept {
     // Only the unknowns' rows and columns (kU × kU, not kZ × kZ), and the elimination in
     // place on the stiff rows (G_aa, G_ax), which nothing reads afterwards: firmware stack.
-    // Zeroed: GCC cannot see that only the n_unknowns_ rows it fills are read.
-    T G[kExtent<kU>][kExtent<kU>] = {};
+    T G[kExtent<kU>][kExtent<kU>];
     unknowns_jacobian(z, G);
     T inv_mass[kExtent<kStates>] = {};
     for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];
-    schur_reduce(G, stiff_u_, n_stiff_, state_u_, n_states_, inv_mass, jr, q);
+    // A capacity with no room for a stiff node says so at compile time (GCC would otherwise
+    // warn that the stiff block, never read then, may be uninitialised).
+    const int n_stiff = kU > kStates ? n_stiff_ : 0;
+    schur_reduce(G, stiff_u_, n_stiff, state_u_, n_states_, inv_mass, jr, q);
   }
 
   const Description* c_ = nullptr;

@@ -29,3 +29,12 @@
 #else
 #define HSTMON_CIRCUIT_RARE
 #endif
+
+/// The laws (laws.hpp): always inlined on hosts, where the compiled kernels' fused usual
+/// tick wants them in its one function; the compiler's choice on firmware, where inlining
+/// every law into the interpreter's switches costs flash and stack.
+#if defined(__GNUC__) && !HSTMON_FLASH_LEAN
+#define HSTMON_CIRCUIT_LAW inline __attribute__((always_inline))
+#else
+#define HSTMON_CIRCUIT_LAW inline
+#endif

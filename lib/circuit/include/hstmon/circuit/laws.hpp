@@ -51,12 +51,10 @@ constexpr bool has_shaft(ElementKind k) noexcept {
 
 // Each law writes its flow and slopes into f, which the caller has value-initialised (a
 // law leaves the slopes it does not have at 0): one Flow object for a switch over kinds.
-// Always inlined: a few instructions each, called from the compiled kernels' stages, where
-// a call costs more than the law (and GCC outlined the orifice from a fused RK4 tick).
 
 /// Orifice: Q = c0·sq(pa − pb) [m³/s], sq the regularised signed root.
 template <typename T>
-HSTMON_CIRCUIT_INLINE void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   T s;
   f.q = k.c[0] * signed_root(pa - pb, k.c[1], s);
   f.dpa = k.c[0] * s;
@@ -66,7 +64,7 @@ HSTMON_CIRCUIT_INLINE void orifice_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>&
 /// Poppet (relief or check valve): the orifice law through an opening that rises
 /// linearly from the cracking to the full-open pressure difference [m³/s].
 template <typename T>
-HSTMON_CIRCUIT_INLINE void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T dp = pa - pb;
   if (dp > c[2]) {
@@ -83,7 +81,7 @@ HSTMON_CIRCUIT_INLINE void poppet_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& 
 
 /// Laminar leakage: Q = (pa − pb)/R [m³/s].
 template <typename T>
-HSTMON_CIRCUIT_INLINE void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   f.q = k.c[0] * (pa - pb);
   f.dpa = k.c[0];
   f.dpb = -k.c[0];
@@ -91,13 +89,13 @@ HSTMON_CIRCUIT_INLINE void laminar_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>&
 
 /// Flow source: Q = q whatever the pressures [m³/s].
 template <typename T>
-HSTMON_CIRCUIT_INLINE void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void source_flow(const Coeffs<T>& k, Flow<T>& f) noexcept {
   f.q = k.c[0];
 }
 
 /// Pump or motor: Q = ε·D·ω [m³/s].
 template <typename T>
-HSTMON_CIRCUIT_INLINE void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noexcept {
   f.q = k.c[0] * w;
   f.dw = k.c[0];
 }
@@ -105,7 +103,7 @@ HSTMON_CIRCUIT_INLINE void machine_flow(const Coeffs<T>& k, T w, Flow<T>& f) noe
 /// Pressure-compensated pump: delivery from a (suction) to b at the pressure rise
 /// pb − pa, pump_curve.hpp's three-region law [m³/s].
 template <typename T>
-HSTMON_CIRCUIT_INLINE void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
+HSTMON_CIRCUIT_LAW void comp_pump_flow(const Coeffs<T>& k, T pa, T pb, Flow<T>& f) noexcept {
   const T* c = k.c;
   const T P = pb - pa;
   T q, s;
