@@ -242,7 +242,7 @@ class CompiledModel {
   /// @param dx  out: the RK4 increment over h [Pa, rad/s]
   /// @return    false (nothing written, the warm start unchanged) when c is uncertified,
   ///            x or its stiff pressures lie outside the box, or the solve at x fails
-  __attribute__((flatten)) bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
+  HSTMON_CIRCUIT_FLATTEN bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
     if (!c.certified) return false;
     for (int s = 0; s < Kernel::kN; ++s) {
       if (!(x[s] >= c.x_lo[s] && x[s] <= c.x_hi[s])) return false;  // NaN too

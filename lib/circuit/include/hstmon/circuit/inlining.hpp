@@ -38,3 +38,11 @@
 #else
 #define HSTMON_CIRCUIT_LAW inline
 #endif
+
+/// Everything a function calls inlined into it (GCC's flatten): the compiled model's fused
+/// usual tick, whose stages then share registers and loads.
+#if defined(__GNUC__)
+#define HSTMON_CIRCUIT_FLATTEN __attribute__((flatten))
+#else
+#define HSTMON_CIRCUIT_FLATTEN
+#endif
