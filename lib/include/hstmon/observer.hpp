@@ -474,7 +474,7 @@ class Observer {
   /// Brings what depends on the model's inputs up to date: the usual tick's coefficients —
   /// at once where they are a few operations (a region that does not move), else once the
   /// inputs have held for a tick (a centred region's certificate: refresh_usual, from
-  /// step), so that inputs logged with noise, new every tick, never pay for it.
+  /// step), so that inputs logged with noise, different every tick, never pay for it.
   void inputs_changed() noexcept {
     if constexpr (kUsualTick) {
       usual_.n = 0;
