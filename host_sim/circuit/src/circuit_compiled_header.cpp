@@ -240,11 +240,6 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
 
   std::string h;
   auto line = [&h](const std::string& t) { h += t + "\n"; };
-  // A placeholder written before its text was known, replaced at its last occurrence.
-  auto replace_placeholder = [&h](const std::string& ph, const std::string& with) {
-    const std::size_t at = h.rfind(ph);
-    if (at != std::string::npos) h.replace(at, ph.size(), with);
-  };
   // Structural nonzeros of the unknowns' Jacobian G, element by element as
   // unknowns_jacobian writes them: the rows the balances and rates capture, and the
   // reduction's structure.
@@ -372,7 +367,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
   line("  template <bool kRow, class M, typename T, std::size_t NG, class GM, class Fold = circuit::Unfolded>");
   line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt +
        ", T (&guess)[NG], GM& G, const Fold& fold = Fold{}) noexcept {");
-  // fold(): each closed-form node's B, c0², 4·B and its laminar terms to fixed pressures,
+  // fold(): each closed-form node's laminar terms to fixed pressures, B, c0² and 4·B,
   // written as solve_stiff computes them (the same expressions, so the same values).
   std::vector<std::string> folded;
   const auto fold_at = [&](const std::string& expr) {
@@ -416,7 +411,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
         line("        T lin = T(0), B = T(0);");
         Sums sums;
         std::vector<std::string> b_terms;
-        std::vector<std::string> fixed_terms;  // folded after B, c0², 4·B
+        fold_body.push_back("    {  // " + z_name(iz));
         for (int e = 0; e < d.n_elements; ++e) {
           const circuit::Element& el = d.elements[e];
           if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
@@ -425,12 +420,13 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
           switch (el.kind) {
             case ElementKind::kLaminar: {
               const int other = el.a == iz ? el.b : el.a;
-              std::string term = c0 + " * " + zr(other);
-              if (zr.fixed[static_cast<std::size_t>(other)]) {
-                fixed_terms.push_back(term);
-                term = "@FIXED" + s(static_cast<int>(fixed_terms.size()) - 1) + "@";
+              const std::string term = c0 + " * " + zr(other);
+              std::string use = term;
+              if (zr.fixed[static_cast<std::size_t>(other)]) {  // a laminar term to a fixed pressure
+                use = fold_at(term);
+                fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = " + term + ";");
               }
-              line("        " + sums.add("lin", '+', term) + "  // " + el_name(e));
+              line("        " + sums.add("lin", '+', use) + "  // " + el_name(e));
               const std::string b = sums.add("B", '+', c0);
               b_terms.push_back(b);
               line("        " + b);
@@ -450,18 +446,11 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
         line("        B = " + fold_at("B") + ";");
         const std::string c0sq = fold_at(oc0 + " * " + oc0);
         const std::string fourB = fold_at("T(4) * B");
-        fold_body.push_back("    {  // " + z_name(iz));
         fold_body.push_back("      T B = T(0);");
         for (const std::string& b : b_terms) fold_body.push_back("      " + b);
         fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 3) + "] = B;");
         fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 2) + "] = " + oc0 + " * " + oc0 + ";");
         fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = T(4) * B;");
-        // The laminar terms to fixed pressures, in the sum's order (placeholders above).
-        for (std::size_t t = 0; t < fixed_terms.size(); ++t) {
-          const std::string call = fold_at(fixed_terms[t]);
-          fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = " + fixed_terms[t] + ";");
-          replace_placeholder("@FIXED" + s(static_cast<int>(t)) + "@", call);
-        }
         fold_body.push_back("    }");
         line("        T root;");
         line("        if (circuit::solve_node_orifice(z[" + i + "], " + zr(oe.a == iz ? oe.b : oe.a) + ", " + oc0 + ", " +

@@ -160,13 +160,13 @@ struct Kernel {
         // One orifice (dcv.PA) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
         lin = -(m.coeffs(3).c[0] * z[7]);  // motor
-        lin += fold.at(3, m.coeffs(4).c[0] * m.fixed_value(2));  // leak_in
+        lin += fold.at(0, m.coeffs(4).c[0] * m.fixed_value(2));  // leak_in
         B = m.coeffs(4).c[0];
         lin += m.coeffs(6).c[0] * z[5];  // leak_cross
         B += m.coeffs(6).c[0];
-        B = fold.at(0, B);
+        B = fold.at(1, B);
         T root;
-        if (circuit::solve_node_orifice(z[4], m.fixed_value(0), m.coeffs(1).c[0], fold.at(1, m.coeffs(1).c[0] * m.coeffs(1).c[0]), m.coeffs(1).c[1], lin, B, fold.at(2, T(4) * B), root)) {
+        if (circuit::solve_node_orifice(z[4], m.fixed_value(0), m.coeffs(1).c[0], fold.at(2, m.coeffs(1).c[0] * m.coeffs(1).c[0]), m.coeffs(1).c[1], lin, B, fold.at(3, T(4) * B), root)) {
           if constexpr (kRow) {
             G[0][0] = T(0);
             G[0][1] = T(0);
@@ -211,13 +211,13 @@ struct Kernel {
         // One orifice (dcv.BT) and flows linear in the pressure: closed form.
         T lin = T(0), B = T(0);
         lin = m.coeffs(3).c[0] * z[7];  // motor
-        lin += fold.at(7, m.coeffs(5).c[0] * m.fixed_value(2));  // leak_out
+        lin += fold.at(4, m.coeffs(5).c[0] * m.fixed_value(2));  // leak_out
         B = m.coeffs(5).c[0];
         lin += m.coeffs(6).c[0] * z[4];  // leak_cross
         B += m.coeffs(6).c[0];
-        B = fold.at(4, B);
+        B = fold.at(5, B);
         T root;
-        if (circuit::solve_node_orifice(z[5], m.fixed_value(1), m.coeffs(2).c[0], fold.at(5, m.coeffs(2).c[0] * m.coeffs(2).c[0]), m.coeffs(2).c[1], lin, B, fold.at(6, T(4) * B), root)) {
+        if (circuit::solve_node_orifice(z[5], m.fixed_value(1), m.coeffs(2).c[0], fold.at(6, m.coeffs(2).c[0] * m.coeffs(2).c[0]), m.coeffs(2).c[1], lin, B, fold.at(7, T(4) * B), root)) {
           if constexpr (kRow) {
             G[1][0] = T(0);
             G[1][1] = T(0);
@@ -274,22 +274,22 @@ struct Kernel {
   static void fold(const M& m, T (&v)[kFolded]) noexcept {
     (void)m;
     {  // Pmi
+      v[0] = m.coeffs(4).c[0] * m.fixed_value(2);
       T B = T(0);
       B = m.coeffs(4).c[0];
       B += m.coeffs(6).c[0];
-      v[0] = B;
-      v[1] = m.coeffs(1).c[0] * m.coeffs(1).c[0];
-      v[2] = T(4) * B;
-      v[3] = m.coeffs(4).c[0] * m.fixed_value(2);
+      v[1] = B;
+      v[2] = m.coeffs(1).c[0] * m.coeffs(1).c[0];
+      v[3] = T(4) * B;
     }
     {  // Pmo
+      v[4] = m.coeffs(5).c[0] * m.fixed_value(2);
       T B = T(0);
       B = m.coeffs(5).c[0];
       B += m.coeffs(6).c[0];
-      v[4] = B;
-      v[5] = m.coeffs(2).c[0] * m.coeffs(2).c[0];
-      v[6] = T(4) * B;
-      v[7] = m.coeffs(5).c[0] * m.fixed_value(2);
+      v[5] = B;
+      v[6] = m.coeffs(2).c[0] * m.coeffs(2).c[0];
+      v[7] = T(4) * B;
     }
   }
 
