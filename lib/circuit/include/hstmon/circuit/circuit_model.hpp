@@ -575,11 +575,17 @@ class CircuitModel {
     T G_lo[kExtent<kU>][kExtent<kU>], G_hi[kExtent<kU>][kExtent<kU>];
     unknowns_jacobian_range(lo, hi, G_lo, G_hi);
     T inv_mass[kExtent<kStates>] = {};
-    for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];
+    states_inv_mass(inv_mass);
     return certify_reduced(G_lo, G_hi, stiff_u_, n_stiff_, state_u_, n_states_, inv_mass, rho_max);
   }
 
  private:
+  /// The states' K [Pa/m³] or 1/J [1/(kg·m²)], in state order: the rows' scale of the
+  /// reduced Jacobian (reduced_jacobian, certify_box).
+  void states_inv_mass(T (&m)[kExtent<kStates>]) const noexcept {
+    for (int r = 0; r < n_states_; ++r) m[r] = inv_mass_[z_of_state_[r]];
+  }
+
   bool is_stiff(int i) const noexcept { return c_ != nullptr && ((c_->stiff_mask >> i) & 1u) != 0; }
 
   template <std::size_t N>
@@ -899,7 +905,7 @@ class CircuitModel {
     T G[kExtent<kU>][kExtent<kU>];
     unknowns_jacobian(z, G);
     T inv_mass[kExtent<kStates>] = {};
-    for (int r = 0; r < n_states_; ++r) inv_mass[r] = inv_mass_[z_of_state_[r]];
+    states_inv_mass(inv_mass);
     // A capacity with no room for a stiff node says so at compile time (GCC would otherwise
     // warn that the stiff block, never read then, may be uninitialised).
     const int n_stiff = kU > kStates ? n_stiff_ : 0;
