@@ -43,7 +43,7 @@ inc=""
 [ -n "$inc" ] && [ -f "$inc/hstmon_c.h" ] || {
   echo "release.sh: the package's hstmon-c.pc does not name its headers (${inc:-none})" >&2; exit 1; }
 listing=$(tar -tzf "$src")  # whole, not piped into grep -q (pipefail and SIGPIPE)
-grep -q "^hstmon-${version}-Source/lib/include/hstmon/monitor.hpp$" <<<"$listing" || {
+grep -q "^hstmon-${version}-Source/lib/include/hstmon/model_monitor.hpp$" <<<"$listing" || {
   echo "release.sh: the source archive lacks lib/" >&2; exit 1; }
 if grep -qE '/build/|/\.git/' <<<"$listing"; then echo "release.sh: build or .git in the source archive" >&2; exit 1; fi
 echo "release.sh: $(basename "$deb") ($(du -k "$deb" | cut -f1) kB) and $(basename "$src") ($(du -k "$src" | cut -f1) kB); the installed demo isolates kp-"

@@ -26,8 +26,8 @@ template class SensorCheck<float>;
 template class SensorCheck<double>;
 template class FaultMatcher<float>;
 template class FaultMatcher<double>;
-template class ModelMonitor<ThesisReducedModel<float>>;  // Monitor<float>
-template class ModelMonitor<ThesisReducedModel<double>>;  // Monitor<double>
+template class ModelMonitor<ThesisReducedModel<float>>;  // the firmware C API's monitor
+template class ModelMonitor<ThesisReducedModel<double>>;
 template Status thesis_model_bound(const ThesisReducedModel<float>&, const ThesisUncertainty<float>&,
                                    float (&)[kFdiChannels]) noexcept;
 template Status thesis_model_bound(const ThesisReducedModel<double>&, const ThesisUncertainty<double>&,

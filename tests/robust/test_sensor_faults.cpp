@@ -29,7 +29,7 @@
 namespace {
 
 using Mon = hstmon::Monitor<double>;
-using Model = hstmon::ThesisReducedModel<double>;
+using Model = Mon::Model;  // the monitor's own model (the engine's thesis circuit)
 using hstmon::MatchStatus;
 
 constexpr double kTick = 1e-3;                 // [s]

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "hstmon/signed_root.hpp"
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 
 namespace hstmon::fdi {
 
@@ -13,8 +13,8 @@ bool steady_outputs(const ThesisParams<double>& p, const ThesisInputs<double>& u
   // The solve's own outputs: a model's outputs() at the solved state may differ in the
   // last bits (its tick path reassociates the DCV balance), and small-fault directions
   // are differences of nearly equal steady states.
-  if (!ThesisReducedModel<double>::params_valid(p)) return false;
-  return ThesisReducedModel<double>::steady_outputs(p, u, y);
+  if (!ThesisCircuitModel<double>::params_valid(p)) return false;
+  return ThesisCircuitModel<double>::steady_outputs(p, u, y);
 }
 
 OperatingPoint operating_point(const ThesisParams<double>& p, const ThesisInputs<double>& u) {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon_fdi/fault_catalogue.hpp"
 #include "hstmon_fdi/operating_point.hpp"
 #include "hstmon_fdi/qual.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon_sensors/sensor_presets.hpp"
 
 namespace hstmon::ident {
@@ -89,10 +89,10 @@ std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 }  // namespace
 
 bool thesis_steady_outputs(const ThesisParams<double>& p, const ThesisInputs<double>& u, std::array<double, 4>& y) {
-  if (!ThesisReducedModel<double>::params_valid(p) || !ThesisReducedModel<double>::inputs_valid(u)) return false;
-  ThesisReducedModel<double> m(p);
+  if (!ThesisCircuitModel<double>::params_valid(p) || !ThesisCircuitModel<double>::inputs_valid(u)) return false;
+  ThesisCircuitModel<double> m(p);
   m.set_inputs(u);
-  ThesisReducedModel<double>::State x;
+  ThesisCircuitModel<double>::State x;
   if (!m.steady_state(x)) return false;
   const auto out = m.outputs(x);
   for (int c = 0; c < 4; ++c) y[static_cast<std::size_t>(c)] = out[c];
@@ -165,7 +165,7 @@ ThesisFitResult fit_thesis_steady(const std::vector<OperatingPoint>& points, con
                             S, S == 1 ? "" : "s", o.min_settings);
     return res;
   }
-  if (!ThesisReducedModel<double>::params_valid(o.prior)) {
+  if (!ThesisCircuitModel<double>::params_valid(o.prior)) {
     res.error = "prior parameters are invalid (non-finite or non-positive)";
     return res;
   }

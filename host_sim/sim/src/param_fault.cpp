@@ -5,7 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
@@ -38,7 +38,7 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
                                       const ThesisParams<double>& p, double fault_time,
                                       const ThesisParams<double>& faulty, const ReferenceTolerances& tol) {
   validate(sc);
-  if (!ThesisReducedModel<double>::params_valid(faulty)) {
+  if (!ThesisCircuitModel<double>::params_valid(faulty)) {
     throw std::invalid_argument("measure_with_fault: invalid faulty parameters");
   }
   const std::size_t m = substeps(cfg);

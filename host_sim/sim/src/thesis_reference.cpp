@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "hstmon/thesis_model.hpp"
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 
 namespace hstmon::sim {
 
@@ -23,7 +23,7 @@ bool same_inputs(const ThesisInputs<double>& a, const ThesisInputs<double>& b) {
 
 ThesisReference::ThesisReference(const Params& p, const State& x0, double t0, const ReferenceTolerances& tol)
     : p_(p), integ_(thesis_abs_tol(tol), tol.rel, tol.initial_step, tol.max_step) {
-  if (!ThesisReducedModel<double>::params_valid(p)) {
+  if (!ThesisCircuitModel<double>::params_valid(p)) {
     throw std::invalid_argument("ThesisReference: invalid parameters");
   }
   reset(x0, t0);
@@ -40,7 +40,7 @@ void ThesisReference::reset(const State& x, double t) {
 }
 
 void ThesisReference::begin_segment(const Inputs& u) {
-  if (!ThesisReducedModel<double>::inputs_valid(u)) {
+  if (!ThesisCircuitModel<double>::inputs_valid(u)) {
     throw std::invalid_argument("ThesisReference: non-finite inputs or kp < 0");
   }
   if (segment_open_ && same_inputs(u, u_)) return;

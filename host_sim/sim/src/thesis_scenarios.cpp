@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 
 namespace hstmon::sim {
 
@@ -75,13 +75,13 @@ ThesisState<double> thesis_rest_state(const ThesisInputs<double>& u) {
 }
 
 ThesisState<double> thesis_steady_state(const ThesisInputs<double>& u, const ThesisParams<double>& p) {
-  ThesisReducedModel<double> m(p);
+  ThesisCircuitModel<double> m(p);
   m.set_inputs(u);
-  ThesisReducedModel<double>::State s;
-  if (!ThesisReducedModel<double>::params_valid(p) || !m.steady_state(s)) {
+  ThesisCircuitModel<double>::State s;
+  if (!ThesisCircuitModel<double>::params_valid(p) || !m.steady_state(s)) {
     throw std::invalid_argument("thesis_steady_state: the inputs admit no steady state");
   }
-  const ThesisReducedModel<double>::Output y = m.outputs(s);
+  const ThesisCircuitModel<double>::Output y = m.outputs(s);
   ThesisState<double> x;
   x.Pmi = y[kChPmi];
   x.Pmo = y[kChPmo];

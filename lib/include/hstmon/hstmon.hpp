@@ -4,7 +4,7 @@
 #include "hstmon/cusum.hpp"
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/fault_signature.hpp"
-#include "hstmon/monitor.hpp"
+#include "hstmon/model_monitor.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon/paper_model.hpp"
 #include "hstmon/pump_curve.hpp"

@@ -95,10 +95,12 @@ struct BoundItems {
 ///               kInvalidParams)
 /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState (the nominal or a
 ///               perturbed model has no steady state)
-template <typename T>
-HSTMON_BOUND_PATH Status thesis_model_bound(const ThesisReducedModel<T>& model, const ThesisUncertainty<T>& eps,
+/// @tparam Model  a thesis-rig model: Params = ThesisParams<T>, Inputs = ThesisInputs<T>,
+///                static params_valid(p) and steady_outputs(p, u, y) (ThesisReducedModel, or
+///                ThesisCircuitModel on the engine)
+template <class Model, typename T = typename Model::Scalar>
+HSTMON_BOUND_PATH Status thesis_model_bound(const Model& model, const ThesisUncertainty<T>& eps,
                                             T (&m)[kFdiChannels]) noexcept {
-  using Model = ThesisReducedModel<T>;
   using I = detail::BoundItems<T>;
   for (int k = 0; k < detail::kBoundItems; ++k) {
     const T e = eps.*(I::kEps[k]);
@@ -106,7 +108,8 @@ HSTMON_BOUND_PATH Status thesis_model_bound(const ThesisReducedModel<T>& model, 
   }
   // Stack (a firmware monitor has 512 B for everything): one copy of the parameters and
   // inputs, one quantity perturbed in place at a time and restored, the + and − sides
-  // solved one after the other, the sum in m, and no model object (Model::steady_outputs).
+  // solved one after the other, the sum in m, and no model object of ours
+  // (Model::steady_outputs: none in the hand-written model, one per solve on the engine).
   ThesisParams<T> p = model.params();
   ThesisInputs<T> u = model.inputs();
   T y0[kFdiChannels], plus[kFdiChannels], y[kFdiChannels];

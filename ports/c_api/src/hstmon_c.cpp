@@ -1,7 +1,14 @@
 // C API over the float thesis monitor (ports/c_api/include/hstmon_c.h): observer, sensor
-// checks, residual evaluator and fault matcher (hstmon::Monitor). A thin layer: copies
+// checks, residual evaluator and fault matcher (hstmon::ModelMonitor). A thin layer: copies
 // between plain C structs and the core's types, placement-new into the caller's buffer;
 // all numerics stay in lib/.
+//
+// Its model is the hand-written specialisation of the thesis equations
+// (ThesisReducedModel), which test_thesis_circuit proves equal to the engine on
+// thesis.json (outputs and derivatives to 1e-12, steady states, observers over a start and
+// a kp step): its 128-byte model and static steady solve keep this monitor within the
+// Cortex-M4F budgets (1.5 KiB RAM, 512 B stack), which the engine's 0.7 KB model does
+// not. A circuit's C API on the engine is hstmon_circuit_c.h.
 #include "hstmon_c.h"
 
 #include <cstdint>
@@ -10,7 +17,8 @@
 #include "c_api_copy.hpp"
 
 #include "hstmon/generated/thesis_signatures.hpp"
-#include "hstmon/monitor.hpp"
+#include "hstmon/model_monitor.hpp"
+#include "hstmon/residual_bounds.hpp"
 #include "hstmon/status.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
@@ -20,7 +28,8 @@ namespace {
 // ranking is read live with hstmon_candidates()), so one monitor fits in 1 KiB on the M4F.
 // No usual tick: every tick on the observer's general path, as on the Cortex-M4F (which
 // has none), so a C API monitor computes the same bits on every target (qemu_bitexact).
-using Mon = hstmon::Monitor<float, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE, HSTMON_EVENT_CANDIDATES, false>;
+using Mon = hstmon::ModelMonitor<hstmon::ThesisReducedModel<float>, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE,
+                                 HSTMON_EVENT_CANDIDATES, false>;
 using Model = Mon::Model;
 using Obs = Mon::Obs;
 

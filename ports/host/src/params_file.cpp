@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon_host/units.hpp"
 #include "json_locations.hpp"
 #include "text_util.hpp"
@@ -122,11 +122,11 @@ class Reader {
       fail_value(j.contains("params") ? "/params" : "", "Rf + Rbl must be > 0 (the shaft needs some damping)");
       return;
     }
-    if (!ThesisReducedModel<double>::params_valid(p)) {
+    if (!ThesisCircuitModel<double>::params_valid(p)) {
       fail_value(j.contains("params") ? "/params" : "", "parameters refused by the model (params_valid)");
       return;
     }
-    if (!ThesisReducedModel<double>::inputs_valid(u)) {
+    if (!ThesisCircuitModel<double>::inputs_valid(u)) {
       fail_value(j.contains("inputs") ? "/inputs" : "", "inputs refused by the model (inputs_valid)");
       return;
     }
@@ -369,10 +369,10 @@ std::string format_params_json(const ThesisParams<double>& params, const ThesisI
 
 std::optional<SourceError> write_params_file(const std::string& path, const ThesisParams<double>& params,
                                              const ThesisInputs<double>& inputs, const std::string& description) {
-  if (!ThesisReducedModel<double>::params_valid(params) || !(params.Rf + params.Rbl > 0.0)) {
+  if (!ThesisCircuitModel<double>::params_valid(params) || !(params.Rf + params.Rbl > 0.0)) {
     return SourceError{path, 0, 0, "refusing to write parameters the model does not accept (params_valid)"};
   }
-  if (!ThesisReducedModel<double>::inputs_valid(inputs)) {
+  if (!ThesisCircuitModel<double>::inputs_valid(inputs)) {
     return SourceError{path, 0, 0, "refusing to write inputs the model does not accept (inputs_valid)"};
   }
   const std::string text = format_params_json(params, inputs, description);

@@ -9,7 +9,7 @@
 
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
-#include "hstmon/thesis_reduced.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 
 namespace hstmon::host {
 
@@ -29,7 +29,7 @@ std::vector<std::string> health_names(std::uint32_t flags) {
 
 namespace {
 
-using Model = ThesisReducedModel<double>;
+using Model = ThesisCircuitModel<double>;
 using Mon = Monitor<double>;
 using Obs = Mon::Obs;
 

@@ -2,7 +2,7 @@
 /// @file crosscheck.hpp
 /// Cross-check of the temporal causal graph's predictions against the nonlinear model:
 /// each catalogue parameter is stepped up and down at several operating points, and the
-/// sign of the steady-state change (ThesisReducedModel::steady_state), of the first
+/// sign of the steady-state change (ThesisCircuitModel::steady_state), of the first
 /// non-zero derivative at 0+ (full model, Taylor terms from thesis_derivative and its
 /// Jacobian), and of the early deviation read from the stiff reference simulator are
 /// compared with the qualitative TCG, the weighted TCG and the linearised steady states.

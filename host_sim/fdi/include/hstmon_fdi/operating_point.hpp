@@ -20,7 +20,7 @@ struct OperatingPoint {
   double g_prv = 0.0;       ///< PRV tangent conductance [m³/(s·Pa)]
 };
 
-/// Steady operating point from ThesisReducedModel<double>::steady_state.
+/// Steady operating point from ThesisCircuitModel<double>::steady_state.
 /// @throws std::invalid_argument if the inputs admit no steady state (e.g. kp = 0)
 OperatingPoint operating_point(const ThesisParams<double>& p = ThesisParams<double>{},
                                const ThesisInputs<double>& u = ThesisInputs<double>{});

@@ -13,7 +13,7 @@
 ///
 /// Residuals (output error): for each operating point w and measured channel c,
 ///   r = √n_w · (ŷ_c(θ; u_w, kp_s(w)) − ȳ_w,c) / σ_c,
-/// ŷ the model's steady state (ThesisReducedModel::steady_state), ȳ the window mean of n_w
+/// ŷ the model's steady state (ThesisCircuitModel::steady_state), ȳ the window mean of n_w
 /// samples, σ_c the channel's noise. Output error rather than equation error because the
 /// noise is on the measurements: equation residuals (eqs. 2.5–2.8 evaluated at noisy
 /// pressures) put the noise inside the square roots and the products — an errors-in-

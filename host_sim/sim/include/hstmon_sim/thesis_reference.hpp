@@ -24,7 +24,7 @@ class ThesisReference {
   /// Receives one sample: time [s] and state.
   using Sampler = std::function<void(double t, const State& x)>;
 
-  /// @param p    model parameters (must satisfy ThesisReducedModel::params_valid)
+  /// @param p    model parameters (must satisfy ThesisCircuitModel::params_valid)
   /// @param x0   state at t0
   /// @param t0   initial time [s]
   /// @param tol  integration tolerances (pressures in Pa, speed in rad/s)

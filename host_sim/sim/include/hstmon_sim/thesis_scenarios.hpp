@@ -48,7 +48,7 @@ std::optional<ThesisScenario> thesis_scenario(std::string_view name, double samp
 /// Rest state for inputs u: Pmi = Pmo = Ps, Ppp = Pbp, ωm = 0.
 ThesisState<double> thesis_rest_state(const ThesisInputs<double>& u);
 
-/// Steady state of the full model for inputs u, from ThesisReducedModel::steady_state
+/// Steady state of the full model for inputs u, from ThesisCircuitModel::steady_state
 /// (Ppp, ωm) and its outputs (Pmi, Pmo).
 /// @throws std::invalid_argument if the inputs admit no steady state (e.g. kp = 0)
 ThesisState<double> thesis_steady_state(const ThesisInputs<double>& u,

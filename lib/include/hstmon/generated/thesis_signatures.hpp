@@ -39,9 +39,9 @@ inline constexpr FaultSignature kThesisSignatures[] = {
     // Dm+: p_pp TCG ambiguous (slope from gains), w_m TCG ambiguous (slope from gains)
     {"Dm+", false, {{kQualMinus, kQualMinus, 1}, {kQualPlus, kQualPlus, 1}, {kQualPlus, kQualPlus, 2}, {kQualPlus, kQualPlus, 1}}, {-0.039017f, 0.039017f, 0.887370f, 0.457744f}},
     // Rlkg-: p_pp TCG ambiguous (slope from gains), w_m TCG ambiguous (slope from gains)
-    {"Rlkg-", false, {{kQualMinus, kQualMinus, 1}, {kQualMinus, kQualMinus, 1}, {kQualMinus, kQualMinus, 3}, {kQualMinus, kQualMinus, 2}}, {-0.160153f, -0.019878f, -0.875317f, -0.455825f}},
+    {"Rlkg-", false, {{kQualMinus, kQualMinus, 1}, {kQualMinus, kQualMinus, 1}, {kQualMinus, kQualMinus, 3}, {kQualMinus, kQualMinus, 2}}, {-0.160153f, -0.019878f, -0.875317f, -0.455824f}},
     // Ripl-: p_mi steady sign depends on size, w_m steady sign depends on size
-    {"Ripl-", false, {{kQualAny, kQualMinus, 1}, {kQualPlus, kQualPlus, 1}, {kQualMinus, kQualMinus, 3}, {kQualAny, kQualMinus, 2}}, {-0.070712f, 0.070699f, -0.882489f, -0.459581f}},
+    {"Ripl-", false, {{kQualAny, kQualMinus, 1}, {kQualPlus, kQualPlus, 1}, {kQualMinus, kQualMinus, 3}, {kQualAny, kQualMinus, 2}}, {-0.070739f, 0.070729f, -0.882480f, -0.459589f}},
     // J-: p_mi TCG - vs steady 0, p_mo TCG + vs steady 0, p_pp TCG + vs steady 0, w_m TCG + vs steady 0
     {"J-", false, {{kQualZero, kQualMinus, 2}, {kQualZero, kQualPlus, 2}, {kQualZero, kQualPlus, 2}, {kQualZero, kQualPlus, 1}}, {0.000000f, 0.000000f, 0.000000f, 0.000000f}},
     // J+: p_mi TCG + vs steady 0, p_mo TCG - vs steady 0, p_pp TCG - vs steady 0, w_m TCG - vs steady 0
