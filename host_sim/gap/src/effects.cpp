@@ -8,6 +8,7 @@
 #include "hstmon/initial_state.hpp"
 #include "hstmon/pump_curve.hpp"
 #include "hstmon/signed_root.hpp"
+#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
 namespace hstmon::gap {
@@ -120,9 +121,10 @@ double pump_pressure(const Row& r, double q) {
   return r.Pk + (q - r.q2) / r.s3;                                       // region 3 (and beyond)
 }
 
-// The extended model's right-hand side: lib's ThesisReducedModel (the same model the
-// observer runs; motor leakage enters through its Rlkg, Ripl) plus the effects' terms.
-// Mutable: the model holds the row's inputs (set_inputs is O(1)).
+// The extended model's right-hand side: the thesis equations (Model: the engine's
+// ThesisCircuitModel, or the hand-written ThesisReducedModel; motor leakage enters through
+// their Rlkg, Ripl) plus the effects' terms. Mutable: the model holds the row's inputs.
+template <class Model>
 class Rhs {
  public:
   Rhs(const ThesisParams<double>& p, const Ext& e) : p_(p), e_(e) {
@@ -158,7 +160,7 @@ class Rhs {
 
   // f = (dPpp/dt, dωm/dt); y = true outputs (Pmi, Pmo, Ppp, ωm).
   void operator()(const Row& r, const double* x, double* f, double* y) const {
-    using M = ThesisReducedModel<double>;
+    using M = Model;
     const double w = x[1];
     ThesisInputs<double> in;
     in.Psupl = r.Psupl;
@@ -180,8 +182,8 @@ class Rhs {
           in.kp == model_.inputs().kp)) {
       model_.set_inputs(in);
     }
-    M::Output out;
-    const M::State d = model_.derivative(M::State(x[0], w), &out);
+    typename M::Output out;
+    const typename M::State d = model_.derivative(typename M::State(x[0], w), &out);
     f[0] = d[0];
     f[1] = d[1];
     const double dP = x[0] - r.Pbp;
@@ -208,7 +210,7 @@ class Rhs {
  private:
   // Discovered terms: imbalance Σ c·φ of the Ppp flow balance or the torque balance;
   // derivative terms scale the compliance or the inertia.
-  void add_terms(const Row& r, const ThesisReducedModel<double>::Output& out, double* f) const {
+  void add_terms(const Row& r, const typename Model::Output& out, double* f) const {
     TermInputs ti;
     ti.Pmi = out[kChPmi];
     ti.Pmo = out[kChPmo];
@@ -235,12 +237,13 @@ class Rhs {
   ThesisParams<double> p_;
   Ext e_;
   double gl_ = 0, gi_ = 0;
-  mutable ThesisReducedModel<double> model_;
+  mutable Model model_;
 };
 
 // One ROS2 step (Verwer et al. 1999; order 2 for any Jacobian approximation, L-stable).
 // Returns the true outputs at the start of the step in y0.
-bool ros2_step(const Rhs& f, const Row& r, double* x, double h, double* y0) {
+template <class Model>
+bool ros2_step(const Rhs<Model>& f, const Row& r, double* x, double h, double* y0) {
   constexpr double g = 1.0 + 0.70710678118654752;
   double f0[2], fp[2], J[2][2];
   f(r, x, f0, y0);
@@ -315,19 +318,22 @@ bool input_step(const InputSeries& u, std::size_t k) {
          moved(u.Ps[k], u.Ps[k - 1], 500.0) || moved(u.Pbp[k], u.Pbp[k - 1], 500.0);
 }
 
-SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt) {
+namespace {
+
+template <class Model>
+SimResult simulate_on(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt) {
   SimResult res;
   const std::size_t n = u.size();
   if (n == 0 || u.Psupl.size() != n || u.Ps.size() != n || u.Pbp.size() != n || u.kp.size() != n) {
     res.error = "input series empty or of unequal length";
     return res;
   }
-  if (!ThesisReducedModel<double>::params_valid(model.nominal)) {
+  if (!Model::params_valid(model.nominal)) {
     res.error = "invalid nominal parameters";
     return res;
   }
   const Ext e = flatten(model);
-  const Rhs f(model.nominal, e);
+  const Rhs<Model> f(model.nominal, e);
   auto row_at = [&](std::size_t k) {
     Row r;
     r.Psupl = u.Psupl[k];
@@ -340,17 +346,17 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
 
   // Start (docs/gap.md): the first sample by the rule replay and identify use, or forced.
   Row r = row_at(0);
-  ThesisReducedModel<double> nom(model.nominal);
+  Model nom(model.nominal);
   ThesisInputs<double> in0;
   in0.Psupl = r.Psupl;
   in0.Ps = r.Ps;
   in0.Pbp = r.Pbp;
   in0.kp = r.kp;
   nom.set_inputs(in0);
-  ThesisReducedModel<double>::State xs = nom.rest_state();
+  typename Model::State xs = nom.rest_state();
   bool preroll = false;
   if (u.start == StartRule::kFirstSample) {
-    ThesisReducedModel<double>::Output ym;
+    typename Model::Output ym;
     for (int c = 0; c < kChannels; ++c) ym[c] = u.y0[static_cast<std::size_t>(c)] - e.offset[static_cast<std::size_t>(c)];
     const InitialState kind = choose_initial_state(nom, ym, u.y0_valid, xs);
     res.start = to_string(kind);
@@ -466,9 +472,10 @@ SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOp
   return res;
 }
 
-std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInputs<double>& u,
-                                     const std::array<double, 2>& x, std::array<double, kChannels>* y) {
-  const Rhs f(model.nominal, flatten(model));
+template <class Model>
+std::array<double, 2> extended_rates_on(const ExtendedModel& model, const ThesisInputs<double>& u,
+                                        const std::array<double, 2>& x, std::array<double, kChannels>* y) {
+  const Rhs<Model> f(model.nominal, flatten(model));
   Row r;
   r.Psupl = u.Psupl;
   r.Ps = u.Ps;
@@ -482,6 +489,20 @@ std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInp
     for (std::size_t c = 0; c < kChannels; ++c) (*y)[c] = out[c];
   }
   return d;
+}
+
+}  // namespace
+
+SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt) {
+  return opt.thesis == ThesisImpl::kEngine ? simulate_on<ThesisCircuitModel<double>>(model, u, opt)
+                                           : simulate_on<ThesisReducedModel<double>>(model, u, opt);
+}
+
+std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInputs<double>& u,
+                                     const std::array<double, 2>& x, std::array<double, kChannels>* y,
+                                     ThesisImpl thesis) {
+  return thesis == ThesisImpl::kEngine ? extended_rates_on<ThesisCircuitModel<double>>(model, u, x, y)
+                                       : extended_rates_on<ThesisReducedModel<double>>(model, u, x, y);
 }
 
 }  // namespace hstmon::gap

@@ -1,8 +1,9 @@
 #pragma once
 /// @file effects.hpp
 /// Library of unmodelled effects for the thesis HST model, and the host-side simulator of
-/// an *extended* model: the thesis model (equations 2.5–2.8, DCV side quasi-steady as in
-/// thesis_reduced.hpp) plus any set of switchable effects, each with a few parameters.
+/// an *extended* model: the thesis model (equations 2.5–2.8, DCV side quasi-steady; on the
+/// engine or its hand-written specialisation, ThesisImpl) plus any set of switchable
+/// effects, each with a few parameters.
 /// docs/gap.md gives the equations of every effect.
 ///
 /// Public types are std::vector based (lib/ defines EIGEN_NO_MALLOC for its users).
@@ -135,11 +136,23 @@ struct InputSeries {
 bool input_step(const InputSeries& u, std::size_t k);
 
 /// Settings of simulate().
+/// Which implementation of the thesis equations the extended model integrates. Both are
+/// the same equations and agree to rounding (test_gap_model holds simulate() on the two to
+/// 1e-9 of each channel's scale):
+///  - kSpecialised: the hand-written ThesisReducedModel (lib/thesis_reduced.hpp), whose
+///    closed-form DCV solve and O(1) input change make the fits' inner loop about 7× faster
+///    than on the engine (the eight blind single-effect searches of test_gap: 31 s against
+///    217 s, bench/RESULTS.md). The default.
+///  - kEngine: the engine's thesis circuit (ThesisCircuitModel: thesis.json compiled), the
+///    model the thesis monitor runs.
+enum class ThesisImpl { kSpecialised, kEngine };
+
 struct SimOptions {
   double max_step = 2.5e-4;  ///< largest internal step [s] (ROS2, fixed per log interval)
   double transient_step = 2.5e-5;  ///< step within transient_window of the start or an input change [s]
   double transient_window = 0.025;  ///< [s]
   double preroll = 1.0;      ///< time held at the first row's inputs before t0 [s]
+  ThesisImpl thesis = ThesisImpl::kSpecialised;  ///< the thesis equations' implementation
 };
 
 /// Outputs sampled at the log rows: y[k] = (Pmi, Pmo, Ppp [Pa], ωm [rad/s]) at t[k].
@@ -159,9 +172,10 @@ struct SimResult {
 SimResult simulate(const ExtendedModel& model, const InputSeries& u, const SimOptions& opt = {});
 
 /// Rates (dPpp/dt, dωm/dt) and, if y is given, true outputs of the extended model at state
-/// x = (Ppp, ωm) under inputs u: what simulate() integrates. With no effects this is
-/// ThesisReducedModel<double>::derivative (the test holds it there).
+/// x = (Ppp, ωm) under inputs u: what simulate() integrates. With no effects this is the
+/// thesis model's derivative (the test holds it there, on both implementations).
 std::array<double, 2> extended_rates(const ExtendedModel& model, const ThesisInputs<double>& u,
-                                     const std::array<double, 2>& x, std::array<double, kChannels>* y = nullptr);
+                                     const std::array<double, 2>& x, std::array<double, kChannels>* y = nullptr,
+                                     ThesisImpl thesis = ThesisImpl::kSpecialised);
 
 }  // namespace hstmon::gap
