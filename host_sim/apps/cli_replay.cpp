@@ -44,6 +44,7 @@ struct ReplayArgs {
   std::string report;  // --report DIR (cli_replay_report.hpp)
   double tick = 0.0;
   std::string init = "auto";
+  std::string thesis_model = "specialised";  // --thesis-model: specialised | engine
   bool no_progress = false;
   bool no_diagnosis = false;
   std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
@@ -203,6 +204,7 @@ int run_replay(const ReplayArgs& a) {
   opt.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   opt.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   opt.diagnose = !a.no_diagnosis;
+  opt.thesis = a.thesis_model == "engine" ? ThesisImpl::kEngine : ThesisImpl::kSpecialised;
   if (pf.sensors) opt.sensors = *pf.sensors;
   // The log is streamed (cli_log_replay.hpp): read and replayed chunk by chunk.
   Progress progress;
@@ -296,6 +298,7 @@ int run_summaries(const ReplayArgs& a) {
     f.replay.tick = a.tick;
     f.replay.init = init;
     f.replay.diagnose = !a.no_diagnosis;
+    f.replay.thesis = a.thesis_model == "engine" ? ThesisImpl::kEngine : ThesisImpl::kSpecialised;
     if (pf.sensors) f.replay.sensors = *pf.sensors;
   }
   f.jobs = a.jobs;
@@ -326,6 +329,10 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--init", args->init, "Initial state: auto (from the first row's measurements), rest or steady")
       ->check(CLI::IsMember({"auto", "rest", "steady"}));
   add_log_options(*cmd, args->io, "JSON parameter file (default: thesis Table 2.2)");
+  cmd->add_option("--thesis-model", args->thesis_model,
+                  "The thesis rig's equations: specialised (hand-written, the default: about 2.3x faster) or engine "
+                  "(thesis.json compiled); the same results to 1e-9 (docs/circuits.md)")
+      ->check(CLI::IsMember({"specialised", "engine"}));
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->add_option("--circuit", args->circuit,

@@ -51,6 +51,19 @@ TEST(ThesisCircuitModel, ValidityFollowsThePhysics) {
   p = {};
   p.Rf = 0.0;  // Rbl alone is friction enough
   EXPECT_TRUE(Engine::params_valid(p));
+  // Valid values are ones the engine resolves: sampled over six decades each way.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> decades(-6.0, 6.0);
+  int valid = 0;
+  for (int i = 0; i < 2000; ++i) {
+    hstmon::ThesisParams<double> q;
+    double* f[] = {&q.Dm, &q.Dp, &q.Rlkg, &q.Ripl, &q.Rf, &q.Rbl, &q.kf, &q.J, &q.K, &q.dp_t_dcv, &q.dp_t_prv};
+    for (double* v : f) *v *= std::pow(10.0, decades(rng)) * (i % 7 == 0 && v == f[i % 11] ? -1.0 : 1.0);
+    if (!Engine::params_valid(q)) continue;
+    ++valid;
+    EXPECT_TRUE(Engine::Compiled(Engine::engine_params(q)).valid()) << "sample " << i;
+  }
+  EXPECT_GT(valid, 1500);
   hstmon::ThesisInputs<double> u;
   EXPECT_TRUE(Engine::inputs_valid(u));
   u.kp = -1e-9;

@@ -10,6 +10,8 @@
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
 #include "hstmon/circuit/thesis_circuit_model.hpp"
+#include "hstmon/residual_bounds.hpp"
+#include "hstmon/thesis_reduced.hpp"
 
 namespace hstmon::host {
 
@@ -29,9 +31,10 @@ std::vector<std::string> health_names(std::uint32_t flags) {
 
 namespace {
 
-using Model = ThesisCircuitModel<double>;
-using Mon = Monitor<double>;
-using Obs = Mon::Obs;
+// The thesis monitor on either implementation of the rig's equations (ThesisImpl): the
+// engine's ThesisCircuitModel (Monitor<double>) or the hand-written specialisation.
+using MonEngine = Monitor<double>;
+using MonSpecialised = ModelMonitor<ThesisReducedModel<double>>;
 
 // Median of the positive sample intervals; 0 for fewer than two rows.
 double median_interval(const std::vector<double>& t) {
@@ -73,7 +76,8 @@ struct ChunkedReplay::State {
   ThesisInputs<double> defaults;
   ReplayOptions options;
   ReplayResult res;
-  Mon mon;
+  MonEngine mon_engine;
+  MonSpecialised mon_specialised;
   bool started = false;   // first row seen: tick, columns and initial state fixed
   bool failed = false;    // configuration refused: nothing replayed
   std::size_t row = 0;    // 0-based index of the next row in the log
@@ -82,13 +86,37 @@ struct ChunkedReplay::State {
   ThesisInputs<double> u_prev;
   std::vector<std::string> input_notes;
 
-  void start(const LogData& log);
-  void run(const LogData& log, std::size_t rows_total);
+  void start(const LogData& log) {
+    if (options.thesis == ThesisImpl::kEngine) {
+      start(mon_engine, log);
+    } else {
+      start(mon_specialised, log);
+    }
+  }
+  void run(const LogData& log, std::size_t rows_total) {
+    if (options.thesis == ThesisImpl::kEngine) {
+      run(mon_engine, log, rows_total);
+    } else {
+      run(mon_specialised, log, rows_total);
+    }
+  }
+  template <class Mon>
+  void finish(const Mon& mon, ReplayResult& out) const {
+    out.ticks = mon.observer().ticks();
+    out.final_status = to_string(mon.matcher().status());
+  }
+
+  template <class Mon>
+  void start(Mon& mon, const LogData& log);
+  template <class Mon>
+  void run(Mon& mon, const LogData& log, std::size_t rows_total);
 };
 
 // Fixes what the first chunk decides: the inputs held at their defaults, the tick, the
 // monitor's configuration and its initial state.
-void ChunkedReplay::State::start(const LogData& log) {
+template <class Mon>
+void ChunkedReplay::State::start(Mon& mon, const LogData& log) {
+  using Obs = typename Mon::Obs;
   started = true;
   res.t_first = log.t.front();
   const Signal input_signals[4] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp};
@@ -121,7 +149,7 @@ void ChunkedReplay::State::start(const LogData& log) {
   }
   res.tick = tick;
 
-  Mon::Config cfg;
+  typename Mon::Config cfg;
   cfg.observer.tick = tick;
   for (std::size_t c = 0; c < 4; ++c) {
     cfg.sensors.range_lo[c] = options.sensors.lo[c];
@@ -136,7 +164,7 @@ void ChunkedReplay::State::start(const LogData& log) {
   }
 
   const ThesisInputs<double> u0 = InputColumns(log, input_present, defaults).at(0);
-  Obs::Measurement first;
+  typename Obs::Measurement first;
   for (int c = 0; c < 4; ++c) {
     first.y[c] = (mask & (1u << c)) ? log.values[index(kMeasuredSignals[static_cast<std::size_t>(c)])][0] : 0.0;
   }
@@ -158,7 +186,9 @@ void ChunkedReplay::State::start(const LogData& log) {
 }
 
 // The monitor over one chunk's rows (row numbers and statistics continue across chunks).
-void ChunkedReplay::State::run(const LogData& log, std::size_t rows_total) {
+template <class Mon>
+void ChunkedReplay::State::run(Mon& mon, const LogData& log, std::size_t rows_total) {
+  using Obs = typename Mon::Obs;
   const std::size_t rows = log.rows();
   const std::vector<double>& t = log.t;
   const InputColumns in(log, input_present, defaults);
@@ -171,9 +201,9 @@ void ChunkedReplay::State::run(const LogData& log, std::size_t rows_total) {
   if (options.keep_trace) res.trace.reserve(res.trace.size() + rows);
   const std::size_t progress_every = std::max<std::size_t>(1, rows_total / 100);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  Obs::Measurement m;
-  const Obs::Measurement none;
-  Mon::Event ev;
+  typename Obs::Measurement m;
+  const typename Obs::Measurement none;
+  typename Mon::Event ev;
   auto drain_events = [&] {
     while (mon.pop_event(ev)) res.events.push_back(to_replay_event(ev));
   };
@@ -253,8 +283,11 @@ void ChunkedReplay::add(const LogData& chunk, std::size_t rows_total) {
 ReplayResult ChunkedReplay::finish() {
   ReplayResult res = std::move(s_->res);
   if (s_->started && !s_->failed) {
-    res.ticks = s_->mon.observer().ticks();
-    res.final_status = to_string(s_->mon.matcher().status());
+    if (s_->options.thesis == ThesisImpl::kEngine) {
+      s_->finish(s_->mon_engine, res);
+    } else {
+      s_->finish(s_->mon_specialised, res);
+    }
   }
   return res;
 }

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hstmon/circuit/thesis_impl.hpp"
 #include "hstmon/thesis_params.hpp"
 
 namespace hstmon::gap {
@@ -136,16 +137,16 @@ struct InputSeries {
 bool input_step(const InputSeries& u, std::size_t k);
 
 /// Settings of simulate().
-/// Which implementation of the thesis equations the extended model integrates. Both are
-/// the same equations and agree to rounding (test_gap_model holds simulate() on the two to
-/// 1e-9 of each channel's scale):
+/// Which implementation of the thesis equations the extended model integrates
+/// (SimOptions::thesis). Both are the same equations: test_gap_model holds their rates
+/// equal to 1e-9 and a simulate() run with four effects to 8e-7 of each channel's scale.
 ///  - kSpecialised: the hand-written ThesisReducedModel (lib/thesis_reduced.hpp), whose
 ///    closed-form DCV solve and O(1) input change make the fits' inner loop about 7× faster
 ///    than on the engine (the eight blind single-effect searches of test_gap: 31 s against
 ///    217 s, bench/RESULTS.md). The default.
 ///  - kEngine: the engine's thesis circuit (ThesisCircuitModel: thesis.json compiled), the
 ///    model the thesis monitor runs.
-enum class ThesisImpl { kSpecialised, kEngine };
+using hstmon::ThesisImpl;
 
 struct SimOptions {
   double max_step = 2.5e-4;  ///< largest internal step [s] (ROS2, fixed per log interval)
