@@ -5,6 +5,8 @@
 /// (one bulk stiffness K for all volumes, kfi = kfo = kf, Rlkg1 = Rlkg2 = Rlkg,
 /// Rbl = Rbl1 + Rbl2). Pressures are gauge (Ps = 0 is atmosphere).
 
+#include <cmath>
+
 namespace hstmon {
 
 /// Physical parameters of the thesis model (Table 2.2). Plain aggregate; copy freely.
@@ -36,6 +38,26 @@ struct ThesisInputs {
     return a.Psupl == b.Psupl && a.Ps == b.Ps && a.Pbp == b.Pbp && a.kp == b.kp;
   }
 };
+
+/// True when every parameter is finite and strictly positive (all are physical
+/// magnitudes; Rf or Rbl may be 0 if the other is not). The thesis rig's models refuse
+/// anything else (ThesisReducedModel, ThesisCircuitModel: params_valid).
+template <typename T>
+bool thesis_params_valid(const ThesisParams<T>& p) noexcept {
+  const T v[] = {p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf + p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
+  for (T e : v) {
+    if (!(std::isfinite(e) && e > T(0))) return false;
+  }
+  return std::isfinite(p.Rf) && std::isfinite(p.Rbl) && p.Rf >= T(0) && p.Rbl >= T(0);
+}
+
+/// True when the inputs are finite and kp (an orifice coefficient) is not negative.
+template <typename T>
+bool thesis_inputs_valid(const ThesisInputs<T>& u) noexcept {
+  // v·0 is ±0 for finite v and NaN for ±Inf/NaN: one test for all four, no branches.
+  const T z = u.Psupl * T(0) + u.Ps * T(0) + u.Pbp * T(0) + u.kp * T(0);
+  return z == T(0) && u.kp >= T(0);
+}
 
 /// Full state of equations 2.5–2.8.
 template <typename T>

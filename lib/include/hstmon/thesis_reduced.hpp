@@ -46,20 +46,10 @@ class ThesisReducedModel {
 
   /// True when every parameter is finite and strictly positive (all are physical
   /// magnitudes). A model built from invalid parameters must not be stepped.
-  static bool params_valid(const Params& p) noexcept {
-    const T v[] = {p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf + p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
-    for (T e : v) {
-      if (!(std::isfinite(e) && e > T(0))) return false;
-    }
-    return std::isfinite(p.Rf) && std::isfinite(p.Rbl) && p.Rf >= T(0) && p.Rbl >= T(0);
-  }
+  static bool params_valid(const Params& p) noexcept { return thesis_params_valid(p); }
 
   /// True when the inputs are finite and kp is non-negative.
-  static bool inputs_valid(const Inputs& u) noexcept {
-    // v·0 is ±0 for finite v and NaN for ±Inf/NaN: one test for all four, no branches.
-    const T z = u.Psupl * T(0) + u.Ps * T(0) + u.Pbp * T(0) + u.kp * T(0);
-    return z == T(0) && u.kp >= T(0);
-  }
+  static bool inputs_valid(const Inputs& u) noexcept { return thesis_inputs_valid(u); }
 
   /// Replaces the parameters and recomputes the derived coefficients. O(1).
   void set_params(const Params& p) noexcept {

@@ -72,21 +72,11 @@ class ThesisCircuitModel {
   /// How many of the circuit's parameters are ThesisParams' (the rest are fixed).
   static constexpr int kThesisParams = 11;
 
-  /// True when every parameter is finite and strictly positive (each is a physical
-  /// magnitude; Rf or Rbl may be 0 if the other is not). Such values are ones the engine
-  /// resolves (capacitance, inertia, transitions and resistances > 0; test_circuit_thesis_model
-  /// samples it), so no model is built to check.
-  static bool params_valid(const Params& p) noexcept {
-    const T v[] = {p.Dm, p.Dp, p.Rlkg, p.Ripl, p.Rf + p.Rbl, p.kf, p.J, p.K, p.dp_t_dcv, p.dp_t_prv};
-    for (T e : v) {
-      if (!(std::isfinite(e) && e > T(0))) return false;
-    }
-    return std::isfinite(p.Rf) && std::isfinite(p.Rbl) && p.Rf >= T(0) && p.Rbl >= T(0);
-  }
+  /// thesis_params_valid(p): values the engine resolves (capacitance, inertia, transitions
+  /// and resistances > 0; test_circuit_thesis_model samples it), so no model is built to check.
+  static bool params_valid(const Params& p) noexcept { return thesis_params_valid(p); }
   /// True when the inputs are finite and kp (an orifice coefficient) is not negative.
-  static bool inputs_valid(const Inputs& u) noexcept {
-    return Compiled::inputs_valid(engine_inputs(u)) && u.kp >= T(0);
-  }
+  static bool inputs_valid(const Inputs& u) noexcept { return thesis_inputs_valid(u); }
 
   /// Replaces the parameters (and re-resolves the circuit's values). O(elements).
   void set_params(const Params& p) noexcept {
