@@ -160,7 +160,6 @@ class Rhs {
 
   // f = (dPpp/dt, dωm/dt); y = true outputs (Pmi, Pmo, Ppp, ωm).
   void operator()(const Row& r, const double* x, double* f, double* y) const {
-    using M = Model;
     const double w = x[1];
     ThesisInputs<double> in;
     in.Psupl = r.Psupl;
@@ -182,8 +181,8 @@ class Rhs {
           in.kp == model_.inputs().kp)) {
       model_.set_inputs(in);
     }
-    typename M::Output out;
-    const typename M::State d = model_.derivative(typename M::State(x[0], w), &out);
+    typename Model::Output out;
+    const typename Model::State d = model_.derivative(typename Model::State(x[0], w), &out);
     f[0] = d[0];
     f[1] = d[1];
     const double dP = x[0] - r.Pbp;

@@ -9,7 +9,6 @@
 
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
-#include "hstmon/circuit/thesis_circuit_model.hpp"
 #include "hstmon/residual_bounds.hpp"
 #include "hstmon/thesis_reduced.hpp"
 
@@ -86,24 +85,20 @@ struct ChunkedReplay::State {
   ThesisInputs<double> u_prev;
   std::vector<std::string> input_notes;
 
-  void start(const LogData& log) {
+  // Calls f with the monitor of the chosen implementation.
+  template <class F>
+  void with_monitor(F&& f) {
     if (options.thesis == ThesisImpl::kEngine) {
-      start(mon_engine, log);
+      f(mon_engine);
     } else {
-      start(mon_specialised, log);
+      f(mon_specialised);
     }
+  }
+  void start(const LogData& log) {
+    with_monitor([&](auto& mon) { start(mon, log); });
   }
   void run(const LogData& log, std::size_t rows_total) {
-    if (options.thesis == ThesisImpl::kEngine) {
-      run(mon_engine, log, rows_total);
-    } else {
-      run(mon_specialised, log, rows_total);
-    }
-  }
-  template <class Mon>
-  void finish(const Mon& mon, ReplayResult& out) const {
-    out.ticks = mon.observer().ticks();
-    out.final_status = to_string(mon.matcher().status());
+    with_monitor([&](auto& mon) { run(mon, log, rows_total); });
   }
 
   template <class Mon>
@@ -283,11 +278,10 @@ void ChunkedReplay::add(const LogData& chunk, std::size_t rows_total) {
 ReplayResult ChunkedReplay::finish() {
   ReplayResult res = std::move(s_->res);
   if (s_->started && !s_->failed) {
-    if (s_->options.thesis == ThesisImpl::kEngine) {
-      s_->finish(s_->mon_engine, res);
-    } else {
-      s_->finish(s_->mon_specialised, res);
-    }
+    s_->with_monitor([&res](const auto& mon) {
+      res.ticks = mon.observer().ticks();
+      res.final_status = to_string(mon.matcher().status());
+    });
   }
   return res;
 }

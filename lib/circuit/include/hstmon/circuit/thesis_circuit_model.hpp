@@ -3,10 +3,11 @@
 /// The thesis rig's model on the engine: examples/circuits/thesis.json compiled
 /// (generated/thesis_circuit_compiled.hpp, circuit::CompiledModel) behind the rig's own
 /// vocabulary — ThesisParams (Table 2.2), ThesisInputs, channels (Pmi, Pmo, Ppp, ωm) —
-/// so what was written against that vocabulary runs on the one engine unchanged. This is
-/// what the thesis rig's monitor (monitor.hpp) and the host tools instantiate; the
-/// hand-written ThesisReducedModel (thesis_reduced.hpp) is a specialisation of the same
-/// equations that tests/circuit/test_thesis_circuit.cpp proves equal to it.
+/// so what was written against that vocabulary runs on the one engine unchanged. The
+/// thesis rig's monitor (monitor.hpp), its parameter files, fault table, fit and reference
+/// scenarios instantiate it; replay and the gap's fits do on request (thesis_impl.hpp).
+/// The hand-written ThesisReducedModel (thesis_reduced.hpp) is a specialisation of the
+/// same equations that tests/circuit/test_thesis_circuit.cpp proves equal to it.
 ///
 /// The parameter and input orders are thesis.json's, which is ThesisParams' and
 /// ThesisInputs' (checked by test_thesis_circuit_model against the generated names); the
@@ -18,9 +19,6 @@
 /// 512-byte firmware stack, which is one reason the firmware C API instantiates the
 /// hand-written specialisation (docs/circuits.md, "The thesis rig on the engine").
 
-#include <cmath>
-
-#include "hstmon/circuit/inlining.hpp"
 #include "hstmon/fault_signature.hpp"
 #include "hstmon/generated/thesis_circuit_compiled.hpp"
 #include "hstmon/model_bound.hpp"
@@ -119,8 +117,9 @@ class ThesisCircuitModel {
   bool state_plausible(const State& x) const noexcept { return m_.state_plausible(x); }
   /// At rest: ωm = 0, Ppp = Pbp.
   State rest_state() const noexcept { return m_.rest_state(); }
-  /// Steady state under the current inputs (the engine's solve on the full circuit).
-  /// @return false (x untouched) if there is none, e.g. kp = 0
+  /// Steady state under the current inputs (the engine's solve on the full circuit; with
+  /// the PRV shut, kp = 0, the stall ωm = 0).
+  /// @return false (x untouched) if the solve finds none
   bool steady_state(State& x) const noexcept { return m_.steady_state(x); }
 
   /// steady_state() for parameters p and inputs u (a model on the stack).
@@ -139,12 +138,16 @@ class ThesisCircuitModel {
     return true;
   }
 
-  // The usual tick on hosts (compiled_model.hpp): forwarded.
+  // The usual tick on hosts, forwarded (CompiledModel documents each).
+  /// Coefficients of one RK4 step of h [s] in a certified box centred on x [Pa, rad/s].
   UsualTick usual_tick_coeffs(T h, T rho_max, const State& x) const noexcept { return m_.usual_tick_coeffs(h, rho_max, x); }
+  /// One fused RK4 step inside c's box: outputs y at x, increment dx; false outside it.
   bool usual_tick(const UsualTick& c, const State& x, Output& y, State& dx) const noexcept {
     return m_.usual_tick(c, x, y, dx);
   }
+  /// tick_derivative's rho at x [1/s], the warm start left as it was.
   T tick_radius(const State& x, T rho_max) const noexcept { return m_.tick_radius(x, rho_max); }
+  /// state_plausible(x) with c's bounds.
   static bool usual_plausible(const UsualTick& c, const State& x) noexcept { return Compiled::usual_plausible(c, x); }
 
  private:
