@@ -29,6 +29,7 @@ struct GapArgs {
   bool refit = false;
   std::vector<std::string> effects;
   double max_step = 2.5e-4;
+  std::string thesis_model = "specialised";  // --thesis-model: specialised | engine
   std::string circuit;  // --circuit: run_circuit_gap instead (cli_circuit_gap.hpp)
 };
 
@@ -42,6 +43,7 @@ int run_gap_command(const GapArgs& a) {
   gap::GapOptions o;
   o.refit_nominal = a.refit;
   o.sim.max_step = a.max_step;
+  o.sim.thesis = a.thesis_model == "engine" ? ThesisImpl::kEngine : ThesisImpl::kSpecialised;
   if (!a.effects.empty()) {
     o.effects.clear();
     for (const auto& n : a.effects) {
@@ -97,6 +99,10 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
   cmd->add_option("--effects", args->effects, "restrict the library to these effects (names)");
   cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();
+  cmd->add_option("--thesis-model", args->thesis_model,
+                  "the thesis rig's equations: specialised (hand-written, the default: about 7x faster) or engine "
+                  "(thesis.json compiled); docs/gap.md")
+      ->check(CLI::IsMember({"specialised", "engine"}));
   cmd->add_option("--circuit", args->circuit,
                   "the gap of this circuit file (docs/circuits.md): candidates derived from the circuit, judged on "
                   "steady operating points; --params is then its parameter file");

@@ -18,7 +18,7 @@ using Y = std::array<double, kChannels>;
 
 // Steady outputs of `m` under inputs `in` (simulate's steady start: nominal steady state,
 // then a preroll with the effects).
-std::optional<Y> steady(const ExtendedModel& m, const ThesisInputs<double>& in) {
+std::optional<Y> steady(const ExtendedModel& m, const ThesisInputs<double>& in, ThesisImpl thesis) {
   InputSeries u;
   u.t = {0.0, 1e-3};
   u.Psupl = {in.Psupl, in.Psupl};
@@ -28,6 +28,7 @@ std::optional<Y> steady(const ExtendedModel& m, const ThesisInputs<double>& in) 
   u.start = StartRule::kSteady;
   SimOptions o;
   o.preroll = 0.5;
+  o.thesis = thesis;
   const SimResult r = simulate(m, u, o);
   if (!r.ok) return std::nullopt;
   return r.y[0];
@@ -41,11 +42,12 @@ ActiveEffect effect(Effect id, std::vector<double> v) {
 }
 
 // Shifts of the steady outputs, lower and upper sums over every perturbation.
-void envelope_at(const ExtendedModel& nominal, const ThesisInputs<double>& in, const Y& y0, Y& lo, Y& hi) {
+void envelope_at(const ExtendedModel& nominal, const ThesisInputs<double>& in, const Y& y0, Y& lo, Y& hi,
+                 ThesisImpl thesis) {
   lo.fill(0.0);
   hi.fill(0.0);
   auto add = [&](const ExtendedModel& m, const ThesisInputs<double>& u) {
-    const auto y = steady(m, u);
+    const auto y = steady(m, u, thesis);
     if (!y) return;
     for (std::size_t c = 0; c < kChannels; ++c) {
       const double d = (*y)[c] - y0[c];
@@ -105,7 +107,7 @@ void add_envelope_segments(Envelope& env, const ExtendedModel& nominal, const In
                            const std::vector<std::array<double, kChannels>>& y,
                            const std::vector<std::array<double, kChannels>>& model_y,
                            const std::array<bool, kChannels>& present, const std::array<double, kChannels>& noise,
-                           double settle) {
+                           double settle, ThesisImpl thesis) {
   const std::size_t n = u.size();
   std::size_t a = 0;
   while (a < n) {
@@ -137,9 +139,9 @@ void add_envelope_segments(Envelope& env, const ExtendedModel& nominal, const In
       in.kp = u.kp[a];
       s.Psupl = in.Psupl;
       s.kp = in.kp;
-      const auto y0 = steady(nominal, in);
+      const auto y0 = steady(nominal, in, thesis);
       if (y0) {
-        envelope_at(nominal, in, *y0, s.lo, s.hi);
+        envelope_at(nominal, in, *y0, s.lo, s.hi, thesis);
         // Outside when two channels are, with sensor offsets of 2 % of the reading (at
         // least 0.5 bar / 20 rpm): the operating point is Ppp, ωm and the pressures together.
         // One channel alone is outside only beyond what a sensor could be off by — 15 % of

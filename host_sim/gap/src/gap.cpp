@@ -507,8 +507,8 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     return res;
   }
   // Out of envelope: the machine is not the model's kind; no effect is fitted or named.
-  add_envelope_segments(res.envelope, nominal, A.u, A.y, ya, A.present, A.noise, o.settle_time);
-  add_envelope_segments(res.envelope, nominal, B.u, B.y, yb, B.present, B.noise, o.settle_time);
+  add_envelope_segments(res.envelope, nominal, A.u, A.y, ya, A.present, A.noise, o.settle_time, o.sim.thesis);
+  add_envelope_segments(res.envelope, nominal, B.u, B.y, yb, B.present, B.noise, o.settle_time, o.sim.thesis);
   finish_envelope(res.envelope);
   stage("envelope");
   if (res.envelope.out) {

@@ -36,12 +36,12 @@ struct Envelope {
 };
 
 /// Steady settings of one log and where the measurements lie; `model_y` is the nominal
-/// model's open-loop output at the log's rows.
+/// model's open-loop output at the log's rows, `thesis` the implementation it ran on.
 void add_envelope_segments(Envelope& env, const ExtendedModel& nominal, const InputSeries& u,
                            const std::vector<std::array<double, kChannels>>& y,
                            const std::vector<std::array<double, kChannels>>& model_y,
                            const std::array<bool, kChannels>& present, const std::array<double, kChannels>& noise,
-                           double settle);
+                           double settle, ThesisImpl thesis = ThesisImpl::kSpecialised);
 
 /// Decides env.out from the segments (at least half outside) and writes env.text.
 void finish_envelope(Envelope& env);
