@@ -58,7 +58,8 @@ TEST(ThesisCircuitModel, ValidityFollowsThePhysics) {
   for (int i = 0; i < 2000; ++i) {
     hstmon::ThesisParams<double> q;
     double* f[] = {&q.Dm, &q.Dp, &q.Rlkg, &q.Ripl, &q.Rf, &q.Rbl, &q.kf, &q.J, &q.K, &q.dp_t_dcv, &q.dp_t_prv};
-    for (double* v : f) *v *= std::pow(10.0, decades(rng)) * (i % 7 == 0 && v == f[i % 11] ? -1.0 : 1.0);
+    for (double* v : f) *v *= std::pow(10.0, decades(rng));
+    if (i % 7 == 0) *f[i % 11] = -*f[i % 11];  // one sign wrong in every seventh sample
     if (!Engine::params_valid(q)) continue;
     ++valid;
     EXPECT_TRUE(Engine::Compiled(Engine::engine_params(q)).valid()) << "sample " << i;
@@ -107,20 +108,19 @@ TEST(ThesisCircuitModel, SteadyStatesAndBoundEqualTheSpecialisations) {
 
 /// The thesis monitor on model M over 60 s at 1 kHz: steady, measured with the sensor
 /// presets' noise from the engine's own steady outputs, the PRV half blocked at 30 s.
-template <class M>
 struct Run {
-  double detected = -1.0, isolated = -1.0;
-  const char* first = "";
+  double detected = -1.0, isolated = -1.0;  ///< first detection and isolation [s]; −1: none
+  const char* first = "";                   ///< the isolation's best candidate
   int events = 0;
 };
 
 template <class M>
-Run<M> blockage_run() {
+Run blockage_run() {
   using Mon = hstmon::ModelMonitor<M, 64, 4, 8, false>;
   static Mon mon;
   typename Mon::Obs::Config oc;
   oc.tick = 1e-3;
-  Run<M> r;
+  Run r;
   if (mon.reconfigure(hstmon::ThesisParams<double>{}, oc, hstmon::kThesisSignatures,
                       hstmon::kThesisSignatureCount) != hstmon::Status::kOk) {
     return r;
