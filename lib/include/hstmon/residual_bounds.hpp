@@ -135,14 +135,21 @@ HSTMON_BOUND_PATH Status thesis_model_bound(const Model& model, const ThesisUnce
   return Status::kOk;
 }
 
-/// The thesis rig's model bound for the monitor (model_bound.hpp).
-template <typename T>
-struct ModelBound<ThesisReducedModel<T>> {
+/// The model bound (model_bound.hpp) of any model of the thesis rig's vocabulary:
+/// thesis_model_bound() with that model's steady states. Each thesis model's ModelBound
+/// derives from it.
+template <class Model>
+struct ThesisModelBound {
+  using T = typename Model::Scalar;
   using Uncertainty = ThesisUncertainty<T>;  ///< relative uncertainty per parameter and logged input [-]
   /// thesis_model_bound().
-  static Status compute(const ThesisReducedModel<T>& model, const Uncertainty& eps, T (&m)[kFdiChannels]) noexcept {
+  static Status compute(const Model& model, const Uncertainty& eps, T (&m)[kFdiChannels]) noexcept {
     return thesis_model_bound(model, eps, m);
   }
 };
+
+/// The hand-written thesis model's bound for the monitor.
+template <typename T>
+struct ModelBound<ThesisReducedModel<T>> : ThesisModelBound<ThesisReducedModel<T>> {};
 
 }  // namespace hstmon

@@ -159,12 +159,6 @@ class ThesisCircuitModel {
 /// The thesis rig's model bound on the engine: residual_bounds.hpp's rule (ThesisUncertainty,
 /// one steady-state solve per side and perturbed quantity) with the engine's steady states.
 template <typename T>
-struct ModelBound<ThesisCircuitModel<T>> {
-  using Uncertainty = ThesisUncertainty<T>;  ///< relative uncertainty per parameter and logged input [-]
-  /// thesis_model_bound() on the engine.
-  static Status compute(const ThesisCircuitModel<T>& model, const Uncertainty& eps, T (&m)[kFdiChannels]) noexcept {
-    return thesis_model_bound(model, eps, m);
-  }
-};
+struct ModelBound<ThesisCircuitModel<T>> : ThesisModelBound<ThesisCircuitModel<T>> {};
 
 }  // namespace hstmon
