@@ -1,8 +1,13 @@
 /* hstmon C API: the thesis-rig monitor in float — observer, sensor checks, residual
  * evaluator and fault matcher over the generated 26-row signature table
- * (hstmon::Monitor<float, 26, 2, 1>) — behind plain C structs, for C firmware and for PLC
- * runtimes that call C (see hstmon_fb.st for an IEC 61131-3 wrapper).
+ * (hstmon::ModelMonitor<Model, 26, 2, 1>) — behind plain C structs, for C firmware and for
+ * PLC runtimes that call C (see hstmon_fb.st for an IEC 61131-3 wrapper).
  *
+ * - Two libraries, one header and one behaviour: hstmon_c runs the thesis equations'
+ *   hand-written specialisation (ThesisReducedModel, within the Cortex-M4F budgets);
+ *   hstmon_c_engine (hosts) runs them on the circuit engine (ThesisCircuitModel,
+ *   thesis.json compiled). The one difference: with the PRV shut (kp = 0) the engine
+ *   finds the stall as a steady state, the specialisation reports none.
  * - No heap: the monitor lives in a caller-provided buffer of hstmon_monitor_size() bytes
  *   (at most HSTMON_MONITOR_STORAGE_BYTES), aligned to HSTMON_MONITOR_ALIGN; a static
  *   `hstmon_monitor_storage` object has both.
@@ -29,8 +34,16 @@ extern "C" {
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
  *  (checked at compile time in hstmon_c.cpp): 1232 on 32-bit targets (the monitor's
- *  size on the Cortex-M4F), 1280 on 64-bit hosts (8-byte pointers, padding). */
+ *  size on the Cortex-M4F), 1280 on 64-bit hosts (8-byte pointers, padding). Linked
+ *  against hstmon_c_engine (the engine's thesis model; HSTMON_C_THESIS_ENGINE, which
+ *  that library's users see defined): 1856 and 1904. */
+#if defined(HSTMON_C_THESIS_ENGINE)
 #if UINTPTR_MAX > 0xFFFFFFFFu
+#define HSTMON_MONITOR_STORAGE_BYTES 1904u
+#else
+#define HSTMON_MONITOR_STORAGE_BYTES 1856u
+#endif
+#elif UINTPTR_MAX > 0xFFFFFFFFu
 #define HSTMON_MONITOR_STORAGE_BYTES 1280u
 #else
 #define HSTMON_MONITOR_STORAGE_BYTES 1232u

@@ -3,12 +3,16 @@
 // between plain C structs and the core's types, placement-new into the caller's buffer;
 // all numerics stay in lib/.
 //
-// Its model is the hand-written specialisation of the thesis equations
-// (ThesisReducedModel), which test_thesis_circuit proves equal to the engine on
-// thesis.json (outputs and derivatives to 1e-12, steady states, observers over a start and
-// a kp step): its 128-byte model and static steady solve keep this monitor within the
-// Cortex-M4F budgets (1.5 KiB RAM, 512 B stack), which the engine's 0.7 KB model does
-// not. A circuit's C API on the engine is hstmon_circuit_c.h.
+// Its model is a build choice; the code below is the same for both:
+// - by default the hand-written specialisation of the thesis equations
+//   (ThesisReducedModel), which test_thesis_circuit proves equal to the engine on
+//   thesis.json (outputs and derivatives to 1e-15, steady states, observers over a start
+//   and a kp step): its 128-byte model and static steady solve keep this monitor within the
+//   Cortex-M4F budgets (1.5 KiB RAM, 512 B stack), which the engine's 0.7 KB model does not;
+// - with HSTMON_C_THESIS_ENGINE defined, the engine's ThesisCircuitModel (thesis.json
+//   compiled), for hosts and targets with room (the hstmon_c_engine library, which
+//   test_c_api also runs).
+// A circuit's C API on the engine is hstmon_circuit_c.h.
 #include "hstmon_c.h"
 
 #include <cstdint>
@@ -20,7 +24,11 @@
 #include "hstmon/model_monitor.hpp"
 #include "hstmon/residual_bounds.hpp"
 #include "hstmon/status.hpp"
+#if defined(HSTMON_C_THESIS_ENGINE)
+#include "hstmon/circuit/thesis_circuit_model.hpp"
+#else
 #include "hstmon/thesis_reduced.hpp"
+#endif
 
 namespace {
 
@@ -28,7 +36,12 @@ namespace {
 // ranking is read live with hstmon_candidates()), so one monitor fits in 1 KiB on the M4F.
 // No usual tick: every tick on the observer's general path, as on the Cortex-M4F (which
 // has none), so a C API monitor computes the same bits on every target (qemu_bitexact).
-using Mon = hstmon::ModelMonitor<hstmon::ThesisReducedModel<float>, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE,
+#if defined(HSTMON_C_THESIS_ENGINE)
+using ThesisModel = hstmon::ThesisCircuitModel<float>;
+#else
+using ThesisModel = hstmon::ThesisReducedModel<float>;
+#endif
+using Mon = hstmon::ModelMonitor<ThesisModel, HSTMON_MAX_FAULTS, HSTMON_EVENT_QUEUE,
                                  HSTMON_EVENT_CANDIDATES, false>;
 using Model = Mon::Model;
 using Obs = Mon::Obs;

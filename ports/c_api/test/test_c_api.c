@@ -172,7 +172,12 @@ static void test_bad_inputs_flagged(void) {
   bad.kp = -1e-8f;
   CHECK(hstmon_reset_steady(m, &bad) == HSTMON_INVALID_INPUTS);
   bad.kp = 0.0f;
+#if defined(HSTMON_C_THESIS_ENGINE)
+  /* The engine finds the stall with the PRV shut (w_m = 0); the specialisation has none. */
+  CHECK(hstmon_reset_steady(m, &bad) == HSTMON_OK);
+#else
   CHECK(hstmon_reset_steady(m, &bad) == HSTMON_NO_STEADY_STATE);
+#endif
   s = sample_at_estimate(m, &u);
   s.u.kp = -1e-8f; /* a negative orifice coefficient is no input */
   h = hstmon_step(m, &s);
