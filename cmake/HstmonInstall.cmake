@@ -3,12 +3,13 @@
 #
 #   include/            core and engine headers (lib/include, lib/circuit/include), hstmon_c.h,
 #                       hstmon_circuit_c.h
-#   lib/libhstmon_c.a   the C API
+#   lib/libhstmon_c.a   the C API (the thesis model's hand-written specialisation)
+#   lib/libhstmon_c_engine.a  the same C API on the engine's thesis model (host builds)
 #   lib/cmake/hstmon/   hstmonConfig.cmake, hstmonConfigVersion.cmake, hstmonTargets*.cmake,
 #                       HstmonCircuitCApi.cmake (hstmon_add_circuit_c_api)
 #   share/hstmon/c_api/ the circuit C API's source, compiled by hstmon_add_circuit_c_api for
 #                       the user's own generated circuit header and fault table
-#   lib/pkgconfig/      hstmon-c.pc (the C API for Make/Meson/plain-C builds)
+#   lib/pkgconfig/      hstmon-c.pc, hstmon-c-engine.pc (the C APIs for Make/Meson/plain-C builds)
 #   bin/                hstmon, hstmon-sim, hstmon-fdi, hstmon-gap-synth, hstmon-circuit-header
 #                       (host builds)
 #
@@ -20,12 +21,17 @@ include(CMakePackageConfigHelpers)
 set(HSTMON_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/hstmon CACHE STRING
   "Where hstmonConfig.cmake is installed, relative to the prefix")
 
-# Exported names: hstmon::core, hstmon::circuit and hstmon::c_api, as the ALIAS targets of a
-# source build.
+# Exported names: hstmon::core, hstmon::circuit, hstmon::c_api and (host builds)
+# hstmon::c_api_engine, as the ALIAS targets of a source build.
 set_target_properties(hstmon_core PROPERTIES EXPORT_NAME core)
 set_target_properties(hstmon_circuit PROPERTIES EXPORT_NAME circuit)
 set_target_properties(hstmon_c PROPERTIES EXPORT_NAME c_api)
-install(TARGETS hstmon_core hstmon_circuit hstmon_c EXPORT hstmonTargets
+set(_hstmon_libraries hstmon_core hstmon_circuit hstmon_c)
+if(TARGET hstmon_c_engine)
+  set_target_properties(hstmon_c_engine PROPERTIES EXPORT_NAME c_api_engine)
+  list(APPEND _hstmon_libraries hstmon_c_engine)
+endif()
+install(TARGETS ${_hstmon_libraries} EXPORT hstmonTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # Bare-metal build: hstmon::c_api carries the CPU/ABI flags it was compiled with.
@@ -60,9 +66,23 @@ install(FILES ${PROJECT_BINARY_DIR}/hstmonConfig.cmake ${PROJECT_BINARY_DIR}/hst
 # moved (or unpacked from an archive) without editing it.
 file(RELATIVE_PATH HSTMON_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 string(REGEX REPLACE "/$" "" HSTMON_PC_TO_PREFIX "${HSTMON_PC_TO_PREFIX}")
+# One template, one file per C API library: hstmon-c and (host builds) hstmon-c-engine.
+set(HSTMON_PC_NAME hstmon-c)
+set(HSTMON_PC_LIB hstmon_c)
+set(HSTMON_PC_MODEL "")
+set(HSTMON_PC_CFLAGS "")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/install/hstmon-c.pc.in ${PROJECT_BINARY_DIR}/hstmon-c.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/hstmon-c.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
   COMPONENT development)
+if(TARGET hstmon_c_engine)
+  set(HSTMON_PC_NAME hstmon-c-engine)
+  set(HSTMON_PC_LIB hstmon_c_engine)
+  set(HSTMON_PC_MODEL " on the circuit engine's thesis model")
+  set(HSTMON_PC_CFLAGS " -DHSTMON_C_THESIS_ENGINE")
+  configure_file(${CMAKE_CURRENT_LIST_DIR}/install/hstmon-c.pc.in ${PROJECT_BINARY_DIR}/hstmon-c-engine.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/hstmon-c-engine.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
+    COMPONENT development)
+endif()
 
 # Host programs, where this build has them.
 set(_hstmon_programs)

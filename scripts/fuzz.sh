@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# libFuzzer run of the three fuzz targets (tests/fuzz; docs/hardening.md):
+# libFuzzer run of the four fuzz targets (tests/fuzz; docs/hardening.md):
 #   fuzz_log_reader  read_log_from_memory, options from the first byte
 #   fuzz_params      parse_params_json (+ format/parse round trip)
 #   fuzz_c_api       the C API fed arbitrary sample streams (NaN, ±Inf, huge, denormal,
 #                    dropouts, resets, time going backwards)
+#   fuzz_c_api_engine  the same, on the engine's thesis model (hstmon_c_engine)
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
 # Builds with Clang + -fsanitize=fuzzer,address,undefined in build/h-fuzz and runs each
 # target for that long, starting from the committed seeds (tests/fuzz/corpus/<target>);
@@ -18,9 +19,9 @@ cd "$root"
 secs=${1:-60}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -eq 0 ]] && targets=(fuzz_log_reader fuzz_params fuzz_c_api)
-declare -A seeds=([fuzz_log_reader]=log_reader [fuzz_params]=params [fuzz_c_api]=c_api)
-declare -A maxlen=([fuzz_log_reader]=4096 [fuzz_params]=2048 [fuzz_c_api]=8192)
+[[ ${#targets[@]} -eq 0 ]] && targets=(fuzz_log_reader fuzz_params fuzz_c_api fuzz_c_api_engine)
+declare -A seeds=([fuzz_log_reader]=log_reader [fuzz_params]=params [fuzz_c_api]=c_api [fuzz_c_api_engine]=c_api)
+declare -A maxlen=([fuzz_log_reader]=4096 [fuzz_params]=2048 [fuzz_c_api]=8192 [fuzz_c_api_engine]=8192)
 build=build/h-fuzz
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
 
