@@ -6,14 +6,15 @@
 /// replay runs, so both go through the same code. The model is the thesis rig's
 /// hand-written one (monitor.hpp's Monitor) or a circuit from the engine
 /// (circuit/circuit_monitor.hpp); it satisfies model_concept.hpp and has a ModelBound
-/// (model_bound.hpp), steady_state() and slowest_rate(), and its Inputs compare with ==.
+/// (model_bound.hpp), steady_state() and slowest_rate(), and its Inputs compare with ==
+/// (and, for Config::input_tolerance, offer inputs_within: input_change.hpp).
 ///
 /// Each step(): observer tick → the model's own output variation (the transient
 /// allowance) → sensor checks on the raw sample → evaluator on the residuals (a saturated
-/// channel's only while above the model) → matcher. When the inputs change, the model
-/// bound (parameter-uncertainty part of the thresholds) is recomputed for the operating
-/// point they lead to: about 20 steady-state solves, so a few hundred microseconds on a
-/// Cortex-M4, once per change.
+/// channel's only while above the model) → matcher. When the inputs change by more than
+/// Config::input_tolerance (1 %), the model bound (parameter-uncertainty part of the
+/// thresholds) is recomputed for the operating point they lead to: about 20 steady-state
+/// solves, so a few hundred microseconds on a Cortex-M4, once per change.
 ///
 /// Transients are the model's business, not the sensors' (docs/fdi.md §9):
 ///  - reset_measured() starts the observer where the first sample says (initial_state.hpp),
@@ -48,6 +49,7 @@
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/fault_signature.hpp"
 #include "hstmon/initial_state.hpp"
+#include "hstmon/input_change.hpp"
 #include "hstmon/model_bound.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon/residual_evaluator.hpp"
@@ -187,6 +189,13 @@ class ModelMonitor
     /// eigenvalue problem per steady solve of the bound); 1 carries it whole. Only where
     /// kCanCarry (a circuit's monitor); elsewhere > 0 is kInvalidConfig.
     T bound_carry = T(0);
+    /// Relative change of the inputs [-], ≥ 0, up to which the model bound stays as it
+    /// is: it is recomputed once some input has moved further than this from its value
+    /// at the last bound (input_change.hpp). A measured input (a drive speed, a supply
+    /// pressure) differs on every row by its noise, and each bound is about 20 steady
+    /// solves. A bound 1 % off its operating point is off by about 1 % of itself (of a
+    /// 2 % parameter effect). 0: every change, as the matcher's baseline restarts.
+    T input_tolerance = T(0.01);
   };
 
   ModelMonitor() noexcept = default;
@@ -208,7 +217,7 @@ class ModelMonitor
           std::isfinite(c.transient_factor) && c.transient_factor >= T(1) && std::isfinite(c.startup_hold_max) &&
           c.startup_hold_max > T(0) && std::isfinite(c.model_transient) && c.model_transient >= T(0) &&
           std::isfinite(c.bound_carry) && c.bound_carry >= T(0) && (kCanCarry || c.bound_carry == T(0)) &&
-          lead_ok(c))) {
+          std::isfinite(c.input_tolerance) && c.input_tolerance >= T(0) && lead_ok(c))) {
       return Status::kInvalidConfig;
     }
     Status s = obs_.configure(model, c.observer);
@@ -221,6 +230,7 @@ class ModelMonitor
     transient_factor_ = c.transient_factor;
     hold_max_ = c.startup_hold_max;
     model_transient_ = c.model_transient;
+    input_tolerance_ = c.input_tolerance;
     if constexpr (kCanCarry) {
       this->bound_carry_ = c.bound_carry;
       this->timing_lead_ = c.timing_lead;
@@ -406,7 +416,8 @@ class ModelMonitor
 
   // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
   // update runs. Returns true when the bound must be recomputed: first tick after a
-  // reset, or the inputs the observer took on changed.
+  // reset, or the inputs the observer took on moved past Config::input_tolerance from
+  // the last bound's. Any change restarts the matcher's baseline.
   HSTMON_NOINLINE bool observe(T t, const Inputs& u, const Measurement& m) noexcept {
     // The observer holds the last good inputs when u is invalid, so a change is what it
     // actually took on, not what was offered.
@@ -421,6 +432,7 @@ class ModelMonitor
       // transient has gone: 5 time constants of the model and the transducer.
       matcher_.restart_baseline();
       settled_from_ = t + T(5) * (tau_m_ + transducer_tau_);
+      return !inputs_close(bound_inputs_, obs_.model().inputs(), input_tolerance_);
     }
     return true;
   }
@@ -556,6 +568,7 @@ class ModelMonitor
   // Keeps the last good bound when the changed operating point has no steady state, and
   // the last steady outputs for the model transient's envelope likewise.
   void update_bound() noexcept {
+    bound_inputs_ = obs_.model().inputs();
     if constexpr (kCanCarry) {
       if (this->bound_carry_ > T(0)) {
         carry_bound();
@@ -632,6 +645,8 @@ class ModelMonitor
   T transient_factor_ = T(1.5); ///< Config::transient_factor [-]
   T hold_max_ = T(2);           ///< Config::startup_hold_max [s]
   T model_transient_ = T(0);    ///< Config::model_transient [-]
+  T input_tolerance_ = T(0.01);  ///< Config::input_tolerance [-]
+  Inputs bound_inputs_{};       ///< the inputs the bound in force was computed for
   T env_decay_ = T(0);          ///< e^(−tick/τ_m) [-]
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]

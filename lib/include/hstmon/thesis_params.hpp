@@ -37,6 +37,17 @@ struct ThesisInputs {
   friend constexpr bool operator==(const ThesisInputs& a, const ThesisInputs& b) noexcept {
     return a.Psupl == b.Psupl && a.Ps == b.Ps && a.Pbp == b.Pbp && a.kp == b.kp;
   }
+  /// True when b is within tol [-] of a (input_change.hpp): each pressure within tol of
+  /// a's largest pressure (a tank pressure near 0 is no scale of its own), kp within tol
+  /// of a's kp. False for a NaN.
+  friend bool inputs_within(const ThesisInputs& a, const ThesisInputs& b, T tol) noexcept {
+    T p = std::fabs(a.Psupl);
+    if (std::fabs(a.Ps) > p) p = std::fabs(a.Ps);
+    if (std::fabs(a.Pbp) > p) p = std::fabs(a.Pbp);
+    p *= tol;
+    return std::fabs(b.Psupl - a.Psupl) <= p && std::fabs(b.Ps - a.Ps) <= p && std::fabs(b.Pbp - a.Pbp) <= p &&
+           std::fabs(b.kp - a.kp) <= tol * std::fabs(a.kp);
+  }
 };
 
 /// True when every parameter is finite and strictly positive (all are physical

@@ -13,8 +13,9 @@
  *   `hstmon_monitor_storage` object has both.
  * - Never blocks, never throws, never calls the C library's allocator; every function is
  *   O(1) except hstmon_reset_steady() (a bounded root search, ≤ ~300 model evaluations)
- *   and the first hstmon_step() after a reset or an input change, which recomputes the
- *   model bound of the thresholds (≈ 20 steady-state solves; docs/firmware.md has the
+ *   and the first hstmon_step() after a reset or after an input has moved more than
+ *   1 % (relative) from its value at the last bound, which recomputes the model bound
+ *   of the thresholds (≈ 20 steady-state solves; docs/firmware.md has the
  *   cost). A tick with a sample also runs the fault matcher (O(26 rows) when it changes
  *   its candidate set, O(1) while nominal).
  * - Not thread-safe per monitor: one task steps one monitor; separate monitors are
@@ -33,20 +34,20 @@ extern "C" {
 #endif
 
 /** Bytes reserved by hstmon_monitor_storage; hstmon_monitor_size() is never larger
- *  (checked at compile time in hstmon_c.cpp): 1232 on 32-bit targets (the monitor's
- *  size on the Cortex-M4F), 1280 on 64-bit hosts (8-byte pointers, padding). Linked
+ *  (checked at compile time in hstmon_c.cpp): 1248 on 32-bit targets (the monitor's
+ *  size on the Cortex-M4F), 1296 on 64-bit hosts (8-byte pointers, padding). Linked
  *  against hstmon_c_engine (the engine's thesis model; HSTMON_C_THESIS_ENGINE, which
- *  that library's users see defined): 1856 and 1904. */
+ *  that library's users see defined): 1872 and 1920. */
 #if defined(HSTMON_C_THESIS_ENGINE)
 #if UINTPTR_MAX > 0xFFFFFFFFu
-#define HSTMON_MONITOR_STORAGE_BYTES 1904u
+#define HSTMON_MONITOR_STORAGE_BYTES 1920u
 #else
-#define HSTMON_MONITOR_STORAGE_BYTES 1856u
+#define HSTMON_MONITOR_STORAGE_BYTES 1872u
 #endif
 #elif UINTPTR_MAX > 0xFFFFFFFFu
-#define HSTMON_MONITOR_STORAGE_BYTES 1280u
+#define HSTMON_MONITOR_STORAGE_BYTES 1296u
 #else
-#define HSTMON_MONITOR_STORAGE_BYTES 1232u
+#define HSTMON_MONITOR_STORAGE_BYTES 1248u
 #endif
 /** Alignment the monitor buffer needs [bytes]: 16 for Eigen's vectorised fixed-size types
  *  on SSE/NEON hosts (4 would do on Cortex-M4, which has no SIMD unit Eigen uses). */

@@ -70,6 +70,14 @@ class CircuitModel {
       }
       return true;
     }
+    /// True when each input of b is within tol [-] of a's, relative to a's
+    /// (input_change.hpp); an input at 0 in a changes with any move. False for a NaN.
+    friend bool inputs_within(const Inputs& a, const Inputs& b, T tol) noexcept {
+      for (int i = 0; i < Cap::kInputs; ++i) {
+        if (!(std::fabs(b.v[i] - a.v[i]) <= tol * std::fabs(a.v[i]))) return false;
+      }
+      return true;
+    }
   };
 
   /// Gauss–Seidel sweeps and Newton iterations per node before a solve is declared failed.
