@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -155,6 +156,42 @@ TEST(CircuitMonitor, ParameterFaultDetectedAfterItAndTruthInTheSet) {
     for (const auto& cand : last.candidates) in_set = in_set || cand.fault == k.truth;
     EXPECT_TRUE(in_set) << k.name << " " << k.fault << describe(r);
   }
+}
+
+// A test stand logs its drive speed measured: every row a different input. The monitor
+// treats the noise as one operating point (ModelMonitor::Config::input_tolerance) and
+// gives the clean log's diagnosis, within a few samples.
+TEST(CircuitMonitor, MeasuredDriveSpeedGivesTheCleanLogsDiagnosis) {
+  const ct::LoadedCircuit c = load("test_stand");
+  ct::CircuitSimOptions o;
+  o.duration = 14.0;
+  o.rate = 200.0;
+  o.seed = 8;
+  o.steps.push_back(step(c, "R_leak=0.2@5", true));
+  const ct::CircuitLog log = ct::simulate_circuit(c, o);
+  ct::CircuitLog measured = ct::parse_circuit_log(ct::circuit_log_text(c.file, log), "sim.csv", c.file);
+  ASSERT_TRUE(measured.ok());
+  const ct::CircuitLog clean = measured;
+  int drive = -1;
+  for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
+    if (c.file.inputs[i].name == "n_drive") drive = static_cast<int>(i);
+  }
+  ASSERT_GE(drive, 0);
+  ASSERT_FALSE(measured.inputs[drive].empty()) << "the log has the drive speed";
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> rpm_noise(0.0, 2.0 * M_PI / 30.0);  // 2 rpm [rad/s]
+  for (double& w : measured.inputs[drive]) w += rpm_noise(rng);
+  const ct::CircuitReplayResult a = ct::replay_circuit(c, clean, cli_options(c));
+  const ct::CircuitReplayResult b = ct::replay_circuit(c, measured, cli_options(c));
+  ASSERT_FALSE(a.events.empty()) << describe(a);
+  ASSERT_EQ(a.events.size(), b.events.size()) << "clean:" << describe(a) << "\nmeasured:" << describe(b);
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    EXPECT_EQ(a.events[k].event, b.events[k].event);
+    // The drive speed's noise enters the model's flow, so the residual is a little
+    // noisier and the CUSUM a few samples slower: 0.1 s is 20 samples.
+    EXPECT_NEAR(a.events[k].t, b.events[k].t, 0.1) << "clean:" << describe(a) << "\nmeasured:" << describe(b);
+  }
+  EXPECT_EQ(a.final_status, b.final_status);
 }
 
 TEST(CircuitMonitor, ThesisCircuitGivesTheDemoDiagnosis) {

@@ -3,9 +3,9 @@
 /// The whole monitor for any model in one object: observer (residuals), sensor checks,
 /// residual evaluator (thresholds from noise and parameter uncertainty, CUSUM) and the
 /// table-driven fault matcher. This is what firmware instantiates and what the host
-/// replay runs, so both go through the same code. The model is the thesis rig's
-/// hand-written one (monitor.hpp's Monitor) or a circuit from the engine
-/// (circuit/circuit_monitor.hpp); it satisfies model_concept.hpp and has a ModelBound
+/// replay runs, so both go through the same code. The model is the thesis rig's on the
+/// engine (monitor.hpp's Monitor), its hand-written specialisation (the C API's), or any
+/// circuit from the engine (circuit/circuit_monitor.hpp); it satisfies model_concept.hpp and has a ModelBound
 /// (model_bound.hpp), steady_state() and slowest_rate(), and its Inputs compare with ==
 /// (and, for Config::input_tolerance, offer inputs_within: input_change.hpp).
 ///
@@ -189,12 +189,13 @@ class ModelMonitor
     /// eigenvalue problem per steady solve of the bound); 1 carries it whole. Only where
     /// kCanCarry (a circuit's monitor); elsewhere > 0 is kInvalidConfig.
     T bound_carry = T(0);
-    /// Relative change of the inputs [-], ≥ 0, up to which the model bound stays as it
-    /// is: it is recomputed once some input has moved further than this from its value
-    /// at the last bound (input_change.hpp). A measured input (a drive speed, a supply
-    /// pressure) differs on every row by its noise, and each bound is about 20 steady
-    /// solves. A bound 1 % off its operating point is off by about 1 % of itself (of a
-    /// 2 % parameter effect). 0: every change, as the matcher's baseline restarts.
+    /// Relative change of the inputs [-], ≥ 0, up to which the operating point stays the
+    /// same: the model bound is recomputed, and the matcher's pre-fault baseline
+    /// restarted, once some input has moved further than this from its value at the last
+    /// bound (input_change.hpp). A measured input (a drive speed, a supply pressure)
+    /// differs on every row by its noise: each bound is about 20 steady solves, and a
+    /// baseline restarted every row never forms. A bound 1 % off its operating point is
+    /// off by about 1 % of itself (of a 2 % parameter effect). 0: every change.
     T input_tolerance = T(0.01);
   };
 
@@ -417,7 +418,7 @@ class ModelMonitor
   // The observer tick in its own frame (GCC, Clang), so that frame is gone when the bound
   // update runs. Returns true when the bound must be recomputed: first tick after a
   // reset, or the inputs the observer took on moved past Config::input_tolerance from
-  // the last bound's. Any change restarts the matcher's baseline.
+  // the last bound's — a new operating point, at which the matcher's baseline restarts.
   HSTMON_NOINLINE bool observe(T t, const Inputs& u, const Measurement& m) noexcept {
     // The observer holds the last good inputs when u is invalid, so a change is what it
     // actually took on, not what was offered.
@@ -427,12 +428,12 @@ class ModelMonitor
     if (!(hold_until_ == hold_until_)) hold_until_ = t + hold_;
     if (bound_valid_ && obs_.model().inputs() == before) return false;
     if (bound_valid_) {
-      look_ahead();
+      look_ahead();  // any change: the machine may be a tick ahead of the model
+      if (inputs_close(bound_inputs_, obs_.model().inputs(), input_tolerance_)) return false;
       // The pre-fault baseline restarts at the changed operating point once its
       // transient has gone: 5 time constants of the model and the transducer.
       matcher_.restart_baseline();
       settled_from_ = t + T(5) * (tau_m_ + transducer_tau_);
-      return !inputs_close(bound_inputs_, obs_.model().inputs(), input_tolerance_);
     }
     return true;
   }
