@@ -10,8 +10,8 @@
 //   and a kp step): its 128-byte model and static steady solve keep this monitor within the
 //   Cortex-M4F budgets (1.5 KiB RAM, 512 B stack), which the engine's 0.7 KB model does not;
 // - with HSTMON_C_THESIS_ENGINE defined, the engine's ThesisCircuitModel (thesis.json
-//   compiled), for hosts and targets with room (the hstmon_c_engine library, which
-//   test_c_api also runs).
+//   compiled), for hosts and targets with room (the hstmon_c_engine library;
+//   c_api.test_c_api_engine runs the C test on it).
 // A circuit's C API on the engine is hstmon_circuit_c.h.
 #include "hstmon_c.h"
 
@@ -33,7 +33,8 @@
 namespace {
 
 // Firmware sizes: every row of the table, 2 queued events of 1 candidate each (the full
-// ranking is read live with hstmon_candidates()), so one monitor fits in 1 KiB on the M4F.
+// ranking is read live with hstmon_candidates()), so one monitor stays within the M4F's
+// 1.5 KiB.
 // No usual tick: every tick on the observer's general path, as on the Cortex-M4F (which
 // has none), so a C API monitor computes the same bits on every target (qemu_bitexact).
 #if defined(HSTMON_C_THESIS_ENGINE)
