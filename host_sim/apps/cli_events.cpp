@@ -21,14 +21,24 @@ void add_residual_stats(nlohmann::json& j, const host::ChannelStats& s) {
 
 nlohmann::json event_json(const host::ReplayEvent& e) {
   nlohmann::json cands = nlohmann::json::array();
-  for (const auto& c : e.candidates) cands.push_back({{"fault", c.fault}, {"score", c.score}});
+  for (const auto& c : e.candidates) {
+    nlohmann::json j = {{"fault", c.fault}, {"score", c.score}};
+    if (std::isfinite(c.size)) {
+      j["size"] = c.size;
+      j["size_lo"] = number_or_null(c.size_lo);
+      j["size_hi"] = number_or_null(c.size_hi);
+      j["size_text"] = c.size_text;
+    }
+    cands.push_back(std::move(j));
+  }
   return {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
 }
 
 std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
   std::string out;
   for (std::size_t j = 0; j < e.candidates.size() && j < show; ++j) {
-    out += fmt::format("{}{} ({:.3f})", j ? ", " : "", e.candidates[j].fault, e.candidates[j].score);
+    const host::ReplayCandidate& c = e.candidates[j];
+    out += fmt::format("{}{} ({:.3f}{})", j ? ", " : "", c.fault, c.score, c.size_text.empty() ? "" : "; " + c.size_text);
   }
   const std::size_t more = static_cast<std::size_t>(e.consistent) > show ? static_cast<std::size_t>(e.consistent) - show : 0;
   if (more > 0) out += fmt::format(" and {} more", more);

@@ -388,3 +388,41 @@ TEST(CircuitMonitor, TimingLeadNeedsTheBoundCarry) {
   no_carry.timing_lead = 0;
   EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kOk);
 }
+
+// After a detection the steady windows decide (fault_estimator.hpp): the fault is fitted
+// at every operating point the machine visits since, so an operating-point change after
+// the fault neither clears it nor changes its name, and the verdict carries its size.
+TEST(CircuitMonitor, FaultFittedAcrossOperatingPointsWithItsSize) {
+  struct Case {
+    const char* name;
+    const char* fault;
+    const char* later;  // an input step after the fault
+    const char* truth;
+    double factor;
+  };
+  const Case cases[] = {
+      {"paper", "Rfric=1.25@4", "A_prv=2.2 mm2@9", "Rfric+", 1.25},
+      {"closed_loop_hst", "Dm=0.85@4", "T_L=60 N*m@9", "Dm-", 0.85},
+  };
+  for (const Case& k : cases) {
+    const ct::LoadedCircuit c = load(k.name);
+    ct::CircuitSimOptions o;
+    o.duration = 14.0;
+    o.rate = 200.0;
+    o.seed = 11;
+    o.steps.push_back(step(c, k.fault, true));
+    o.steps.push_back(step(c, k.later, false));
+    const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
+    ASSERT_FALSE(r.events.empty()) << k.name << ": not detected";
+    for (const auto& e : r.events) {
+      EXPECT_NE(e.event, "cleared") << k.name << ": a persisting fault cleared" << describe(r);
+    }
+    const auto& last = r.events.back();
+    ASSERT_EQ(last.event, "isolated") << k.name << describe(r);
+    ASSERT_FALSE(last.candidates.empty());
+    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.name << describe(r);
+    EXPECT_NEAR(last.candidates.front().size, k.factor, 0.05 * k.factor) << k.name;
+    EXPECT_LE(last.candidates.front().size_lo, last.candidates.front().size);
+    EXPECT_GE(last.candidates.front().size_hi, last.candidates.front().size);
+  }
+}

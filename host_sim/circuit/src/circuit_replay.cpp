@@ -11,6 +11,7 @@
 #include "hstmon/circuit/engine.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/fault_fit_diagnosis.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -212,8 +213,18 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   Model::Inputs u_prev = u0;
   const Obs::Measurement none;
   Mon::Event ev;
-  auto drain_events = [&] {
-    while (mon->pop_event(ev)) res.events.push_back(host::to_replay_event(ev));
+  // The matcher detects; the fit over the steady windows after a detection decides.
+  std::unique_ptr<FaultFitDiagnosis> diag;
+  if (res.table_rows > 0) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
+  auto drain_events = [&](double t_now, const Model::Inputs& u) {
+    while (mon->pop_event(ev)) {
+      const host::ReplayEvent e = host::to_replay_event(ev);
+      if (diag) {
+        diag->on_matcher_event(e, t_now, u, mon->matcher().sensor_faults() != 0, res.events);
+      } else {
+        res.events.push_back(e);
+      }
+    }
   };
   for (std::size_t k = 0; k < res.rows; ++k) {
     const double t_row = t[k] - res.t_first;
@@ -225,7 +236,8 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     const Model::Inputs u = inputs_at(k);
     measurement_at(k);
     mon->step(t[k], u, m);
-    drain_events();
+    drain_events(t[k], u);
+    if (diag) diag->on_row(t[k], u, m.y.data(), compared, mon->matcher().status() == MatchStatus::kNominal, res.events);
     const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;
@@ -248,9 +260,13 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       res.trace.push_back(std::move(tr));
     }
   }
-  drain_events();
+  drain_events(res.t_last, u_prev);
   res.ticks = obs.ticks();
   res.final_status = to_string(mon->matcher().status());
+  if (diag) {
+    diag->finish(res.t_last, res.events);
+    res.final_status = diag->status();
+  }
   for (std::size_t ch = 0; ch < channels; ++ch) {
     if (res.clipped[ch] > 0) {
       res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +

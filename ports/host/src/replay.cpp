@@ -307,7 +307,10 @@ ReplayEvent to_replay_event(const MatchEvent<double>& e) {
   // The matcher's cosine is negative when the residuals point away from a fault's
   // direction: no match at all, so 0 (a printed "-0.3" read as a bug).
   for (int j = 0; j < e.count; ++j) {
-    out.candidates.push_back({e.candidate[j].name, std::max(0.0, static_cast<double>(e.candidate[j].score))});
+    ReplayCandidate c;
+    c.fault = e.candidate[j].name;
+    c.score = std::max(0.0, static_cast<double>(e.candidate[j].score));
+    out.candidates.push_back(std::move(c));
   }
   return out;
 }

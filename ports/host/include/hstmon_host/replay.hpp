@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,12 @@ struct TraceRow {
 struct ReplayCandidate {
   std::string fault;   ///< "kp-", "sensor_p_pp", …
   double score = 0.0;  ///< matcher score in [0, 1] (higher is better; the matcher's cosine, a negative one shown as 0) [-]
+  /// The fault's estimated size, when a fit over the steady windows gave one: the factor
+  /// on the parameter or input [-] (0.9 = 10 % low), or a sensor's offset [SI]; NaN if none.
+  double size = std::numeric_limits<double>::quiet_NaN();
+  double size_lo = std::numeric_limits<double>::quiet_NaN();  ///< lower end of its interval [same]
+  double size_hi = std::numeric_limits<double>::quiet_NaN();  ///< upper end [same]
+  std::string size_text;  ///< the size in an engineer's words ("Dm: −15 % ± 2 %"); empty if none
 };
 
 /// A matcher event: an episode detected, isolated, ambiguous, unexplained or cleared.

@@ -1,0 +1,65 @@
+#pragma once
+/// @file fault_fit_diagnosis.hpp
+/// The diagnosis of `hstmon replay --circuit`: the fault matcher (fault_matcher.hpp)
+/// detects and gives the first guess from the transient; once a steady window after the
+/// detection is in, the fault estimator (fault_estimator.hpp) decides, from the model
+/// fitted at every operating point the machine visits since:
+///  - `isolated` / `ambiguous` list the hypotheses consistent with every window, best
+///    first, each with its fitted size;
+///  - a matcher `cleared` is withheld while the windows say the fault is still there (a
+///    persisting fault is not cleared by an input change), and the episode ends only on a
+///    window where no fault fits as well as any;
+///  - a sensor flag (a frozen, absent or out-of-range reading) keeps the matcher's
+///    verdict: the physics cannot produce it.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hstmon/fault_matcher.hpp"
+#include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_host/replay.hpp"
+
+namespace hstmon::circuit_tools {
+
+class FaultFitDiagnosis {
+ public:
+  using Model = host::HostCircuitModel;
+
+  /// @param model     the monitor's model (nominal parameters; its description outlives this)
+  /// @param measured  bit ch: channel ch is in the log
+  FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured);
+  ~FaultFitDiagnosis();
+  FaultFitDiagnosis(const FaultFitDiagnosis&) = delete;
+  FaultFitDiagnosis& operator=(const FaultFitDiagnosis&) = delete;
+
+  /// One matcher event at time t under inputs u: recorded in `out`, or withheld.
+  /// @param sensor_flag  the matcher has a sensor flag in this episode
+  void on_matcher_event(const host::ReplayEvent& e, double t, const Model::Inputs& u, bool sensor_flag,
+                        std::vector<host::ReplayEvent>& out);
+  /// One log row (after the matcher's events of that row).
+  /// @param matcher_quiet  the matcher's status is nominal
+  void on_row(double t, const Model::Inputs& u, const double* y, unsigned valid, bool matcher_quiet,
+              std::vector<host::ReplayEvent>& out);
+  /// The end of the log: the open window counts.
+  void finish(double t, std::vector<host::ReplayEvent>& out);
+
+  /// "nominal", "detected", "isolated", "ambiguous" or "unexplained".
+  const std::string& status() const { return status_; }
+  /// Notes for the replay's summary (hypotheses, windows).
+  std::vector<std::string> notes() const;
+
+ private:
+  struct Impl;
+  void decide(double t, std::vector<host::ReplayEvent>& out);
+  void emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out);
+
+  std::unique_ptr<Impl> impl_;
+  bool active_ = false;       ///< an episode is running (ours; it may outlive the matcher's)
+  bool sensor_lock_ = false;  ///< the matcher flagged a sensor: its verdict stands
+  std::string status_ = "nominal";
+  std::string last_key_;      ///< kind and candidate names of the last verdict event
+};
+
+}  // namespace hstmon::circuit_tools

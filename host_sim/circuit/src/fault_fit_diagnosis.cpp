@@ -1,0 +1,192 @@
+#include "hstmon_circuit/fault_fit_diagnosis.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <deque>
+
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/fault_estimator.hpp"
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::circuit_tools {
+
+namespace {
+
+using Model = host::HostCircuitModel;
+using Estimator = FaultEstimator<Model, 64, 8>;
+
+// "−15 % (−17 … −13 %)": a factor as a relative change with its interval.
+std::string percent(double f, double lo, double hi) {
+  return fmt::format("{:+.0f} % ({:+.0f} … {:+.0f} %)", 100.0 * (f - 1.0), 100.0 * (lo - 1.0), 100.0 * (hi - 1.0));
+}
+
+}  // namespace
+
+struct FaultFitDiagnosis::Impl {
+  const LoadedCircuit& c;
+  std::deque<std::string> names;  // stable addresses for the hypotheses' names
+  std::vector<FaultHypothesis> hyps;
+  std::vector<double> nominal;    // per hypothesis: the parameter's or input's nominal value [SI]
+  Estimator est;
+  bool ok = false;
+
+  explicit Impl(const LoadedCircuit& circuit) : c(circuit) {}
+
+  const char* keep(std::string s) {
+    names.push_back(std::move(s));
+    return names.back().c_str();
+  }
+
+  void add(HypothesisKind kind, int index, const std::string& base, double value) {
+    if (hyps.size() >= 64) return;
+    FaultHypothesis h;
+    h.kind = kind;
+    h.index = static_cast<std::int16_t>(index);
+    if (kind == HypothesisKind::kSensor) {
+      h.plus = h.minus = keep("sensor_" + base);
+    } else {
+      h.plus = keep(base + "+");
+      h.minus = keep(base + "-");
+    }
+    hyps.push_back(h);
+    nominal.push_back(value);
+  }
+
+  // The size of fit f in words: the parameter's new value and its change, or the offset.
+  std::string size_text(const HypothesisFit<double>& f) const {
+    const FaultHypothesis& h = hyps[static_cast<std::size_t>(f.hyp)];
+    const double v0 = nominal[static_cast<std::size_t>(f.hyp)];
+    if (h.kind == HypothesisKind::kSensor) {
+      const host::CircuitSensor& s = c.file.sensors[static_cast<std::size_t>(h.index)];
+      const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
+      const double k = u.ok() ? 1.0 / u.conversion.factor : 1.0;
+      const std::string unit = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
+      return fmt::format("offset {:+.3g} {} ({:+.3g} … {:+.3g})", f.factor * k, unit, f.lo * k, f.hi * k);
+    }
+    const auto q = h.kind == HypothesisKind::kParam ? c.file.params[static_cast<std::size_t>(h.index)].quantity
+                                                    : c.file.inputs[static_cast<std::size_t>(h.index)].quantity;
+    const std::string base = std::string(h.plus).substr(0, std::string(h.plus).size() - 1);
+    return fmt::format("{} {:.3g} {}, {}", base, v0 * f.factor, host::circuit_si_unit(q), percent(f.factor, f.lo, f.hi));
+  }
+};
+
+FaultFitDiagnosis::FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured)
+    : impl_(std::make_unique<Impl>(c)) {
+  Impl& m = *impl_;
+  for (std::size_t k = 0; k < c.file.params.size(); ++k) {
+    if (moves_steady_state(c.file.params[k])) m.add(HypothesisKind::kParam, static_cast<int>(k), c.file.params[k].name, c.values.params.v[k]);
+  }
+  for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
+    if (c.values.inputs.v[i] != 0.0) m.add(HypothesisKind::kInput, static_cast<int>(i), c.file.inputs[i].name, c.values.inputs.v[i]);
+  }
+  double sigma[Model::kOutputs] = {};
+  for (std::size_t ch = 0; ch < c.file.sensors.size() && ch < static_cast<std::size_t>(Model::kOutputs); ++ch) {
+    sigma[ch] = sensor_sigma(c.file.sensors[ch]);
+    if (((measured >> ch) & 1u) != 0) m.add(HypothesisKind::kSensor, static_cast<int>(ch), c.file.sensors[ch].name, 0.0);
+  }
+  Estimator::Config cfg;
+  m.ok = m.est.configure(model, m.hyps.data(), static_cast<int>(m.hyps.size()), sigma, measured, circuit_uncertainty(c), cfg);
+}
+
+FaultFitDiagnosis::~FaultFitDiagnosis() = default;
+
+void FaultFitDiagnosis::emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out) {
+  status_ = e.event == "cleared" ? "nominal" : e.event;
+  out.push_back(std::move(e));
+}
+
+void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, const Model::Inputs& u, bool sensor_flag,
+                                         std::vector<host::ReplayEvent>& out) {
+  Estimator& est = impl_->est;
+  if (e.event == "detected") {
+    if (active_) return;  // our episode goes on: the matcher cleared while the fault persisted
+    active_ = true;
+    sensor_lock_ = false;
+    last_key_.clear();
+    if (impl_->ok) est.start(t, u);
+    emit(e, out);
+    return;
+  }
+  if (e.event == "cleared") {
+    if (!active_) return;
+    // Withheld until a steady window has judged it (a matcher clear follows an input
+    // change, where the bound jumps), and while the windows say a fault is there.
+    if (!sensor_lock_ && impl_->ok && est.verdict() != EstimateVerdict::kNoFault) return;
+    active_ = false;
+    est.reset();
+    last_key_.clear();
+    emit(e, out);
+    return;
+  }
+  // isolated / ambiguous / unexplained: the matcher's word stands for a sensor flag, and
+  // until the estimator has a window.
+  if (sensor_flag) sensor_lock_ = true;
+  if (sensor_lock_ || est.verdict() == EstimateVerdict::kNone) {
+    last_key_.clear();
+    emit(e, out);
+  }
+}
+
+void FaultFitDiagnosis::on_row(double t, const Model::Inputs& u, const double* y, unsigned valid, bool matcher_quiet,
+                               std::vector<host::ReplayEvent>& out) {
+  if (!active_ || !impl_->ok || sensor_lock_) return;
+  if (!impl_->est.add(t, u, y, valid)) return;
+  if (impl_->est.verdict() == EstimateVerdict::kNoFault && matcher_quiet) {
+    // A window where no fault fits as well as any, and the residuals are quiet: gone.
+    host::ReplayEvent e;
+    e.t = t;
+    e.event = "cleared";
+    active_ = false;
+    impl_->est.reset();
+    last_key_.clear();
+    emit(std::move(e), out);
+    return;
+  }
+  decide(t, out);
+}
+
+void FaultFitDiagnosis::finish(double t, std::vector<host::ReplayEvent>& out) {
+  if (!active_ || !impl_->ok || sensor_lock_) return;
+  if (impl_->est.finish()) decide(t, out);
+}
+
+void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
+  const Estimator& est = impl_->est;
+  host::ReplayEvent e;
+  e.t = t;
+  switch (est.verdict()) {
+    case EstimateVerdict::kIsolated: e.event = "isolated"; break;
+    case EstimateVerdict::kAmbiguous: e.event = "ambiguous"; break;
+    case EstimateVerdict::kUnexplained: e.event = "unexplained"; break;
+    default: return;  // no window yet, or none says a fault: the last verdict stands
+  }
+  const double scale = std::fmax(1.0, est.chi2_best() / std::fmax(1, est.dof()));
+  const int shown = e.event == "unexplained" ? std::min(3, est.ranked()) : est.consistent();
+  e.consistent = e.event == "unexplained" ? 0 : est.consistent();
+  std::string key = e.event;
+  for (int r = 0; r < shown; ++r) {
+    const HypothesisFit<double>& f = est.fit(r);
+    host::ReplayCandidate cand;
+    cand.fault = f.name;
+    // Relative likelihood of the hypothesis against the best one.
+    cand.score = std::exp(-0.5 * (f.chi2 - est.fit(0).chi2) / scale);
+    cand.size = f.factor;
+    cand.size_lo = f.lo;
+    cand.size_hi = f.hi;
+    cand.size_text = impl_->size_text(f);
+    key += "," + cand.fault;
+    e.candidates.push_back(std::move(cand));
+  }
+  if (key == last_key_) return;
+  last_key_ = key;
+  emit(std::move(e), out);
+}
+
+std::vector<std::string> FaultFitDiagnosis::notes() const {
+  std::vector<std::string> n;
+  if (!impl_->ok) n.push_back("fault identification off: no hypotheses");
+  return n;
+}
+
+}  // namespace hstmon::circuit_tools

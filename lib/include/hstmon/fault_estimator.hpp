@@ -1,0 +1,515 @@
+#pragma once
+/// @file fault_estimator.hpp
+/// Fault identification over the steady operating points after a detection: for each
+/// single-fault hypothesis, the fault size that best explains every steady window seen
+/// since, and how well it does (a χ² over windows and channels). A fault table fixes
+/// signs at one operating point; this fits the model itself at each point the machine
+/// visits, so
+///  - a residual sign that flips with the operating point (reverse drive) is what the
+///    model predicts, not a contradiction;
+///  - a fault that shows only at some points (a relief setting, seen only at high
+///    pressure) is judged where it shows;
+///  - faults whose signatures coincide at one point are told apart by how their effect
+///    scales across points (a leak grows with pressure, a delivery loss with speed): one
+///    size must fit every window, or the hypothesis loses;
+///  - the winner comes with its size (a factor on the parameter, with an interval).
+///
+/// Hypotheses: a relative fault on a model parameter or a logged input (the machine's true
+/// value is factor × the model's), and a constant offset on a sensor channel. A window is
+/// a stretch of constant inputs, starting a settle time after the inputs (or the
+/// episode) last changed; it holds the mean reading per channel. When it opens, the
+/// model's steady outputs are solved at its inputs for every hypothesis at every factor
+/// of a fixed grid (kGrid factors, log-spaced, 1 among them); its χ² against the mean
+/// reading is then cheap to update as samples arrive. Windows add up in χ²; a window's
+/// weight per channel is 1/s², s² = σ²/min(n, n_cap) + (k_model·bound)²: the model
+/// bound (parameter uncertainty) at that point stands for the model error the fit cannot
+/// remove, and the cap for noise that is not white.
+///
+/// Verdict, over the windows of the episode: a hypothesis is consistent when its best χ²
+/// lies within Δ = k_delta·max(1, χ²_best/dof) of the best one (dof = channel samples
+/// compared, one per channel and window); the fault is present while the no-fault χ²
+/// (every factor 1) exceeds the best by k_present·max(1, χ²_best/dof); a best χ²/dof above
+/// k_unexplained that removes less than 1 − explained_share of the no-fault χ² is "no single
+/// hypothesis fits" (one that removes more is the fault, in a machine the model describes
+/// only roughly: a relief valve's spool and characteristic). Nothing here allocates or throws; the
+/// steady solves (kHyp·kGrid per window opening) run at an input change, never per tick.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "hstmon/model_bound.hpp"
+
+namespace hstmon {
+
+/// What a hypothesis changes.
+enum class HypothesisKind : std::uint8_t {
+  kParam = 0,   ///< a model parameter × factor
+  kInput = 1,   ///< a logged input × factor (the machine's true value differs from the log)
+  kSensor = 2,  ///< a constant offset on one channel's reading
+};
+
+/// One single-fault hypothesis of the estimator. Names follow the fault table:
+/// `<name>+` / `<name>-` by the fitted factor's side, `sensor_<channel>` for a sensor.
+struct FaultHypothesis {
+  const char* plus = nullptr;   ///< name when the factor is > 1 (sensor: the sensor row's name)
+  const char* minus = nullptr;  ///< name when the factor is < 1 (sensor: same as plus)
+  HypothesisKind kind = HypothesisKind::kParam;
+  std::int16_t index = 0;       ///< parameter, input or channel index
+};
+
+/// Verdict of the estimator.
+enum class EstimateVerdict : std::uint8_t {
+  kNone = 0,         ///< no window yet in this episode
+  kNoFault = 1,      ///< the no-fault model fits as well as any hypothesis
+  kIsolated = 2,     ///< one hypothesis consistent
+  kAmbiguous = 3,    ///< several consistent
+  kUnexplained = 4,  ///< the best hypothesis still misses by far (several faults, or outside the model)
+};
+
+/// The fit of one hypothesis.
+template <typename T>
+struct HypothesisFit {
+  std::int16_t hyp = -1;  ///< index into the hypothesis list
+  T chi2 = T(0);          ///< best χ² over the episode's windows [-]
+  T factor = T(1);        ///< fitted factor (param/input) [-], or offset (sensor) [channel unit]
+  T lo = T(1), hi = T(1); ///< interval of the factor or offset (Δχ² = 1, scaled by χ²_best/dof) [same]
+  const char* name = nullptr;
+};
+
+/// @tparam Model  a parametric model: Params::v[], Inputs::v[], set_params, set_inputs,
+///                steady_state(State&), outputs(State), slowest_rate(State), valid(),
+///                kOutputs; and ModelBound<Model> with Uncertainty
+/// @tparam MaxHyp hypotheses the object holds
+/// @tparam Ranked fits kept in rank order
+template <class Model, int MaxHyp = 64, int Ranked = 8>
+class FaultEstimator {
+ public:
+  using T = typename Model::Scalar;
+  using Inputs = typename Model::Inputs;
+  using Output = typename Model::Output;
+  using Bound = ModelBound<Model>;
+  using Uncertainty = typename Bound::Uncertainty;
+  using Fit = HypothesisFit<T>;
+  static constexpr int kChannels = Model::kOutputs;
+  /// The factor grid in ln(factor): dense near 0 (a few % faults), out to ×20 and ×1/20.
+  static constexpr int kGrid = 25;
+  static constexpr int kRanked = Ranked;
+
+  /// Settings; times in s, k_* dimensionless.
+  struct Config {
+    T settle_min = T(0.1);      ///< shortest wait after an input change or a detection [s]
+    T settle_max = T(3);        ///< longest wait (a near-undamped mode at rest) [s]
+    T settle_taus = T(3);       ///< wait in slowest time constants at the new point [-]
+    T window_min = T(0.2);      ///< samples needed before a window counts [s]
+    T decide_every = T(0.5);    ///< re-decide during a long window [s]
+    T n_cap = T(100);           ///< samples whose noise averages out at most [-]
+    T k_model = T(0.25);        ///< share of the model bound counted as model error [-]
+    T k_delta = T(9);           ///< χ² lead that separates hypotheses [-]
+    T k_present = T(25);        ///< χ² lead of the best fault over no fault that says a fault is there [-]
+    T k_unexplained = T(50);    ///< χ²/dof of the best fit beyond which none fits [-] …
+    T explained_share = T(0.1); ///< … unless it leaves less than this share of the no-fault χ² [-]
+    T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
+  };
+
+  /// @param model  the monitor's model (description, parameters and nominal inputs set), copied
+  /// @param hyps   count hypotheses, borrowed (must outlive the estimator)
+  /// @param sigma  noise σ per channel [channel unit]
+  /// @param eps    the model bound's parameter uncertainty
+  /// @return false on a bad argument (then nothing is estimated)
+  bool configure(const Model& model, const FaultHypothesis* hyps, int count, const T* sigma, unsigned measured,
+                 const Uncertainty& eps, const Config& c) noexcept {
+    if (hyps == nullptr || count <= 0 || count > MaxHyp) return false;
+    model_ = model;
+    nominal_ = model.params();
+    hyps_ = hyps;
+    count_ = count;
+    measured_ = measured;
+    for (int i = 0; i < kChannels; ++i) sigma_[i] = sigma[i] > T(0) ? sigma[i] : T(1);
+    eps_ = eps;
+    cfg_ = c;
+    for (int g = 0; g < kGrid; ++g) factor_[g] = std::exp(grid_log(g));
+    configured_ = true;
+    reset();
+    return true;
+  }
+
+  /// Forgets the episode (windows, fits, verdict); the next window opens after a settle.
+  void reset() noexcept {
+    for (int k = 0; k < count_; ++k) {
+      for (int g = 0; g < kGrid; ++g) chi_[k][g] = T(0);
+    }
+    for (int i = 0; i < kChannels; ++i) sens_a_[i] = sens_b_[i] = T(0);
+    chi0_ = T(0);
+    dof_ = 0;
+    windows_ = 0;
+    open_ = false;
+    armed_ = false;
+    verdict_ = EstimateVerdict::kNone;
+    n_ranked_ = 0;
+    last_chi0_w_ = last_dof_w_ = T(0);
+  }
+
+  /// Starts an episode at t: windows from now on (after a settle) count.
+  void start(T t, const Inputs& u) noexcept {
+    reset();
+    begin_settle(t, u);
+  }
+
+  /// Feeds one sample while an episode runs. Returns true when the verdict was re-decided.
+  /// @param y      readings [channel unit]; valid: bit i = channel i read
+  bool add(T t, const Inputs& u, const T* y, unsigned valid) noexcept {
+    if (!configured_) return false;
+    if (!armed_) {
+      begin_settle(t, u);
+      return false;
+    }
+    if (!inputs_close(u_win_, u)) {
+      const bool decided = close_window();
+      begin_settle(t, u);
+      return decided;
+    }
+    if (t < t_open_) return false;
+    if (!open_ && !open_window(u)) {
+      t_open_ = t + cfg_.settle_max;  // no steady state here: try again later
+      return false;
+    }
+    for (int i = 0; i < kChannels; ++i) {
+      if (((valid & measured_) >> i & 1u) == 0) continue;
+      sum_[i] += y[i];
+      n_[i] += 1;
+    }
+    t_last_ = t;
+    if (t - t_first_ >= cfg_.window_min && t - t_decided_ >= cfg_.decide_every) {
+      t_decided_ = t;
+      decide(true);
+      return true;
+    }
+    return false;
+  }
+
+  /// Closes the window at the end of the data. Returns true when the verdict was re-decided.
+  bool finish() noexcept { return close_window(); }
+
+  EstimateVerdict verdict() const noexcept { return verdict_; }
+  /// Windows closed in this episode (the open one not counted).
+  int windows() const noexcept { return windows_; }
+  /// Fits in rank order, best first (consistent ones first; count: ranked()).
+  int ranked() const noexcept { return n_ranked_; }
+  const Fit& fit(int r) const noexcept { return ranked_[r]; }
+  /// Consistent hypotheses (a prefix of the ranking).
+  int consistent() const noexcept { return n_consistent_; }
+  /// χ² of the no-fault model and of the best fit over the episode; compared samples [-].
+  T chi2_nominal() const noexcept { return chi0_all_; }
+  T chi2_best() const noexcept { return n_ranked_ > 0 ? ranked_[0].chi2 : chi0_all_; }
+  int dof() const noexcept { return dof_all_; }
+  /// χ²/dof of the no-fault model on the latest window alone (0 before any) [-].
+  T latest_nominal_chi2_per_dof() const noexcept { return last_dof_w_ > T(0) ? last_chi0_w_ / last_dof_w_ : T(0); }
+
+ private:
+  static constexpr int kN = kChannels > 0 ? kChannels : 1;
+  static constexpr int kH = MaxHyp;
+  static constexpr std::size_t kNz = static_cast<std::size_t>(kN);      ///< array extent
+  static constexpr std::size_t kHz = static_cast<std::size_t>(MaxHyp);  ///< array extent
+  static constexpr std::size_t kGz = static_cast<std::size_t>(kGrid);   ///< array extent
+
+  static T grid_log(int g) noexcept {
+    // |ln f| steps: 0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.45, 0.7, 1, 1.5, 2.2, 3.
+    constexpr T kSteps[13] = {T(0), T(0.02), T(0.05), T(0.1), T(0.15), T(0.2), T(0.3),
+                              T(0.45), T(0.7), T(1), T(1.5), T(2.2), T(3)};
+    const int j = g - kGrid / 2;
+    return j < 0 ? -kSteps[-j] : kSteps[j];
+  }
+
+  bool inputs_close(const Inputs& a, const Inputs& b) const noexcept {
+    for (int i = 0; i < static_cast<int>(sizeof(a.v) / sizeof(a.v[0])); ++i) {
+      const T d = std::fabs(b.v[i] - a.v[i]);
+      if (!(d <= cfg_.input_tolerance * std::fabs(a.v[i]) + T(1e-12) * (T(1) + std::fabs(a.v[i])))) return false;
+    }
+    return true;
+  }
+
+  void begin_settle(T t, const Inputs& u) noexcept {
+    armed_ = true;
+    open_ = false;
+    u_win_ = u;
+    model_.set_params(nominal_);
+    model_.set_inputs(u);
+    typename Model::State xs;
+    T wait = cfg_.settle_max;
+    if (model_.valid() && model_.steady_state(xs)) {
+      const T rate = model_.slowest_rate(xs);
+      if (rate > T(0)) wait = cfg_.settle_taus / rate;
+    }
+    wait = std::fmin(std::fmax(wait, cfg_.settle_min), cfg_.settle_max);
+    t_open_ = t + wait;
+  }
+
+  // The model's steady outputs for every hypothesis and factor at the window's inputs.
+  bool open_window(const Inputs& u) noexcept {
+    model_.set_params(nominal_);
+    model_.set_inputs(u);
+    typename Model::State xs;
+    if (!model_.valid() || !model_.steady_state(xs)) return false;
+    y0_ = model_.outputs(xs);
+    T b[kNz] = {};
+    T (&bound)[kNz] = b;
+    if (Bound::compute(model_, eps_, bound) != Status::kOk) {
+      for (int i = 0; i < kN; ++i) b[i] = T(0);
+    }
+    for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * b[i];
+    for (int k = 0; k < count_; ++k) {
+      const FaultHypothesis& h = hyps_[k];
+      for (int g = 0; g < kGrid; ++g) {
+        ok_[k][g] = true;
+        if (h.kind == HypothesisKind::kSensor || g == kGrid / 2) {
+          for (int i = 0; i < kN; ++i) ys_[k][g][i] = y0_[i];
+          continue;
+        }
+        typename Model::Params p = nominal_;
+        Inputs v = u;
+        if (h.kind == HypothesisKind::kParam) {
+          p.v[h.index] *= factor_[g];
+        } else {
+          v.v[h.index] *= factor_[g];
+        }
+        model_.set_params(p);
+        model_.set_inputs(v);
+        ok_[k][g] = model_.valid() && model_.steady_state(xs);
+        const Output yk = ok_[k][g] ? model_.outputs(xs) : y0_;
+        for (int i = 0; i < kN; ++i) ys_[k][g][i] = yk[i];
+      }
+    }
+    model_.set_params(nominal_);
+    for (int i = 0; i < kN; ++i) {
+      sum_[i] = T(0);
+      n_[i] = 0;
+    }
+    open_ = true;
+    t_first_ = t_last_ = t_open_;
+    t_decided_ = t_open_;
+    return true;
+  }
+
+  T weight(int i) const noexcept {
+    const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
+    const T s2 = sigma_[i] * sigma_[i] / n + model_err_[i] * model_err_[i];
+    return T(1) / s2;
+  }
+
+  // The open window's χ² per hypothesis and factor, added to the closed windows' sums.
+  void window_terms(T (&chi)[kHz][kGz], T& chi0, T (&sa)[kNz], T (&sb)[kNz], int& dof) const noexcept {
+    for (int k = 0; k < count_; ++k) {
+      for (int g = 0; g < kGrid; ++g) chi[k][g] = chi_[k][g];
+    }
+    chi0 = chi0_;
+    dof = dof_;
+    for (int i = 0; i < kN; ++i) {
+      sa[i] = sens_a_[i];
+      sb[i] = sens_b_[i];
+    }
+    T w[kNz] = {}, mean[kNz] = {};
+    for (int i = 0; i < kN; ++i) {
+      if (n_[i] == 0) continue;
+      w[i] = weight(i);
+      mean[i] = sum_[i] / static_cast<T>(n_[i]);
+      const T r = mean[i] - y0_[i];
+      chi0 += w[i] * r * r;
+      sa[i] += w[i];
+      sb[i] += w[i] * r;
+      ++dof;
+    }
+    for (int k = 0; k < count_; ++k) {
+      if (hyps_[k].kind == HypothesisKind::kSensor) continue;
+      for (int g = 0; g < kGrid; ++g) {
+        if (!ok_[k][g]) {
+          chi[k][g] = T(HUGE_VAL);
+          continue;
+        }
+        T s = T(0);
+        for (int i = 0; i < kN; ++i) {
+          const T r = mean[i] - ys_[k][g][i];
+          s += w[i] * r * r;
+        }
+        chi[k][g] += s;
+      }
+    }
+  }
+
+  bool close_window() noexcept {
+    if (!open_) return false;
+    open_ = false;
+    bool any = false;
+    for (int i = 0; i < kN; ++i) any = any || n_[i] > 0;
+    if (!any || t_last_ - t_first_ < cfg_.window_min) return false;
+    T c0_before = chi0_;
+    int d_before = dof_;
+    window_terms(chi_, chi0_, sens_a_, sens_b_, dof_);
+    last_chi0_w_ = chi0_ - c0_before;
+    last_dof_w_ = static_cast<T>(dof_ - d_before);
+    ++windows_;
+    decide(false);
+    return true;
+  }
+
+  // Best factor of hypothesis k by a parabola through the best grid point and its
+  // neighbours in ln(factor); the interval where χ² rises by `scale`.
+  Fit fit_param(int k, const T (&chi)[kGz], T scale) const noexcept {
+    Fit f;
+    f.hyp = static_cast<std::int16_t>(k);
+    int gb = kGrid / 2;
+    for (int g = 0; g < kGrid; ++g) {
+      if (chi[g] < chi[gb]) gb = g;
+    }
+    T x = grid_log(gb), c = chi[gb];
+    if (gb > 0 && gb < kGrid - 1 && std::isfinite(chi[gb - 1]) && std::isfinite(chi[gb + 1])) {
+      // Parabola through three unevenly spaced points.
+      const T x0 = grid_log(gb - 1), x1 = grid_log(gb), x2 = grid_log(gb + 1);
+      const T y0 = chi[gb - 1], y1 = chi[gb], y2 = chi[gb + 1];
+      const T d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
+      const T a = (d12 - d01) / (x2 - x0);
+      if (a > T(0)) {
+        const T b = d01 - a * (x0 + x1);
+        const T xm = -b / (T(2) * a);
+        if (xm > x0 && xm < x2) {
+          x = xm;
+          c = std::fmin(y1, std::fmax(T(0), y1 + (d01 + a * (x1 - x0)) * (xm - x1) + a * (xm - x1) * (xm - x1)));
+        }
+        const T half = std::sqrt(scale / a);
+        f.lo = std::exp(x - half);
+        f.hi = std::exp(x + half);
+      } else {
+        f.lo = std::exp(x0);
+        f.hi = std::exp(x2);
+      }
+    } else {
+      f.lo = std::exp(gb > 0 ? grid_log(gb - 1) : x);
+      f.hi = std::exp(gb < kGrid - 1 ? grid_log(gb + 1) : x);
+    }
+    f.chi2 = c;
+    f.factor = std::exp(x);
+    f.name = f.factor >= T(1) ? hyps_[k].plus : hyps_[k].minus;
+    return f;
+  }
+
+  // Offset δ on channel i: χ² = χ²_0 − b²/a, δ = b/a, interval ±√(scale/a).
+  Fit fit_sensor(int k, T chi0, const T (&sa)[kNz], const T (&sb)[kNz], T scale) const noexcept {
+    Fit f;
+    f.hyp = static_cast<std::int16_t>(k);
+    const int i = hyps_[k].index;
+    f.name = hyps_[k].plus;
+    if (i < 0 || i >= kN || !(sa[i] > T(0))) {
+      f.chi2 = chi0;
+      f.factor = f.lo = f.hi = T(0);
+      return f;
+    }
+    f.factor = sb[i] / sa[i];
+    f.chi2 = chi0 - sb[i] * sb[i] / sa[i];
+    const T half = std::sqrt(scale / sa[i]);
+    f.lo = f.factor - half;
+    f.hi = f.factor + half;
+    return f;
+  }
+
+  void decide(bool with_open) noexcept {
+    T (&chi)[kHz][kGz] = scratch_;
+    T sa[kNz], sb[kNz], chi0;
+    int dof;
+    if (with_open) {
+      window_terms(chi, chi0, sa, sb, dof);
+    } else {
+      for (int k = 0; k < count_; ++k) {
+        for (int g = 0; g < kGrid; ++g) chi[k][g] = chi_[k][g];
+      }
+      chi0 = chi0_;
+      dof = dof_;
+      for (int i = 0; i < kN; ++i) {
+        sa[i] = sens_a_[i];
+        sb[i] = sens_b_[i];
+      }
+    }
+    rank(chi, chi0, sa, sb, dof);
+  }
+
+  void rank(const T (&chi)[kHz][kGz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz], int dof) noexcept {
+    chi0_all_ = chi0;
+    dof_all_ = dof;
+    if (dof == 0) return;
+    // First pass for the best χ², which scales the intervals and the margins.
+    T best = chi0;
+    for (int k = 0; k < count_; ++k) {
+      if (hyps_[k].kind == HypothesisKind::kSensor) {
+        best = std::fmin(best, fit_sensor(k, chi0, sa, sb, T(1)).chi2);
+      } else {
+        for (int g = 0; g < kGrid; ++g) best = std::fmin(best, chi[k][g]);
+      }
+    }
+    const T per = best / static_cast<T>(dof);
+    const T scale = std::fmax(T(1), per);
+    n_ranked_ = 0;
+    for (int k = 0; k < count_; ++k) {
+      const Fit f = hyps_[k].kind == HypothesisKind::kSensor ? fit_sensor(k, chi0, sa, sb, scale)
+                                                             : fit_param(k, chi[k], scale);
+      insert(f);
+    }
+    const T best_chi = n_ranked_ > 0 ? ranked_[0].chi2 : chi0;
+    const T delta = cfg_.k_delta * scale;
+    n_consistent_ = 0;
+    while (n_consistent_ < n_ranked_ && ranked_[n_consistent_].chi2 <= best_chi + delta) ++n_consistent_;
+    if (chi0 <= best_chi + cfg_.k_present * scale) {
+      verdict_ = EstimateVerdict::kNoFault;
+    } else if (per > cfg_.k_unexplained && best_chi > cfg_.explained_share * chi0) {
+      verdict_ = EstimateVerdict::kUnexplained;
+    } else {
+      verdict_ = n_consistent_ == 1 ? EstimateVerdict::kIsolated : EstimateVerdict::kAmbiguous;
+    }
+  }
+
+  void insert(const Fit& f) noexcept {
+    if (!std::isfinite(f.chi2)) return;
+    int pos = n_ranked_;
+    while (pos > 0 && ranked_[pos - 1].chi2 > f.chi2) --pos;
+    if (pos >= Ranked) return;
+    const int last = n_ranked_ < Ranked ? n_ranked_ : Ranked - 1;
+    for (int j = last; j > pos; --j) ranked_[j] = ranked_[j - 1];
+    ranked_[pos] = f;
+    if (n_ranked_ < Ranked) ++n_ranked_;
+  }
+
+  Model model_{};
+  typename Model::Params nominal_{};
+  const FaultHypothesis* hyps_ = nullptr;
+  int count_ = 0;
+  unsigned measured_ = 0;
+  T sigma_[kNz] = {};
+  Uncertainty eps_{};
+  Config cfg_{};
+  bool configured_ = false;
+  T factor_[kGz] = {};
+  // Closed windows of the episode, summed.
+  T chi_[kHz][kGz] = {};
+  T chi0_ = T(0);
+  T sens_a_[kNz] = {}, sens_b_[kNz] = {};
+  int dof_ = 0;
+  int windows_ = 0;
+  // The open window.
+  bool armed_ = false, open_ = false;
+  Inputs u_win_{};
+  T t_open_ = T(0), t_first_ = T(0), t_last_ = T(0), t_decided_ = T(0);
+  Output y0_{};
+  T model_err_[kNz] = {};
+  T ys_[kHz][kGz][kNz] = {};
+  T scratch_[kHz][kGz] = {};  ///< decide()'s sums with the open window
+  bool ok_[kHz][kGz] = {};
+  T sum_[kNz] = {};
+  std::uint32_t n_[kNz] = {};
+  // Verdict.
+  EstimateVerdict verdict_ = EstimateVerdict::kNone;
+  Fit ranked_[static_cast<std::size_t>(Ranked)]{};
+  int n_ranked_ = 0, n_consistent_ = 0;
+  T chi0_all_ = T(0);
+  int dof_all_ = 0;
+  T last_chi0_w_ = T(0), last_dof_w_ = T(0);
+};
+
+}  // namespace hstmon
