@@ -84,6 +84,19 @@ Prepared prepare(const host::LogData& log, const ThesisInputs<double>& defaults,
   return p;
 }
 
+// Each channel's RMS/noise against the moved model ym, and the significance on it.
+void set_within(Where& w, const Prepared& p, const std::vector<std::array<double, kChannels>>& ym, double significance) {
+  w.significant = false;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    auto& cs = w.channels[c];
+    if (!cs.present || ym.size() != p.y.size() || p.y.empty()) continue;
+    double ss = 0;
+    for (std::size_t k = 0; k < p.y.size(); ++k) ss += std::pow((p.y[k][c] - ym[k][c]) / p.noise[c], 2);
+    cs.rms_w_within = std::sqrt(ss / static_cast<double>(p.y.size()));
+    if (cs.rms_w_within > significance) w.significant = true;
+  }
+}
+
 // The steady settings of a log with their held inputs, for the evidence rule.
 std::vector<detail::SettingEvidence> evidence_of(const Prepared& p) {
   std::vector<detail::SettingEvidence> out;
@@ -495,6 +508,15 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   stage("nominal_run");
   res.where_fit = decompose(A, ya, o.significance, params);
   res.where_check = decompose(B, yb, o.significance, params);
+  // The gap left once the parameters take their most likely values within their
+  // uncertainty, transients included: the moved model run again.
+  for (auto [P, W] : {std::pair<const Prepared*, Where*>{&A, &res.where_fit}, {&B, &res.where_check}}) {
+    ExtendedModel moved = nominal;
+    moved.nominal = detail::moved_params(params, W->parameter_moves);
+    bool ok = false;
+    const auto ym = an.sim(moved, *P, ok);
+    if (ok) set_within(*W, *P, ym, o.significance);
+  }
   // Where at equation level: the balance equations on the measured signals alone.
   const ArrData arr_a = evaluate_arrs(params, A.u, A.y, A.present, A.noise);
   const ArrData arr_b = evaluate_arrs(params, B.u, B.y, B.present, B.noise);

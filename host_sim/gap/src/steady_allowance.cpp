@@ -54,6 +54,17 @@ std::vector<Setting> settings_of(const InputSeries& u, const std::vector<char>& 
   return out;
 }
 
+ThesisParams<double> moved_params(const ThesisParams<double>& p, const std::vector<std::pair<std::string, double>>& moves) {
+  ThesisParams<double> q = p;
+  using I = hstmon::detail::BoundItems<double>;
+  for (const auto& [name, v] : moves) {
+    for (int k = 0; k < hstmon::detail::kBoundParams; ++k) {
+      if (name == kParamNames[k]) q.*(I::kParam[k]) *= 1.0 + v;
+    }
+  }
+  return q;
+}
+
 SteadyAllowance thesis_allowance(const ThesisParams<double>& p, const InputSeries& u,
                                  const std::vector<std::array<double, kChannels>>& y,
                                  const std::vector<std::array<double, kChannels>>& model,

@@ -4,8 +4,9 @@
 /// much of the nominal model's gap there the stated parameter uncertainty accounts for
 /// (param_allowance.hpp with the uncertainty of residual_bounds.hpp: ±2 % on Dm, Dp,
 /// Rlkg, Ripl, Rf, Rbl, kf). The move found on the steady means is applied to every row
-/// of its setting (a transient heads for the moved steady state), and the channels' RMS is
-/// taken again: what is left is the gap the parameters cannot make.
+/// of its setting (a transient heads for the moved steady state) for a first estimate;
+/// run_gap then simulates the moved model (moved_params) and takes the channels' RMS
+/// again: what is left is the gap the parameters cannot make.
 #include <array>
 #include <string>
 #include <utility>
@@ -31,6 +32,9 @@ struct SteadyAllowance {
   std::array<double, kChannels> rms_w_within{};  ///< RMS/noise per channel after the move (NaN: absent)
   std::vector<std::pair<std::string, double>> moves;  ///< parameter, relative move ε·δ*
 };
+
+/// p with the relative moves applied (names as in SteadyAllowance::moves).
+ThesisParams<double> moved_params(const ThesisParams<double>& p, const std::vector<std::pair<std::string, double>>& moves);
 
 SteadyAllowance thesis_allowance(const ThesisParams<double>& p, const InputSeries& u,
                                  const std::vector<std::array<double, kChannels>>& y,
