@@ -14,7 +14,7 @@
 namespace hstmon::gap::detail {
 
 constexpr std::size_t kMinSettings = 3;
-constexpr std::size_t kMinSamples = 10;
+constexpr std::size_t kMinSamples = 5;
 constexpr double kMinSpan = 0.05;
 
 struct SettingEvidence {
