@@ -62,7 +62,12 @@ TEST(GapFloor, ParametersWithinTheirUncertaintyAreNoGap) {
   ASSERT_TRUE(r.ok) << r.error;
   // Far above the sensor noise on its own ...
   double worst = 0;
-  for (const auto& c : r.where_check.channels) worst = std::max(worst, c.present ? c.rms_w : 0.0);
+  for (const auto& c : r.where_check.channels) {
+    std::printf("rms/noise %.2f, within uncertainty %.2f\n", c.rms_w, c.rms_w_within);
+    worst = std::max(worst, c.present ? c.rms_w : 0.0);
+  }
+  std::printf("z %.2f\n", r.where_check.uncertainty_z);
+  for (const auto& [n, v] : r.where_check.parameter_moves) std::printf("  %s %+.4f\n", n.c_str(), v);
   EXPECT_GT(worst, 3.0);
   // ... and inside what ±2 % on the parameters makes.
   EXPECT_EQ(r.verdict, "no_significant_gap");
