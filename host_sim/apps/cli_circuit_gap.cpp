@@ -25,13 +25,20 @@ const char* unit_of(const circuit_tools::LoadedCircuit& c, const gap::CircuitEff
     case gap::CircuitEffect::Kind::kTorqueLoss: return "N*m";
     case gap::CircuitEffect::Kind::kOffset:
       return host::circuit_si_unit(c.file.sensors[static_cast<std::size_t>(e.index)].quantity);
+    case gap::CircuitEffect::Kind::kParam: return "-";
   }
   return "";
 }
 
 std::string verdict_words(const gap::CircuitGapResult& r) {
-  if (r.verdict == "none") return "no gap: the model meets the fit log's operating points within 2 sigma";
+  if (r.verdict == "none") {
+    return "no gap: the model meets both logs' operating points within 2 sigma of noise and parameter uncertainty";
+  }
+  if (r.verdict == "insufficient_data") return "insufficient data: " + r.evidence_missing;
   if (r.verdict == "unexplained") return "no single candidate explains the gap (none halves the check log's residual)";
+  if (r.verdict.rfind("parameter(", 0) == 0) {
+    return r.verdict + ": a parameter off beyond its stated uncertainty; hstmon identify --circuit fits it";
+  }
   return r.verdict;
 }
 
@@ -58,23 +65,34 @@ int run_circuit_gap(const CircuitGapArgs& a) {
     fmt::print(stderr, "hstmon gap --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;
   }
+  nlohmann::json noise = nlohmann::json::object();
+  for (std::size_t ch = 0; ch < r.noise_fit.size() && ch < c.file.sensors.size(); ++ch) {
+    noise[c.file.sensors[ch].name] = {{"fit", r.noise_fit[ch]}, {"check", r.noise_check[ch]}};
+  }
   if (a.json) {
     nlohmann::json where = nlohmann::json::object();
     for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = number_or_null(r.mean_fit[ch]);
     nlohmann::json ranked = nlohmann::json::array();
     for (const auto& e : r.ranked) {
       ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", unit_of(c, e.effect)},
-                        {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)}});
+                        {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)},
+                        {"z_check", number_or_null(e.z_check)}});
     }
     const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
                               {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", number_or_null(r.rms_check)},
-                              {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict}};
+                              {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict},
+                              {"z_fit", number_or_null(r.z_fit)}, {"z_check", number_or_null(r.z_check)},
+                              {"noise", noise}, {"evidence_missing", r.evidence_missing}, {"notes", r.notes}};
     fmt::print("{}\n", j.dump());
     return kExitOk;
   }
   fmt::print("hstmon gap --circuit {}: fit {} ({} operating points), check {} ({})\n", a.circuit, a.fit, r.fit_points,
              a.check, r.check_points);
   fmt::print("\n  verdict: {}\n", verdict_words(r));
+  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
+  if (r.verdict == "insufficient_data") return kExitOk;
+  fmt::print("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n", r.z_fit,
+             r.z_check);
   fmt::print("\n  where the gap lies (mean of model − reading over the fit log's points, in sensor σ):\n   ");
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) fmt::print(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
   fmt::print("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "circuit_judge.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
 
 namespace hstmon::gap {
@@ -28,25 +30,26 @@ double rms(const std::vector<double>& r) {
   return std::sqrt(s / static_cast<double>(r.size()));
 }
 
-// Residuals of c with effect e of magnitude m at the points; an offset subtracts m (in σ)
-// from its channel's residuals. Empty when some point has no steady state.
+// Residuals of c with effect e of magnitude m at the points; an offset m [channel SI, as
+// model − reading] is subtracted from its channel's residuals. Empty when some point has
+// no steady state.
 std::vector<double> effect_residuals(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m,
-                                     const std::vector<ident::CircuitOperatingPoint>& points) {
+                                     const detail::PointSet& s) {
   std::vector<double> res;
   if (e.kind == CircuitEffect::Kind::kOffset) {
-    if (!ident::circuit_point_residuals(c, c.values.params, points, res)) return {};
+    if (!detail::point_residuals(c, c.values.params, s, res)) return {};
     std::size_t k = 0;
-    for (const auto& pt : points) {
+    for (const auto& pt : s.points) {
       for (std::size_t ch = 0; ch < pt.mean.size(); ++ch) {
         if (!std::isfinite(pt.mean[ch])) continue;
-        if (static_cast<int>(ch) == e.index) res[k] -= m;
+        if (static_cast<int>(ch) == e.index) res[k] -= m / s.sigma[ch];
         ++k;
       }
     }
     return res;
   }
   const circuit_tools::LoadedCircuit a = with_effect(c, e, m);
-  if (!ident::circuit_point_residuals(a, a.values.params, points, res)) return {};
+  if (!detail::point_residuals(a, a.values.params, s, res)) return {};
   return res;
 }
 
@@ -54,8 +57,7 @@ double rms_or_inf(const std::vector<double>& r) { return r.empty() ? std::numeri
 
 // The magnitude a·reference minimising the fit RMS: a scan of log10 a over [−6, 1] by
 // halves, then golden section between the best scan point's neighbours.
-double fit_magnitude(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e,
-                     const std::vector<ident::CircuitOperatingPoint>& points) {
+double fit_magnitude(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, const detail::PointSet& points) {
   auto cost = [&](double lg) { return rms_or_inf(effect_residuals(c, e, e.reference * std::pow(10.0, lg), points)); };
   double best_lg = -6.0, best = cost(best_lg);
   for (double lg = -5.5; lg <= 1.0 + 1e-9; lg += 0.5) {
@@ -135,6 +137,10 @@ std::vector<CircuitEffect> circuit_effects(const circuit_tools::LoadedCircuit& c
 circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m) {
   circuit_tools::LoadedCircuit a = c;
   if (e.kind == CircuitEffect::Kind::kOffset) return a;
+  if (e.kind == CircuitEffect::Kind::kParam) {
+    a.values.params.v[e.index] *= 1.0 + m;
+    return a;
+  }
   host::HostCircuit& d = a.file.circuit;
   if (d.n_params >= host::CircuitCap::kParams || d.n_elements >= host::CircuitCap::kElements) return a;
   const int p = d.n_params++;
@@ -179,6 +185,7 @@ circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, 
       a.file.params.push_back({"gap_torque", host::CircuitQuantity::kTorque, m, false, e.name});
       break;
     case CircuitEffect::Kind::kOffset:
+    case CircuitEffect::Kind::kParam:
       break;
   }
   d.elements[d.n_elements++] = el;
@@ -186,75 +193,151 @@ circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, 
   return a;
 }
 
+namespace {
+
+// True when parameter k is the law of a leak or friction candidate already (a laminar
+// resistance from a volume to a boundary, a shaft's viscous friction): the effect names it.
+bool same_law_as_effect(const host::HostCircuit& d, int k) {
+  for (int i = 0; i < d.n_elements; ++i) {
+    const circuit::Element& el = d.elements[i];
+    if (el.kind == ElementKind::kLaminar && el.r[circuit::kR].kind == RefKind::kParam && el.r[circuit::kR].index == k) {
+      const bool vol_a = d.nodes[el.a].kind == circuit::NodeKind::kVolume, vol_b = d.nodes[el.b].kind == circuit::NodeKind::kVolume;
+      if (vol_a != vol_b) return true;
+    }
+    if (el.kind == ElementKind::kFriction && el.r[circuit::kC].kind == RefKind::kParam && el.r[circuit::kC].index == k) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// parameter(<name>) candidates: every uncertain parameter no effect candidate duplicates.
+std::vector<CircuitEffect> parameter_effects(const circuit_tools::LoadedCircuit& c) {
+  std::vector<CircuitEffect> out;
+  for (const auto& [k, e] : detail::uncertain_params(c)) {
+    if (same_law_as_effect(c.file.circuit, k)) continue;
+    out.push_back({CircuitEffect::Kind::kParam, k, "parameter(" + c.file.params[static_cast<std::size_t>(k)].name + ")", e});
+  }
+  return out;
+}
+
+// A parameter's relative change that best meets the fit log: one Gauss–Newton step from
+// the file's value (the residuals are near linear in a few per cent), at most ×/÷ 3.
+double fit_parameter(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, const detail::PointSet& s,
+                     const std::vector<double>& base) {
+  const std::vector<double> r1 = effect_residuals(c, e, e.reference, s);
+  if (r1.size() != base.size()) return 0.0;
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    const double j = r1[i] - base[i];
+    num += j * base[i];
+    den += j * j;
+  }
+  if (!(den > 0)) return 0.0;
+  return std::clamp(-num / den * e.reference, -2.0 / 3.0, 2.0);
+}
+
+// The mean residual per channel over the points [σ].
+std::vector<double> channel_means(const std::vector<double>& base, const detail::PointSet& s, std::size_t channels) {
+  std::vector<double> mean(channels, 0.0);
+  std::vector<std::size_t> count(channels, 0);
+  std::size_t k = 0;
+  for (const auto& pt : s.points) {
+    for (std::size_t ch = 0; ch < channels; ++ch) {
+      if (!std::isfinite(pt.mean[ch])) continue;
+      mean[ch] += base[k++];
+      ++count[ch];
+    }
+  }
+  for (std::size_t ch = 0; ch < channels; ++ch) mean[ch] = count[ch] ? mean[ch] / static_cast<double>(count[ch]) : std::nan("");
+  return mean;
+}
+
+constexpr double kWithin = 2.0;  // z at or below: within noise and parameter uncertainty
+
+// Verdict: no gap when both logs lie within noise and parameter uncertainty; an effect when
+// it halves the check log's residual and leads the runner-up by 1.5×; two close ones are
+// "ambiguous" only when the best leaves the check log within noise and uncertainty.
+void decide(CircuitGapResult& r) {
+  if (r.z_fit <= kWithin && r.z_check <= kWithin) {
+    r.verdict = "none";
+    return;
+  }
+  if (r.ranked.empty() || !r.ranked[0].ok || r.ranked[0].rms_check > 0.5 * r.rms_check) {
+    r.verdict = "unexplained";
+    return;
+  }
+  const auto& a = r.ranked[0];
+  const bool clear = r.ranked.size() < 2 || r.ranked[1].rms_check >= 1.5 * a.rms_check;
+  if (clear) {
+    r.verdict = a.effect.name;
+  } else if (a.z_check <= kWithin) {
+    r.verdict = "ambiguous: " + a.effect.name + " or " + r.ranked[1].effect.name;
+  } else {
+    r.verdict = "unexplained";
+    char b[200];
+    std::snprintf(b, sizeof b, "%s and %s reduce the check log's gap alike but leave %.1f sigma beyond noise and uncertainty",
+                  a.effect.name.c_str(), r.ranked[1].effect.name.c_str(), a.z_check);
+    r.notes.push_back(b);
+  }
+}
+
+}  // namespace
+
 CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& fit,
                              const circuit_tools::CircuitLog& check) {
   CircuitGapResult r;
-  const auto fit_pts = ident::circuit_operating_points(c, {fit}, 0.2);
-  const auto check_pts = ident::circuit_operating_points(c, {check}, 0.2);
-  r.fit_points = fit_pts.size();
-  r.check_points = check_pts.size();
-  if (fit_pts.empty() || check_pts.empty()) {
-    r.error = "no steady operating point in the " + std::string(fit_pts.empty() ? "fit" : "check") +
-              " log (held inputs for longer than 5 time constants + 0.2 s)";
+  const detail::PointSet F = detail::circuit_point_set(c, fit), C = detail::circuit_point_set(c, check);
+  r.fit_points = F.points.size();
+  r.check_points = C.points.size();
+  r.noise_fit = F.sigma;
+  r.noise_check = C.sigma;
+  r.evidence_missing = detail::circuit_evidence("fit", F);
+  if (r.evidence_missing.empty()) r.evidence_missing = detail::circuit_evidence("check", C);
+  if (!r.evidence_missing.empty()) {
+    r.verdict = "insufficient_data";
     return r;
   }
-  std::vector<double> base;
-  if (!ident::circuit_point_residuals(c, c.values.params, fit_pts, base)) {
+  std::vector<double> base, base_check;
+  if (!detail::point_residuals(c, c.values.params, F, base)) {
     r.error = "no steady state at some operating point of the fit log";
     return r;
   }
   r.rms_fit = rms(base);
-  std::vector<double> base_check;
-  (void)ident::circuit_point_residuals(c, c.values.params, check_pts, base_check);
+  (void)detail::point_residuals(c, c.values.params, C, base_check);
   r.rms_check = rms_or_inf(base_check);
-  // Where the gap lies: the mean residual of each channel over the fit log's points.
+  r.z_fit = detail::circuit_allowance(c, F, base).z;
+  r.z_check = base_check.empty() ? r.rms_check : detail::circuit_allowance(c, C, base_check).z;
   const std::size_t channels = c.file.sensors.size();
-  r.mean_fit.assign(channels, 0.0);
-  std::vector<std::size_t> count(channels, 0);
-  std::size_t k = 0;
-  for (const auto& pt : fit_pts) {
-    for (std::size_t ch = 0; ch < channels; ++ch) {
-      if (!std::isfinite(pt.mean[ch])) continue;
-      r.mean_fit[ch] += base[k++];
-      ++count[ch];
-    }
-  }
-  for (std::size_t ch = 0; ch < channels; ++ch) {
-    r.channels.push_back(c.file.sensors[ch].name);
-    r.mean_fit[ch] = count[ch] ? r.mean_fit[ch] / static_cast<double>(count[ch]) : std::nan("");
-  }
+  r.mean_fit = channel_means(base, F, channels);
+  for (std::size_t ch = 0; ch < channels; ++ch) r.channels.push_back(c.file.sensors[ch].name);
 
-  for (const CircuitEffect& e : circuit_effects(c)) {
+  std::vector<CircuitEffect> candidates = circuit_effects(c);
+  for (const auto& e : parameter_effects(c)) candidates.push_back(e);
+  for (const CircuitEffect& e : candidates) {
     CircuitEffectResult er;
     er.effect = e;
     if (e.kind == CircuitEffect::Kind::kOffset) {
-      er.magnitude = count[static_cast<std::size_t>(e.index)] ? r.mean_fit[static_cast<std::size_t>(e.index)] : 0.0;
+      const double m = r.mean_fit[static_cast<std::size_t>(e.index)];
+      er.magnitude = std::isfinite(m) ? m * F.sigma[static_cast<std::size_t>(e.index)] : 0.0;
+    } else if (e.kind == CircuitEffect::Kind::kParam) {
+      er.magnitude = fit_parameter(c, e, F, base);
     } else {
-      er.magnitude = fit_magnitude(c, e, fit_pts);
+      er.magnitude = fit_magnitude(c, e, F);
     }
-    er.rms_fit = rms_or_inf(effect_residuals(c, e, er.magnitude, fit_pts));
-    er.rms_check = rms_or_inf(effect_residuals(c, e, er.magnitude, check_pts));
+    er.rms_fit = rms_or_inf(effect_residuals(c, e, er.magnitude, F));
+    const std::vector<double> after = effect_residuals(c, e, er.magnitude, C);
+    er.rms_check = rms_or_inf(after);
+    er.z_check = after.empty() ? er.rms_check : detail::circuit_allowance(c, C, after).z;
     er.ok = std::isfinite(er.rms_fit) && std::isfinite(er.rms_check);
-    // An offset is reported in the channel's unit: reading = true + o, residual = −o/σ.
-    if (e.kind == CircuitEffect::Kind::kOffset) {
-      const auto& s = c.file.sensors[static_cast<std::size_t>(e.index)];
-      er.magnitude = -er.magnitude * (s.noise > 0.0 ? s.noise : 1.0);
-    }
+    // An offset is reported as reading = true + o: residual model − reading = −o.
+    if (e.kind == CircuitEffect::Kind::kOffset) er.magnitude = -er.magnitude;
     r.ranked.push_back(er);
   }
   std::stable_sort(r.ranked.begin(), r.ranked.end(), [](const CircuitEffectResult& a, const CircuitEffectResult& b) {
     return a.ok != b.ok ? a.ok : a.rms_check < b.rms_check;
   });
-  // Verdict: no gap when the model already meets the fit log within 2σ of a sample;
-  // an effect when it halves the check log's residual and leads the runner-up by 1.5×.
-  if (r.rms_fit <= 2.0) {
-    r.verdict = "none";
-  } else if (!r.ranked.empty() && r.ranked[0].ok && r.ranked[0].rms_check <= 0.5 * r.rms_check) {
-    const bool clear = r.ranked.size() < 2 || r.ranked[1].rms_check >= 1.5 * r.ranked[0].rms_check;
-    r.verdict = clear ? r.ranked[0].effect.name : "ambiguous: " + r.ranked[0].effect.name + " or " + r.ranked[1].effect.name;
-  } else {
-    r.verdict = "unexplained";
-  }
+  decide(r);
   return r;
 }
 

@@ -11,7 +11,10 @@
 #include "hstmon_gap/shrink.hpp"
 #include "hstmon_ident/least_squares.hpp"
 #include "autocorr.hpp"
+#include "evidence.hpp"
 #include "load_bins.hpp"
+#include "noise_floor.hpp"
+#include "steady_allowance.hpp"
 
 namespace hstmon::gap {
 
@@ -35,6 +38,7 @@ struct Prepared {
   std::vector<std::array<double, kChannels>> y;
   std::array<bool, kChannels> present{};
   std::array<double, kChannels> noise{};
+  std::array<detail::NoiseEstimate, kChannels> noise_est{};
   std::vector<char> transient;
   double dt = 0;
   std::size_t n_resid = 0;  // number of weighted residuals
@@ -44,23 +48,6 @@ Prepared prepare(const host::LogData& log, const ThesisInputs<double>& defaults,
   Prepared p;
   p.u = inputs_from_log(log, defaults);
   const std::size_t n = log.rows();
-  p.y.assign(n, {});
-  for (int c = 0; c < kChannels; ++c) {
-    const auto ci = static_cast<std::size_t>(c);
-    p.present[ci] = log.has(kChannelSignal[c]);
-    if (!p.present[ci]) continue;
-    const auto& col = log.column(kChannelSignal[c]);
-    std::vector<double> d;
-    d.reserve(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      p.y[k][ci] = col[k];
-      if (k > 0) d.push_back(std::fabs(col[k] - col[k - 1]));
-    }
-    // Robust scatter from successive differences: σ = 1.4826·median|Δy|/√2.
-    const double s = d.empty() ? 0.0 : 1.4826 * median(d) / std::sqrt(2.0);
-    p.noise[ci] = std::max(s, kNoiseFloor[ci]);
-    p.n_resid += n;
-  }
   std::vector<double> dts;
   for (std::size_t k = 1; k < n; ++k) dts.push_back(log.t[k] - log.t[k - 1]);
   p.dt = dts.empty() ? 0.0 : median(dts);
@@ -76,7 +63,54 @@ Prepared prepare(const host::LogData& log, const ThesisInputs<double>& defaults,
     }
     p.transient[k] = (log.t[k] - t_change <= settle + 1e-12) ? 1 : 0;
   }
+  // The noise is read where the machine holds still (noise_floor.hpp); a log without a
+  // steady stretch is read whole.
+  std::vector<std::pair<std::size_t, std::size_t>> stretches;
+  for (const auto& s : detail::settings_of(p.u, p.transient)) {
+    if (s.steady() > 1) stretches.emplace_back(s.steady_from, s.end);
+  }
+  if (stretches.empty()) stretches.emplace_back(0, n);
+  p.y.assign(n, {});
+  for (int c = 0; c < kChannels; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    p.present[ci] = log.has(kChannelSignal[c]);
+    if (!p.present[ci]) continue;
+    const auto& col = log.column(kChannelSignal[c]);
+    for (std::size_t k = 0; k < n; ++k) p.y[k][ci] = col[k];
+    p.noise_est[ci] = detail::estimate_noise(col, stretches, p.dt);
+    p.noise[ci] = std::max(p.noise_est[ci].noise(), kNoiseFloor[ci]);
+    p.n_resid += n;
+  }
   return p;
+}
+
+// Each channel's RMS/noise against the moved model ym, and the significance on it.
+void set_within(Where& w, const Prepared& p, const std::vector<std::array<double, kChannels>>& ym, double significance) {
+  w.significant = false;
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    auto& cs = w.channels[c];
+    if (!cs.present || ym.size() != p.y.size() || p.y.empty()) continue;
+    double ss = 0;
+    for (std::size_t k = 0; k < p.y.size(); ++k) ss += std::pow((p.y[k][c] - ym[k][c]) / p.noise[c], 2);
+    cs.rms_w_within = std::sqrt(ss / static_cast<double>(p.y.size()));
+    if (cs.rms_w_within > significance) w.significant = true;
+  }
+}
+
+// The steady settings of a log with their held inputs, for the evidence rule.
+std::vector<detail::SettingEvidence> evidence_of(const Prepared& p) {
+  std::vector<detail::SettingEvidence> out;
+  for (const auto& s : detail::settings_of(p.u, p.transient)) {
+    const std::size_t k = s.end - 1;
+    out.push_back({s.steady(), {p.u.Psupl[k], p.u.Pbp[k], p.u.kp[k]}});
+  }
+  return out;
+}
+
+std::size_t count_settings(const Prepared& p) {
+  std::size_t n = 0;
+  for (const auto& s : evidence_of(p)) n += s.samples >= detail::kMinSamples ? 1 : 0;
+  return n;
 }
 
 // Weighted residuals (data − model)/noise, channel-major, present channels only.
@@ -117,8 +151,13 @@ PartStats part(const Prepared& p, const std::vector<std::array<double, kChannels
   return s;
 }
 
-Where decompose(const Prepared& p, const std::vector<std::array<double, kChannels>>& model, double significance) {
+Where decompose(const Prepared& p, const std::vector<std::array<double, kChannels>>& model, double significance,
+                const ThesisParams<double>& params) {
   Where w;
+  // A gap the parameters make within their uncertainty is no gap (steady_allowance.hpp).
+  const auto within = detail::thesis_allowance(params, p.u, p.y, model, p.present, p.noise, p.transient);
+  w.uncertainty_z = within.a.z;
+  w.parameter_moves = within.moves;
   const std::size_t n = p.y.size();
   w.sample_period = p.dt;
   std::vector<std::array<double, kChannels>> rw(n);
@@ -142,9 +181,13 @@ Where decompose(const Prepared& p, const std::vector<std::array<double, kChannel
     cs.rms = std::sqrt(s2 / static_cast<double>(n));
     cs.noise = p.noise[c];
     cs.rms_w = cs.rms / cs.noise;
+    cs.rms_w_within = within.rms_w_within[c];
+    cs.noise_white = p.noise_est[c].white;
+    cs.adc_step = p.noise_est[c].step;
+    cs.noise_spread = p.noise_est[c].spread;
     pooled += cs.rms_w * cs.rms_w;
     ++used;
-    if (cs.rms_w > significance) w.significant = true;
+    if (cs.rms_w_within > significance) w.significant = true;
   }
   w.rms_w_total = used > 0 ? std::sqrt(pooled / used) : 0.0;
   for (const auto& lb : detail::load_bins(p.u.kp)) w.load_bins.push_back(part(p, rw, lb.label, lb.mask));
@@ -463,8 +506,17 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     return res;
   }
   stage("nominal_run");
-  res.where_fit = decompose(A, ya, o.significance);
-  res.where_check = decompose(B, yb, o.significance);
+  res.where_fit = decompose(A, ya, o.significance, params);
+  res.where_check = decompose(B, yb, o.significance, params);
+  // The gap left once the parameters take their most likely values within their
+  // uncertainty, transients included: the moved model run again.
+  for (auto [P, W] : {std::pair<const Prepared*, Where*>{&A, &res.where_fit}, {&B, &res.where_check}}) {
+    ExtendedModel moved = nominal;
+    moved.nominal = detail::moved_params(params, W->parameter_moves);
+    bool ok = false;
+    const auto ym = an.sim(moved, *P, ok);
+    if (ok) set_within(*W, *P, ym, o.significance);
+  }
   // Where at equation level: the balance equations on the measured signals alone.
   const ArrData arr_a = evaluate_arrs(params, A.u, A.y, A.present, A.noise);
   const ArrData arr_b = evaluate_arrs(params, B.u, B.y, B.present, B.noise);
@@ -483,6 +535,15 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   res.data_fit = A.y;
   res.nominal_fit = ya;
   res.ok = true;
+  res.where_fit.steady_settings = count_settings(A);
+  res.where_check.steady_settings = count_settings(B);
+  res.evidence_missing = detail::missing_evidence("fit", evidence_of(A));
+  if (res.evidence_missing.empty()) res.evidence_missing = detail::missing_evidence("check", evidence_of(B));
+  if (!res.evidence_missing.empty()) {
+    decide_verdict(res);
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return res;
+  }
 
   // Which effects can the sampling see?
   const double dt = std::max(A.dt, B.dt);

@@ -47,10 +47,16 @@ json where_json(const Where& w) {
     const auto& s = w.channels[c];
     if (!s.present) continue;
     ch[channel_names()[c]] = {{"unit", c == 3 ? "rad/s" : "Pa"}, {"mean", s.mean}, {"rms", s.rms},
-                              {"noise", s.noise}, {"rms_over_noise", s.rms_w}};
+                              {"noise", s.noise}, {"rms_over_noise", s.rms_w},
+                              {"rms_over_noise_within_uncertainty", s.rms_w_within},
+                              {"noise_estimates", {{"white", s.noise_white}, {"adc_step", s.adc_step},
+                                                   {"spread", s.noise_spread}}}};
   }
+  json moves = json::object();
+  for (const auto& [name, v] : w.parameter_moves) moves[name] = v;
   json j = {{"significant", w.significant}, {"rms_over_noise", w.rms_w_total}, {"sample_period", w.sample_period},
-            {"channels", ch}};
+            {"channels", ch}, {"steady_settings", w.steady_settings},
+            {"parameter_uncertainty", {{"z", w.uncertainty_z}, {"moves", moves}}}};
   auto arr = [](const std::vector<PartStats>& v) {
     json a = json::array();
     for (const auto& p : v) a.push_back(part_json(p));
@@ -157,6 +163,7 @@ std::string to_json(const GapResult& r, int indent) {
   j["remaining_check"] = {{"rms_over_noise", rem}, {"where", r.remaining_where}};
   j["verdict_rule"] = "explained only when every measured channel of the check log is within 2x its noise (RMS) after the top-ranked effect set";
   j["verdict"] = r.verdict;
+  if (!r.evidence_missing.empty()) j["evidence_missing"] = r.evidence_missing;
   j["explained_by"] = r.explained_by;
   j["cannot_tell_apart"] = r.cannot_tell_apart;
   j["verdict_text"] = r.verdict_text;

@@ -72,10 +72,17 @@ void decide_verdict(GapResult& r) {
   r.explained_by.clear();
   r.remaining_rms_w.fill(kNan);
   r.remaining_where.clear();
+  if (!r.evidence_missing.empty()) {
+    r.verdict = "insufficient_data";
+    r.verdict_text = "insufficient data: " + r.evidence_missing + "; no gap is judged and no effect is named";
+    return;
+  }
   const bool significant = r.where_fit.significant || r.where_check.significant;
   if (!significant) {
     r.verdict = "no_significant_gap";
-    r.verdict_text = "the nominal model matches both logs within the noise; no effect is needed";
+    r.verdict_text =
+        "the nominal model matches both logs within the noise and its parameters' stated uncertainty; no effect is "
+        "needed";
     return;
   }
   if (r.envelope.out) {

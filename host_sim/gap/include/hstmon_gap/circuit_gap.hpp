@@ -8,13 +8,19 @@
 ///  - friction(<shaft>): extra viscous friction on a free shaft;
 ///  - torque_loss(<shaft>): a constant torque loss on a free shaft (Coulomb-like at a
 ///    steady speed of one sign);
-///  - offset(<channel>): a transducer zero offset.
+///  - offset(<channel>): a transducer zero offset;
+///  - parameter(<name>): a parameter of the file off beyond its stated uncertainty (then
+///    `hstmon identify --circuit` says by how much); left out where a leak or friction
+///    candidate is the same law between the same nodes.
 /// Each candidate has one magnitude, fitted on the fit log's steady operating points
 /// (circuit_fit.hpp: held inputs less the settle time) by a scan of its logarithm and a
 /// golden-section refinement (an offset: the mean residual); the check log's operating
-/// points then say how much of the gap it removes. The verdict names an effect only when
-/// it removes at least half of the check log's residual and clearly more than the
-/// runner-up; otherwise it says that no single candidate explains the gap.
+/// points then say how much of the gap it removes. There is no gap when, on both logs, the
+/// steady residual lies within the noise and the parameters' stated uncertainty
+/// (circuit_judge.hpp); too few steady settings give `insufficient_data`. The verdict names
+/// an effect only when it removes at least half of the check log's residual and clearly
+/// more than the runner-up; two close candidates are named "ambiguous" only when the best
+/// leaves the check log within noise and uncertainty, else no single candidate explains it.
 
 #include <optional>
 #include <string>
@@ -27,19 +33,20 @@ namespace hstmon::gap {
 
 /// A candidate effect of a circuit.
 struct CircuitEffect {
-  enum class Kind { kLeak, kFriction, kTorqueLoss, kOffset };
+  enum class Kind { kLeak, kFriction, kTorqueLoss, kOffset, kParam };
   Kind kind = Kind::kLeak;
-  int index = 0;        ///< node, shaft or channel index
+  int index = 0;        ///< node, shaft, channel or parameter index
   std::string name;     ///< "leak(Pmi)", "friction(motor)", …
-  double reference = 1; ///< magnitude scale: conductance [m³/(s·Pa)], damping [N·m·s/rad], torque [N·m]
+  double reference = 1; ///< magnitude scale: conductance [m³/(s·Pa)], damping [N·m·s/rad], torque [N·m]; a parameter's ε
 };
 
 /// One candidate's result.
 struct CircuitEffectResult {
   CircuitEffect effect;
-  double magnitude = 0.0;   ///< fitted: conductance, damping, torque [SI] or offset [channel SI]
+  double magnitude = 0.0;   ///< fitted: conductance, damping, torque [SI], offset [channel SI] or a parameter's relative change [-]
   double rms_fit = 0.0;     ///< residual RMS on the fit log with the effect [σ]
   double rms_check = 0.0;   ///< on the check log [σ]
+  double z_check = 0.0;     ///< what remains on the check log beyond noise and parameter uncertainty [σ]
   bool ok = false;          ///< the fit and the check evaluated
 };
 
@@ -49,8 +56,11 @@ struct CircuitGapResult {
   double rms_fit = 0.0, rms_check = 0.0;    ///< without any effect [σ]
   std::vector<std::string> channels;        ///< channel names
   std::vector<double> mean_fit;             ///< mean residual per channel on the fit log [σ] (where the gap lies)
+  std::vector<double> noise_fit, noise_check;  ///< σ per channel each log is weighed in [SI] (circuit_judge.hpp)
+  double z_fit = 0.0, z_check = 0.0;        ///< gap beyond noise and parameter uncertainty [σ]; none when both ≤ 2
+  std::string evidence_missing;             ///< what the logs lack (verdict insufficient_data), else empty
   std::vector<CircuitEffectResult> ranked;  ///< best check RMS first
-  std::string verdict;                      ///< the named effect, "none" (no gap) or "unexplained"
+  std::string verdict;                      ///< the named effect, "none", "insufficient_data", "ambiguous: A or B" or "unexplained"
   std::vector<std::string> notes;
   std::optional<std::string> error;
 };

@@ -32,6 +32,8 @@ struct GapOptions {
 struct ChannelStats {
   bool present = false;
   double mean = 0, rms = 0, noise = 0, rms_w = 0;
+  double rms_w_within = 0;  ///< rms_w once the parameters move within their uncertainty (significance)
+  double noise_white = 0, adc_step = 0, noise_spread = 0;  ///< the noise estimates (noise_floor.hpp) [SI]
 };
 
 /// Weighted RMS (noise units) per channel in one part of a log; NaN where no rows.
@@ -48,7 +50,10 @@ struct Where {
   std::vector<PartStats> phases;      ///< "steady", "transient"
   std::vector<PartStats> bands;       ///< "slow" (< 2 Hz, 0.5 s mean), "fast"
   double rms_w_total = 0;             ///< pooled over present channels [noise units]
-  bool significant = false;
+  bool significant = false;           ///< some channel's rms_w_within above the significance
+  double uncertainty_z = 0;           ///< steady gap left beyond noise and parameter uncertainty [noise units]
+  std::vector<std::pair<std::string, double>> parameter_moves;  ///< the most likely relative moves [-]
+  std::size_t steady_settings = 0;    ///< settings with enough steady samples (evidence)
   double sample_period = 0;           ///< median [s]
   std::vector<EquationStats> equations;  ///< balance-equation imbalances on the measured signals
   int located = -1;                   ///< equation with the largest imbalance over noise (-1: none)
@@ -99,7 +104,8 @@ struct GapResult {
   std::vector<Discovery> discovered;  ///< missing terms proposed beyond the library
   std::array<double, kChannels> remaining_rms_w{};  ///< check log after the top-ranked set, RMS/noise (NaN: absent)
   std::string remaining_where;        ///< load regime where most remains
-  std::string verdict;                ///< no_significant_gap | out_of_envelope | explained | explained_by_pair | partly_explained | unexplained
+  std::string evidence_missing;       ///< what the logs lack for a verdict (insufficient_data), else empty
+  std::string verdict;                ///< insufficient_data | no_significant_gap | out_of_envelope | explained | explained_by_pair | partly_explained | unexplained
   std::vector<std::string> explained_by;
   std::vector<std::string> cannot_tell_apart;  ///< effects that explain the check log equally well
   std::string verdict_text;           ///< one sentence
