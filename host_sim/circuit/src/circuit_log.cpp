@@ -11,6 +11,8 @@
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/text_encoding.hpp"
+#include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -21,7 +23,7 @@ using host::SourceError;
 
 // What one header column feeds.
 struct Target {
-  enum Kind { kIgnored, kTime, kInput, kSensor } kind = kIgnored;
+  enum Kind { kIgnored, kTime, kInput, kSensor, kUnnamed } kind = kIgnored;  // kUnnamed: a trailing separator's
   int index = -1;
   host::UnitConversion conv;
 };
@@ -106,7 +108,7 @@ bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
   std::string text;
-  if (auto err = host::read_text_file(path, text)) {
+  if (auto err = host::read_log_text(path, text)) {
     CircuitLog log;
     log.path = path;
     log.error = *err;
@@ -137,6 +139,8 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   std::size_t skipped = 0;     // rows a lenient read skipped (time not increasing)
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
+  std::string converted;       // the text with its head in UTF-8, when it was not
+  text = host::log_text_in_utf8(text, o.encoding, converted);
   if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
       static_cast<unsigned char>(text[2]) == 0xBF) {
     text.remove_prefix(3);
@@ -250,12 +254,19 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         }
       }
       targets.assign(fields.size(), Target{});
+      std::vector<std::string_view> names;              // for messages about a missing column
+      std::vector<bool> map_used(o.column_map.size(), false);
       bool time_seen = false;
       std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
       for (std::size_t k = 0; k < fields.size(); ++k) {
+        if (host::is_trailing_empty_column(k, fields.size(), trim(fields[k]))) {
+          targets[k].kind = Target::kUnnamed;
+          continue;
+        }
         std::string_view name, unit;
         bool has_unit = false;
         name_and_unit(fields[k], name, unit, has_unit);
+        if (!name.empty()) names.push_back(name);
         const std::size_t lead = fields[k].find_first_not_of(" \t");
         const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
         std::size_t unit_line_no = line_no, unit_col = col;  // where a unit error points
@@ -283,11 +294,14 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
           mapped = it->second;
           is_mapped = true;
         } else {
+          std::size_t m = 0;
           for (const auto& [key, to] : o.column_map) {
             if (!is_mapped && host::column_name_matches(key, name)) {
               mapped = to;
               is_mapped = true;
+              map_used[m] = true;
             }
+            ++m;
           }
         }
         if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
@@ -328,7 +342,12 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         }
       }
       if (!time_seen && !(o.rate > 0.0)) {
-        return fail(line_no, 1, "no time column (t[s]) in the header (or give the sample rate: --rate HZ)");
+        return fail(line_no, 1, "no time column (t[s]) in the header (or give the sample rate: --rate HZ); " +
+                                    host::listed_columns(names));
+      }
+      std::size_t m = 0;
+      for (const auto& entry : o.column_map) {
+        if (!map_used[m++]) return fail(line_no, 1, host::unmatched_map_message(entry.first, names));
       }
       continue;
     }
@@ -347,8 +366,12 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const Target& tg = targets[k];
       if (tg.kind == Target::kIgnored) continue;
-      double v = 0.0;
       const std::size_t col = char_column(line, offs[k]);
+      if (tg.kind == Target::kUnnamed) {
+        if (!trim(fields[k]).empty()) return stop(line_no, col, host::kUnnamedValueMessage);
+        continue;
+      }
+      double v = 0.0;
       if (!parse_number(fields[k], sep != ',', v)) {
         return stop(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
       }
