@@ -293,16 +293,15 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         if (const auto it = o.column_number_map.find(k + 1); it != o.column_number_map.end()) {
           mapped = it->second;
           is_mapped = true;
-        } else {
-          std::size_t m = 0;
-          for (const auto& [key, to] : o.column_map) {
-            if (!is_mapped && host::column_name_matches(key, name)) {
-              mapped = to;
-              is_mapped = true;
-              map_used[m] = true;
-            }
-            ++m;
+        }
+        std::size_t m = 0;
+        for (const auto& [key, to] : o.column_map) {
+          if (host::column_name_matches(key, name)) {
+            map_used[m] = true;  // names a column, even where a number entry wins
+            if (!is_mapped) mapped = to;
+            is_mapped = true;
           }
+          ++m;
         }
         if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
         if (is_mapped) name = mapped;

@@ -416,11 +416,11 @@ class Parser {
         mapped = true;
       }
       for (MapEntry& e : map) {
-        if (!mapped && column_name_matches(e.key, cell.name)) {
-          e.used = true;
+        if (!column_name_matches(e.key, cell.name)) continue;
+        e.used = true;  // names a column, even where a number entry wins
+        if (!mapped) {
           target = e.target;
           mapped = true;
-          break;
         }
       }
       cols_[i].name = cell.name;

@@ -105,7 +105,13 @@ std::size_t log_head_size(std::string_view text) noexcept {
   while (at < text.size()) {
     const std::size_t nl = text.find('\n', at);
     const std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-    if (looks_like_data_row(text.substr(at, end - at))) return at;
+    const std::string_view line = text.substr(at, end - at);
+    // A data row, or a line meant as one (a number first, junk after it: the reader says where).
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (looks_like_data_row(line) ||
+        (first != std::string_view::npos && std::string_view("0123456789+-.").find(line[first]) != std::string_view::npos)) {
+      return at;
+    }
     at = end + 1;
   }
   return text.size();

@@ -50,9 +50,10 @@ std::size_t TextSource::read(char* dst, std::size_t n) {
   if (gz_ == nullptr || eof_ || error_ || n == 0) return 0;
   const unsigned ask = n > (1u << 30) ? (1u << 30) : static_cast<unsigned>(n);
   const int got = gzread(as_gz(gz_), dst, ask);
-  if (got < 0) {
-    int code = 0;
-    const char* what = gzerror(as_gz(gz_), &code);
+  int code = Z_OK;
+  const char* what = got <= 0 ? gzerror(as_gz(gz_), &code) : "";
+  // A truncated stream ends like a whole one, with Z_BUF_ERROR left behind.
+  if (got < 0 || code != Z_OK) {
     const std::string why = code == Z_ERRNO ? std::generic_category().message(errno) : std::string(what);
     error_ = SourceError{path_, line_, column_,
                          (compressed_ ? "cannot decompress (gzip): " : "cannot read: ") + why};

@@ -25,8 +25,8 @@ std::optional<TextEncoding> text_encoding_from_name(std::string_view name) noexc
 /// The name of `e` as text_encoding_from_name takes it ("detect" for kDetect).
 const char* text_encoding_name(TextEncoding e) noexcept;
 
-/// Bytes of `text` before its first data row (log_layout.hpp looks_like_data_row); the
-/// whole text when no line looks like one.
+/// Bytes of `text` before its first data row (log_layout.hpp looks_like_data_row, or a
+/// line that starts with a number); the whole text when no line looks like one.
 std::size_t log_head_size(std::string_view text) noexcept;
 
 /// The single-byte encoding `head` is in, or kUtf8 for text to leave as it is (see
