@@ -13,6 +13,7 @@ packages=(
   libcli11-dev                # command-line parsing of hstmon / hstmon-sim
   nlohmann-json3-dev          # parameter files and --json output
   libfmt-dev                  # formatting of reports and CSV output
+  zlib1g-dev                  # gzip-compressed logs (.csv.gz) read by both log readers
   gnuplot-nox                 # residual plots (--plot)
   chromium                    # headless render of the HTML reports in tests/cli/test_report_html
   libpng-dev                  # that test reads chromium's screenshot to check it is not blank

@@ -22,6 +22,9 @@ void add_log_options(CLI::App& cmd, LogOptionArgs& args, const std::string& para
                  "Sample rate [Hz]: rebuild time from the row index (for a time column rounded coarser than the "
                  "sample period, or none)")
       ->check(positive_number());
+  cmd.add_option("--encoding", args.encoding,
+                 "Encoding of the lines above the data (names, units): utf-8, windows-1250, windows-1252 or "
+                 "latin-1 (default: detected; UTF-8, else Windows-1250 for Polish/Czech letters, else 1252)");
   cmd.add_option(params_names, args.params, params_help);
 }
 
@@ -37,6 +40,11 @@ std::optional<host::ReadOptions> to_read_options(const LogOptionArgs& args, cons
   if (args.rate != 0.0) err = host::set_rate(ro, args.rate);
   if (!err.empty()) {
     fmt::print(stderr, "hstmon {}: error: --rate {}\n", command, err);
+    return std::nullopt;
+  }
+  if (!args.encoding.empty()) err = host::set_encoding(ro, args.encoding);
+  if (!err.empty()) {
+    fmt::print(stderr, "hstmon {}: error: --encoding {}\n", command, err);
     return std::nullopt;
   }
   for (const auto& m : args.maps) {

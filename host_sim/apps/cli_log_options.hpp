@@ -18,10 +18,11 @@ struct LogOptionArgs {
   std::string separator;          ///< --separator , ; or tab ("" = detect)
   bool lenient = false;           ///< --lenient
   double rate = 0.0;              ///< --rate HZ: time from the row index [Hz]; 0 = from the log
+  std::string encoding;           ///< --encoding of the header lines ("" = detect)
   std::string params;             ///< --params FILE (JSON parameter file)
 };
 
-/// Registers --map, --separator, --lenient, --rate and --params on `cmd`, with the same
+/// Registers --map, --separator, --lenient, --rate, --encoding and --params on `cmd`, with the same
 /// help everywhere. `params_names` lets a command keep an old spelling as an alias
 /// (identify: "--params,--prior"); `params_help` says what the file is for there.
 void add_log_options(CLI::App& cmd, LogOptionArgs& args, const std::string& params_help,

@@ -49,7 +49,8 @@ TEST(CircuitLog, ReadsUnitsAndNotesUnknownColumns) {
 TEST(CircuitLog, MistakesAreLocated) {
   EXPECT_EQ(error_of(""), "log.csv:1:1: error: empty log: no header row");
   EXPECT_EQ(error_of("p_line[bar]\n1\n"),
-            "log.csv:1:1: error: no time column (t[s]) in the header (or give the sample rate: --rate HZ)");
+            "log.csv:1:1: error: no time column (t[s]) in the header (or give the sample rate: --rate HZ); the "
+            "columns are 'p_line'");
   EXPECT_EQ(error_of("t[s],p_line[furlong]\n0,1\n").rfind("log.csv:1:6: error: column 'p_line': ", 0), 0u);
   EXPECT_EQ(error_of("t[s],p_line[bar],P_LINE[bar]\n"), "log.csv:1:18: error: duplicated column 'P_LINE'");
   EXPECT_EQ(error_of("t[s],p_line[bar]\n0,1\n0.1,1x\n"), "log.csv:3:5: error: not a number: '1x'");

@@ -177,7 +177,7 @@ TEST(LogReader, LastLineWithoutNewline) {
 
 TEST(LogReader, ColumnMapping) {
   hh::ReadOptions opt;
-  opt.column_map = {{"Zeit", "t"}, {"druck_a", "P_MI"}, {"Drehzahl", "w_m"}, {"Status", ""}, {"unused", "p_mo"}};
+  opt.column_map = {{"Zeit", "t"}, {"druck_a", "P_MI"}, {"Drehzahl", "w_m"}, {"Status", ""}};
   const auto d = read("ZEIT[s];Druck_A[bar];Drehzahl[U/min];Status;Temp[C]\n0;33;1677;ok;40\n0,1;34;1678;ok;41\n", opt);
   EXPECT_LOG_OK(d);
   ASSERT_EQ(d.rows(), 2u);
@@ -185,10 +185,15 @@ TEST(LogReader, ColumnMapping) {
   EXPECT_EQ(d.column(Signal::kPMi)[1], 34e5);
   EXPECT_DOUBLE_EQ(d.column(Signal::kWm)[0], 1677 * kRpm);
   EXPECT_FALSE(d.has(Signal::kPMo));
-  // "Status" is dropped silently; "Temp" gets a note; the unused map entry gets one.
-  ASSERT_EQ(d.notes.size(), 2u);
+  // "Status" is dropped silently; "Temp" gets a note.
+  ASSERT_EQ(d.notes.size(), 1u);
   EXPECT_EQ(d.notes[0], "mem.csv:1:45: note: column 'Temp' is not a known signal; ignored");
-  EXPECT_EQ(d.notes[1], "mem.csv:1:1: note: column map entry 'unused' matched no column");
+  // A map entry that matches no column is an error naming the columns there are.
+  opt.column_map["unused"] = "p_mo";
+  const auto bad = read("ZEIT[s];Druck_A[bar];Drehzahl[U/min];Status;Temp[C]\n0;33;1677;ok;40\n", opt);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error->to_string(), "mem.csv:1:1: error: column map entry 'unused' matches no column; the columns are "
+                                    "'ZEIT', 'Druck_A', 'Drehzahl', 'Status', 'Temp'");
 }
 
 TEST(LogReader, MappingOverridesCanonicalNames) {
@@ -236,7 +241,7 @@ TEST(LogReader, UnicodeHeaderIsFine) {
   const auto d = read("t,Öltemp[°C],p_mi\n0,40,1\n");
   EXPECT_LOG_OK(d);
   ASSERT_EQ(d.notes.size(), 1u);
-  EXPECT_EQ(d.notes[0], "mem.csv:1:3: note: column '\\xC3\\x96ltemp' is not a known signal; ignored");
+  EXPECT_EQ(d.notes[0], "mem.csv:1:3: note: column 'Öltemp' is not a known signal; ignored");
 }
 
 TEST(LogReader, TextNeedNotBeNulTerminated) {

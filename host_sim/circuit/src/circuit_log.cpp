@@ -11,6 +11,8 @@
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/text_encoding.hpp"
+#include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -21,7 +23,7 @@ using host::SourceError;
 
 // What one header column feeds.
 struct Target {
-  enum Kind { kIgnored, kTime, kInput, kSensor } kind = kIgnored;
+  enum Kind { kIgnored, kTime, kInput, kSensor, kUnnamed } kind = kIgnored;  // kUnnamed: a trailing separator's
   int index = -1;
   host::UnitConversion conv;
 };
@@ -102,11 +104,210 @@ std::string format_value(double v) {
 
 bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
+/// Which lines hold the names and the units, and the separator.
+struct Layout {
+  std::size_t header_line = 0;  ///< 1-based; 0: not found
+  std::size_t units_line = 0;   ///< 0: no units row
+  std::vector<host::LogField> unit_fields;
+  std::string_view units_text;  ///< the units row, for the columns of its messages
+  char sep = ',';
+};
+
+// Where the names (and units) are: the first content line, or an instrument's layout
+// (log_layout.hpp, the thesis reader's rules): a units row above or below the names, a
+// metadata block above them.
+Layout find_layout(std::string_view text, const host::ReadOptions& o, CircuitLog& log) {
+  Layout lay;
+  struct Content {
+    std::size_t number;
+    std::string_view text;
+  };
+  std::vector<Content> block;
+  std::optional<Content> data;
+  std::size_t n = 0, at = 0;
+  while (at <= text.size() && block.size() <= host::kMaxPreambleLines) {
+    const std::size_t nl = text.find('\n', at);
+    std::string_view l = text.substr(at, (nl == std::string_view::npos ? text.size() : nl) - at);
+    at = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+    ++n;
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    const std::string_view b = trim(l);
+    if (b.empty() || b.front() == '#') continue;
+    if (host::looks_like_data_row(l)) {
+      data = Content{n, l};
+      break;
+    }
+    block.push_back({n, l});
+  }
+  if (!block.empty()) {
+    std::vector<std::string_view> texts;
+    for (const Content& line : block) texts.push_back(line.text);
+    const std::optional<host::PreambleLayout> layout =
+        data ? host::detect_preamble_layout(texts, data->text, o.separator) : std::nullopt;
+    std::optional<std::size_t> units;
+    std::size_t names = 0;
+    if (layout) {
+      lay.sep = layout->sep;
+      names = layout->names;
+      units = layout->units;
+      const std::size_t top = layout->metadata();
+      if (top > 0) {
+        log.notes.push_back(
+            log.path + ":" + std::to_string(block[0].number) + ":1: note: " +
+            (top == 1 ? "line " + std::to_string(block[0].number)
+                      : "lines " + std::to_string(block[0].number) + "-" + std::to_string(block[top - 1].number)) +
+            " above the column names taken as metadata, not columns");
+      }
+    } else {
+      lay.sep = o.separator != 0 ? o.separator : host::detect_log_separator(block[0].text);
+      // The usual layout with a units row right below the names.
+      if (block.size() >= 2 &&
+          host::split_log_fields(block[1].text, lay.sep).size() ==
+              host::split_log_fields(block[0].text, lay.sep).size() &&
+          host::is_text_row(block[1].text, lay.sep, lay.sep != ',')) {
+        units = 1;
+      }
+    }
+    lay.header_line = block[names].number;
+    if (units) {
+      lay.units_line = block[*units].number;
+      lay.units_text = block[*units].text;
+      lay.unit_fields = host::split_log_fields(lay.units_text, lay.sep);
+    }
+  }
+  return lay;
+}
+
+/// The header row: what each column feeds, in which unit; notes for the columns the
+/// circuit does not know.
+std::optional<SourceError> read_header(std::string_view line, std::size_t line_no, const Layout& lay,
+                                       const host::CircuitFile& c, const host::ReadOptions& o, CircuitLog& log,
+                                       std::vector<Target>& targets) {
+  const std::size_t units_line = lay.units_line;
+  const std::vector<host::LogField>& unit_fields = lay.unit_fields;
+  const std::string_view units_text = lay.units_text;
+  std::vector<std::string_view> fields;
+  std::vector<std::size_t> offs;
+  split(line, lay.sep, fields, offs);
+  if (units_line != 0 && unit_fields.size() != fields.size()) {
+    return SourceError{
+        log.path, units_line, 1,
+        "units row has " + std::to_string(unit_fields.size()) + " fields, the header " + std::to_string(fields.size())};
+  }
+  for (const auto& [number, to] : o.column_number_map) {
+    if (number < 1 || number > fields.size()) {
+      return SourceError{
+          log.path, line_no, 1,
+          "--map #" + std::to_string(number) + ": the header has " + std::to_string(fields.size()) + " columns"};
+    }
+  }
+  targets.assign(fields.size(), Target{});
+  std::vector<std::string_view> names;  // for messages about a missing column
+  std::vector<bool> map_used(o.column_map.size(), false);
+  bool time_seen = false;
+  std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    if (host::is_trailing_empty_column(k, fields.size(), trim(fields[k]))) {
+      targets[k].kind = Target::kUnnamed;
+      continue;
+    }
+    std::string_view name, unit;
+    bool has_unit = false;
+    name_and_unit(fields[k], name, unit, has_unit);
+    if (!name.empty()) names.push_back(name);
+    const std::size_t lead = fields[k].find_first_not_of(" \t");
+    const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
+    std::size_t unit_line_no = line_no, unit_col = col;  // where a unit error points
+    if (units_line != 0) {
+      std::string_view u = unit_fields[k].text;
+      if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
+        u = trim(u.substr(1, u.size() - 2));
+      }
+      if (has_unit && !u.empty() && u != unit) {
+        return SourceError{log.path, units_line,
+                           char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data())),
+                           "unit '" + std::string(u) + "' of column '" + std::string(name) + "' differs from '" +
+                               std::string(unit) + "' in the header"};
+      }
+      if (!has_unit && !u.empty()) {
+        unit = u;
+        has_unit = true;
+        unit_line_no = units_line;
+        unit_col = char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data()));
+      }
+    }
+    // --map: by column number first, then by name; the target keeps the column's unit.
+    std::string mapped;
+    bool is_mapped = false;
+    if (const auto it = o.column_number_map.find(k + 1); it != o.column_number_map.end()) {
+      mapped = it->second;
+      is_mapped = true;
+    }
+    std::size_t m = 0;
+    for (const auto& [key, to] : o.column_map) {
+      if (host::column_name_matches(key, name)) {
+        map_used[m] = true;  // names a column, even where a number entry wins
+        if (!is_mapped) mapped = to;
+        is_mapped = true;
+      }
+      ++m;
+    }
+    if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
+    if (is_mapped) name = mapped;
+    if (name.empty()) return SourceError{log.path, line_no, col, "empty column name in the header"};
+    Target& tg = targets[k];
+    std::string err;
+    if (same_name(name, "t") || same_name(name, "time")) {
+      if (time_seen) return SourceError{log.path, line_no, col, "duplicated time column '" + std::string(name) + "'"};
+      time_seen = true;
+      tg.kind = Target::kTime;
+      const host::UnitResult u = host::parse_unit(host::Quantity::kTime, has_unit ? unit : std::string_view("s"));
+      if (!u.ok()) return SourceError{log.path, unit_line_no, unit_col, u.error};
+      tg.conv = u.conversion;
+      continue;
+    }
+    for (std::size_t i = 0; i < c.inputs.size() && tg.kind == Target::kIgnored; ++i) {
+      if (!same_name(name, c.inputs[i].column)) continue;
+      if (in_seen[i]) return SourceError{log.path, line_no, col, "duplicated column '" + std::string(name) + "'"};
+      in_seen[i] = true;
+      const host::UnitResult u =
+          host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
+      if (!u.ok())
+        return SourceError{log.path, unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error};
+      tg = Target{Target::kInput, static_cast<int>(i), u.conversion};
+    }
+    for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
+      if (!same_name(name, c.sensors[i].column)) continue;
+      if (s_seen[i]) return SourceError{log.path, line_no, col, "duplicated column '" + std::string(name) + "'"};
+      s_seen[i] = true;
+      const host::UnitResult u =
+          host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
+      if (!u.ok())
+        return SourceError{log.path, unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error};
+      tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
+    }
+    if (tg.kind == Target::kIgnored) {
+      log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": note: column '" +
+                          std::string(name) + "' is no input or sensor of circuit " + c.name + ": ignored");
+    }
+  }
+  if (!time_seen && !(o.rate > 0.0)) {
+    return SourceError{
+        log.path, line_no, 1,
+        "no time column (t[s]) in the header (or give the sample rate: --rate HZ); " + host::listed_columns(names)};
+  }
+  std::size_t m = 0;
+  for (const auto& entry : o.column_map) {
+    if (!map_used[m++]) return SourceError{log.path, line_no, 1, host::unmatched_map_message(entry.first, names)};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
   std::string text;
-  if (auto err = host::read_text_file(path, text)) {
+  if (auto err = host::read_log_text(path, text)) {
     CircuitLog log;
     log.path = path;
     log.error = *err;
@@ -137,6 +338,8 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   std::size_t skipped = 0;     // rows a lenient read skipped (time not increasing)
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
+  std::string converted;       // the text with its head in UTF-8, when it was not
+  text = host::log_text_in_utf8(text, o.encoding, converted);
   if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
       static_cast<unsigned char>(text[2]) == 0xBF) {
     text.remove_prefix(3);
@@ -153,71 +356,9 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     return fail(line, char_column(text.substr(start), z - start), "NUL byte: not a text log");
   }
 
-  // Where the names (and units) are: the first content line, or an instrument's layout
-  // (log_layout.hpp, the thesis reader's rules): a units row above or below the names, a
-  // metadata block above them.
-  std::size_t header_line = 0, units_line = 0;  // 0: not found / none
-  std::vector<host::LogField> unit_fields;
-  std::string_view units_text;  // the units row, for the columns of its messages
-  char sep = ',';
-  {
-    struct Content {
-      std::size_t number;
-      std::string_view text;
-    };
-    std::vector<Content> block;
-    std::optional<Content> data;
-    std::size_t n = 0, at = 0;
-    while (at <= text.size() && block.size() <= host::kMaxPreambleLines) {
-      const std::size_t nl = text.find('\n', at);
-      std::string_view l = text.substr(at, (nl == std::string_view::npos ? text.size() : nl) - at);
-      at = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
-      ++n;
-      if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-      const std::string_view b = trim(l);
-      if (b.empty() || b.front() == '#') continue;
-      if (host::looks_like_data_row(l)) {
-        data = Content{n, l};
-        break;
-      }
-      block.push_back({n, l});
-    }
-    if (!block.empty()) {
-      std::vector<std::string_view> texts;
-      for (const Content& line : block) texts.push_back(line.text);
-      const std::optional<host::PreambleLayout> layout =
-          data ? host::detect_preamble_layout(texts, data->text, o.separator) : std::nullopt;
-      std::optional<std::size_t> units;
-      std::size_t names = 0;
-      if (layout) {
-        sep = layout->sep;
-        names = layout->names;
-        units = layout->units;
-        const std::size_t top = layout->metadata();
-        if (top > 0) {
-          log.notes.push_back(log.path + ":" + std::to_string(block[0].number) + ":1: note: " +
-                              (top == 1 ? "line " + std::to_string(block[0].number)
-                                        : "lines " + std::to_string(block[0].number) + "-" +
-                                              std::to_string(block[top - 1].number)) +
-                              " above the column names taken as metadata, not columns");
-        }
-      } else {
-        sep = o.separator != 0 ? o.separator : host::detect_log_separator(block[0].text);
-        // The usual layout with a units row right below the names.
-        if (block.size() >= 2 &&
-            host::split_log_fields(block[1].text, sep).size() == host::split_log_fields(block[0].text, sep).size() &&
-            host::is_text_row(block[1].text, sep, sep != ',')) {
-          units = 1;
-        }
-      }
-      header_line = block[names].number;
-      if (units) {
-        units_line = block[*units].number;
-        units_text = block[*units].text;
-        unit_fields = host::split_log_fields(units_text, sep);
-      }
-    }
-  }
+  const Layout lay = find_layout(text, o, log);
+  const std::size_t header_line = lay.header_line, units_line = lay.units_line;
+  const char sep = lay.sep;
 
   std::vector<Target> targets;
   bool header_seen = false;
@@ -238,98 +379,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     if (line_no == units_line) continue;                   // taken with the header
     if (!header_seen) {
       header_seen = true;
-      split(line, sep, fields, offs);
-      if (units_line != 0 && unit_fields.size() != fields.size()) {
-        return fail(units_line, 1, "units row has " + std::to_string(unit_fields.size()) + " fields, the header " +
-                                       std::to_string(fields.size()));
-      }
-      for (const auto& [number, to] : o.column_number_map) {
-        if (number < 1 || number > fields.size()) {
-          return fail(line_no, 1, "--map #" + std::to_string(number) + ": the header has " + std::to_string(fields.size()) +
-                                      " columns");
-        }
-      }
-      targets.assign(fields.size(), Target{});
-      bool time_seen = false;
-      std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
-      for (std::size_t k = 0; k < fields.size(); ++k) {
-        std::string_view name, unit;
-        bool has_unit = false;
-        name_and_unit(fields[k], name, unit, has_unit);
-        const std::size_t lead = fields[k].find_first_not_of(" \t");
-        const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
-        std::size_t unit_line_no = line_no, unit_col = col;  // where a unit error points
-        if (units_line != 0) {
-          std::string_view u = unit_fields[k].text;
-          if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
-            u = trim(u.substr(1, u.size() - 2));
-          }
-          if (has_unit && !u.empty() && u != unit) {
-            return fail(units_line, char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data())),
-                        "unit '" + std::string(u) + "' of column '" + std::string(name) + "' differs from '" +
-                            std::string(unit) + "' in the header");
-          }
-          if (!has_unit && !u.empty()) {
-            unit = u;
-            has_unit = true;
-            unit_line_no = units_line;
-            unit_col = char_column(units_text, static_cast<std::size_t>(u.data() - units_text.data()));
-          }
-        }
-        // --map: by column number first, then by name; the target keeps the column's unit.
-        std::string mapped;
-        bool is_mapped = false;
-        if (const auto it = o.column_number_map.find(k + 1); it != o.column_number_map.end()) {
-          mapped = it->second;
-          is_mapped = true;
-        } else {
-          for (const auto& [key, to] : o.column_map) {
-            if (!is_mapped && host::column_name_matches(key, name)) {
-              mapped = to;
-              is_mapped = true;
-            }
-          }
-        }
-        if (is_mapped && mapped.empty()) continue;  // dropped on purpose, no note
-        if (is_mapped) name = mapped;
-        if (name.empty()) return fail(line_no, col, "empty column name in the header");
-        Target& tg = targets[k];
-        std::string err;
-        if (same_name(name, "t") || same_name(name, "time")) {
-          if (time_seen) return fail(line_no, col, "duplicated time column '" + std::string(name) + "'");
-          time_seen = true;
-          tg.kind = Target::kTime;
-          const host::UnitResult u = host::parse_unit(host::Quantity::kTime, has_unit ? unit : std::string_view("s"));
-          if (!u.ok()) return fail(unit_line_no, unit_col, u.error);
-          tg.conv = u.conversion;
-          continue;
-        }
-        for (std::size_t i = 0; i < c.inputs.size() && tg.kind == Target::kIgnored; ++i) {
-          if (!same_name(name, c.inputs[i].column)) continue;
-          if (in_seen[i]) return fail(line_no, col, "duplicated column '" + std::string(name) + "'");
-          in_seen[i] = true;
-          const host::UnitResult u =
-              host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
-          if (!u.ok()) return fail(unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error);
-          tg = Target{Target::kInput, static_cast<int>(i), u.conversion};
-        }
-        for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
-          if (!same_name(name, c.sensors[i].column)) continue;
-          if (s_seen[i]) return fail(line_no, col, "duplicated column '" + std::string(name) + "'");
-          s_seen[i] = true;
-          const host::UnitResult u =
-              host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
-          if (!u.ok()) return fail(unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error);
-          tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
-        }
-        if (tg.kind == Target::kIgnored) {
-          log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": note: column '" +
-                              std::string(name) + "' is no input or sensor of circuit " + c.name + ": ignored");
-        }
-      }
-      if (!time_seen && !(o.rate > 0.0)) {
-        return fail(line_no, 1, "no time column (t[s]) in the header (or give the sample rate: --rate HZ)");
-      }
+      if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
       continue;
     }
 
@@ -347,8 +397,12 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const Target& tg = targets[k];
       if (tg.kind == Target::kIgnored) continue;
-      double v = 0.0;
       const std::size_t col = char_column(line, offs[k]);
+      if (tg.kind == Target::kUnnamed) {
+        if (!trim(fields[k]).empty()) return stop(line_no, col, host::kUnnamedValueMessage);
+        continue;
+      }
+      double v = 0.0;
       if (!parse_number(fields[k], sep != ',', v)) {
         return stop(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
       }

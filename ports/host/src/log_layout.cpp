@@ -58,6 +58,10 @@ char detect_log_separator(std::string_view header) noexcept {
   return ',';
 }
 
+bool is_trailing_empty_column(std::size_t index, std::size_t count, std::string_view cell) noexcept {
+  return count >= 2 && index + 1 == count && cell.empty();
+}
+
 bool looks_like_data_row(std::string_view line) noexcept {
   bool digit = false;
   for (const char c : line) {

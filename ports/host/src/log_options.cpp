@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 #include "text_util.hpp"
 
@@ -60,6 +61,28 @@ std::string set_rate(ReadOptions& options, double rate_hz) {
   if (!std::isfinite(rate_hz) || !(rate_hz > 0.0)) return "must be a sample rate in Hz above 0";
   options.rate = rate_hz;
   return {};
+}
+
+std::string set_encoding(ReadOptions& options, std::string_view text) {
+  const std::optional<TextEncoding> e = text_encoding_from_name(text);
+  if (!e) return "must be utf-8, windows-1250, windows-1252 or latin-1, got '" + std::string(text.substr(0, 20)) + "'";
+  options.encoding = *e;
+  return {};
+}
+
+std::string listed_columns(const std::vector<std::string_view>& columns) {
+  // A wide export has hundreds of columns: the first few make the point.
+  constexpr std::size_t kListed = 24;
+  std::string list = "the columns are ";
+  for (std::size_t i = 0; i < columns.size() && i < kListed; ++i) {
+    list += (i == 0 ? "'" : ", '") + detail::printable(columns[i]) + "'";
+  }
+  if (columns.size() > kListed) list += ", … (" + std::to_string(columns.size()) + " in all)";
+  return list;
+}
+
+std::string unmatched_map_message(std::string_view key, const std::vector<std::string_view>& columns) {
+  return "column map entry '" + detail::printable(key) + "' matches no column; " + listed_columns(columns);
 }
 
 }  // namespace hstmon::host

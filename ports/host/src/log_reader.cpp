@@ -12,12 +12,13 @@
 #include <memory>
 #include <system_error>
 
-#include <fcntl.h>
-#include <unistd.h>
+#include <string.h>  // memrchr
 
 #include "delimiter_scan.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/text_encoding.hpp"
+#include "hstmon_host/text_source.hpp"
 #include "fast_decimal.hpp"
 #include "text_util.hpp"
 #include "utf8_check.hpp"
@@ -55,6 +56,7 @@ struct ColumnSpec {
   double factor = 1.0;
   double offset = 0.0;
   bool is_time = false;
+  bool must_be_empty = false;          ///< the unnamed column a trailing separator leaves
   std::string_view name;               ///< name as in the log, for messages
 };
 
@@ -84,29 +86,24 @@ std::string_view text_of(const Line& line) noexcept {
   return {line.begin, static_cast<std::size_t>(line.end - line.begin)};
 }
 
-/// The file behind a streamed read (LogStream): one buffer refilled by read(2), so the
-/// memory does not grow with the file.
+/// The file behind a streamed read (LogStream): one buffer refilled from the text
+/// source (plain or gzip), so the memory does not grow with the file.
 struct StreamSource {
-  int fd = -1;
+  TextSource text;
   std::unique_ptr<char[]> buf;
   std::size_t cap = 0;         ///< buffer size [bytes]
   std::size_t fill = 0;        ///< bytes in the buffer
-  std::uint64_t total = 0;     ///< bytes read from the file so far
+  std::uint64_t total = 0;     ///< bytes of text read so far
   bool eof = false;
-  int err = 0;                 ///< errno of a failed read
 
-  /// Reads until the buffer is full or the file ends; false on a read error.
+  /// Reads until the buffer is full or the text ends; false on a read error (text.error()).
   bool read_more() {
     while (fill < cap && !eof) {
-      const ssize_t n = ::read(fd, buf.get() + fill, cap - fill);
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        err = errno;
-        return false;
-      }
+      const std::size_t n = text.read(buf.get() + fill, cap - fill);
+      if (text.error()) return false;
       if (n == 0) eof = true;
-      fill += static_cast<std::size_t>(n);
-      total += static_cast<std::uint64_t>(n);
+      fill += n;
+      total += n;
     }
     return true;
   }
@@ -305,6 +302,11 @@ class Parser {
     for (const Field& f : fields) {
       HeaderCell cell;
       std::string_view s = f.text;
+      if (is_trailing_empty_column(cells_.size(), fields.size(), s)) {
+        cell.name_pos = f.pos;
+        cells_.push_back(cell);  // kept, so rows have as many fields as the header
+        break;
+      }
       const std::size_t open_b = s.find('[');
       const std::size_t open_p = s.find('(');
       const std::size_t open = std::min(open_b, open_p);
@@ -331,7 +333,7 @@ class Parser {
     // Duplicated names (ignoring case) are refused even for columns that would be ignored.
     for (std::size_t i = 0; i < cells_.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
-        if (detail::iequals(cells_[i].name, cells_[j].name)) {
+        if (!cells_[i].name.empty() && detail::iequals(cells_[i].name, cells_[j].name)) {
           // Units taken for names ("V" twice): say so rather than only "duplicate".
           const bool unit = unit_score(text_of(header), sep_) * 2 > cells_.size();
           fail(header, cells_[i].name_pos, "duplicate column name '" + printable(cells_[i].name) +
@@ -414,14 +416,18 @@ class Parser {
         mapped = true;
       }
       for (MapEntry& e : map) {
-        if (!mapped && column_name_matches(e.key, cell.name)) {
-          e.used = true;
+        if (!column_name_matches(e.key, cell.name)) continue;
+        e.used = true;  // names a column, even where a number entry wins
+        if (!mapped) {
           target = e.target;
           mapped = true;
-          break;
         }
       }
       cols_[i].name = cell.name;
+      if (cell.name.empty()) {  // the unnamed column of a trailing separator
+        cols_[i].must_be_empty = true;
+        continue;
+      }
       if (mapped && target.empty()) continue;  // dropped on request
       const std::optional<Signal> sig = signal_from_name(target);
       if (!sig) {
@@ -473,15 +479,27 @@ class Parser {
       if (opt_.rate == 0.0) {
         fail(header_, header_.begin,
              "no time column 't' (name one 't', map one with --map COLUMN=t or '#N=t', or give the sample rate "
-             "with --rate HZ)");
+             "with --rate HZ); " + listed_columns(column_names()));
         return false;
       }
       out_.present[index(Signal::kT)] = true;  // time from the rate alone, starting at 0
     }
     for (const MapEntry& e : map) {
-      if (!e.used) note(header_, header_.begin, "column map entry '" + printable(e.key) + "' matched no column");
+      if (!e.used) {
+        fail(header_, header_.begin, unmatched_map_message(e.key, column_names()));
+        return false;
+      }
     }
     return true;
+  }
+
+  /// The header's column names, for messages about a column that is not there.
+  std::vector<std::string_view> column_names() const {
+    std::vector<std::string_view> names;
+    for (const HeaderCell& c : cells_) {
+      if (!c.name.empty()) names.push_back(c.name);
+    }
+    return names;
   }
 
   // ---- data ----------------------------------------------------------------------------
@@ -564,6 +582,7 @@ class Parser {
       const ColumnSpec& col = cols[c];
       const char* const fe = delims[c];
       if (col.dst == nullptr) {
+        if (col.must_be_empty && fe != f) return undo_fast_row();
         for (const char* x = f; x < fe; ++x) {
           const auto u = static_cast<unsigned char>(*x);
           if (u == 0 || u >= 0x80) return undo_fast_row();
@@ -634,7 +653,12 @@ class Parser {
       const ColumnSpec& col = cols_[c];
       if (col.dst == nullptr) {
         const auto* s = static_cast<const char*>(std::memchr(f, sep, static_cast<std::size_t>(le - f)));
-        f = s != nullptr ? s : le;
+        const char* fe = s != nullptr ? s : le;
+        if (col.must_be_empty && !trim(std::string_view(f, static_cast<std::size_t>(fe - f))).empty()) {
+          fail(line, f, kUnnamedValueMessage);
+          return RowResult::kFailed;
+        }
+        f = fe;
         continue;
       }
       const char* q = f;
@@ -829,7 +853,7 @@ class Parser {
     end_ = pin_;  // nothing to parse until a complete line is in
     for (;;) {
       if (!src_->read_more()) {
-        fail_at(line_no_ + 1, 1, std::string("cannot read: ") + std::generic_category().message(src_->err));
+        out_.error = src_->text.error();
         return false;
       }
       const char* const fill_end = buf + src_->fill;
@@ -966,6 +990,8 @@ LogData read_log_from_memory(std::string_view text, std::string path_for_message
   LogData out;
   out.path = std::move(path_for_messages);
   try {
+    std::string converted;  // the text with its head in UTF-8, when it was not
+    text = log_text_in_utf8(text, options.encoding, converted);
     Parser parser(text, options, out);
     parser.run();
   } catch (const std::bad_alloc&) {
@@ -979,47 +1005,20 @@ LogData read_log_from_memory(std::string_view text, std::string path_for_message
 }
 
 LogData read_log(const std::string& path, const ReadOptions& options) {
-  const auto failed = [&path](const char* what, int err) {
+  std::string text;
+  std::optional<SourceError> error;
+  try {
+    error = read_log_text(path, text);
+  } catch (const std::bad_alloc&) {
+    error = SourceError{path, 0, 0, "cannot read: " + std::generic_category().message(ENOMEM)};
+  }
+  if (error) {
     LogData out;
     out.path = path;
-    out.error = LogError{path, 0, 0, std::string(what) + ": " + std::generic_category().message(err)};
+    out.error = std::move(error);
     return out;
-  };
-  std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(path, ec);
-  if (!ec && std::filesystem::is_directory(st)) return failed("cannot read", EISDIR);
-  // Size hint for regular files; one spare byte so reading an unchanged file to its end
-  // needs no regrowth. A growing file or a pipe regrows by doubling.
-  std::size_t cap = std::size_t{1} << 16;
-  if (!ec && std::filesystem::is_regular_file(st)) {
-    const std::uintmax_t n = std::filesystem::file_size(path, ec);
-    if (!ec && n < (std::uintmax_t{1} << 40)) cap = static_cast<std::size_t>(n) + 1;
   }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return failed("cannot open", errno);
-  try {
-    std::unique_ptr<char[]> buf(new char[cap]);
-    std::size_t size = 0;
-    for (;;) {
-      if (size == cap) {
-        std::unique_ptr<char[]> bigger(new char[2 * cap]);
-        std::memcpy(bigger.get(), buf.get(), size);
-        buf = std::move(bigger);
-        cap *= 2;
-      }
-      const std::size_t got = std::fread(buf.get() + size, 1, cap - size, f);
-      size += got;
-      if (got == 0) break;
-    }
-    const int err = errno;
-    const bool read_error = std::ferror(f) != 0;
-    std::fclose(f);
-    if (read_error) return failed("cannot read", err != 0 ? err : EIO);
-    return read_log_from_memory(std::string_view(buf.get(), size), path, options);
-  } catch (const std::bad_alloc&) {
-    std::fclose(f);
-    return failed("cannot read", ENOMEM);
-  }
+  return read_log_from_memory(text, path, options);
 }
 
 }  // namespace hstmon::host
@@ -1036,8 +1035,27 @@ struct LogStream::Impl {
   std::uint64_t size = 0;  // file size [bytes], 0 if unknown
   std::unique_ptr<Parser> parser;
 
-  ~Impl() {
-    if (src.fd >= 0) ::close(src.fd);
+  /// Bytes of the first buffer's complete lines, its head converted to UTF-8 if need be
+  /// (a longer head moves the rest of the buffer up; the buffer grows by as much).
+  std::size_t first_lines() {
+    const char* const buf = src.buf.get();
+    std::size_t complete = src.fill;
+    if (!src.eof) {
+      const void* nl = ::memrchr(buf, '\n', src.fill);
+      complete = nl != nullptr ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf) + 1 : 0;
+    }
+    std::string converted;
+    if (log_text_in_utf8(std::string_view(buf, complete), options.encoding, converted).data() != converted.data()) {
+      return complete;
+    }
+    const std::size_t rest = src.fill - complete;
+    src.cap += converted.size() - complete;
+    std::unique_ptr<char[]> grown(new char[src.cap]);
+    std::memcpy(grown.get(), converted.data(), converted.size());
+    std::memcpy(grown.get() + converted.size(), buf + complete, rest);
+    src.buf = std::move(grown);
+    src.fill = converted.size() + rest;
+    return converted.size();
   }
 };
 
@@ -1063,22 +1081,14 @@ bool LogStream::open(const std::string& path, const ReadOptions& options, std::s
   std::error_code ec;
   const std::filesystem::file_status st = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::is_regular_file(st)) return read_whole();  // its messages for dirs, pipes, missing files
-  m.size = std::filesystem::file_size(path, ec);
-  if (ec) m.size = 0;
-  m.src.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (m.src.fd < 0) return read_whole();
-  ::posix_fadvise(m.src.fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+  if (m.src.text.open(path)) return read_whole();
+  m.size = m.src.text.file_size();
   try {
     m.src.cap = std::max<std::size_t>(64, buffer_bytes);
     m.src.buf.reset(new char[m.src.cap]);
     if (!m.src.read_more()) return read_whole();
-    const char* const buf = m.src.buf.get();
-    std::size_t complete = m.src.fill;  // the first buffer's complete lines
-    if (!m.src.eof) {
-      const void* nl = ::memrchr(buf, '\n', m.src.fill);
-      complete = nl != nullptr ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf) + 1 : 0;
-    }
-    m.parser = std::make_unique<Parser>(std::string_view(buf, complete), m.options, data_, &m.src,
+    const std::size_t complete = m.first_lines();
+    m.parser = std::make_unique<Parser>(std::string_view(m.src.buf.get(), complete), m.options, data_, &m.src,
                                         std::max<std::size_t>(1, chunk_rows));
     m.parser->run();
     if (m.parser->ran_out()) {
@@ -1128,6 +1138,10 @@ bool LogStream::next() {
 double LogStream::fraction() const noexcept {
   if (whole_) return done_ ? 1.0 : 0.0;
   if (impl_ == nullptr || impl_->parser == nullptr || impl_->size == 0) return 0.0;
+  // A gzip file: how far into the compressed file (its text size is not known ahead).
+  if (impl_->src.text.compressed()) {
+    return std::min(1.0, static_cast<double>(impl_->src.text.file_offset()) / static_cast<double>(impl_->size));
+  }
   return std::min(1.0, static_cast<double>(impl_->parser->consumed()) / static_cast<double>(impl_->size));
 }
 

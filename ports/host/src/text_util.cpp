@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "utf8_check.hpp"
+
 namespace hstmon::host::detail {
 
 std::size_t char_column(const char* line_start, const char* pos) noexcept {
@@ -56,18 +58,26 @@ bool iequals(std::string_view a, std::string_view b) noexcept {
 
 std::string printable(std::string_view s, std::size_t max_chars) {
   const bool cut = s.size() > max_chars;
-  if (cut) s = s.substr(0, max_chars);
+  if (cut) {
+    std::size_t end = max_chars;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0u) == 0x80u) --end;  // not inside a character
+    s = s.substr(0, end);
+  }
   std::string out;
   out.reserve(s.size() + 8);
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20u || u == 0x7Fu || u >= 0x80u) {
-      // Non-ASCII is escaped too: the text may be cut mid-sequence or be binary junk.
-      char buf[8];
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto u = static_cast<unsigned char>(s[i]);
+    // A whole UTF-8 character stays as it is (a header in UTF-8, or converted to it).
+    const std::size_t n = u >= 0xC2u && u <= 0xDFu ? 2 : u >= 0xE0u && u <= 0xEFu ? 3 : u >= 0xF0u && u <= 0xF4u ? 4 : 0;
+    if (n != 0 && i + n <= s.size() && find_invalid_utf8(s.substr(i, n)) == std::string_view::npos) {
+      out.append(s.substr(i, n));
+      i += n - 1;
+    } else if (u < 0x20u || u == 0x7Fu || u >= 0x80u) {
+      char buf[8];  // control bytes and binary junk, visibly
       std::snprintf(buf, sizeof buf, "\\x%02X", static_cast<unsigned>(u));
       out += buf;
     } else {
-      out += c;
+      out += static_cast<char>(u);
     }
   }
   if (cut) out += "...";

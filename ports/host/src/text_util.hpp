@@ -33,8 +33,8 @@ std::string ascii_lower(std::string_view s);
 /// Equality ignoring ASCII case.
 bool iequals(std::string_view a, std::string_view b) noexcept;
 
-/// `s` for a message: at most max_chars bytes (then "..."), control and non-ASCII
-/// bytes that are not valid text shown as \xNN.
+/// `s` for a message: at most max_chars bytes (then "...", never inside a character);
+/// control bytes and bytes that are not valid UTF-8 shown as \xNN.
 std::string printable(std::string_view s, std::size_t max_chars = 40);
 
 }  // namespace hstmon::host::detail

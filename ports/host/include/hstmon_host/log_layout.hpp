@@ -39,6 +39,15 @@ bool is_text_row(std::string_view line, char sep, bool decimal_comma);
 /// not (a Spider8 channel left in volts). Tells a units row from a names row.
 std::size_t unit_score(std::string_view line, char sep);
 
+/// True for the header cell that a trailing separator leaves (`t,p_mi,`): the last of
+/// two or more, with no name and no unit. Such a column is dropped; its fields must be
+/// empty (kUnnamedValueMessage otherwise).
+bool is_trailing_empty_column(std::size_t index, std::size_t count, std::string_view cell) noexcept;
+
+/// The error for a value in that column.
+inline constexpr const char* kUnnamedValueMessage =
+    "value in the last column, which has no name (the header ends with a separator)";
+
 /// Content lines looked at before the first data row.
 inline constexpr std::size_t kMaxPreambleLines = 64;
 

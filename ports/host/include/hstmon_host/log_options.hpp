@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "hstmon_host/log_reader.hpp"
 
@@ -31,5 +32,19 @@ std::string set_separator(ReadOptions& options, std::string_view text);
 /// Sets the sample rate [Hz] (ReadOptions::rate); must be finite and > 0. Returns ""
 /// on success, else why it was refused.
 std::string set_rate(ReadOptions& options, double rate_hz);
+
+/// Sets the encoding of the log's head (ReadOptions::encoding) from `utf-8`,
+/// `windows-1250`, `windows-1252` or `latin-1`. Returns "" on success, else why not.
+std::string set_encoding(ReadOptions& options, std::string_view text);
+
+/// The error for a column map entry that names no header column: the entry and the
+/// columns there are, quoted, so a typo or a name in another spelling shows at once.
+/// @param key      the entry's column name as given
+/// @param columns  the header's column names, in order
+std::string unmatched_map_message(std::string_view key, const std::vector<std::string_view>& columns);
+
+/// "the columns are 'a', 'b', …" (the first two dozen, then the count): what an error
+/// about a column that is not there appends.
+std::string listed_columns(const std::vector<std::string_view>& columns);
 
 }  // namespace hstmon::host

@@ -56,6 +56,7 @@
 
 #include "hstmon_host/signals.hpp"
 #include "hstmon_host/source_error.hpp"
+#include "hstmon_host/text_encoding.hpp"
 
 namespace hstmon::host {
 
@@ -80,6 +81,9 @@ struct ReadOptions {
   /// gives t); the logged time then need not increase (a Spider8 rounds it to 1 ms at
   /// 4800 Hz), and a logged span that disagrees with the rate gets a note.
   double rate = 0.0;
+  /// Encoding of the lines above the first data row (text_encoding.hpp); they are
+  /// converted to UTF-8 before they are read. kDetect: UTF-8, Windows-1250 or -1252.
+  TextEncoding encoding = TextEncoding::kDetect;
 };
 
 /// A log read into memory, column-major, in SI units.
