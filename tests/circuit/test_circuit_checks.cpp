@@ -84,6 +84,24 @@ TEST(CircuitChecks, ValuesInTheCircuitFile) {
   }
 }
 
+// Names as the file writes them: a directional valve's (not its paths'), a shaft's friction field.
+TEST(CircuitChecks, ValuesOfValvesAndShafts) {
+  const std::string dcv = variant(R"("throttle": {"type": "orifice", "from": "line", "to": "tank", "k": 2.9e-7})",
+                                  R"("dcv": {"type": "directional_valve", "P": "line", "T": "tank", "A": "tank", "B": "line", )"
+                                  R"("area": "-2 mm2", "Cd": 0.6, "rho": 870, "spool": 1})");
+  expect_starts(error_of(dcv), where("c.json", dcv, R"("-2 mm2")") + ": error: dcv.area = -2e-06 m2: an area must be >= 0");
+  const std::string shaft = variant(R"("drive": {"speed": "n"})", R"("drive": {"J": 0.1, "friction": -0.01})");
+  expect_starts(error_of(shaft), where("c.json", shaft, "-0.01") + ": error: drive.friction = -0.01 N*m*s/rad: a friction");
+  const std::string pump = variant(R"("leak": {"type": "laminar_leakage", "from": "line", "to": "tank", "R": 1.5e12})",
+                                   R"("cp": {"type": "compensated_pump", "from": "tank", "to": "line", "Q0": "1 L/min", "R": 1e9, )"
+                                   R"("Pc": "75 bar", "Pk": "87 bar", "Pmax": "90 bar"})");
+  expect_starts(error_of(pump), where("c.json", pump, R"("1 L/min")") + ": error: cp.Q0 = 1.66667e-05 m3/s (1 L/min) with R");
+  const std::string knee = variant(R"("leak": {"type": "laminar_leakage", "from": "line", "to": "tank", "R": 1.5e12})",
+                                   R"("cp": {"type": "compensated_pump", "from": "tank", "to": "line", "Q0": "1 L/min", "R": 1e12, )"
+                                   R"("Pc": "75 bar", "Pk": "70 bar", "Pmax": "90 bar"})");
+  expect_starts(error_of(knee), where("c.json", knee, R"("70 bar")") + ": error: cp.Pk = 7e+06 Pa (70 bar) is not above Pc");
+}
+
 TEST(CircuitChecks, Wiring) {
   struct Case {
     std::string from, to, token, message;

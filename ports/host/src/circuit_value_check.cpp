@@ -138,14 +138,25 @@ class Checker {
     p.Pmax = value(pmax);
     PumpCurve<double> curve;
     if (!out_ && !curve.make(p)) {
-      fail(e.r[circuit::kQ0], name + ": Q0 = " + shown(e.r[circuit::kQ0]) + " with R = " + shown(e.r[circuit::kRleak]) +
-                                  " leaves no flow by Pk: the leakage takes it all");
+      fail(e.r[circuit::kQ0], name + ".Q0 = " + shown(e.r[circuit::kQ0]) + " with R = " + shown(e.r[circuit::kRleak]) +
+                                  ": no pump curve through these (its flow must stay > 0 up to Pk, its middle region concave)");
     }
+  }
+
+  /// The name a user wrote for element k: a directional valve's, not its path's ("dcv", not "dcv.PA").
+  std::string owner(int k) const {
+    const circuit::Element& e = f_.circuit.elements[k];
+    const std::string& name = f_.elements[static_cast<std::size_t>(k)];
+    return e.kind == ElementKind::kOrifice && e.opening_sign != 0 ? name.substr(0, name.rfind('.')) : name;
   }
 
   void element(int k) {
     const circuit::Element& e = f_.circuit.elements[k];
-    const std::string& name = f_.elements[static_cast<std::size_t>(k)];
+    const std::string name = owner(k);
+    if (e.kind == ElementKind::kFriction && e.shaft >= 0 && name == f_.shafts[static_cast<std::size_t>(e.shaft)] + ".friction") {
+      non_negative(e.r[circuit::kC], f_.shafts[static_cast<std::size_t>(e.shaft)], "friction", "a friction coefficient");
+      return;  // a shaft's own `friction` field
+    }
     switch (e.kind) {
       case ElementKind::kOrifice: coefficient(e, name); break;
       case ElementKind::kPoppet: poppet(e, name); break;
