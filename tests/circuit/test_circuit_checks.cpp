@@ -3,6 +3,7 @@
 // written in the circuit file or in its parameter file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "hstmon_host/circuit_file.hpp"
