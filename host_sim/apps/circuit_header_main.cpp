@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   hstmon::circuit_tools::LoadedCircuit c;
   if (const auto err = hstmon::circuit_tools::load_circuit(circuit, params, c)) {
     std::fprintf(stderr, "%s\n", err->to_string().c_str());
-    return 1;
+    return 2;  // a circuit or parameter file in error, as every circuit command
   }
   o.source_note = base_name(circuit) + (c.params_path.empty() ? "" : " + " + base_name(c.params_path));
   std::string error;

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -101,7 +102,10 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
       beyond += fmt::format("{}{}{}", beyond.empty() ? "" : ", ", sensor.name, s.mean() > 0 ? "+" : "−");
     }
   }
-  if (beyond.empty()) {
+  const bool any_measured = std::find(r.measured.begin(), r.measured.end(), true) != r.measured.end();
+  if (!any_measured) {
+    fmt::print("\n  no sensor column in the log: no residual compared\n");
+  } else if (beyond.empty()) {
     fmt::print("\n  residual means are within the sensor noise on every measured channel\n");
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
@@ -153,6 +157,17 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
   return std::fclose(f) == 0 && ok ? std::string() : "write failed: " + path;
 }
 
+/// Why replay_circuit() stopped before its first tick (its note says), or "".
+std::string not_replayed(const CircuitReplayResult& r) {
+  if (r.ticks > 0) return {};
+  const std::string tail = ": nothing replayed";
+  for (const std::string& n : r.notes) {
+    const std::size_t at = n.rfind(tail);
+    if (at != std::string::npos) return n.substr(0, at);
+  }
+  return "the log has no rows";
+}
+
 }  // namespace
 
 int run_circuit_replay(const CircuitReplayArgs& a) {
@@ -175,6 +190,11 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
+  // A run that did not happen has no residuals to report, least of all quiet ones.
+  if (const std::string why = not_replayed(r); !why.empty()) {
+    fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", a.circuit, a.log, why);
+    return kExitBadInput;
+  }
   if (a.json) {
     print_json(a, c, r);
   } else {

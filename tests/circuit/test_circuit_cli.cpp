@@ -106,6 +106,53 @@ TEST(CircuitCli, ReplayErrorsNameFileLineColumn) {
   EXPECT_NE(r.out.find("error: plot: plot file must end in .svg or .png: /dev/null"), std::string::npos) << r.out;
 }
 
+/// `file` with the first `from` replaced by `to`, written to a temporary file named `name`.
+std::string edited_copy(const std::string& file, const std::string& from, const std::string& to, const std::string& name) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << s;
+  return path;
+}
+
+// A circuit that is not physical stops every command at load with exit 2 and an error
+// naming the file, the element and the value; no residual summary follows.
+TEST(CircuitCli, CircuitsThatAreNotPhysicalAreErrors) {
+  const std::string params = kDir + "test_stand.params.json";
+  struct Case {
+    std::string circuit, params, expect;
+  };
+  const Case cases[] = {
+      {kDir + "test_stand.json", edited_copy(params, R"("V_line": "2 L")", R"("V_line": "0 L")", "hstmon_cc_v0.params.json"),
+       ":5:48: error: line.volume = 0 m3 (0 L, parameter 'V_line'): a volume must be > 0"},
+      {kDir + "test_stand.json", edited_copy(params, R"("p_crack": "200 bar")", R"("p_crack": "250 bar")", "hstmon_cc_crack.params.json"),
+       ":6:58: error: relief.cracking = 2.5e+07 Pa (250 bar, parameter 'p_crack') is not below the full-open pressure 2.3e+07 Pa (230 bar"},
+      {kDir + "test_stand.json", edited_copy(params, R"("D": "45 cc/rev")", R"("D": "-45 cc/rev")", "hstmon_cc_negd.params.json"),
+       ":5:10: error: pump.displacement = -7.16197e-06 m3/rad (-45 cc/rev, parameter 'D'): a displacement must be > 0"},
+      {edited_copy(kDir + "test_stand.json", R"("tank": {"boundary": 0},)", R"("tank": {"boundary": 0}, "spare": {"K": 1e12},)",
+                   "hstmon_cc_spare.json"),
+       params, ":20:30: error: node 'spare' is no component's port"},
+  };
+  for (const Case& c : cases) {
+    const std::string file = c.expect.find("spare") != std::string::npos ? c.circuit : c.params;
+    const CliRun r = run(std::string(HSTMON_CLI) + " replay --circuit " + c.circuit + " --params " + c.params + " " + kDir +
+                         "test_stand.csv 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find(file + c.expect), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("within the sensor noise"), std::string::npos) << r.out;
+  }
+  // The same load in every circuit command: the simulator too.
+  const CliRun r = run(std::string(HSTMON_SIM) + " --circuit " + cases[0].circuit + " --params " + cases[0].params +
+                       " --duration 0.1 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find(cases[0].params + cases[0].expect), std::string::npos) << r.out;
+}
+
 // replay, identify and gap take the log options with --circuit as without: a logger's
 // export with no time column, ';' between fields and its own name for a channel, read
 // with --rate, --separator and --map.

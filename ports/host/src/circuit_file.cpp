@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "circuit_checks.hpp"
 #include "hstmon/circuit/validate.hpp"
 #include "json_locations.hpp"
 #include "text_util.hpp"
@@ -128,6 +129,13 @@ class Reader {
   [[noreturn]] void fail_key(std::string ptr, std::string message) { fail(position(loc_.key, ptr), std::move(message)); }
   [[noreturn]] void fail_at(std::string ptr, std::string message) { fail_value(std::move(ptr), std::move(message)); }
 
+  /// Line and column of the value at ptr, kept for the value checks after the values are bound.
+  void at(const std::string& ptr, std::size_t& line, std::size_t& column) const {
+    const detail::LineCol lc = detail::locate(text_, position(loc_.value, ptr));
+    line = lc.line;
+    column = lc.column;
+  }
+
   std::size_t position(const std::map<std::string, std::size_t>& m, std::string ptr) const {
     for (;;) {
       const auto it = m.find(ptr);
@@ -234,6 +242,7 @@ class Reader {
     p.quantity = q;
     p.value = v;
     p.literal = true;
+    at(ptr, p.value_line, p.value_column);
     f_.params.push_back(p);
     return circuit::param_ref(static_cast<int>(f_.params.size() - 1));
   }
@@ -279,7 +288,10 @@ class Reader {
       CircuitParam p;
       p.name = it.key();
       p.quantity = quantity(*it, base);
-      if (const auto v = it->find("value"); v != it->end()) p.value = number(*v, base + "/value", p.quantity, p.name);
+      if (const auto v = it->find("value"); v != it->end()) {
+        p.value = number(*v, base + "/value", p.quantity, p.name);
+        at(base + "/value", p.value_line, p.value_column);
+      }
       p.description = string_field(*it, base, "description", false);
       if (f_.params.size() >= static_cast<std::size_t>(CircuitCap::kParams)) fail_key(base, "too many parameters");
       f_.params.push_back(p);
@@ -303,7 +315,10 @@ class Reader {
         const UnitResult r = parse_circuit_unit(u.quantity, u.unit);
         if (!r.ok()) fail_value(base + "/unit", u.name + ": " + r.error);
       }
-      if (const auto v = it->find("value"); v != it->end()) u.value = number(*v, base + "/value", u.quantity, u.name);
+      if (const auto v = it->find("value"); v != it->end()) {
+        u.value = number(*v, base + "/value", u.quantity, u.name);
+        at(base + "/value", u.value_line, u.value_column);
+      }
       (void)string_field(*it, base, "description", false);
       if (f_.inputs.size() >= static_cast<std::size_t>(CircuitCap::kInputs)) fail_key(base, "too many inputs");
       f_.inputs.push_back(u);
@@ -645,6 +660,7 @@ class Reader {
     if (e != circuit::CircuitError::kOk) {
       fail(first_non_blank(), "internal: the circuit does not validate (error " + std::to_string(static_cast<int>(e)) + ")");
     }
+    if (const auto w = detail::wiring_problem(f_)) fail_key(w->pointer, w->message);
   }
 
   std::string_view text_;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "circuit_checks.hpp"
 #include "json_locations.hpp"
 #include "text_util.hpp"
 
@@ -39,6 +40,19 @@ std::string missing(const CircuitFile& cf, const std::vector<bool>& p_set, const
     if (!u_set[i]) return "input '" + cf.inputs[i].name + "' has no nominal value";
   }
   return {};
+}
+
+/// A value problem located where the circuit file writes the value (no position when it
+/// writes none, or the problem is not one value's).
+SourceError in_circuit_file(const CircuitFile& cf, const detail::ValueProblem& p) {
+  SourceError e{cf.path, 0, 0, p.message};
+  const bool param = p.ref.kind == circuit::RefKind::kParam, input = p.ref.kind == circuit::RefKind::kInput;
+  if (param || input) {
+    e.line = param ? cf.params[p.ref.index].value_line : cf.inputs[p.ref.index].value_line;
+    e.column = param ? cf.params[p.ref.index].value_column : cf.inputs[p.ref.index].value_column;
+  }
+  if (e.line == 0) e.column = 0;
+  return e;
 }
 
 class Reader {
@@ -100,6 +114,10 @@ class Reader {
       fail(0, m + " (give it in this file or in the circuit file)");
       return;
     }
+    if (const auto p = detail::value_problem(cf_, v)) {
+      locate(*p);
+      return;
+    }
     out_.values = v;
   }
 
@@ -139,6 +157,7 @@ class Reader {
       }
       (params ? v.params.v : v.inputs.v)[i] = x;
       set[static_cast<std::size_t>(i)] = true;
+      (params ? p_ptr_ : u_ptr_)[static_cast<std::size_t>(i)] = ptr;
     }
     return true;
   }
@@ -180,6 +199,21 @@ class Reader {
     return true;
   }
 
+  /// At the value in this file when it set the value, else where the circuit file writes it.
+  void locate(const detail::ValueProblem& p) {
+    const std::size_t i = p.ref.index;
+    const std::string* ptr = p.ref.kind == circuit::RefKind::kParam   ? &p_ptr_[i]
+                             : p.ref.kind == circuit::RefKind::kInput ? &u_ptr_[i]
+                                                                      : nullptr;
+    if (ptr != nullptr && !ptr->empty()) {
+      fail_value(*ptr, p.message);
+    } else if (ptr != nullptr) {
+      out_.error = in_circuit_file(cf_, p);
+    } else {
+      out_.error = SourceError{path_, 0, 0, p.message};
+    }
+  }
+
   void fail(std::size_t offset, std::string message) {
     const detail::LineCol lc = detail::locate(text_, offset);
     out_.error = SourceError{path_, lc.line, lc.column, std::move(message)};
@@ -198,6 +232,8 @@ class Reader {
   const CircuitFile& cf_;
   CircuitValuesResult& out_;
   detail::JsonLocations loc_;
+  std::vector<std::string> p_ptr_ = std::vector<std::string>(cf_.params.size());  ///< where this file sets each
+  std::vector<std::string> u_ptr_ = std::vector<std::string>(cf_.inputs.size());
 };
 
 }  // namespace
@@ -210,6 +246,10 @@ CircuitValuesResult circuit_file_values(const CircuitFile& circuit) {
   const std::string m = missing(circuit, p_set, u_set);
   if (!m.empty()) {
     out.error = SourceError{circuit.path, 0, 0, m};
+    return out;
+  }
+  if (const auto p = detail::value_problem(circuit, v)) {
+    out.error = in_circuit_file(circuit, *p);
     return out;
   }
   out.values = v;

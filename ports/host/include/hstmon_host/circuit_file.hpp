@@ -32,6 +32,7 @@ struct CircuitParam {
   std::optional<double> value;      ///< SI value from the circuit file, if it gives one
   bool literal = false;             ///< true: a number written in a field, not a name
   std::string description;          ///< free text from the file
+  std::size_t value_line = 0, value_column = 0;  ///< where the circuit file writes the value (0: nowhere)
 };
 
 /// An input: a value that may change every tick, read from a log column.
@@ -41,6 +42,7 @@ struct CircuitInput {
   std::string column;               ///< log column it is read from (default: the name)
   std::string unit;                 ///< the column's unit if the log does not say ("" = SI)
   std::optional<double> value;      ///< nominal SI value from the circuit file, if given
+  std::size_t value_line = 0, value_column = 0;  ///< where the circuit file writes the value (0: nowhere)
 };
 
 /// A sensor channel: one model output and the log column that measures it.
