@@ -4,12 +4,16 @@
 /// sensor columns (CircuitInput::column, CircuitSensor::column), each `name[unit]` or
 /// `name (unit)` in the header, or a bare name for the unit the circuit file gives the
 /// column ("" = SI). The format `hstmon replay` reads and hstmon-sim writes:
-///  - optional UTF-8 BOM, LF or CRLF; blank lines and lines starting with '#' skipped;
+///  - plain or gzip-compressed; the lines above the data in UTF-8 (BOM or not) or a
+///    Windows code page, converted (ReadOptions::encoding; hstmon_host/text_encoding.hpp);
+///  - LF or CRLF; blank lines and lines starting with '#' skipped; a separator at the end
+///    of every line allowed (the unnamed last column it leaves is dropped);
 ///  - separator from the header line: tab if it has one, else ';', else ',' (or given:
 ///    ReadOptions::separator); a decimal comma where the separator is not ',';
 ///  - data rows of decimal numbers (blanks around them allowed), time strictly rising
 ///    (or rebuilt from the row index: ReadOptions::rate);
-///  - columns renamed by ReadOptions' maps (by name, or by number), as the thesis logs'.
+///  - columns renamed by ReadOptions' maps (by name, or by number), as the thesis logs';
+///    a name that matches no column is an error listing the columns.
 ///  - instrument layouts as the thesis reader finds them (hstmon_host/log_layout.hpp): a
 ///    units row above or below the names, a block of metadata lines above them (noted);
 ///    a unit in the units row fills a header cell without one and must agree with one.

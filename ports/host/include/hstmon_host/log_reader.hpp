@@ -5,8 +5,13 @@
 /// row per sample. Values are converted to SI on read and stored column-major.
 ///
 /// Format accepted:
+///  - a plain or gzip-compressed file (text_source.hpp; known by its magic bytes);
 ///  - optional UTF-8 BOM; LF or CRLF line ends; blank lines and lines whose first
 ///    non-blank character is '#' are skipped anywhere;
+///  - the lines above the first data row in UTF-8, or in Windows-1250/-1252 or Latin-1
+///    (detected, or ReadOptions::encoding), converted to UTF-8 (text_encoding.hpp);
+///  - a separator at the end of every line: the empty, unnamed last column it leaves is
+///    dropped (a value in it is an error);
 ///  - header: `t[s],p_sup[bar],kp,p_mi[bar],...`; a unit in brackets `name[unit]` or
 ///    parentheses `name (unit)`; no unit = SI; names may be double-quoted (without a
 ///    separator inside the quotes);
@@ -23,7 +28,8 @@
 ///    and ignored. Looked for up to 64 lines;
 ///  - data fields: decimal numbers (leading '+' and blanks around the number allowed).
 /// Errors (bad number, ragged row, unknown unit, time not strictly increasing, nan/inf,
-/// empty file, no data rows, NUL bytes or invalid UTF-8, duplicated or missing columns)
+/// empty file, no data rows, NUL bytes or invalid UTF-8, duplicated or missing columns, a
+/// column map entry that matches no column — these two list the columns there are)
 /// carry file:line:column; nothing throws.
 ///
 /// Lenient reads (ReadOptions::lenient): a row whose time is not above the time of the
@@ -70,7 +76,8 @@ struct ReadOptions {
   bool lenient = false;
   /// Log column name → canonical signal name, e.g. {"Druck_A", "p_mi"}. Keys and
   /// targets match ignoring ASCII case (keys also the width of blank runs: "Time CH=1"
-  /// finds "Time  CH=1"). A target of "" drops the column without a note.
+  /// finds "Time  CH=1"). A target of "" drops the column without a note. A key that
+  /// names no column is an error.
   std::map<std::string, std::string> column_map;
   /// Column number (1-based, as in the header) → canonical signal name, e.g. {8, "p_pp"};
   /// for names that repeat or are awkward to type. Wins over a column_map entry for the

@@ -3,6 +3,7 @@
 /// A log read chunk by chunk, so a one-hour 1 kHz log (3.6 M rows, ~290 MB) never sits
 /// in memory whole: the same format, checks, numbers, errors and notes as read_log
 /// (log_reader.hpp), in a read buffer of kStreamBufferBytes plus the rows of one chunk.
+/// A gzip-compressed file is decompressed into that buffer as it is read.
 ///
 /// Lenient reads and reads with a sample rate (ReadOptions::rate) look at the whole file
 /// (the share of rows skipped; the logged span against the rate), so they read it whole
