@@ -411,24 +411,16 @@ class FaultEstimator {
     return f;
   }
 
+  // Ranks on the closed windows' sums, with the open window's terms added when asked.
   void decide(bool with_open) noexcept {
-    T (&chi)[kHz][kGz] = scratch_;
+    if (!with_open) {
+      rank(chi_, chi0_, sens_a_, sens_b_, dof_);
+      return;
+    }
     T sa[kNz], sb[kNz], chi0;
     int dof;
-    if (with_open) {
-      window_terms(chi, chi0, sa, sb, dof);
-    } else {
-      for (int k = 0; k < count_; ++k) {
-        for (int g = 0; g < kGrid; ++g) chi[k][g] = chi_[k][g];
-      }
-      chi0 = chi0_;
-      dof = dof_;
-      for (int i = 0; i < kN; ++i) {
-        sa[i] = sens_a_[i];
-        sb[i] = sens_b_[i];
-      }
-    }
-    rank(chi, chi0, sa, sb, dof);
+    window_terms(scratch_, chi0, sa, sb, dof);
+    rank(scratch_, chi0, sa, sb, dof);
   }
 
   void rank(const T (&chi)[kHz][kGz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz], int dof) noexcept {
