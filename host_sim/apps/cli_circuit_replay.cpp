@@ -187,6 +187,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
+  o.fit = a.fit;
   o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);

@@ -16,6 +16,7 @@ struct CircuitReplayArgs {
   double tick = 0.0;         ///< [s]; 0 = the log's median period, at most 10 ms
   std::string init = "auto"; ///< auto | rest | steady
   bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
+  bool fit = true;           ///< false: the matcher's verdict alone, as on firmware (--matcher-only)
   std::string residuals_csv; ///< --residuals: measured, model and residual per row ("" = none)
   std::string plot;          ///< --plot: figure of measured, model and residual (.svg/.png; "" = none)
   std::string report;        ///< --report: report.md and report.html in this directory ("" = none)

@@ -47,6 +47,7 @@ struct ReplayArgs {
   std::string thesis_model = "specialised";  // --thesis-model: specialised | engine
   bool no_progress = false;
   bool no_diagnosis = false;
+  bool matcher_only = false;  // --matcher-only (circuit replay): no fit of the steady windows
   std::string circuit;  // --circuit: run_circuit_replay instead (cli_circuit_replay.hpp)
   bool summary = false;       // --summary: one JSON line per log (cli_fleet_replay.hpp)
   unsigned jobs = 0;          // --jobs
@@ -279,6 +280,7 @@ int run_summaries(const ReplayArgs& a) {
     f.circuit_replay.tick = a.tick;
     f.circuit_replay.init = init;
     f.circuit_replay.diagnose = !a.no_diagnosis;
+    f.circuit_replay.fit = !a.matcher_only;
     // The table `replay --circuit` runs on, built once for all the logs; a circuit it
     // cannot be built for is replayed log by log, each saying why (residuals only).
     f.circuit_replay.fault_table = fdi::circuit_signature_table;
@@ -335,6 +337,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"specialised", "engine"}));
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
+  cmd->add_flag("--matcher-only", args->matcher_only,
+                "With --circuit: report the fault matcher's verdict alone, as the firmware monitor does; no fit of the "
+                "steady windows after a detection (docs/circuits.md)");
   cmd->add_option("--circuit", args->circuit,
                   "Replay through the monitor of this circuit file (docs/circuits.md): residuals and the fault matcher "
                   "on the circuit's generated table; --params is then its parameter file (default: <stem>.params.json "
@@ -370,6 +375,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
     c.tick = args->tick;
     c.init = args->init;
     c.diagnose = !args->no_diagnosis;
+    c.fit = !args->matcher_only;
     c.residuals_csv = args->residuals_csv;
     c.plot = args->plot;
     c.report = args->report;

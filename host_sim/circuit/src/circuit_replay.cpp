@@ -215,7 +215,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   Mon::Event ev;
   // The matcher detects; the fit over the steady windows after a detection decides.
   std::unique_ptr<FaultFitDiagnosis> diag;
-  if (res.table_rows > 0) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
+  if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
   auto drain_events = [&](double t_now, const Model::Inputs& u) {
     while (mon->pop_event(ev)) {
       const host::ReplayEvent e = host::to_replay_event(ev);

@@ -33,6 +33,9 @@ struct CircuitReplayOptions {
   double tick = 0.0;                         ///< observer tick [s]; 0 = the log's median period, at most 10 ms
   host::InitMode init = host::InitMode::kAuto;
   bool diagnose = true;                      ///< run the fault matcher (false: residuals only)
+  /// After a detection, fit every hypothesis to each steady window (FaultFitDiagnosis), whose
+  /// verdict supersedes the matcher's; false: the matcher's verdict alone, as the firmware runs it.
+  bool fit = true;
   bool keep_trace = false;                   ///< keep measured, model and residual per row (CircuitReplayResult::trace)
   /// Builds the matcher's table. nullptr: circuit_fault_table (steady-state signs only, slopes
   /// `?`, orders 0); the host programs pass fdi::circuit_signature_table (slopes and orders
