@@ -133,7 +133,8 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   }
 }
 
-// Measured, model and residual per row in each sensor's unit ("nan" where absent).
+// Measured, model, residual and the matcher's bound on it per row in each sensor's unit
+// ("nan" where absent).
 std::string write_circuit_residuals(const std::string& path, const LoadedCircuit& c, const CircuitReplayResult& r) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) return "cannot open " + path + " for writing";
@@ -143,13 +144,13 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
     const std::string unit = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
     const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
     k.push_back(u.ok() ? 1.0 / u.conversion.factor : 1.0);
-    head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}]", s.name, unit);
+    head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}],b_{0}[{1}]", s.name, unit);
   }
   std::fprintf(f, "%s,health\n", head.c_str());
   for (const auto& tr : r.trace) {
     std::string line = fmt::format("{}", tr.t);
     for (std::size_t ch = 0; ch < k.size(); ++ch) {
-      line += fmt::format(",{},{},{}", tr.y[ch] * k[ch], tr.y_hat[ch] * k[ch], tr.r[ch] * k[ch]);
+      line += fmt::format(",{},{},{},{}", tr.y[ch] * k[ch], tr.y_hat[ch] * k[ch], tr.r[ch] * k[ch], tr.bound[ch] * k[ch]);
     }
     std::fprintf(f, "%s,%u\n", line.c_str(), tr.health);
   }

@@ -31,7 +31,9 @@ nlohmann::json event_json(const host::ReplayEvent& e) {
     }
     cands.push_back(std::move(j));
   }
-  return {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
+  nlohmann::json j = {{"type", "event"}, {"t", e.t}, {"event", e.event}, {"consistent", e.consistent}, {"candidates", cands}};
+  if (!e.why.empty()) j["why"] = e.why;
+  return j;
 }
 
 std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
@@ -56,6 +58,9 @@ void print_events(const std::vector<host::ReplayEvent>& events, const std::strin
       fmt::print("    t = {:>9.3f} s  cleared: residuals back within their bounds\n", e.t);
     } else if (e.event == "isolated") {
       fmt::print("    t = {:>9.3f} s  isolated: {}\n", e.t, candidate_list(e, 3));
+    } else if (e.event == "detected" && e.candidates.empty()) {
+      fmt::print("    t = {:>9.3f} s  detected: {}; candidates from the first steady window\n", e.t,
+                 e.why.empty() ? "residuals beyond their bounds" : e.why);
     } else if (e.event == "detected") {
       fmt::print("    t = {:>9.3f} s  detected: {} hypotheses consistent so far: {}\n", e.t, e.consistent, candidate_list(e, 4));
     } else {

@@ -198,8 +198,8 @@ TEST(CircuitCli, ReplayWritesResidualsInTheSensorsUnits) {
   std::string head, first;
   std::getline(f, head);
   std::getline(f, first);
-  EXPECT_EQ(head, "t[s],p_line[bar],p_line_hat[bar],r_p_line[bar],q[L/min],q_hat[L/min],r_q[L/min],health");
-  EXPECT_EQ(std::count(first.begin(), first.end(), ','), 7) << first;
+  EXPECT_EQ(head, "t[s],p_line[bar],p_line_hat[bar],r_p_line[bar],b_p_line[bar],q[L/min],q_hat[L/min],r_q[L/min],b_q[L/min],health");
+  EXPECT_EQ(std::count(first.begin(), first.end(), ','), 9) << first;
 }
 
 TEST(CircuitCli, SimWritesALogReplayReadsAtNoiseLevel) {

@@ -237,7 +237,17 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     measurement_at(k);
     mon->step(t[k], u, m);
     drain_events(t[k], u);
-    if (diag) diag->on_row(t[k], u, m.y.data(), compared, mon->matcher().status() == MatchStatus::kNominal, res.events);
+    if (diag) {
+      FaultFitDiagnosis::Row row;
+      row.t = t[k];
+      row.y = m.y.data();
+      row.valid = compared;
+      row.r = obs.residual().data();
+      row.r_valid = obs.residual_valid();
+      row.bound = mon->model_bound();
+      row.matcher_quiet = mon->matcher().status() == MatchStatus::kNominal;
+      diag->on_row(row, u, res.events);
+    }
     const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;
@@ -256,6 +266,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
         tr.y.push_back(meas[ch] != nullptr ? meas[ch][k] : std::nan(""));
         tr.y_hat.push_back(obs.estimate()[i]);
         tr.r.push_back((rv & (1u << ch)) != 0 ? obs.residual()[i] : std::nan(""));
+        tr.bound.push_back(mon->evaluator().bound(i));
       }
       res.trace.push_back(std::move(tr));
     }

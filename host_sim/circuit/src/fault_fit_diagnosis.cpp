@@ -7,6 +7,7 @@
 
 #include "hstmon/circuit/circuit_bound.hpp"
 #include "hstmon/fault_estimator.hpp"
+#include "hstmon/held_step_detector.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -15,6 +16,7 @@ namespace {
 
 using Model = host::HostCircuitModel;
 using Estimator = FaultEstimator<Model, 64, 8>;
+using StepDetector = HeldStepDetector<double, Model::kOutputs>;
 
 // "−15 % (−17 … −13 %)": a factor as a relative change with its interval.
 std::string percent(double f, double lo, double hi) {
@@ -30,6 +32,9 @@ struct FaultFitDiagnosis::Impl {
   std::vector<double> nominal;    // per hypothesis: the parameter's or input's nominal value [SI]
   Estimator est;
   bool ok = false;
+  StepDetector step;
+  Model::Inputs u_hold{};  ///< the inputs the detector's blocks were read at
+  bool holding = false;
 
   explicit Impl(const LoadedCircuit& circuit) : c(circuit) {}
 
@@ -87,6 +92,7 @@ FaultFitDiagnosis::FaultFitDiagnosis(const LoadedCircuit& c, const Model& model,
   }
   Estimator::Config cfg;
   m.ok = m.est.configure(model, m.hyps.data(), static_cast<int>(m.hyps.size()), sigma, measured, circuit_uncertainty(c), cfg);
+  m.step.configure(sigma, measured, StepDetector::Config{});
 }
 
 FaultFitDiagnosis::~FaultFitDiagnosis() = default;
@@ -101,10 +107,7 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
   Estimator& est = impl_->est;
   if (e.event == "detected") {
     if (active_) return;  // our episode goes on: the matcher cleared while the fault persisted
-    active_ = true;
-    sensor_lock_ = false;
-    last_key_.clear();
-    if (impl_->ok) est.start(t, u);
+    start_episode(t, u);
     emit(e, out);
     return;
   }
@@ -114,6 +117,7 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     // change, where the bound jumps), and while the windows say a fault is there.
     if (!sensor_lock_ && impl_->ok && est.verdict() != EstimateVerdict::kNoFault) return;
     active_ = false;
+    impl_->holding = false;
     est.reset();
     last_key_.clear();
     emit(e, out);
@@ -128,16 +132,64 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
   }
 }
 
-void FaultFitDiagnosis::on_row(double t, const Model::Inputs& u, const double* y, unsigned valid, bool matcher_quiet,
-                               std::vector<host::ReplayEvent>& out) {
-  if (!active_ || !impl_->ok || sensor_lock_) return;
-  if (!impl_->est.add(t, u, y, valid)) return;
-  if (impl_->est.verdict() == EstimateVerdict::kNoFault && matcher_quiet) {
+// An episode from t: the estimator's windows start after a settle, and if the inputs have
+// held still since before the step detector's reference, those readings are its baseline.
+void FaultFitDiagnosis::start_episode(double t, const Model::Inputs& u) {
+  Impl& m = *impl_;
+  active_ = true;
+  sensor_lock_ = false;
+  last_key_.clear();
+  if (!m.ok) return;
+  m.est.start(t, u);
+  double offset[Model::kOutputs] = {}, var[Model::kOutputs] = {};
+  const unsigned have = m.holding ? m.step.reference(offset, var) : 0u;
+  if (have != 0) m.est.set_baseline(m.u_hold, offset, var, have);
+}
+
+// While no episode runs: a step in the residuals at held inputs starts one. (The
+// residuals, not the readings: after a start from rest the readings creep towards their
+// steady state for seconds, and the model's creep follows theirs.)
+void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out) {
+  Impl& m = *impl_;
+  const double t = row.t;
+  bool same = m.holding;
+  for (int i = 0; same && i < static_cast<int>(sizeof(u.v) / sizeof(u.v[0])); ++i) {
+    same = std::fabs(u.v[i] - m.u_hold.v[i]) <= 0.01 * std::fabs(m.u_hold.v[i]) + 1e-12 * (1.0 + std::fabs(m.u_hold.v[i]));
+  }
+  if (!same) {
+    m.u_hold = u;
+    m.holding = true;
+    m.step.hold(t + m.est.settle_time(u));
+  }
+  if (!m.step.add(t, row.r, row.r_valid & row.valid, row.bound)) return;
+  host::ReplayEvent e;
+  e.t = t;
+  e.event = "detected";
+  std::string where;
+  for (std::size_t ch = 0; ch < m.c.file.sensors.size(); ++ch) {
+    if (((m.step.step_mask() >> ch) & 1u) != 0) where += (where.empty() ? "" : ", ") + m.c.file.sensors[ch].name;
+  }
+  e.why = "a step in " + where + " while the inputs held still";
+  start_episode(t, u);
+  emit(std::move(e), out);
+}
+
+void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out) {
+  if (!impl_->ok) return;
+  if (!active_) {
+    watch(row, u, out);
+    return;
+  }
+  if (sensor_lock_) return;
+  const double t = row.t;
+  if (!impl_->est.add(t, u, row.y, row.valid)) return;
+  if (impl_->est.verdict() == EstimateVerdict::kNoFault && row.matcher_quiet) {
     // A window where no fault fits as well as any, and the residuals are quiet: gone.
     host::ReplayEvent e;
     e.t = t;
     e.event = "cleared";
     active_ = false;
+    impl_->holding = false;
     impl_->est.reset();
     last_key_.clear();
     emit(std::move(e), out);

@@ -25,6 +25,16 @@
 /// bound (parameter uncertainty) at that point stands for the model error the fit cannot
 /// remove, and the cap for noise that is not white.
 ///
+/// Baseline: when the caller knows the readings at the same inputs before the fault (a
+/// stretch the machine held still before the detection; set_baseline()), a window at those
+/// inputs compares the change since then with the change each hypothesis predicts. The
+/// model's own error at that point is the same before and after the fault and cancels, so
+/// such a window's weight is 1/(σ²/n + var_baseline + min(k_sensitivity·predicted change,
+/// k_model·bound)²) instead: the noise and the baseline's own scatter, and a share of the
+/// predicted change for the machine's sensitivity differing from the model's (never more
+/// than the model error a window without a baseline allows). It isolates where the model
+/// bound alone would leave every hypothesis consistent.
+///
 /// Verdict, over the windows of the episode: a hypothesis is consistent when its best χ²
 /// lies within Δ = k_delta·max(1, χ²_best/dof) of the best one (dof = channel samples
 /// compared, one per channel and window); the fault is present while the no-fault χ²
@@ -110,6 +120,7 @@ class FaultEstimator {
     T k_unexplained = T(50);    ///< χ²/dof of the best fit beyond which none fits [-] …
     T explained_share = T(0.1); ///< … unless it leaves less than this share of the no-fault χ² [-]
     T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
+    T k_sensitivity = T(0.1);   ///< share of a predicted change counted as model error in a baselined window [-]
   };
 
   /// @param model  the monitor's model (description, parameters and nominal inputs set), copied
@@ -138,6 +149,7 @@ class FaultEstimator {
   void reset() noexcept {
     for (int k = 0; k < count_; ++k) {
       for (int g = 0; g < kGrid; ++g) chi_[k][g] = T(0);
+      floor_[k] = T(0);
     }
     for (int i = 0; i < kChannels; ++i) sens_a_[i] = sens_b_[i] = T(0);
     chi0_ = T(0);
@@ -148,6 +160,37 @@ class FaultEstimator {
     verdict_ = EstimateVerdict::kNone;
     n_ranked_ = 0;
     last_chi0_w_ = last_dof_w_ = T(0);
+    base_valid_ = 0;
+    baselined_ = false;
+  }
+
+  /// The model's error at inputs u before the fault: the mean residual (reading less the
+  /// model's steady output) per channel [channel unit] and the variance of that mean
+  /// [channel unit²]; bit i of valid: channel i has one. Call after start(); a window at
+  /// inputs within the tolerance of u then counts the change since.
+  void set_baseline(const Inputs& u, const T* offset, const T* var, unsigned valid) noexcept {
+    base_u_ = u;
+    base_valid_ = 0;
+    for (int i = 0; i < kN; ++i) {
+      if (((valid >> i) & 1u) == 0 || !std::isfinite(offset[i]) || !(var[i] >= T(0))) continue;
+      base_mean_[i] = offset[i];
+      base_var_[i] = var[i];
+      base_valid_ |= 1u << i;
+    }
+  }
+
+  /// How long the machine takes to settle at inputs u: settle_taus slowest time constants
+  /// of the nominal model there, within [settle_min, settle_max] [s].
+  T settle_time(const Inputs& u) noexcept {
+    model_.set_params(nominal_);
+    model_.set_inputs(u);
+    typename Model::State xs;
+    T wait = cfg_.settle_max;
+    if (model_.valid() && model_.steady_state(xs)) {
+      const T rate = model_.slowest_rate(xs);
+      if (rate > T(0)) wait = cfg_.settle_taus / rate;
+    }
+    return std::fmin(std::fmax(wait, cfg_.settle_min), cfg_.settle_max);
   }
 
   /// Starts an episode at t: windows from now on (after a settle) count.
@@ -233,16 +276,7 @@ class FaultEstimator {
     armed_ = true;
     open_ = false;
     u_win_ = u;
-    model_.set_params(nominal_);
-    model_.set_inputs(u);
-    typename Model::State xs;
-    T wait = cfg_.settle_max;
-    if (model_.valid() && model_.steady_state(xs)) {
-      const T rate = model_.slowest_rate(xs);
-      if (rate > T(0)) wait = cfg_.settle_taus / rate;
-    }
-    wait = std::fmin(std::fmax(wait, cfg_.settle_min), cfg_.settle_max);
-    t_open_ = t + wait;
+    t_open_ = t + settle_time(u);
   }
 
   // The model's steady outputs for every hypothesis and factor at the window's inputs.
@@ -258,6 +292,8 @@ class FaultEstimator {
       for (int i = 0; i < kN; ++i) b[i] = T(0);
     }
     for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * b[i];
+    baselined_ = base_valid_ != 0 && inputs_close(base_u_, u);
+    for (int i = 0; i < kN; ++i) offset_[i] = baselined_ && ((base_valid_ >> i) & 1u) != 0 ? base_mean_[i] : T(0);
     for (int k = 0; k < count_; ++k) {
       const FaultHypothesis& h = hyps_[k];
       for (int g = 0; g < kGrid; ++g) {
@@ -291,10 +327,14 @@ class FaultEstimator {
     return true;
   }
 
-  T weight(int i) const noexcept {
+  bool baselined(int i) const noexcept { return baselined_ && ((base_valid_ >> i) & 1u) != 0; }
+
+  // σ² of channel i's window mean less the model's prediction, before any share of a
+  // predicted change: the noise and the model error, or with a baseline its scatter.
+  T variance(int i) const noexcept {
     const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
-    const T s2 = sigma_[i] * sigma_[i] / n + model_err_[i] * model_err_[i];
-    return T(1) / s2;
+    const T noise = sigma_[i] * sigma_[i] / n;
+    return baselined(i) ? noise + base_var_[i] : noise + model_err_[i] * model_err_[i];
   }
 
   // The open window's χ² per hypothesis and factor, added to the closed windows' sums.
@@ -308,11 +348,12 @@ class FaultEstimator {
       sa[i] = sens_a_[i];
       sb[i] = sens_b_[i];
     }
-    T w[kNz] = {}, mean[kNz] = {};
+    T w[kNz] = {}, v[kNz] = {}, mean[kNz] = {};
     for (int i = 0; i < kN; ++i) {
       if (n_[i] == 0) continue;
-      w[i] = weight(i);
-      mean[i] = sum_[i] / static_cast<T>(n_[i]);
+      v[i] = variance(i);
+      w[i] = T(1) / v[i];
+      mean[i] = sum_[i] / static_cast<T>(n_[i]) - offset_[i];  // the baseline's model error removed
       const T r = mean[i] - y0_[i];
       chi0 += w[i] * r * r;
       sa[i] += w[i];
@@ -328,8 +369,15 @@ class FaultEstimator {
         }
         T s = T(0);
         for (int i = 0; i < kN; ++i) {
+          if (w[i] == T(0)) continue;
           const T r = mean[i] - ys_[k][g][i];
-          s += w[i] * r * r;
+          if (baselined(i)) {
+            // The machine's sensitivity may differ from the model's, by at most the model error.
+            const T share = std::fmin(cfg_.k_sensitivity * std::fabs(ys_[k][g][i] - y0_[i]), model_err_[i]);
+            s += r * r / (v[i] + share * share);
+          } else {
+            s += w[i] * r * r;
+          }
         }
         chi[k][g] += s;
       }
@@ -344,7 +392,11 @@ class FaultEstimator {
     if (!any || t_last_ - t_first_ < cfg_.window_min) return false;
     T c0_before = chi0_;
     int d_before = dof_;
-    window_terms(chi_, chi0_, sens_a_, sens_b_, dof_);
+    window_terms(scratch_, chi0_, sens_a_, sens_b_, dof_);
+    add_window_floors(scratch_, floor_);
+    for (int k = 0; k < count_; ++k) {
+      for (int g = 0; g < kGrid; ++g) chi_[k][g] = scratch_[k][g];
+    }
     last_chi0_w_ = chi0_ - c0_before;
     last_dof_w_ = static_cast<T>(dof_ - d_before);
     ++windows_;
@@ -352,42 +404,55 @@ class FaultEstimator {
     return true;
   }
 
-  // Best factor of hypothesis k by a parabola through the best grid point and its
-  // neighbours in ln(factor); the interval where χ² rises by `scale`.
-  Fit fit_param(int k, const T (&chi)[kGz], T scale) const noexcept {
+  // The least χ² of one grid row: a parabola through the best grid point and its
+  // neighbours in ln(factor). curvature 0 when there is no parabola (an end of the grid).
+  struct Vertex {
+    int g = kGrid / 2;
+    T x = T(0), chi2 = T(0), curvature = T(0);
+  };
+  static Vertex vertex(const T (&chi)[kGz]) noexcept {
+    Vertex v;
+    for (int g = 0; g < kGrid; ++g) {
+      if (chi[g] < chi[v.g]) v.g = g;
+    }
+    const int gb = v.g;
+    v.x = grid_log(gb);
+    v.chi2 = chi[gb];
+    if (gb == 0 || gb == kGrid - 1 || !std::isfinite(chi[gb - 1]) || !std::isfinite(chi[gb + 1])) return v;
+    // Parabola through three unevenly spaced points.
+    const T x0 = grid_log(gb - 1), x1 = grid_log(gb), x2 = grid_log(gb + 1);
+    const T y0 = chi[gb - 1], y1 = chi[gb], y2 = chi[gb + 1];
+    const T d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
+    const T a = (d12 - d01) / (x2 - x0);
+    if (!(a > T(0))) return v;
+    v.curvature = a;
+    const T b = d01 - a * (x0 + x1);
+    const T xm = -b / (T(2) * a);
+    if (xm > x0 && xm < x2) {
+      v.x = xm;
+      v.chi2 = std::fmin(y1, std::fmax(T(0), y1 + (d01 + a * (x1 - x0)) * (xm - x1) + a * (xm - x1) * (xm - x1)));
+    }
+    return v;
+  }
+
+  // Best factor of hypothesis k from its χ² over the factor grid; the interval where χ²
+  // rises by `scale`. A sum over windows whose valleys lie apart is no parabola: its
+  // vertex is kept at or above the sum of the windows' own least χ² (floor).
+  Fit fit_param(int k, const T (&chi)[kGz], T floor, T scale) const noexcept {
     Fit f;
     f.hyp = static_cast<std::int16_t>(k);
-    int gb = kGrid / 2;
-    for (int g = 0; g < kGrid; ++g) {
-      if (chi[g] < chi[gb]) gb = g;
-    }
-    T x = grid_log(gb), c = chi[gb];
-    if (gb > 0 && gb < kGrid - 1 && std::isfinite(chi[gb - 1]) && std::isfinite(chi[gb + 1])) {
-      // Parabola through three unevenly spaced points.
-      const T x0 = grid_log(gb - 1), x1 = grid_log(gb), x2 = grid_log(gb + 1);
-      const T y0 = chi[gb - 1], y1 = chi[gb], y2 = chi[gb + 1];
-      const T d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
-      const T a = (d12 - d01) / (x2 - x0);
-      if (a > T(0)) {
-        const T b = d01 - a * (x0 + x1);
-        const T xm = -b / (T(2) * a);
-        if (xm > x0 && xm < x2) {
-          x = xm;
-          c = std::fmin(y1, std::fmax(T(0), y1 + (d01 + a * (x1 - x0)) * (xm - x1) + a * (xm - x1) * (xm - x1)));
-        }
-        const T half = std::sqrt(scale / a);
-        f.lo = std::exp(x - half);
-        f.hi = std::exp(x + half);
-      } else {
-        f.lo = std::exp(x0);
-        f.hi = std::exp(x2);
-      }
+    const Vertex v = vertex(chi);
+    const int gb = v.g;
+    if (v.curvature > T(0)) {
+      const T half = std::sqrt(scale / v.curvature);
+      f.lo = std::exp(v.x - half);
+      f.hi = std::exp(v.x + half);
     } else {
-      f.lo = std::exp(gb > 0 ? grid_log(gb - 1) : x);
-      f.hi = std::exp(gb < kGrid - 1 ? grid_log(gb + 1) : x);
+      f.lo = std::exp(gb > 0 ? grid_log(gb - 1) : v.x);
+      f.hi = std::exp(gb < kGrid - 1 ? grid_log(gb + 1) : v.x);
     }
-    f.chi2 = c;
-    f.factor = std::exp(x);
+    f.chi2 = std::fmax(v.chi2, std::fmin(floor, chi[gb]));
+    f.factor = std::exp(v.x);
     f.name = f.factor >= T(1) ? hyps_[k].plus : hyps_[k].minus;
     return f;
   }
@@ -411,19 +476,32 @@ class FaultEstimator {
     return f;
   }
 
+  // Adds each hypothesis's least χ² in one window (sums − the closed windows' sums) to floor.
+  void add_window_floors(const T (&sums)[kHz][kGz], T (&floor)[kHz]) const noexcept {
+    for (int k = 0; k < count_; ++k) {
+      if (hyps_[k].kind == HypothesisKind::kSensor) continue;
+      T one[kGz];
+      for (int g = 0; g < kGrid; ++g) one[g] = sums[k][g] - chi_[k][g];
+      floor[k] += vertex(one).chi2;
+    }
+  }
+
   // Ranks on the closed windows' sums, with the open window's terms added when asked.
   void decide(bool with_open) noexcept {
     if (!with_open) {
-      rank(chi_, chi0_, sens_a_, sens_b_, dof_);
+      rank(chi_, floor_, chi0_, sens_a_, sens_b_, dof_);
       return;
     }
-    T sa[kNz], sb[kNz], chi0;
+    T sa[kNz], sb[kNz], chi0, floor[kHz];
     int dof;
     window_terms(scratch_, chi0, sa, sb, dof);
-    rank(scratch_, chi0, sa, sb, dof);
+    for (int k = 0; k < count_; ++k) floor[k] = floor_[k];
+    add_window_floors(scratch_, floor);
+    rank(scratch_, floor, chi0, sa, sb, dof);
   }
 
-  void rank(const T (&chi)[kHz][kGz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz], int dof) noexcept {
+  void rank(const T (&chi)[kHz][kGz], const T (&floor)[kHz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz],
+            int dof) noexcept {
     chi0_all_ = chi0;
     dof_all_ = dof;
     if (dof == 0) return;
@@ -441,7 +519,7 @@ class FaultEstimator {
     n_ranked_ = 0;
     for (int k = 0; k < count_; ++k) {
       const Fit f = hyps_[k].kind == HypothesisKind::kSensor ? fit_sensor(k, chi0, sa, sb, scale)
-                                                             : fit_param(k, chi[k], scale);
+                                                             : fit_param(k, chi[k], floor[k], scale);
       insert(f);
     }
     const T best_chi = n_ranked_ > 0 ? ranked_[0].chi2 : chi0;
@@ -480,6 +558,7 @@ class FaultEstimator {
   T factor_[kGz] = {};
   // Closed windows of the episode, summed.
   T chi_[kHz][kGz] = {};
+  T floor_[kHz] = {};  ///< per hypothesis, the sum of each closed window's least χ² [-]
   T chi0_ = T(0);
   T sens_a_[kNz] = {}, sens_b_[kNz] = {};
   int dof_ = 0;
@@ -490,6 +569,12 @@ class FaultEstimator {
   T t_open_ = T(0), t_first_ = T(0), t_last_ = T(0), t_decided_ = T(0);
   Output y0_{};
   T model_err_[kNz] = {};
+  // The baseline (set_baseline) and whether the open window is at its inputs.
+  Inputs base_u_{};
+  T base_mean_[kNz] = {}, base_var_[kNz] = {};
+  unsigned base_valid_ = 0;
+  bool baselined_ = false;
+  T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
   T ys_[kHz][kGz][kNz] = {};
   T scratch_[kHz][kGz] = {};  ///< decide()'s sums with the open window
   bool ok_[kHz][kGz] = {};

@@ -50,6 +50,10 @@ struct CircuitReplayOptions {
 struct CircuitTraceRow {
   double t = 0.0;                 ///< [s]
   std::vector<double> y, y_hat, r;
+  /// Per channel, the matcher's bound on |r| at this row: model bound (parameter
+  /// uncertainty at the operating point, carried over input changes) + transient allowance
+  /// + 2σ; beyond it the CUSUM accumulates [SI]
+  std::vector<double> bound;
   std::uint32_t health = 0;       ///< HealthFlag bits of the row's tick
 };
 

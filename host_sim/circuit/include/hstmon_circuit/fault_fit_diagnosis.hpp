@@ -11,6 +11,12 @@
 ///    window where no fault fits as well as any;
 ///  - a sensor flag (a frozen, absent or out-of-range reading) keeps the matcher's
 ///    verdict: the physics cannot produce it.
+/// It detects too, where the matcher cannot: a step in the readings while the inputs hold
+/// still (held_step_detector.hpp) is a change in the machine, however far inside the model
+/// bound it stays. Such a step, and a matcher detection at inputs held long enough, leave
+/// the estimator a baseline: the readings at the same inputs before the fault, so the
+/// first window compares the change with each hypothesis's change, free of the model's
+/// own error there.
 
 #include <memory>
 #include <string>
@@ -38,10 +44,17 @@ class FaultFitDiagnosis {
   /// @param sensor_flag  the matcher has a sensor flag in this episode
   void on_matcher_event(const host::ReplayEvent& e, double t, const Model::Inputs& u, bool sensor_flag,
                         std::vector<host::ReplayEvent>& out);
-  /// One log row (after the matcher's events of that row).
-  /// @param matcher_quiet  the matcher's status is nominal
-  void on_row(double t, const Model::Inputs& u, const double* y, unsigned valid, bool matcher_quiet,
-              std::vector<host::ReplayEvent>& out);
+  /// One log row, after the matcher's events of that row; pointers per channel, SI.
+  struct Row {
+    double t = 0.0;                 ///< [s]
+    const double* y = nullptr;      ///< readings
+    unsigned valid = 0;             ///< bit ch: y[ch] compared
+    const double* r = nullptr;      ///< the observer's residual (measured − model)
+    unsigned r_valid = 0;           ///< bit ch: r[ch] is one
+    const double* bound = nullptr;  ///< the monitor's model bound at the row's inputs
+    bool matcher_quiet = false;     ///< the matcher's status is nominal
+  };
+  void on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
   /// The end of the log: the open window counts.
   void finish(double t, std::vector<host::ReplayEvent>& out);
 
@@ -53,6 +66,8 @@ class FaultFitDiagnosis {
  private:
   struct Impl;
   void decide(double t, std::vector<host::ReplayEvent>& out);
+  void watch(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
+  void start_episode(double t, const Model::Inputs& u);
   void emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out);
 
   std::unique_ptr<Impl> impl_;

@@ -78,7 +78,10 @@ struct ReplayEvent {
   double t = 0.0;                          ///< log time [s]
   std::string event;                       ///< "detected", "isolated", "ambiguous", "unexplained", "cleared"
   int consistent = 0;                      ///< hypotheses still consistent (may exceed candidates.size())
-  std::vector<ReplayCandidate> candidates; ///< best first (empty for "cleared")
+  std::vector<ReplayCandidate> candidates; ///< best first (empty for "cleared", and for a detection without a ranking yet)
+  /// What raised the event when not the matcher: e.g. "a step in p_mi while the inputs
+  /// held still" (the candidates then follow from the first steady window); "" otherwise.
+  std::string why;
 };
 
 /// Result of a replay.
