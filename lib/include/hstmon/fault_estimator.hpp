@@ -29,11 +29,14 @@
 /// stretch the machine held still before the detection; set_baseline()), a window at those
 /// inputs compares the change since then with the change each hypothesis predicts. The
 /// model's own error at that point is the same before and after the fault and cancels, so
-/// such a window's weight is 1/(σ²/n + var_baseline + min(k_sensitivity·predicted change,
+/// such a window's weight is 1/(σ²/n + var_baseline + min(k_sensitivity·observed change,
 /// k_model·bound)²) instead: the noise and the baseline's own scatter, and a share of the
-/// predicted change for the machine's sensitivity differing from the model's (never more
-/// than the model error a window without a baseline allows). It isolates where the model
-/// bound alone would leave every hypothesis consistent.
+/// change for the machine's sensitivity differing from the model's (never more than the
+/// model error a window without a baseline allows). The share is of the observed change,
+/// the same for every hypothesis, so χ² stays a quadratic in the predicted change. It
+/// isolates where the model bound alone would leave every hypothesis consistent. A channel
+/// whose baseline residual exceeds k_model·bound sat far from the model before the fault
+/// (a valve the model has cracked and the machine has not) and is fitted without it.
 ///
 /// Verdict, over the windows of the episode: a hypothesis is consistent when its best χ²
 /// lies within Δ = k_delta·max(1, χ²_best/dof) of the best one (dof = channel samples
@@ -120,7 +123,7 @@ class FaultEstimator {
     T k_unexplained = T(50);    ///< χ²/dof of the best fit beyond which none fits [-] …
     T explained_share = T(0.1); ///< … unless it leaves less than this share of the no-fault χ² [-]
     T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
-    T k_sensitivity = T(0.1);   ///< share of a predicted change counted as model error in a baselined window [-]
+    T k_sensitivity = T(0.1);   ///< share of the observed change counted as model error in a baselined window [-]
   };
 
   /// @param model  the monitor's model (description, parameters and nominal inputs set), copied
@@ -161,7 +164,7 @@ class FaultEstimator {
     n_ranked_ = 0;
     last_chi0_w_ = last_dof_w_ = T(0);
     base_valid_ = 0;
-    baselined_ = false;
+    base_use_ = 0;
   }
 
   /// The model's error at inputs u before the fault: the mean residual (reading less the
@@ -292,8 +295,16 @@ class FaultEstimator {
       for (int i = 0; i < kN; ++i) b[i] = T(0);
     }
     for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * b[i];
-    baselined_ = base_valid_ != 0 && inputs_close(base_u_, u);
-    for (int i = 0; i < kN; ++i) offset_[i] = baselined_ && ((base_valid_ >> i) & 1u) != 0 ? base_mean_[i] : T(0);
+    // A channel whose pre-fault residual lay beyond the model error sat far from the model
+    // (a relief valve the model has cracked and the machine has not): its sensitivities may
+    // differ from the model's, so it is fitted as without a baseline.
+    base_use_ = 0;
+    if (base_valid_ != 0 && inputs_close(base_u_, u)) {
+      for (int i = 0; i < kN; ++i) {
+        if (((base_valid_ >> i) & 1u) != 0 && std::fabs(base_mean_[i]) <= model_err_[i]) base_use_ |= 1u << i;
+      }
+    }
+    for (int i = 0; i < kN; ++i) offset_[i] = baselined(i) ? base_mean_[i] : T(0);
     for (int k = 0; k < count_; ++k) {
       const FaultHypothesis& h = hyps_[k];
       for (int g = 0; g < kGrid; ++g) {
@@ -327,14 +338,18 @@ class FaultEstimator {
     return true;
   }
 
-  bool baselined(int i) const noexcept { return baselined_ && ((base_valid_ >> i) & 1u) != 0; }
+  bool baselined(int i) const noexcept { return ((base_use_ >> i) & 1u) != 0; }
 
-  // σ² of channel i's window mean less the model's prediction, before any share of a
-  // predicted change: the noise and the model error, or with a baseline its scatter.
-  T variance(int i) const noexcept {
+  // σ² of channel i's window mean less the model's prediction: the noise and the model
+  // error; with a baseline, the noise, the baseline's scatter and the share of the observed
+  // change (never more than the model error) that a sensitivity off the model's may make.
+  // change: the window's mean less the baseline's model error, less the model's output.
+  T variance(int i, T change) const noexcept {
     const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
     const T noise = sigma_[i] * sigma_[i] / n;
-    return baselined(i) ? noise + base_var_[i] : noise + model_err_[i] * model_err_[i];
+    if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
+    const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
+    return noise + base_var_[i] + share * share;
   }
 
   // The open window's χ² per hypothesis and factor, added to the closed windows' sums.
@@ -348,13 +363,12 @@ class FaultEstimator {
       sa[i] = sens_a_[i];
       sb[i] = sens_b_[i];
     }
-    T w[kNz] = {}, v[kNz] = {}, mean[kNz] = {};
+    T w[kNz] = {}, mean[kNz] = {};
     for (int i = 0; i < kN; ++i) {
       if (n_[i] == 0) continue;
-      v[i] = variance(i);
-      w[i] = T(1) / v[i];
       mean[i] = sum_[i] / static_cast<T>(n_[i]) - offset_[i];  // the baseline's model error removed
       const T r = mean[i] - y0_[i];
+      w[i] = T(1) / variance(i, r);
       chi0 += w[i] * r * r;
       sa[i] += w[i];
       sb[i] += w[i] * r;
@@ -369,15 +383,8 @@ class FaultEstimator {
         }
         T s = T(0);
         for (int i = 0; i < kN; ++i) {
-          if (w[i] == T(0)) continue;
           const T r = mean[i] - ys_[k][g][i];
-          if (baselined(i)) {
-            // The machine's sensitivity may differ from the model's, by at most the model error.
-            const T share = std::fmin(cfg_.k_sensitivity * std::fabs(ys_[k][g][i] - y0_[i]), model_err_[i]);
-            s += r * r / (v[i] + share * share);
-          } else {
-            s += w[i] * r * r;
-          }
+          s += w[i] * r * r;
         }
         chi[k][g] += s;
       }
@@ -573,7 +580,7 @@ class FaultEstimator {
   Inputs base_u_{};
   T base_mean_[kNz] = {}, base_var_[kNz] = {};
   unsigned base_valid_ = 0;
-  bool baselined_ = false;
+  unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
   T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
   T ys_[kHz][kGz][kNz] = {};
   T scratch_[kHz][kGz] = {};  ///< decide()'s sums with the open window
