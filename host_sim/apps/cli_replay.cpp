@@ -4,6 +4,7 @@
 #include <fmt/os.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -219,6 +220,15 @@ int run_replay(const ReplayArgs& a) {
   if (lr.error) {
     if (!a.io.lenient || r.rows == 0) return kExitBadInput;
     fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, r.rows);
+  }
+  // A log of another machine: nothing compared is not "within noise".
+  if (r.rows > 0 && std::none_of(r.measured.begin(), r.measured.end(), [](bool m) { return m; })) {
+    fmt::print(stderr,
+               "{}: error: none of the thesis rig's channels (p_mi, p_mo, p_pp, w_m) is in the log, so nothing can "
+               "be compared and nothing is diagnosed; name its columns with --map (e.g. --map p_mi=P1), or replay it "
+               "through its own machine's circuit file with --circuit FILE (docs/circuits.md)\n",
+               a.log);
+    return kExitBadInput;
   }
 
   if (a.json) {

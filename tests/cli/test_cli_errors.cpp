@@ -91,6 +91,19 @@ TEST(CliErrors, GoodLogReplays) {
   EXPECT_NE(r.output.find("Ppp [bar]"), std::string::npos) << r.output;
 }
 
+// Another machine's log (a test stand's line pressure and flow) through the thesis rig's
+// monitor: nothing is compared, which is an error, not "within the sensor noise".
+TEST(CliErrors, LogWithNoneOfTheRigsChannelsIsAnError) {
+  std::string text = "t[s],n_pump[rpm],p_line[bar],q[L/min]\n";
+  for (int i = 0; i < 20; ++i) text += std::to_string(i * 0.01) + ",1500,148,67\n";
+  const std::string path = write_file("other_machine.csv", text);
+  const CliRun r = run("replay " + path);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(path + ": error: none of the thesis rig's channels"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--circuit"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("within the sensor noise"), std::string::npos) << r.output;
+}
+
 TEST(CliErrors, UsageErrorExitsOne) {
   EXPECT_EQ(run("replay").exit_code, 1);
   EXPECT_EQ(run("replay x.csv --init sideways").exit_code, 1);
