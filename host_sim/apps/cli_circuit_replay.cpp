@@ -69,6 +69,11 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
     add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
+  fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
+                                     {"checked", r.envelope.checked},
+                                     {"out", r.envelope.out},
+                                     {"text", r.envelope.text}}
+                        .dump());
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
   const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", status}, {"events", r.events.size()}}.dump());
@@ -121,6 +126,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
       for (const auto& n : r.undetectable) joined += (joined.empty() ? "" : ", ") + n;
       fmt::print("  not detectable at the nominal inputs (no channel moves by 1 sigma at 30 %): {}\n", joined);
     }
+    fmt::print("\n  envelope: {}\n", r.envelope.text);
     print_events(r.events, r.final_status);
   }
   const auto names = host::health_names(r.health);

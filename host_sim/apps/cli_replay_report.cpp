@@ -25,6 +25,9 @@ std::string verdict(const ReplayReport& r, sim::VerdictTone& tone) {
   } else if (r.events.empty()) {
     text = "no fault detected";
     tone = sim::VerdictTone::kGood;
+  } else if (r.final_status == "out_of_envelope") {
+    text = "out of envelope: " + r.events.back().why;
+    tone = sim::VerdictTone::kWarning;
   } else {
     // The last event that names candidates says what the matcher ended with.
     const host::ReplayEvent* last = nullptr;
@@ -74,8 +77,9 @@ std::vector<std::vector<std::string>> residual_rows(const ReplayReport& r) {
 std::vector<std::vector<std::string>> event_rows(const ReplayReport& r) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& e : r.events) {
-    rows.push_back({fmt::format("{:.3f}", e.t), e.event,
-                    e.event == "cleared" ? std::string("residuals back within their bounds") : candidate_list(e, 4)});
+    std::string what = e.event == "cleared" ? std::string("residuals back within their bounds") : candidate_list(e, 4);
+    if (!e.why.empty()) what = e.why + (what.empty() ? "" : "; " + what);
+    rows.push_back({fmt::format("{:.3f}", e.t), e.event, what});
   }
   return rows;
 }

@@ -11,6 +11,7 @@
 #include "hstmon/circuit/engine.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/envelope_check.hpp"
 #include "hstmon_circuit/fault_fit_diagnosis.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
@@ -216,8 +217,14 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   // The matcher detects; the fit over the steady windows after a detection decides.
   std::unique_ptr<FaultFitDiagnosis> diag;
   if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
+  // Outside the model's envelope at the first steady stretch, nothing more is diagnosed.
+  std::vector<double> sigma;
+  for (const host::CircuitSensor& s : c.file.sensors) sigma.push_back(sensor_sigma(s));
+  EnvelopeCheck envelope(c, model, sigma);
+  bool out_of_envelope = false;
   auto drain_events = [&](double t_now, const Model::Inputs& u) {
     while (mon->pop_event(ev)) {
+      if (out_of_envelope) continue;
       const host::ReplayEvent e = host::to_replay_event(ev);
       if (diag) {
         diag->on_matcher_event(e, t_now, u, mon->matcher().sensor_faults() != 0, res.events);
@@ -237,7 +244,21 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     measurement_at(k);
     mon->step(t[k], u, m);
     drain_events(t[k], u);
-    if (diag) {
+    envelope.add(t[k], u, obs.residual().data(), obs.residual_valid() & compared, mon->model_bound());
+    if (!out_of_envelope && envelope.result().out && o.diagnose && res.table_rows > 0) {
+      // It supersedes what was said before (a detection while the run settled names
+      // faults on a model that does not apply).
+      out_of_envelope = true;
+      host::ReplayEvent e;
+      e.t = t[k];
+      e.event = "out_of_envelope";
+      e.why = envelope.result().text;
+      if (!res.events.empty()) {
+        e.why += " (it withdraws the " + std::to_string(res.events.size()) + " diagnosis event(s) before it)";
+      }
+      res.events.assign(1, std::move(e));
+    }
+    if (diag && !out_of_envelope) {
       FaultFitDiagnosis::Row row;
       row.t = t[k];
       row.y = m.y.data();
@@ -274,7 +295,11 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   drain_events(res.t_last, u_prev);
   res.ticks = obs.ticks();
   res.final_status = to_string(mon->matcher().status());
-  if (diag) {
+  envelope.finish();
+  res.envelope = envelope.result();
+  if (out_of_envelope) {
+    res.final_status = "out_of_envelope";
+  } else if (diag) {
     diag->finish(res.t_last, res.events);
     res.final_status = diag->status();
   }

@@ -24,6 +24,7 @@
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/envelope_check.hpp"
 #include "hstmon_host/replay.hpp"
 
 namespace hstmon::circuit_tools {
@@ -73,7 +74,10 @@ struct CircuitReplayResult {
   InitialState start = InitialState::kRest;
   double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
   std::vector<host::ReplayEvent> events;      ///< matcher events in time order (if diagnose)
-  std::string final_status = "nominal";       ///< matcher status after the last row
+  /// Matcher status after the last row, or the fit's (fault_fit_diagnosis.hpp), or
+  /// "out_of_envelope" (envelope_check.hpp: the model does not describe this machine)
+  std::string final_status = "nominal";
+  EnvelopeResult envelope;                    ///< does the model describe this machine at its first steady stretch?
   std::size_t table_rows = 0;                 ///< hypotheses in the circuit's fault table (0: not run)
   std::vector<std::string> undetectable;      ///< parameter faults without a row (no visible steady change)
   std::vector<CircuitTraceRow> trace;         ///< per row, if CircuitReplayOptions::keep_trace

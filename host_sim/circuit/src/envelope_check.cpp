@@ -1,0 +1,108 @@
+#include "hstmon_circuit/envelope_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::circuit_tools {
+
+namespace {
+
+constexpr double kSettleTaus = 3.0;    // as the fault estimator's windows
+constexpr double kSettleMin = 0.1;     // [s]
+constexpr double kSettleMax = 3.0;     // [s]
+constexpr double kInputTolerance = 0.01;
+
+bool inputs_close(const host::HostCircuitModel::Inputs& a, const host::HostCircuitModel::Inputs& b) {
+  for (std::size_t i = 0; i < sizeof(a.v) / sizeof(a.v[0]); ++i) {
+    if (!(std::fabs(b.v[i] - a.v[i]) <= kInputTolerance * std::fabs(a.v[i]) + 1e-12 * (1.0 + std::fabs(a.v[i])))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+EnvelopeCheck::EnvelopeCheck(const LoadedCircuit& c, const Model& model, const std::vector<double>& sigma, double window)
+    : c_(c), model_(model), sigma_(sigma), window_(window) {
+  const std::size_t n = c.file.sensors.size();
+  sigma_.resize(n, 0.0);
+  sum_.assign(n, 0.0);
+  bound_.assign(n, 0.0);
+  n_.assign(n, 0);
+  res_.text = "not checked: no stretch of held inputs long enough to settle and judge (" +
+              fmt::format("{:g}", window_) + " s after 3 time constants)";
+}
+
+void EnvelopeCheck::begin_hold(double t, const Model::Inputs& u) {
+  holding_ = true;
+  u_hold_ = u;
+  model_.set_inputs(u);
+  Model::State xs;
+  double wait = kSettleMax;
+  if (model_.valid() && model_.steady_state(xs)) {
+    const double rate = model_.slowest_rate(xs);
+    if (rate > 0.0) wait = kSettleTaus / rate;
+  }
+  t_from_ = t + std::clamp(wait, kSettleMin, kSettleMax);
+  std::fill(sum_.begin(), sum_.end(), 0.0);
+  std::fill(n_.begin(), n_.end(), 0);
+}
+
+void EnvelopeCheck::add(double t, const Model::Inputs& u, const double* r, unsigned valid, const double* bound) {
+  if (res_.checked) return;
+  if (!holding_ || !inputs_close(u_hold_, u)) begin_hold(t, u);
+  if (t < t_from_) return;
+  for (std::size_t ch = 0; ch < sum_.size(); ++ch) {
+    if (((valid >> ch) & 1u) == 0 || !std::isfinite(r[ch])) continue;
+    sum_[ch] += r[ch];
+    n_[ch] += 1;
+    bound_[ch] = bound != nullptr ? std::fabs(bound[ch]) : 0.0;
+  }
+  t_last_ = t;
+  if (t - t_from_ >= window_) finish();
+}
+
+void EnvelopeCheck::finish() {
+  if (res_.checked || !holding_ || t_last_ - t_from_ < window_) return;
+  res_.checked = true;
+  res_.t0 = t_from_;
+  res_.t1 = t_last_;
+  std::string beyond, worst_text;
+  double worst = 0.0;
+  for (std::size_t ch = 0; ch < sum_.size(); ++ch) {
+    if (n_[ch] == 0) continue;
+    const double mean = sum_[ch] / static_cast<double>(n_[ch]);
+    const double tolerance = 2.0 * (bound_[ch] + 2.0 * sigma_[ch]);
+    if (!(tolerance > 0.0)) continue;
+    const double ratio = std::fabs(mean) / tolerance;
+    const host::CircuitSensor& s = c_.file.sensors[ch];
+    const host::UnitResult unit = host::parse_circuit_unit(s.quantity, s.unit);
+    const double k = unit.ok() ? 1.0 / unit.conversion.factor : 1.0;
+    const std::string name = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
+    if (ratio > 1.0) {
+      res_.out = true;
+      beyond += fmt::format("{}{} {:+.3g} {} from the model (it may be {:.3g} {})", beyond.empty() ? "" : ", ", s.name,
+                            mean * k, name, tolerance * 0.5 * k, name);
+    }
+    if (ratio > worst) {
+      worst = ratio;
+      worst_text = s.name;
+    }
+  }
+  if (res_.out) {
+    res_.text = fmt::format(
+        "the model does not describe this machine: at its first steady stretch (t = {:.3g} … {:.3g} s) {}; no fault "
+        "is named. Run `hstmon identify --circuit` on healthy steady data, or `hstmon gap --circuit`",
+        res_.t0, res_.t1, beyond);
+  } else {
+    res_.text = fmt::format("within the model's envelope at its first steady stretch (t = {:.3g} … {:.3g} s)", res_.t0,
+                            res_.t1);
+  }
+}
+
+}  // namespace hstmon::circuit_tools
