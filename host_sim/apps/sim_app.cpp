@@ -9,7 +9,7 @@
 ///              [--load constant|steps|ramp|sine] [--load-period S] [--load-range LO,HI]
 ///              [--load-seed N] [--blockage T]
 ///   any circuit file (docs/circuits.md; sim_circuit.hpp):
-///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--start rest|steady]
+///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--inputs LOG] [--start rest|steady]
 ///              [--duration S] [--rate HZ] [--seed N] [--no-noise] [--out FILE.csv]
 
 #include <CLI/CLI.hpp>
@@ -60,6 +60,7 @@ struct Options {
   // Any circuit file (sim_circuit.hpp).
   std::string circuit;
   std::string circuit_params;
+  std::string circuit_inputs;  // --inputs LOG
   std::vector<std::string> steps;
   std::vector<std::string> faults;
 };
@@ -227,9 +228,14 @@ int main(int argc, char** argv) {
   app.add_option("--fault", o.faults,
                  "with --circuit: parameter fault PARAM=FACTOR@T, the parameter times FACTOR from T on, e.g. "
                  "Rmlkg=0.5@3 (repeatable)");
+  app.add_option("--inputs", o.circuit_inputs,
+                 "with --circuit: drive it with this log's input columns, each row's values held until the next "
+                 "(zero-order hold, as the monitor applies them); --duration and --rate default to the log's span and "
+                 "rate; --step and --fault add to it");
   CLI11_PARSE(app, argc, argv);
-  if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0 || app.count("--fault") > 0)) {
-    std::cerr << "hstmon-sim: --params, --step and --fault go with --circuit\n";
+  if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0 || app.count("--fault") > 0 ||
+                            app.count("--inputs") > 0)) {
+    std::cerr << "hstmon-sim: --params, --step, --fault and --inputs go with --circuit\n";
     return 1;
   }
   if (!o.circuit.empty()) {
@@ -252,6 +258,7 @@ int main(int argc, char** argv) {
     c.no_noise = o.no_noise;
     c.steps = o.steps;
     c.faults = o.faults;
+    c.inputs = o.circuit_inputs;
     return hstmon::sim_app::run_circuit_sim(c);
   }
   try {

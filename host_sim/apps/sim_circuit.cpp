@@ -6,6 +6,8 @@
 #include <iostream>
 
 #include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 
 namespace hstmon::sim_app {
@@ -27,6 +29,28 @@ int run_circuit_sim(const CircuitSimArgs& a) {
     return 2;
   }
   circuit_tools::CircuitSimOptions o;
+  std::string profile_note;
+  if (!a.inputs.empty()) {
+    // A logged run's inputs: its span and median rate unless given.
+    const circuit_tools::CircuitLog in = circuit_tools::read_circuit_log(a.inputs, c.file);
+    for (const auto& n : in.notes) std::cerr << n << '\n';
+    if (in.error) {
+      std::cerr << in.error->to_string() << '\n';
+      return 2;
+    }
+    std::size_t columns = 0;
+    for (const auto& col : in.inputs) columns += col.size() == in.rows() ? 1 : 0;
+    if (in.rows() < 2 || columns == 0) {
+      std::cerr << a.inputs << ": error: --inputs needs at least 2 rows and one of the circuit's input columns\n";
+      return 2;
+    }
+    o.steps = circuit_tools::logged_input_steps(in);
+    const double span = in.t.back() - in.t.front();
+    o.rate = static_cast<double>(in.rows() - 1) / span;
+    o.duration = span + 1.0 / o.rate;
+    profile_note = "inputs from " + a.inputs + ": " + std::to_string(columns) + " column(s), " +
+                   std::to_string(in.rows()) + " rows, each held until the next (zero-order hold)";
+  }
   if (a.duration > 0.0) o.duration = a.duration;
   if (a.rate > 0.0) o.rate = a.rate;
   o.seed = a.seed;
@@ -60,6 +84,7 @@ int run_circuit_sim(const CircuitSimArgs& a) {
       "circuit " + c.file.name + ": full equations (Rosenbrock-4), " + (o.from_rest ? "from rest" : "from steady state") +
           ", " + shortest(o.duration) + " s at " + shortest(o.rate) + " Hz, seed " + std::to_string(o.seed) +
           (o.noise ? "" : ", no noise")};
+  if (!profile_note.empty()) comments.push_back(profile_note);
   for (const std::string& s : a.steps) comments.push_back("step " + s);
   for (const std::string& s : a.faults) comments.push_back("fault " + s);
   const std::string text = circuit_tools::circuit_log_text(c.file, log, comments);

@@ -20,6 +20,7 @@ struct CircuitSimArgs {
   bool no_noise = false;
   std::vector<std::string> steps;   ///< "INPUT=VALUE@T"
   std::vector<std::string> faults;  ///< "PARAM=FACTOR@T"
+  std::string inputs;               ///< a log whose input columns drive the run ("" = none; circuit_schedule.hpp)
 };
 
 /// Runs it. @return 0, 1 on a bad option, 2 on a bad circuit/parameter file (message
