@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,54 @@ TEST(CircuitIdentify, RefusesUnknownOrLiteralNames) {
   EXPECT_NE(r.error->find("Rnope"), std::string::npos);
   o.fit = {};
   EXPECT_TRUE(id::fit_circuit(c, {}, o).error.has_value());
+}
+
+}  // namespace
+
+namespace {
+
+// A test stand whose bypass (not logged) shuts at 3 s while the inputs hold: the loading
+// throttle's coefficient halves. The held stretch is split there, each side is its own
+// operating point, and nothing is averaged across the switch.
+TEST(CircuitIdentify, AnUnloggedEventSplitsTheHeldStretch) {
+  const ct::LoadedCircuit c = load("test_stand");
+  ct::CircuitSimOptions o;
+  o.duration = 6.0;
+  o.rate = 1000.0;
+  o.seed = 9;
+  ct::InputStep shut;
+  ASSERT_FALSE(ct::parse_param_fault("k_throttle=0.7@3", c.file, shut).has_value());
+  o.steps.push_back(shut);
+  const ct::CircuitLog log = ct::simulate_circuit(c, o);
+  std::vector<std::string> notes;
+  const auto points = id::circuit_operating_points(c, {log}, 0.2, &notes);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_LT(points[0].t1, 3.0);
+  EXPECT_GT(points[1].t0, 3.0);
+  const int p_line = 0;
+  EXPECT_GT(points[1].mean[p_line] - points[0].mean[p_line], 1e5) << "the throttle shut raises the line pressure";
+  ASSERT_FALSE(notes.empty());
+  EXPECT_NE(notes.front().find("while the inputs hold"), std::string::npos) << notes.front();
+}
+
+// A drive speed logged with its sensor's scatter (0.5 %, over the old fixed 0.5 %
+// tolerance) still holds: the tolerance follows the input's own noise.
+TEST(CircuitIdentify, AMeasuredInputsScatterStillHolds) {
+  const ct::LoadedCircuit c = load("test_stand");
+  ct::CircuitSimOptions o;
+  o.duration = 4.0;
+  o.rate = 1000.0;
+  ct::CircuitLog log = ct::simulate_circuit(c, o);
+  const int n = c.file.input_index("n_drive");
+  ASSERT_GE(n, 0);
+  std::uint32_t state = 12345u;
+  for (double& v : log.inputs[static_cast<std::size_t>(n)]) {
+    state = state * 1664525u + 1013904223u;
+    const double uniform = (static_cast<double>(state >> 8) / 16777216.0) - 0.5;  // ±0.5
+    v *= 1.0 + 0.01 * uniform * 1.7;  // about 0.5 % RMS
+  }
+  const auto points = id::circuit_operating_points(c, {log}, 0.2);
+  EXPECT_EQ(points.size(), 1u);
 }
 
 }  // namespace

@@ -15,67 +15,7 @@ namespace {
 
 using Model = host::HostCircuitModel;
 
-bool same_input(double a, double b) { return a == b || std::fabs(a - b) <= 0.005 * std::fabs(b); }
-
-// The operating points of one log: stretches of held inputs, less the settle time.
-void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit& desc, const circuit_tools::CircuitLog& log,
-                 std::size_t index, double min_duration, std::vector<CircuitOperatingPoint>& out) {
-  const std::size_t rows = log.rows();
-  const std::size_t n_in = c.file.inputs.size();
-  auto input_at = [&](std::size_t i, std::size_t row) {
-    return i < log.inputs.size() && log.inputs[i].size() == rows ? log.inputs[i][row] : c.values.inputs.v[i];
-  };
-  std::size_t start = 0;
-  while (start < rows) {
-    std::size_t end = start + 1;
-    while (end < rows) {
-      bool held = true;
-      for (std::size_t i = 0; i < n_in && held; ++i) held = same_input(input_at(i, end), input_at(i, start));
-      if (!held) break;
-      ++end;
-    }
-    Model::Inputs u = c.values.inputs;
-    for (std::size_t i = 0; i < n_in; ++i) u.v[i] = input_at(i, start);
-    const Model m(desc, c.values.params, u);
-    Model::State xs;
-    const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
-    const double settle = rate > 0.0 ? 5.0 / rate : HUGE_VAL;
-    const double t_from = log.t[start] + settle;
-    std::size_t first = start;
-    while (first < end && log.t[first] < t_from) ++first;
-    if (first < end && log.t[end - 1] - log.t[first] >= min_duration) {
-      CircuitOperatingPoint p;
-      p.log = index;
-      p.t0 = log.t[first];
-      p.t1 = log.t[end - 1];
-      p.n = end - first;
-      for (std::size_t i = 0; i < n_in; ++i) p.inputs.push_back(u.v[i]);
-      for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
-        double mean = std::nan("");
-        if (ch < log.sensors.size() && log.sensors[ch].size() == rows) {
-          double s = 0.0;
-          for (std::size_t k = first; k < end; ++k) s += log.sensors[ch][k];
-          mean = s / static_cast<double>(p.n);
-        }
-        p.mean.push_back(mean);
-      }
-      out.push_back(std::move(p));
-    }
-    start = end;
-  }
-}
-
 }  // namespace
-
-std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
-                                                            const std::vector<circuit_tools::CircuitLog>& logs,
-                                                            double min_duration) {
-  host::HostCircuit desc = c.file.circuit;
-  desc.stiff_mask = 0;
-  std::vector<CircuitOperatingPoint> out;
-  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, min_duration, out);
-  return out;
-}
 
 bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
                              const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res) {
@@ -118,7 +58,7 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     r.error = "nothing to fit: name the parameters with --fit";
     return r;
   }
-  r.points = circuit_operating_points(c, logs, o.min_duration);
+  r.points = circuit_operating_points(c, logs, o.min_duration, &r.notes);
   const std::size_t channels = c.file.sensors.size();
   std::size_t m = 0;
   for (const auto& p : r.points) {

@@ -5,9 +5,14 @@
 /// engine's steady states — the thesis's nonlinear regression (Table 2.2) for a circuit
 /// from a file.
 ///
-/// Operating points: stretches of a log over which every logged input holds (within
-/// 0.5 % of its value, or exactly when it is 0), less their first 5 slowest time
+/// Operating points (circuit_points.cpp): stretches of a log over which every logged input
+/// holds (within 0.5 % of its value or 8 of its own noise σ, from successive differences:
+/// a measured speed scatters) and the outputs are steady, less their first 5 slowest time
 /// constants of the circuit at that point (the transient), at least `min_duration` long.
+/// A held stretch whose outputs step (an event the log does not record: 0.05 s block
+/// means, a split beyond 8 standard errors and 3 of the sensor's σ) is split there, each side
+/// settling again, with a note; a piece whose outputs still trend by more than 3 σ over it
+/// (a start from rest still settling) is left out, with a note.
 /// Per point and measured channel the residual is (model − mean reading)/σ, σ the sensor's
 /// noise (1 % of the span without one). Parameters are fitted as ln(p/p₀), so they stay
 /// positive and their steps are relative; standard errors come from the linearised
@@ -53,9 +58,11 @@ struct CircuitFitResult {
 
 /// The operating points of `logs` for circuit c (see the file comment); `before` and
 /// `after` empty.
+/// @param notes  out, optional: a sentence per held stretch split where an output stepped
 std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
                                                             const std::vector<circuit_tools::CircuitLog>& logs,
-                                                            double min_duration);
+                                                            double min_duration,
+                                                            std::vector<std::string>* notes = nullptr);
 
 /// Residuals (model − mean)/σ at every point and measured channel, in point then channel
 /// order, for circuit c with parameter values p (c's inputs apart from those the points
