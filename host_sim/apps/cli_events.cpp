@@ -68,6 +68,9 @@ void print_events(const std::vector<host::ReplayEvent>& events, const std::strin
     } else {
       fmt::print("    t = {:>9.3f} s  {}: {}\n", e.t, e.event, candidate_list(e, 4));
     }
+    if (!e.why.empty() && (e.event == "isolated" || e.event == "ambiguous" || e.event == "unexplained")) {
+      fmt::print("                   ({})\n", e.why);
+    }
   }
   fmt::print("    status at the end of the log: {}\n", final_status);
 }

@@ -23,6 +23,33 @@ std::string percent(double f, double lo, double hi) {
   return fmt::format("{:+.0f} % ({:+.0f} … {:+.0f} %)", 100.0 * (f - 1.0), 100.0 * (lo - 1.0), 100.0 * (hi - 1.0));
 }
 
+// Hypotheses among the first `shown` fits that fit every window alike (the same χ² and the
+// same factor: one product, or one law between the same nodes) act as one for these
+// sensors, and are said so: "R_ip-, R_im- act as one here (...)".
+std::string same_fit_classes(const Estimator& est, int shown) {
+  std::string text;
+  std::vector<bool> used(static_cast<std::size_t>(shown), false);
+  for (int a = 0; a < shown; ++a) {
+    if (used[static_cast<std::size_t>(a)]) continue;
+    const HypothesisFit<double>& fa = est.fit(a);
+    std::string group = fa.name;
+    int members = 1;
+    for (int b = a + 1; b < shown; ++b) {
+      const HypothesisFit<double>& fb = est.fit(b);
+      if (std::fabs(fa.chi2 - fb.chi2) <= 1e-9 * std::fmax(1.0, fa.chi2) &&
+          std::fabs(fa.factor - fb.factor) <= 1e-6 * std::fabs(fa.factor)) {
+        used[static_cast<std::size_t>(b)] = true;
+        group += std::string(", ") + fb.name;
+        ++members;
+      }
+    }
+    if (members > 1) text += (text.empty() ? "" : "; ") + group;
+  }
+  if (text.empty()) return text;
+  return text + ": each group acts as one at every point seen (the same change on every sensor), so no sensor here "
+                "tells its members apart";
+}
+
 }  // namespace
 
 struct FaultFitDiagnosis::Impl {
@@ -230,6 +257,7 @@ void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
     key += "," + cand.fault;
     e.candidates.push_back(std::move(cand));
   }
+  e.why = same_fit_classes(est, shown);
   if (key == last_key_) return;
   last_key_ = key;
   emit(std::move(e), out);
