@@ -6,16 +6,19 @@
 // first event no earlier than t_visible − 0.05 s and no later than t_steady + 5 s; the
 // truth or a member of its class among the last event's candidates; no `cleared` after
 // the fault (they all persist). The cases isolated today must stay isolated: the last
-// event `isolated` with a class member first, or `ambiguous` within the class.
+// event `isolated` with a class member first, or `ambiguous` within the class. And their
+// gap cases through `hstmon gap --circuit`.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -123,5 +126,64 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"validation_paper", "fault_prv_block", true}, Case{"validation_paper", "fault_friction", true},
                       Case{"validation_paper", "fault_dcv_block", true}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.set.substr(11) + "_" + i.param.name; });
+
+// The gap cases: `hstmon gap --circuit C --fit F --check K --json` names the truth's
+// effect (or none) and, for an effect, its size within 20 % (score_*.py's rule).
+struct GapCase {
+  std::string set;
+  std::string name;
+};
+
+void PrintTo(const GapCase& c, std::ostream* os) { *os << c.set << "/" << c.name; }
+
+class ValidationCircuitsGap : public ::testing::TestWithParam<GapCase> {};
+
+TEST_P(ValidationCircuitsGap, NamesTheEffectAndItsSize) {
+  const GapCase& k = GetParam();
+  const fs::path dir = kData / k.set;
+  std::ifstream in(dir / "answers.json");
+  ASSERT_TRUE(in) << (dir / "answers.json");
+  const Json answers = Json::parse(in);
+  const Json& g = answers.at("gap").at(k.name);
+  const auto log = [&](const std::string& n) { return (dir / "logs" / (n + ".csv.gz")).string(); };
+  const std::string cmd = std::string("'") + HSTMON_CLI + "' gap --circuit '" +
+                          (dir / g.at("circuit").get<std::string>()).string() + "' --fit '" +
+                          log(g.at("fit").get<std::string>()) + "' --check '" + log(g.at("check").get<std::string>()) +
+                          "' --json 2>/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  const int st = pclose(p);
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << out;
+  const std::size_t brace = out.find('{');
+  ASSERT_NE(brace, std::string::npos) << out;
+  Json j;
+  std::istringstream(out.substr(brace)) >> j;
+  const std::string verdict = j.value("verdict", "");
+  const std::string truth = g.at("truth");
+  if (truth == "none") {
+    EXPECT_TRUE(verdict == "none" || verdict == "no_significant_gap") << verdict;
+    return;
+  }
+  ASSERT_EQ(verdict, truth);
+  const Json ranked = j.value("ranked", Json::array());
+  const auto named =
+      std::find_if(ranked.begin(), ranked.end(), [&](const Json& r) { return r.value("effect", "") == verdict; });
+  ASSERT_NE(named, ranked.end()) << "the verdict's effect is not ranked";
+  const double size = g.at("size").get<double>();
+  EXPECT_NEAR(named->at("magnitude").get<double>(), size, 0.2 * std::fabs(size));
+}
+
+INSTANTIATE_TEST_SUITE_P(Logs, ValidationCircuitsGap,
+                         ::testing::Values(GapCase{"validation_circuits", "gap_none_nominal"},
+                                           GapCase{"validation_circuits", "gap_drain_B"},
+                                           GapCase{"validation_circuits", "gap_offset_p_a"},
+                                           GapCase{"validation_paper", "gap_none"},
+                                           GapCase{"validation_paper", "gap_leak_pmi"}),
+                         [](const ::testing::TestParamInfo<GapCase>& i) {
+                           return i.param.set.substr(11) + "_" + i.param.name;
+                         });
 
 }  // namespace
