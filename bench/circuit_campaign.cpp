@@ -93,6 +93,8 @@ Timing timing(const LoadedCircuit& c) {
 Timing g_timing;
 // The circuit's fault table, as hstmon replay --circuit builds it; read-only once the runs start.
 hstmon::circuit_tools::CircuitFaultTable g_table;
+// --matcher-only: the matcher's verdict alone, as the firmware runs it (no fit, no step at held inputs).
+bool g_matcher_only = false;
 
 // What one campaign run injects.
 struct Fault {
@@ -198,6 +200,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   }
   CircuitReplayOptions ro;
   ro.table = &g_table;  // hstmon replay --circuit's (fdi::circuit_signature_table), built once
+  ro.fit = !g_matcher_only;
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
     r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin);
@@ -286,6 +289,8 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "one JSON object with the figures");
   app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
   app.add_flag("--verbose", verbose, "print every fault run whose truth is not in the reported set");
+  app.add_flag("--matcher-only", g_matcher_only,
+               "the matcher's verdict alone, as the firmware runs it (replay --circuit --matcher-only)");
   CLI11_PARSE(app, argc, argv);
 
   LoadedCircuit c;

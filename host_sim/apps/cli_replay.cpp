@@ -348,8 +348,8 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-progress", args->no_progress, "Never show the progress line");
   cmd->add_flag("--no-diagnosis", args->no_diagnosis, "Residuals only: do not run the fault matcher");
   cmd->add_flag("--matcher-only", args->matcher_only,
-                "With --circuit: report the fault matcher's verdict alone, as the firmware monitor does; no fit of the "
-                "steady windows after a detection (docs/circuits.md)");
+                "With --circuit: report the fault matcher's verdict alone, as the firmware monitor does: no step "
+                "detection at held inputs, no fit of the steady windows after a detection (docs/circuits.md)");
   cmd->add_option("--circuit", args->circuit,
                   "Replay through the monitor of this circuit file (docs/circuits.md): residuals and the fault matcher "
                   "on the circuit's generated table; --params is then its parameter file (default: <stem>.params.json "

@@ -244,6 +244,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     measurement_at(k);
     mon->step(t[k], u, m);
     drain_events(t[k], u);
+    if (!res.events.empty()) envelope.detected(res.events.front().t);
     envelope.add(t[k], u, obs.residual().data(), obs.residual_valid() & compared, mon->model_bound());
     if (!out_of_envelope && envelope.result().out && o.diagnose && res.table_rows > 0) {
       // It supersedes what was said before (a detection while the run settled names
@@ -264,6 +265,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       row.y = m.y.data();
       row.valid = compared;
       row.r = obs.residual().data();
+      row.y_hat = obs.estimate().data();
       row.r_valid = obs.residual_valid();
       row.bound = mon->model_bound();
       row.matcher_quiet = mon->matcher().status() == MatchStatus::kNominal;

@@ -35,8 +35,8 @@
 /// model error a window without a baseline allows). The share is of the observed change,
 /// the same for every hypothesis, so χ² stays a quadratic in the predicted change. It
 /// isolates where the model bound alone would leave every hypothesis consistent. A channel
-/// whose baseline residual exceeds k_model·bound sat far from the model before the fault
-/// (a valve the model has cracked and the machine has not) and is fitted without it.
+/// whose baseline residual exceeds half the model bound sat far from the model before the
+/// fault (a valve the model has cracked and the machine has not) and is fitted without it.
 ///
 /// Verdict, over the windows of the episode: a hypothesis is consistent when its best χ²
 /// lies within Δ = k_delta·max(1, χ²_best/dof) of the best one (dof = channel samples
@@ -294,14 +294,17 @@ class FaultEstimator {
     if (Bound::compute(model_, eps_, bound) != Status::kOk) {
       for (int i = 0; i < kN; ++i) b[i] = T(0);
     }
-    for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * b[i];
-    // A channel whose pre-fault residual lay beyond the model error sat far from the model
-    // (a relief valve the model has cracked and the machine has not): its sensitivities may
-    // differ from the model's, so it is fitted as without a baseline.
+    for (int i = 0; i < kN; ++i) {
+      bound_[i] = b[i];
+      model_err_[i] = cfg_.k_model * b[i];
+    }
+    // A channel whose pre-fault residual lay beyond half the model bound sat far from the
+    // model (a relief valve the model has cracked and the machine has not): its
+    // sensitivities may differ from the model's, so it is fitted as without a baseline.
     base_use_ = 0;
     if (base_valid_ != 0 && inputs_close(base_u_, u)) {
       for (int i = 0; i < kN; ++i) {
-        if (((base_valid_ >> i) & 1u) != 0 && std::fabs(base_mean_[i]) <= model_err_[i]) base_use_ |= 1u << i;
+        if (((base_valid_ >> i) & 1u) != 0 && std::fabs(base_mean_[i]) <= 0.5 * bound_[i]) base_use_ |= 1u << i;
       }
     }
     for (int i = 0; i < kN; ++i) offset_[i] = baselined(i) ? base_mean_[i] : T(0);
@@ -575,6 +578,7 @@ class FaultEstimator {
   Inputs u_win_{};
   T t_open_ = T(0), t_first_ = T(0), t_last_ = T(0), t_decided_ = T(0);
   Output y0_{};
+  T bound_[kNz] = {};      ///< the model bound at the open window's inputs [channel unit]
   T model_err_[kNz] = {};
   // The baseline (set_baseline) and whether the open window is at its inputs.
   Inputs base_u_{};

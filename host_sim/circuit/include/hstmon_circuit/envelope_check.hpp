@@ -5,8 +5,11 @@
 /// steady stretch of its log is another machine (or this one badly parameterised), and
 /// naming a fault on it would be a guess. The check: the first stretch of held inputs that
 /// lasts a settle (3 slowest time constants at its inputs, as the fault estimator's) plus
-/// `window` seconds; over that window, per channel, the mean residual against twice the
-/// matcher's own tolerance 2·(model bound + 2σ). Beyond it on any channel: out of envelope.
+/// a steady `window` seconds (its halves' mean residuals within 5 % of the tolerance:
+/// a machine still running up is tried again later); over that window, per channel, the
+/// mean residual against twice the matcher's own tolerance 2·(model bound + 2σ). Beyond it
+/// on any channel: out of envelope. A window not begun by the first detection is given up:
+/// it would judge the fault, not the machine.
 /// A log without such a stretch is not checked, and says so.
 
 #include <cstddef>
@@ -37,12 +40,18 @@ class EnvelopeCheck {
   /// set where r[ch] is one; bound the model bound per channel at u [SI].
   void add(double t, const Model::Inputs& u, const double* r, unsigned valid, const double* bound);
 
+  /// The monitor detected a fault at t [s]: a window that had not begun by then (the
+  /// machine still settling) would judge the fault, not the machine, so the check is given up.
+  void detected(double t);
+
   /// The verdict so far (final once `checked`); call finish() at the end of the log.
   const EnvelopeResult& result() const { return res_; }
   void finish();
 
  private:
   void begin_hold(double t, const Model::Inputs& u);
+  bool steady() const;  ///< the window's halves agree within 5 % of the tolerance and their noise
+  void abandon();
 
   const LoadedCircuit& c_;
   Model model_;
@@ -53,8 +62,10 @@ class EnvelopeCheck {
   bool holding_ = false;
   double t_from_ = 0.0;  ///< the window starts here (after the settle) [s]
   double t_last_ = 0.0;
-  std::vector<double> sum_, bound_;
-  std::vector<std::size_t> n_;
+  double t_detected_ = -1.0;  ///< the first detection [s]; < 0 before it
+  bool abandoned_ = false;
+  std::vector<double> sum_, bound_, half_sum_;  ///< per channel: the window's and its first half's sums
+  std::vector<std::size_t> n_, half_n_;
 };
 
 }  // namespace hstmon::circuit_tools

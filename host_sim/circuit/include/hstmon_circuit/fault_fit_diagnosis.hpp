@@ -50,6 +50,7 @@ class FaultFitDiagnosis {
     const double* y = nullptr;      ///< readings
     unsigned valid = 0;             ///< bit ch: y[ch] compared
     const double* r = nullptr;      ///< the observer's residual (measured − model)
+    const double* y_hat = nullptr;  ///< the observer's model outputs
     unsigned r_valid = 0;           ///< bit ch: r[ch] is one
     const double* bound = nullptr;  ///< the monitor's model bound at the row's inputs
     bool matcher_quiet = false;     ///< the matcher's status is nominal
