@@ -189,8 +189,8 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
   for (int i = 0; same && i < static_cast<int>(sizeof(u.v) / sizeof(u.v[0])); ++i) {
     same = std::fabs(u.v[i] - m.u_hold.v[i]) <= 1e-4 * std::fabs(m.u_hold.v[i]) + 1e-12 * (1.0 + std::fabs(m.u_hold.v[i]));
   }
-  // An input change within the tolerance still moves the model; near a valve's kink the
-  // machine's response to it may differ from the model's by as much. So the hold also
+  // The model may still move at held inputs (a slow mode the settle time did not cover);
+  // the machine's own move may then differ from the model's by as much. So the hold also
   // ends when the model's output leaves its settled value by the detector's share of the
   // bound.
   if (same && t >= m.t_settled && row.y_hat != nullptr && row.bound != nullptr) {
