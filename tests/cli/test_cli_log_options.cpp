@@ -4,6 +4,7 @@
 // instrument writes it loads with one documented command.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -34,8 +35,11 @@ CliRun run(const std::string& args) {
   return r;
 }
 
+// Per process: CTest runs this file's tests as separate processes side by side, and one
+// rewriting a shared file while another reads it left the reader an empty file.
 std::string write_file(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("hstmon_cli_opts_" + name);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("hstmon_cli_opts_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path, std::ios::binary) << text;
   return path.string();
 }
