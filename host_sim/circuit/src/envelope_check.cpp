@@ -5,25 +5,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/fault_estimator.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
 
 namespace {
 
-constexpr double kSettleTaus = 3.0;    // as the fault estimator's windows
-constexpr double kSettleMin = 0.1;     // [s]
-constexpr double kSettleMax = 3.0;     // [s]
-constexpr double kInputTolerance = 0.01;
-
-bool inputs_close(const host::HostCircuitModel::Inputs& a, const host::HostCircuitModel::Inputs& b) {
-  for (std::size_t i = 0; i < sizeof(a.v) / sizeof(a.v[0]); ++i) {
-    if (!(std::fabs(b.v[i] - a.v[i]) <= kInputTolerance * std::fabs(a.v[i]) + 1e-12 * (1.0 + std::fabs(a.v[i])))) {
-      return false;
-    }
-  }
-  return true;
-}
+// The fault estimator's settle and input tolerance: the stretch judged is the one its
+// first window would be.
+const FaultEstimator<host::HostCircuitModel>::Config kWindows{};
 
 }  // namespace
 
@@ -62,14 +54,7 @@ void EnvelopeCheck::begin_hold(double t, const Model::Inputs& u) {
   }
   holding_ = true;
   u_hold_ = u;
-  model_.set_inputs(u);
-  Model::State xs;
-  double wait = kSettleMax;
-  if (model_.valid() && model_.steady_state(xs)) {
-    const double rate = model_.slowest_rate(xs);
-    if (rate > 0.0) wait = kSettleTaus / rate;
-  }
-  t_from_ = t + std::clamp(wait, kSettleMin, kSettleMax);
+  t_from_ = t + settle_time(model_, u, kWindows.settle_taus, kWindows.settle_min, kWindows.settle_max);
   std::fill(sum_.begin(), sum_.end(), 0.0);
   std::fill(n_.begin(), n_.end(), 0);
   std::fill(half_sum_.begin(), half_sum_.end(), 0.0);
@@ -78,7 +63,7 @@ void EnvelopeCheck::begin_hold(double t, const Model::Inputs& u) {
 
 void EnvelopeCheck::add(double t, const Model::Inputs& u, const double* r, unsigned valid, const double* bound) {
   if (res_.checked || abandoned_) return;
-  if (!holding_ || !inputs_close(u_hold_, u)) begin_hold(t, u);
+  if (!holding_ || !inputs_within(u_hold_, u, kWindows.input_tolerance)) begin_hold(t, u);
   if (abandoned_ || t < t_from_) return;
   for (std::size_t ch = 0; ch < sum_.size(); ++ch) {
     if (((valid >> ch) & 1u) == 0 || !std::isfinite(r[ch])) continue;

@@ -185,10 +185,7 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
   // speed change by bars where the model moves by nothing. So any input change beyond
   // 1e-4 of its value ends the hold (a measured input that scatters more keeps this
   // detector off; the matcher still watches).
-  bool same = m.holding;
-  for (int i = 0; same && i < static_cast<int>(sizeof(u.v) / sizeof(u.v[0])); ++i) {
-    same = std::fabs(u.v[i] - m.u_hold.v[i]) <= 1e-4 * std::fabs(m.u_hold.v[i]) + 1e-12 * (1.0 + std::fabs(m.u_hold.v[i]));
-  }
+  bool same = m.holding && inputs_within(m.u_hold, u, 1e-4);
   // The model may still move at held inputs (a slow mode the settle time did not cover);
   // the machine's own move may then differ from the model's by as much. So the hold also
   // ends when the model's output leaves its settled value by the detector's share of the

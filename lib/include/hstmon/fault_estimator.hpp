@@ -52,6 +52,7 @@
 #include <cstdint>
 
 #include "hstmon/model_bound.hpp"
+#include "hstmon/status.hpp"
 
 namespace hstmon {
 
@@ -70,6 +71,31 @@ struct FaultHypothesis {
   HypothesisKind kind = HypothesisKind::kParam;
   std::int16_t index = 0;       ///< parameter, input or channel index
 };
+
+/// How long model m takes to settle at inputs u: `taus` of its slowest time constants at
+/// its steady state there, within [lo, hi]; hi where it has no steady state [s]. Sets m's
+/// inputs to u.
+template <class Model, typename T = typename Model::Scalar>
+T settle_time(Model& m, const typename Model::Inputs& u, T taus, T lo, T hi) noexcept {
+  m.set_inputs(u);
+  typename Model::State xs;
+  T wait = hi;
+  if (m.valid() && m.steady_state(xs)) {
+    const T rate = m.slowest_rate(xs);
+    if (rate > T(0)) wait = taus / rate;
+  }
+  return std::fmin(std::fmax(wait, lo), hi);
+}
+
+/// Whether every input of b lies within `rel` of a's value (exactly, where a's is 0).
+template <class Inputs, typename T>
+bool inputs_within(const Inputs& a, const Inputs& b, T rel) noexcept {
+  for (int i = 0; i < static_cast<int>(sizeof(a.v) / sizeof(a.v[0])); ++i) {
+    const T d = std::fabs(b.v[i] - a.v[i]);
+    if (!(d <= rel * std::fabs(a.v[i]) + T(1e-12) * (T(1) + std::fabs(a.v[i])))) return false;
+  }
+  return true;
+}
 
 /// Verdict of the estimator.
 enum class EstimateVerdict : std::uint8_t {
@@ -186,14 +212,7 @@ class FaultEstimator {
   /// of the nominal model there, within [settle_min, settle_max] [s].
   T settle_time(const Inputs& u) noexcept {
     model_.set_params(nominal_);
-    model_.set_inputs(u);
-    typename Model::State xs;
-    T wait = cfg_.settle_max;
-    if (model_.valid() && model_.steady_state(xs)) {
-      const T rate = model_.slowest_rate(xs);
-      if (rate > T(0)) wait = cfg_.settle_taus / rate;
-    }
-    return std::fmin(std::fmax(wait, cfg_.settle_min), cfg_.settle_max);
+    return hstmon::settle_time(model_, u, cfg_.settle_taus, cfg_.settle_min, cfg_.settle_max);
   }
 
   /// Starts an episode at t: windows from now on (after a settle) count.
@@ -267,13 +286,7 @@ class FaultEstimator {
     return j < 0 ? -kSteps[-j] : kSteps[j];
   }
 
-  bool inputs_close(const Inputs& a, const Inputs& b) const noexcept {
-    for (int i = 0; i < static_cast<int>(sizeof(a.v) / sizeof(a.v[0])); ++i) {
-      const T d = std::fabs(b.v[i] - a.v[i]);
-      if (!(d <= cfg_.input_tolerance * std::fabs(a.v[i]) + T(1e-12) * (T(1) + std::fabs(a.v[i])))) return false;
-    }
-    return true;
-  }
+  bool inputs_close(const Inputs& a, const Inputs& b) const noexcept { return inputs_within(a, b, cfg_.input_tolerance); }
 
   void begin_settle(T t, const Inputs& u) noexcept {
     armed_ = true;
