@@ -1,21 +1,43 @@
 #!/usr/bin/env bash
-# The whole host suite under AddressSanitizer + UndefinedBehaviorSanitizer (preset
-# host-sanitizers: RelWithDebInfo, -fsanitize=address,undefined -fno-sanitize-recover=all,
-# no benchmarks; warnings not errors here, see below) in build/host-sanitizers. Tests that probe the heap
-# with their own allocator traps skip themselves under ASan by design.
-# Usage: scripts/sanitizers.sh [extra ctest arguments, e.g. -R robust]
+# AddressSanitizer + UndefinedBehaviorSanitizer runs (-fsanitize=address,undefined
+# -fno-sanitize-recover=all; docs/hardening.md). Tests that probe the heap with their own
+# allocator traps skip themselves under ASan by design (the plain builds run them).
+#
+# Usage: scripts/sanitizers.sh [--lib] [extra ctest arguments, e.g. -R robust]
+#   (default)  the whole host suite: preset host-sanitizers (RelWithDebInfo, no benchmarks)
+#              in build/host-sanitizers. A cold build is the most expensive thing the
+#              project compiles (instrumented objects take about twice a plain -O0 -g build).
+#   --lib      the embedded core's own suite only (lib/ and its C API: tests/core,
+#              tests/matcher, ports/c_api's tests; the set the aarch64 cross run uses), in
+#              build/host-sanitizers-lib with -DHSTMON_BUILD_HOST=OFF. Minutes, not tens of
+#              minutes: what scripts/test.sh runs. The readers, the circuit engine and the C
+#              API on hostile input are sanitized by scripts/fuzz.sh.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+if [[ ${1:-} == --lib ]]; then
+  shift
+  build=build/host-sanitizers-lib
+  san="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+  # Warnings are not errors here, for the reason given below.
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHSTMON_BUILD_HOST=OFF \
+    -DHSTMON_BUILD_BENCH=OFF -DHSTMON_WERROR=OFF -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" \
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+  cmake --build "$build" -j"$jobs" >/dev/null
+  ctest --test-dir "$build" -j"$jobs" --output-on-failure "$@"
+  exit
+fi
+
 # The preset has HSTMON_WERROR=OFF: GCC 12's -fsanitize=shift instrumentation makes
 # -Wsign-conversion fire falsely on `(uint8 >> i) & 1u` (lib/include/hstmon/fault_matcher.hpp),
-# so with -Werror it would not build with GCC. Warnings are judged by host-debug; this
+# so with -Werror it would not build with GCC. Warnings are judged by the plain builds; this
 # build is for the runtime checks, all of which stay on. (docs/hardening.md)
 cmake --preset host-sanitizers >/dev/null
 cmake --build --preset host-sanitizers -j"$jobs"
 # firmware.footprint measures the Cortex-M4 image (arm-none-eabi, not sanitized) against
-# its budgets; scripts/footprint.sh and the host-debug suite run it, so it is left out here.
+# its budgets; scripts/footprint.sh runs it, so it is left out here.
 ctest --preset host-sanitizers -j"$jobs" -E '^firmware\.footprint$' "$@"
