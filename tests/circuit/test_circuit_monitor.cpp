@@ -458,6 +458,34 @@ TEST(CircuitMonitor, FaultInsideTheBoundFoundAsAStepAtHeldInputs) {
   }
 }
 
+// A friction rise inside the model bound, found as a step at held inputs 0.2 s before the
+// next input change, on a machine whose motor is 2 % smaller than the file's (its speed
+// sits at 0.6 of its bound before the fault): the step's own window decides, with the
+// pre-fault baseline on every channel, and the truth is in the set (it ended "cleared"
+// when the window waited a full settle, and undecided without the speed's baseline).
+TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
+  const ct::LoadedCircuit c = load("thesis");
+  ct::LoadedCircuit m = c;
+  m.values.params.v[c.file.param_index("Dm")] *= 0.98;
+  ct::CircuitSimOptions o;
+  o.duration = 5.0;
+  o.rate = 1000.0;
+  o.seed = 4;
+  o.steps.push_back(step(c, "Rf=1.3@2.5", true));
+  o.steps.push_back(step(c, "kp=4.46e-8@3", false));
+  const ct::CircuitLog log = ct::simulate_circuit(m, o);
+  const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
+  ASSERT_FALSE(r.events.empty()) << "not detected";
+  EXPECT_EQ(r.events.front().event, "detected");
+  EXPECT_GE(r.events.front().t, 2.5);
+  EXPECT_LE(r.events.front().t, 2.95) << describe(r);
+  const auto& last = r.events.back();
+  ASSERT_TRUE(last.event == "isolated" || last.event == "ambiguous") << describe(r);
+  bool truth = false;
+  for (const auto& k : last.candidates) truth = truth || k.fault == "Rf+";
+  EXPECT_TRUE(truth) << describe(r);
+}
+
 // A machine the model cannot describe (its pump delivers half the flow of the file's)
 // is said so at its first steady stretch, and no fault is named on it; the file's own
 // machine passes the same check.

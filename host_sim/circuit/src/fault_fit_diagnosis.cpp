@@ -163,13 +163,13 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
 
 // An episode from t: the estimator's windows start after a settle, and if the inputs have
 // held still since before the step detector's reference, those readings are its baseline.
-void FaultFitDiagnosis::start_episode(double t, const Model::Inputs& u) {
+void FaultFitDiagnosis::start_episode(double t, const Model::Inputs& u, double settled_for) {
   Impl& m = *impl_;
   active_ = true;
   sensor_lock_ = false;
   last_key_.clear();
   if (!m.ok) return;
-  m.est.start(t, u);
+  m.est.start(t, u, settled_for);
   double offset[Model::kOutputs] = {}, var[Model::kOutputs] = {};
   const unsigned have = m.holding ? m.step.reference(offset, var) : 0u;
   if (have != 0) m.est.set_baseline(m.u_hold, offset, var, have);
@@ -216,7 +216,10 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
     if (((m.step.step_mask() >> ch) & 1u) != 0) where += (where.empty() ? "" : ", ") + m.c.file.sensors[ch].name;
   }
   e.why = "a step in " + where + " while the inputs held still";
-  start_episode(t, u);
+  // The detector has seen its recent blocks after the step: the machine has settled for
+  // that long already (a detection just before an input change still gets its window).
+  const StepDetector::Config sc{};
+  start_episode(t, u, sc.recent_blocks * sc.block);
   emit(std::move(e), out);
 }
 

@@ -68,7 +68,7 @@ class FaultFitDiagnosis {
   struct Impl;
   void decide(double t, std::vector<host::ReplayEvent>& out);
   void watch(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
-  void start_episode(double t, const Model::Inputs& u);
+  void start_episode(double t, const Model::Inputs& u, double settled_for = 0.0);
   void emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out);
 
   std::unique_ptr<Impl> impl_;
