@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_events.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,24 +41,12 @@ CliRun replay(const fs::path& circuit, const fs::path& log) {
   const fs::path err = fs::temp_directory_path() / ("hstmon_validation_circuits_" + log.stem().string() + ".err");
   const std::string cmd = std::string("'") + HSTMON_CLI + "' replay --circuit '" + circuit.string() + "' '" +
                           log.string() + "' --json --no-progress 2>'" + err.string() + "'";
+  hstmon_test::CliEvents run = hstmon_test::run_cli_events(cmd);
   CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::string out;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.status = run.status;
+  r.events = std::move(run.events);
   std::ifstream e(err);
   r.err.assign(std::istreambuf_iterator<char>(e), std::istreambuf_iterator<char>());
-  std::size_t a = 0;
-  while (a < out.size()) {
-    std::size_t b = out.find('\n', a);
-    if (b == std::string::npos) b = out.size();
-    const Json j = Json::parse(out.substr(a, b - a), nullptr, false);
-    a = b + 1;
-    if (j.is_object() && j.value("type", "") == "event") r.events.push_back(j);
-  }
   return r;
 }
 

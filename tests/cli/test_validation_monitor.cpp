@@ -3,18 +3,15 @@
 // the fault or on a nominal log, exit status 0, and the true fault among the candidates of
 // the last event at or after the fault.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "../support/cli_events.hpp"
 
 namespace {
 
@@ -23,37 +20,11 @@ using Json = nlohmann::json;
 
 const fs::path kData = fs::path(HSTMON_SOURCE_DIR) / "tests" / "data" / "validation";
 
-struct CliRun {
-  int status = -1;
-  std::vector<Json> events;  // detected, isolated, ambiguous, unexplained, cleared
-};
-
-// Decompresses name.csv.gz (gzip is on every Debian machine) and replays it with the CLI.
-CliRun replay(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hstmon_validation_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path csv = dir / (name + ".csv");
-  const std::string unzip = "gzip -dc '" + (kData / (name + ".csv.gz")).string() + "' > '" + csv.string() + "'";
-  CliRun r;
-  if (std::system(unzip.c_str()) != 0) return r;
-  const std::string cmd = std::string("'") + HSTMON_CLI + "' replay '" + csv.string() + "' --json";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::string out;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  fs::remove(csv);
-  std::size_t a = 0;
-  while (a < out.size()) {
-    std::size_t b = out.find('\n', a);
-    if (b == std::string::npos) b = out.size();
-    const Json j = Json::parse(out.substr(a, b - a), nullptr, false);
-    a = b + 1;
-    if (j.is_object() && j.value("type", "") == "event") r.events.push_back(j);
-  }
-  return r;
+// Replays name.csv.gz with the CLI (it reads gzip logs as they are).
+hstmon_test::CliEvents replay(const std::string& name) {
+  const std::string cmd =
+      std::string("'") + HSTMON_CLI + "' replay '" + (kData / (name + ".csv.gz")).string() + "' --json";
+  return hstmon_test::run_cli_events(cmd);
 }
 
 class ValidationMonitor : public ::testing::TestWithParam<std::string> {};
@@ -66,7 +37,7 @@ TEST_P(ValidationMonitor, ScoresByTheValidationRules) {
   const bool nominal = c.at("fault").is_null();
   const double t_fault = nominal ? 0.0 : c.at("t_fault").get<double>();
 
-  const CliRun r = replay(GetParam());
+  const hstmon_test::CliEvents r = replay(GetParam());
   ASSERT_EQ(r.status, 0);
   for (const Json& e : r.events) {
     if (e.at("event") != "detected") continue;
