@@ -8,8 +8,8 @@
 #              in build/host-sanitizers. A cold build is the most expensive thing the
 #              project compiles (instrumented objects take about twice a plain -O0 -g build).
 #   --lib      the embedded core's own suite only (lib/ and its C API: tests/core,
-#              tests/matcher, ports/c_api's tests; the set the aarch64 cross run uses), in
-#              build/host-sanitizers-lib with -DHSTMON_BUILD_HOST=OFF: about 6 min cold on
+#              tests/matcher, ports/c_api's tests; the set the aarch64 cross run uses):
+#              preset host-sanitizers-lib, in build/host-sanitizers-lib: about 6 min cold on
 #              2 cores instead of over 30. scripts/test.sh runs neither; its fuzz run
 #              (scripts/fuzz.sh) puts the readers, the circuit engine and both C APIs with
 #              the monitor behind them under ASan + UBSan.
@@ -22,18 +22,14 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
 if [[ ${1:-} == --lib ]]; then
   shift
-  build=build/host-sanitizers-lib
-  san="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-  # Warnings are not errors here, for the reason given below.
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHSTMON_BUILD_HOST=OFF \
-    -DHSTMON_BUILD_BENCH=OFF -DHSTMON_WERROR=OFF -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" \
-    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-  cmake --build "$build" -j"$jobs" >/dev/null
-  ctest --test-dir "$build" -j"$jobs" --output-on-failure "$@"
+  # Preset host-sanitizers-lib: host-sanitizers' flags with -DHSTMON_BUILD_HOST=OFF.
+  cmake --preset host-sanitizers-lib >/dev/null
+  cmake --build --preset host-sanitizers-lib -j"$jobs" >/dev/null
+  ctest --preset host-sanitizers-lib -j"$jobs" "$@"
   exit
 fi
 
-# The preset has HSTMON_WERROR=OFF: GCC 12's -fsanitize=shift instrumentation makes
+# Both presets have HSTMON_WERROR=OFF: GCC 12's -fsanitize=shift instrumentation makes
 # -Wsign-conversion fire falsely on `(uint8 >> i) & 1u` (lib/include/hstmon/fault_matcher.hpp),
 # so with -Werror it would not build with GCC. Warnings are judged by the plain builds; this
 # build is for the runtime checks, all of which stay on. (docs/hardening.md)

@@ -194,7 +194,7 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
     if (m.y_hat_held.empty()) {
       m.y_hat_held.assign(row.y_hat, row.y_hat + m.c.file.sensors.size());
     } else {
-      const double share = StepDetector::Config{}.k_bound;
+      const double share = m.step.config().k_bound;
       for (std::size_t ch = 0; same && ch < m.y_hat_held.size(); ++ch) {
         same = std::fabs(row.y_hat[ch] - m.y_hat_held[ch]) <= share * std::fabs(row.bound[ch]);
       }
@@ -218,8 +218,7 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
   e.why = "a step in " + where + " while the inputs held still";
   // The detector has seen its recent blocks after the step: the machine has settled for
   // that long already (a detection just before an input change still gets its window).
-  const StepDetector::Config sc{};
-  start_episode(t, u, sc.recent_blocks * sc.block);
+  start_episode(t, u, m.step.recent_span());
   emit(std::move(e), out);
 }
 

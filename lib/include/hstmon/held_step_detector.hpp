@@ -102,6 +102,12 @@ class HeldStepDetector {
   /// Channels that stepped (bit i), after add() returned true.
   std::uint32_t step_mask() const noexcept { return step_; }
 
+  /// The settings configure() took.
+  const Config& config() const noexcept { return cfg_; }
+
+  /// How long after a step the detector has read when it fires: its recent blocks [s].
+  T recent_span() const noexcept { return static_cast<T>(cfg_.recent_blocks) * cfg_.block; }
+
   /// The reference before the latest test: mean reading per channel [channel unit] and the
   /// variance of that mean [channel unit²]; bit i of the result: channel i has one. 0 when
   /// no full span has been seen in this hold.
