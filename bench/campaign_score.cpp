@@ -13,6 +13,19 @@ namespace {
 // A matcher score (a cosine) as an angle [rad].
 double angle(double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); }
 
+// Whether decision e isolates the truth or its class (Scored::isolated_class).
+bool isolates(const hstmon::host::ReplayEvent& e, const std::string& truth) {
+  if (e.candidates.empty() || (e.event != "isolated" && e.event != "ambiguous")) return false;
+  const double s0 = e.candidates[0].score;
+  bool in_group = false, all_tie = true;
+  for (const auto& c : e.candidates) {
+    const bool tie = std::fabs(c.score - s0) <= 1e-6 * std::fmax(1.0, s0);
+    in_group = in_group || (tie && c.fault == truth);
+    all_tie = all_tie && tie;
+  }
+  return in_group && (e.event == "isolated" || all_tie);
+}
+
 }  // namespace
 
 Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
@@ -68,6 +81,17 @@ Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::st
     s.in_set = s.in_set || e.candidates[j].fault == truth;
   }
   s.isolated_as_truth = e.event == "isolated" && s.best == truth;
+  s.size = std::nan("");
+  for (const auto& c : e.candidates) {
+    if (c.fault == truth) s.size = c.size;
+  }
+  // The first decision of the run's final stretch of decisions that all isolate the truth.
+  for (auto it = events.rbegin(); it != events.rend() && it->t >= t_fault - eps; ++it) {
+    if (!is_decision(it->event)) continue;
+    if (!isolates(*it, truth)) break;
+    s.isolated_class = true;
+    s.isolation_delay = it->t - t_fault;
+  }
   return s;
 }
 

@@ -26,6 +26,12 @@ struct Scored {
   std::vector<std::string> last_set;  ///< those candidates within the tie margin of their best
   std::string last;          ///< that event as text ("isolated at 4.460 s: Rplkg+ 0.96 …"; "" if none)
   bool isolated_as_truth = false;  ///< last decision isolated with the truth best
+  /// The last decision isolates the truth or its class: `isolated` with the truth among the
+  /// candidates that tie with the first (a group that acts as one), or `ambiguous` with
+  /// every candidate in such a tie and the truth among them.
+  bool isolated_class = false;
+  double isolation_delay = 0.0;  ///< from the fault to the first of the decisions that all isolate it so [s]
+  double size = 0.0;             ///< the truth's fitted size in the last decision (factor or offset; NaN if none)
   bool called_sensor = false;      ///< a decision after the fault named a sensor fault best (parameter faults)
   int set_size = 0;
   std::string best;          ///< best candidate of the last decision ("" if none)

@@ -337,7 +337,16 @@ int main(int argc, char** argv) {
   // Per fault and per condition tallies.
   struct Tally {
     int runs = 0, detected = 0, in_set = 0, best = 0, early = 0, errors = 0;
+    int isolated = 0;            // the truth or its class isolated at the end (of detected)
+    int sized = 0, size_ok = 0;  // isolated parameter/input faults with a fitted size; within 20 % of the fault's
     double delay_sum = 0.0;
+    std::vector<double> isolation_delays;  // [s]
+    double median_isolation() const {
+      if (isolation_delays.empty()) return NAN;
+      std::vector<double> d = isolation_delays;
+      std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+      return d[d.size() / 2];
+    }
   };
   std::map<std::string, Tally> by_fault;
   // Per truth: how often each other fault shared the reported set (detected runs).
@@ -366,6 +375,15 @@ int main(int argc, char** argv) {
       t->in_set += r.s.detected && r.s.in_last ? 1 : 0;
       t->best += r.s.detected && r.s.best_in_last ? 1 : 0;
       if (r.s.detected) t->delay_sum += r.s.delay;
+      if (r.s.detected && r.s.isolated_class) {
+        ++t->isolated;
+        t->isolation_delays.push_back(r.s.isolation_delay);
+        // The size as the fault's relative change: −30 % fitted within −24 … −36 %.
+        if (f.channel < 0 && std::isfinite(r.s.size)) {
+          ++t->sized;
+          t->size_ok += std::fabs((r.s.size - 1.0) - (f.factor - 1.0)) <= 0.2 * std::fabs(f.factor - 1.0) ? 1 : 0;
+        }
+      }
     }
     if (r.s.detected) {
       for (const std::string& other : r.s.last_set) {
@@ -381,9 +399,9 @@ int main(int argc, char** argv) {
   if (json) {
     fmt::print(
         "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":{:.2f},"
-        "\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
+        "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
         c.file.name, faults.size(), all.runs, pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected),
-        all.early, nominal_s / 3600.0, nominal.early, all.errors + nominal.errors);
+        pct(all.isolated, all.detected), all.median_isolation(), pct(all.size_ok, all.sized), all.early, nominal_s / 3600.0, nominal.early, all.errors + nominal.errors);
     return 0;
   }
   fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, circuit,
@@ -392,10 +410,12 @@ int main(int argc, char** argv) {
              g_timing.t_fault, g_timing.run, g_timing.load_period);
   if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
   for (const std::string& n : fault_notes) fmt::print("{}\n", n);
-  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best", "delay ms", "early");
+  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>9} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best",
+             "isolated", "delay ms", "to iso s", "early");
   for (const auto& [name, t] : by_fault) {
-    fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>9.0f} {:>6}\n", name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected),
-               pct(t.best, t.detected), t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.early);
+    fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>8.0f}% {:>9.0f} {:>9.2f} {:>6}\n", name, t.runs, pct(t.detected, t.runs),
+               pct(t.in_set, t.detected), pct(t.best, t.detected), pct(t.isolated, t.detected),
+               t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.median_isolation(), t.early);
   }
   // The predicted relation is read off the table the matcher ran, slopes and orders too
   // (hstmon-fdi isolability --circuit, docs/isolability.md).
@@ -421,13 +441,17 @@ int main(int argc, char** argv) {
     }
     if (!shown.empty()) fmt::print("  {:<20} with {}\n", truth, fmt::join(shown, ", "));
   }
-  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7}\n", "condition", "runs", "detected", "in set", "early");
+  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>9} {:>7}\n", "condition", "runs", "detected", "in set", "isolated", "early");
   for (std::size_t i = 0; i < kConditions.size(); ++i) {
     const Tally& t = by_cond[i];
-    fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>6}\n", kConditions[i].name, t.runs, pct(t.detected, t.runs), pct(t.in_set, t.detected), t.early);
+    fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>8.1f}% {:>6}\n", kConditions[i].name, t.runs, pct(t.detected, t.runs),
+               pct(t.in_set, t.detected), pct(t.isolated, t.detected), t.early);
   }
   fmt::print("\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections {}\n", all.runs,
              pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected), all.early);
+  fmt::print("isolated on the truth or its class: {:.1f} % of detected, median {:.2f} s after the fault; size within 20 % "
+             "in {:.1f} % of {} isolated parameter and input faults\n",
+             pct(all.isolated, all.detected), all.median_isolation(), pct(all.size_ok, all.sized), all.sized);
   fmt::print("nominal: {:.2f} h in {} segments of {:.0f} s: {} false alarms\n", nominal_s / 3600.0, nominal.runs, kSegment, nominal.early);
   if (all.errors + nominal.errors > 0) fmt::print("simulation errors: {} (runs not scored)\n", all.errors + nominal.errors);
   return 0;

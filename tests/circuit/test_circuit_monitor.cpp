@@ -8,6 +8,7 @@
 //  - thesis.json through the engine gives the demo log the thesis monitor's diagnosis:
 //    detected at 80.03 s, kp− isolated at 80.18 s.
 //  - The generated table names its rows after the circuit's parameters and inputs.
+//  - A fault silent until a later load is isolated by when it can have begun.
 // The replays whose expectations read the candidates run on the table `hstmon replay
 // --circuit` builds (fdi::circuit_signature_table: the steady signs and directions with the
 // causal graph's slopes and orders); the nominal ones on the default steady-state table, which
@@ -484,6 +485,42 @@ TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
   bool truth = false;
   for (const auto& k : last.candidates) truth = truth || k.fault == "Rf+";
   EXPECT_TRUE(truth) << describe(r);
+}
+
+// A crossport relief setting dropped early shows only when a load later needs more than
+// it: after the detection a delivery loss, a case leak or a speed-sensor offset fits the
+// windows as well, but each would have shown in the steady stretches before, so each can
+// only have begun in the second before; the relief can have been there since the start.
+// The onset weighting isolates it, listing the others. The same steps with a delivery loss
+// at the load step itself (what the relief's rivals need) name the delivery loss, not the
+// relief: timing decides only where the earlier stretches tell.
+TEST(CircuitMonitor, FaultSilentUntilALaterLoadIsIsolatedByTiming) {
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  struct Case {
+    const char* fault;
+    const char* truth;
+    bool by_timing;
+  };
+  for (const Case& k : {Case{"p_hp_crack=0.75@2", "p_hp_crack-", true}, Case{"Dp=0.9@14", "Dp-", false}}) {
+    ct::CircuitSimOptions o;
+    o.duration = 22.0;
+    o.rate = 200.0;
+    o.seed = 3;
+    for (const char* s : {"T_L=200 N*m@1", "T_L=150 N*m@6", "T_L=280 N*m@14", "eps=0.7@18"}) o.steps.push_back(step(c, s, false));
+    o.steps.push_back(step(c, k.fault, true));
+    const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
+    ASSERT_FALSE(r.events.empty()) << k.fault << ": not detected";
+    EXPECT_GE(r.events.front().t, 14.0) << k.fault << describe(r);
+    const auto& last = r.events.back();
+    ASSERT_EQ(last.event, "isolated") << k.fault << describe(r);
+    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.fault << describe(r);
+    const bool timing = last.why.find("isolated by timing") != std::string::npos;
+    if (k.by_timing) {
+      EXPECT_TRUE(timing) << last.why;
+      EXPECT_GT(last.candidates.size(), 1U) << "the others stay listed";
+    }
+    for (const auto& e : r.events) EXPECT_NE(e.event, "cleared") << k.fault << describe(r);
+  }
 }
 
 // A machine the model cannot describe (its pump delivers half the flow of the file's)

@@ -31,15 +31,12 @@ std::string same_fit_classes(const Estimator& est, int shown) {
   std::vector<bool> used(static_cast<std::size_t>(shown), false);
   for (int a = 0; a < shown; ++a) {
     if (used[static_cast<std::size_t>(a)]) continue;
-    const HypothesisFit<double>& fa = est.fit(a);
-    std::string group = fa.name;
+    std::string group = est.fit(a).name;
     int members = 1;
     for (int b = a + 1; b < shown; ++b) {
-      const HypothesisFit<double>& fb = est.fit(b);
-      if (std::fabs(fa.chi2 - fb.chi2) <= 1e-9 * std::fmax(1.0, fa.chi2) &&
-          std::fabs(fa.factor - fb.factor) <= 1e-6 * std::fabs(fa.factor)) {
+      if (est.acts_as_one(a, b)) {
         used[static_cast<std::size_t>(b)] = true;
-        group += std::string(", ") + fb.name;
+        group += std::string(", ") + est.fit(b).name;
         ++members;
       }
     }
@@ -48,6 +45,22 @@ std::string same_fit_classes(const Estimator& est, int shown) {
   if (text.empty()) return text;
   return text + ": each group acts as one at every point seen (the same change on every sensor), so no sensor here "
                 "tells its members apart";
+}
+
+// Why an isolation by timing names the first: "R_ip-, R_im- (since 21.6 s) would have shown
+// in the steady stretches before the detection had they begun earlier; R_ext_b- fits any
+// start since 0 s".
+std::string timing_reason(const Estimator& est) {
+  std::string others;
+  double lead = 0.0;  // the likeliest of the others, relative to the first
+  for (int r = 1; r < est.consistent(); ++r) {
+    if (est.acts_as_one(0, r)) continue;
+    others += fmt::format("{}{} (after {:.3g} s)", others.empty() ? "" : ", ", est.fit(r).name, est.onset_from(r));
+    lead = std::fmax(lead, est.weight(r));
+  }
+  return fmt::format("isolated by timing: {} would have shown in the steady stretches before the detection had "
+                     "they begun earlier; {} fits any start since {:.3g} s, {:.0f} times as likely or more",
+                     others, est.fit(0).name, est.onset_from(0), 1.0 / lead);
 }
 
 }  // namespace
@@ -148,6 +161,7 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     active_ = false;
     impl_->holding = false;
     est.reset();
+    est.forget_past(t);
     last_key_.clear();
     emit(e, out);
     return;
@@ -225,6 +239,7 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
 void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out) {
   if (!impl_->ok) return;
   if (!active_) {
+    impl_->est.observe(row.t, u, row.r, row.r_valid & row.valid);
     watch(row, u, out);
     return;
   }
@@ -239,6 +254,7 @@ void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vect
     active_ = false;
     impl_->holding = false;
     impl_->est.reset();
+    impl_->est.forget_past(t);
     last_key_.clear();
     emit(std::move(e), out);
     return;
@@ -261,7 +277,6 @@ void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
     case EstimateVerdict::kUnexplained: e.event = "unexplained"; break;
     default: return;  // no window yet, or none says a fault: the last verdict stands
   }
-  const double scale = std::fmax(1.0, est.chi2_best() / std::fmax(1, est.dof()));
   const int shown = e.event == "unexplained" ? std::min(3, est.ranked()) : est.consistent();
   e.consistent = e.event == "unexplained" ? 0 : est.consistent();
   std::string key = e.event;
@@ -269,8 +284,8 @@ void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
     const HypothesisFit<double>& f = est.fit(r);
     host::ReplayCandidate cand;
     cand.fault = f.name;
-    // Relative likelihood of the hypothesis against the best one.
-    cand.score = std::exp(-0.5 * (f.chi2 - est.fit(0).chi2) / scale);
+    // Relative likelihood of the hypothesis against the best one (with its onset's, when weighed).
+    cand.score = est.weight(r);
     cand.size = f.factor;
     cand.size_lo = f.lo;
     cand.size_hi = f.hi;
@@ -279,6 +294,7 @@ void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
     e.candidates.push_back(std::move(cand));
   }
   e.why = same_fit_classes(est, shown);
+  if (est.isolated_by_timing()) e.why = timing_reason(est) + (e.why.empty() ? "" : "; " + e.why);
   if (key == last_key_) return;
   last_key_ = key;
   emit(std::move(e), out);

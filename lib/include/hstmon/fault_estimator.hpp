@@ -47,8 +47,24 @@
 /// (every factor 1) exceeds the best by k_present·max(1, χ²_best/dof); a best χ²/dof above
 /// k_unexplained that removes less than 1 − explained_share of the no-fault χ² is "no single
 /// hypothesis fits" (one that removes more is the fault, in a machine the model describes
-/// only roughly: a relief valve's spool and characteristic). Nothing here allocates or throws; the
-/// steady solves (kHyp·kGrid per window opening) run at an input change, never per tick.
+/// only roughly: a relief valve's spool and characteristic).
+///
+/// Timing: a fault starts at some moment unknown, as likely at any time as at another, and
+/// stays. Before an episode the estimator keeps its last kPast steady windows (observe()),
+/// the nominal model's verdict on the machine then. A hypothesis at its fitted size that
+/// would have moved the readings of an earlier window cannot have begun before it; one that
+/// would not have shown there (a leak into a line held at charge pressure, a relief setting
+/// below a pressure not reached yet) can have been present since the data began. Each
+/// consistent hypothesis's χ² is therefore weighed by the likelihood of the earlier windows
+/// averaged over its onset time (the onset a nuisance, uniform since the data or the last
+/// episode began): the same for hypotheses that agree on those windows, a factor of the
+/// onset spans' ratio apart where one of them would have shown. When every consistent
+/// hypothesis outside the best one's group is k_onset_odds times less likely, the verdict
+/// is isolated; the others stay listed.
+///
+/// Nothing here allocates or throws; the steady solves (kHyp·kGrid per window opening, and
+/// the consistent hypotheses at the earlier windows per verdict) run at an input change or a
+/// verdict, never per tick.
 
 #include <cmath>
 #include <cstddef>
@@ -154,7 +170,11 @@ class FaultEstimator {
     T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
     T k_sensitivity = T(0.1);   ///< share of the observed change counted as model error in a baselined window [-]
     T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the model bound is not used [-]
+    T k_onset_odds = T(10);     ///< timing odds of the best group over every other that isolate [-]
+    T past_settle_taus = T(1);  ///< wait before a window of the record before an episode [time constants]
   };
+  /// Steady windows kept from before an episode (the oldest dropped first).
+  static constexpr int kPast = 16;
 
   /// @param model  the monitor's model (description, parameters and nominal inputs set), copied
   /// @param hyps   count hypotheses, borrowed (must outlive the estimator)
@@ -191,6 +211,7 @@ class FaultEstimator {
     open_ = false;
     armed_ = false;
     verdict_ = EstimateVerdict::kNone;
+    by_timing_ = false;
     n_ranked_ = 0;
     last_chi0_w_ = last_dof_w_ = T(0);
     base_valid_ = 0;
@@ -225,8 +246,67 @@ class FaultEstimator {
   ///        settle is shortened by it
   void start(T t, const Inputs& u, T settled_for = T(0)) noexcept {
     reset();
+    // The window open at the detection holds the onset: it is no record of the machine before.
+    pre_armed_ = pre_open_ = false;
+    t_detect_ = t;
+    if (!origin_set_) {
+      t_origin_ = t;
+      origin_set_ = true;
+    }
+    for (int k = 0; k < kH; ++k) past_cached_[k] = false;
     begin_settle(t, u);
     t_open_ = std::fmax(t, t_open_ - std::fmax(T(0), settled_for));
+  }
+
+  /// Feeds one sample while no episode runs: the windows kept as the machine's record
+  /// before a fault (the onset weighting). The first call sets the time the data begin.
+  /// r: the observer's residuals, measured − model [channel unit] (the residual, not the
+  /// reading: the model's own transient cancels, so a window opens after past_settle_taus
+  /// time constants, not settle_taus); valid: bit i = r[i] is one.
+  void observe(T t, const Inputs& u, const T* r, unsigned valid) noexcept {
+    if (!configured_) return;
+    if (!origin_set_) {
+      t_origin_ = t;
+      origin_set_ = true;
+    }
+    if (!pre_armed_ || !inputs_close(pre_u_, u)) {
+      close_past();
+      pre_armed_ = true;
+      pre_open_ = false;
+      pre_u_ = u;
+      model_.set_params(nominal_);
+      pre_t_open_ = t + hstmon::settle_time(model_, u, cfg_.past_settle_taus, cfg_.settle_min, cfg_.settle_max);
+      return;
+    }
+    if (t < pre_t_open_) return;
+    if (!pre_open_) {
+      if (!nominal_at(u, pre_y0_, pre_err_)) {
+        pre_t_open_ = t + cfg_.settle_max;  // no steady state here: try again later
+        return;
+      }
+      pre_open_ = true;
+      pre_t_first_ = t;
+      for (int i = 0; i < kN; ++i) {
+        pre_sum_[i] = T(0);
+        pre_n_[i] = 0;
+      }
+    }
+    for (int i = 0; i < kChannels; ++i) {
+      if (((valid & measured_) >> i & 1u) == 0) continue;
+      pre_sum_[i] += r[i];
+      pre_n_[i] += 1;
+    }
+    pre_t_last_ = t;
+  }
+
+  /// Forgets the windows before now: a fault episode ended at t, and its windows held the
+  /// fault. The next onset is weighed from t.
+  void forget_past(T t) noexcept {
+    n_past_ = 0;
+    first_past_ = 0;
+    pre_armed_ = pre_open_ = false;
+    t_origin_ = t;
+    origin_set_ = true;
   }
 
   /// Feeds one sample while an episode runs. Returns true when the verdict was re-decided.
@@ -272,9 +352,23 @@ class FaultEstimator {
   const Fit& fit(int r) const noexcept { return ranked_[r]; }
   /// Consistent hypotheses (a prefix of the ranking).
   int consistent() const noexcept { return n_consistent_; }
+  /// Likelihood of fit r relative to the first, with the onset weighting [-] (1 for r = 0).
+  T weight(int r) const noexcept { return weight_[r]; }
+  /// The earliest time fit r can have begun without moving an earlier window's readings [s].
+  T onset_from(int r) const noexcept { return onset_from_[r]; }
+  /// The verdict is isolated by timing: other hypotheses fit the windows since the
+  /// detection, but would have shown in the windows before it had they begun earlier.
+  bool isolated_by_timing() const noexcept { return by_timing_; }
+  /// Fits r and q change every window alike (the same χ² and factor): no sensor tells them apart.
+  bool acts_as_one(int r, int q) const noexcept {
+    const Fit& a = ranked_[r];
+    const Fit& b = ranked_[q];
+    return std::fabs(a.chi2 - b.chi2) <= T(1e-9) * std::fmax(T(1), a.chi2) &&
+           std::fabs(a.factor - b.factor) <= T(1e-6) * std::fabs(a.factor);
+  }
   /// χ² of the no-fault model and of the best fit over the episode; compared samples [-].
   T chi2_nominal() const noexcept { return chi0_all_; }
-  T chi2_best() const noexcept { return n_ranked_ > 0 ? ranked_[0].chi2 : chi0_all_; }
+  T chi2_best() const noexcept { return n_ranked_ > 0 ? best_chi_ : chi0_all_; }
   int dof() const noexcept { return dof_all_; }
   /// χ²/dof of the no-fault model on the latest window alone (0 before any) [-].
   T latest_nominal_chi2_per_dof() const noexcept { return last_dof_w_ > T(0) ? last_chi0_w_ / last_dof_w_ : T(0); }
@@ -301,6 +395,191 @@ class FaultEstimator {
     open_ = false;
     u_win_ = u;
     t_open_ = t + settle_time(u);
+  }
+
+  // The nominal model's steady outputs at u and its model error (k_model·bound) there.
+  bool nominal_at(const Inputs& u, T (&y0)[kNz], T (&err)[kNz]) noexcept {
+    model_.set_params(nominal_);
+    model_.set_inputs(u);
+    typename Model::State xs;
+    if (!model_.valid() || !model_.steady_state(xs)) return false;
+    const Output y = model_.outputs(xs);
+    T b[kNz] = {};
+    T (&bound)[kNz] = b;
+    if (Bound::compute(model_, eps_, bound) != Status::kOk) {
+      for (int i = 0; i < kN; ++i) b[i] = T(0);
+    }
+    for (int i = 0; i < kN; ++i) {
+      y0[i] = y[i];
+      err[i] = cfg_.k_model * b[i];
+    }
+    return true;
+  }
+
+  // The window observed before an episode, closed into the ring (the oldest dropped).
+  void close_past() noexcept {
+    if (!pre_open_) return;
+    pre_open_ = false;
+    if (pre_t_last_ - pre_t_first_ < cfg_.window_min) return;
+    if (n_past_ == kPast) {
+      first_past_ = (first_past_ + 1) % kPast;
+      --n_past_;
+    }
+    PastWindow& w = past_[(first_past_ + n_past_) % kPast];
+    ++n_past_;
+    w.u = pre_u_;
+    w.t0 = pre_t_first_;
+    w.t1 = pre_t_last_;
+    w.valid = 0;
+    for (int i = 0; i < kN; ++i) {
+      w.y0[i] = pre_y0_[i];
+      if (pre_n_[i] == 0) continue;
+      const T n = std::fmin(static_cast<T>(pre_n_[i]), cfg_.n_cap);
+      w.mean[i] = pre_sum_[i] / static_cast<T>(pre_n_[i]);
+      w.var[i] = sigma_[i] * sigma_[i] / n + pre_err_[i] * pre_err_[i];
+      w.valid |= 1u << i;
+    }
+  }
+
+  // Hypothesis k at `factor` in each earlier window (chronological), as the two sums that
+  // give its χ² less the nominal model's when a share f of the window lies after the
+  // onset: Δχ²(f) = f²·a − 2f·b, a = Σ Δ²/var, b = Σ r·Δ/var (Δ its predicted change, r the
+  // window's mean residual). A window where k has no steady state counts as far off.
+  void past_misfit(int k, T factor, T (&a)[kPast], T (&b)[kPast]) noexcept {
+    const FaultHypothesis& h = hyps_[k];
+    typename Model::State xs;
+    for (int j = 0; j < n_past_; ++j) {
+      const PastWindow& w = past_[(first_past_ + j) % kPast];
+      T delta[kNz] = {};
+      bool ok = true;
+      if (h.kind == HypothesisKind::kSensor) {
+        if (h.index >= 0 && h.index < kN) delta[h.index] = factor;
+      } else {
+        typename Model::Params p = nominal_;
+        Inputs v = w.u;
+        if (h.kind == HypothesisKind::kParam) {
+          p.v[h.index] *= factor;
+        } else {
+          v.v[h.index] *= factor;
+        }
+        model_.set_params(p);
+        model_.set_inputs(v);
+        ok = model_.valid() && model_.steady_state(xs);
+        if (ok) {
+          const Output y = model_.outputs(xs);
+          for (int i = 0; i < kN; ++i) delta[i] = y[i] - w.y0[i];
+        }
+      }
+      a[j] = b[j] = T(0);
+      for (int i = 0; i < kN; ++i) {
+        if (((w.valid >> i) & 1u) == 0) continue;
+        a[j] += delta[i] * delta[i] / w.var[i];
+        b[j] += w.mean[i] * delta[i] / w.var[i];
+      }
+      if (!ok) {
+        a[j] = T(1e6);
+        b[j] = T(0);
+      }
+    }
+    model_.set_params(nominal_);
+  }
+
+  // ln of the mean over f in (0, 1) of exp(−½·(f²·a − 2f·b)/scale): an onset inside a
+  // window, at any point of it alike (midpoint rule); `share`: the largest f whose misfit
+  // stays within the consistency margin.
+  T inside_log_mean(T a, T b, T scale, T& share) const noexcept {
+    constexpr int kSteps = 16;
+    T term[kSteps];
+    T top = -T(HUGE_VAL);
+    share = T(0);
+    for (int s = 0; s < kSteps; ++s) {
+      const T f = (static_cast<T>(s) + T(0.5)) / static_cast<T>(kSteps);
+      const T d = (f * f * a - T(2) * f * b) / scale;
+      if (d <= cfg_.k_delta) share = f;
+      term[s] = -T(0.5) * d;
+      top = std::fmax(top, term[s]);
+    }
+    if ((a - T(2) * b) / scale <= cfg_.k_delta) share = T(1);
+    T sum = T(0);
+    for (int s = 0; s < kSteps; ++s) sum += std::exp(term[s] - top);
+    return top + std::log(sum / static_cast<T>(kSteps));
+  }
+
+  // ln of the earlier windows' likelihood under hypothesis k at `factor`, averaged over its
+  // onset (uniform from t_origin_ to the detection; the common ln of that span left out),
+  // relative to the nominal model's; `from`: the earliest onset after which no window moves
+  // by more than the consistency margin [s].
+  T onset_log_mass(int k, T factor, T scale, T& from) noexcept {
+    T (&a)[kPast] = past_a_[k];
+    T (&b)[kPast] = past_b_[k];
+    if (!past_cached_[k] || std::fabs(std::log(factor / past_factor_[k])) > T(1e-3)) {
+      past_misfit(k, factor, a, b);
+      past_factor_[k] = factor;
+      past_cached_[k] = true;
+    }
+    from = t_origin_;
+    // suffix[j]: the misfit of windows j… wholly after the onset.
+    T suffix[kPast + 1];
+    suffix[n_past_] = T(0);
+    for (int j = n_past_ - 1; j >= 0; --j) suffix[j] = suffix[j + 1] + (a[j] - T(2) * b[j]) / scale;
+    // Onset segments: in the gap before window j (windows j… after it), inside window j
+    // (a share of j, and j+1… after it), and after the last window (none after it).
+    T terms[2 * kPast + 1];
+    int n = 0;
+    T t_prev = t_origin_;
+    for (int j = 0; j < n_past_; ++j) {
+      const PastWindow& w = past_[(first_past_ + j) % kPast];
+      if (w.t0 > t_prev) terms[n++] = std::log(w.t0 - t_prev) - T(0.5) * suffix[j];
+      if (w.t1 > w.t0) {
+        T share = T(0);
+        terms[n++] = std::log(w.t1 - w.t0) + inside_log_mean(a[j], b[j], scale, share) - T(0.5) * suffix[j + 1];
+        if (share < T(1)) from = std::fmax(from, w.t1 - share * (w.t1 - w.t0));
+      }
+      t_prev = std::fmax(t_prev, w.t1);
+    }
+    terms[n++] = std::log(std::fmax(t_detect_ - t_prev, T(1e-3)));
+    T top = terms[0];
+    for (int j = 1; j < n; ++j) top = std::fmax(top, terms[j]);
+    T sum = T(0);
+    for (int j = 0; j < n; ++j) sum += std::exp(terms[j] - top);
+    return top + std::log(sum);
+  }
+
+  // Weighs the consistent fits by their onset (class comment) and re-ranks them; the
+  // verdict becomes isolated when the best group leads every other by k_onset_odds.
+  void weigh_onsets(T best, T scale) noexcept {
+    T score[static_cast<std::size_t>(Ranked)] = {};
+    for (int r = 0; r < n_consistent_; ++r) {
+      score[r] = -T(0.5) * (ranked_[r].chi2 - best) / scale +
+                 onset_log_mass(ranked_[r].hyp, ranked_[r].factor, scale, onset_from_[r]);
+    }
+    // Insertion sort of the consistent prefix by score, best first (stable).
+    for (int r = 1; r < n_consistent_; ++r) {
+      const Fit f = ranked_[r];
+      const T s = score[r], from = onset_from_[r];
+      int q = r;
+      while (q > 0 && score[q - 1] < s) {
+        ranked_[q] = ranked_[q - 1];
+        score[q] = score[q - 1];
+        onset_from_[q] = onset_from_[q - 1];
+        --q;
+      }
+      ranked_[q] = f;
+      score[q] = s;
+      onset_from_[q] = from;
+    }
+    bool apart = n_consistent_ > 1;
+    bool any_other = false;
+    for (int r = 0; r < n_consistent_; ++r) {
+      weight_[r] = std::exp(score[r] - score[0]);
+      if (r == 0 || acts_as_one(0, r)) continue;
+      any_other = true;
+      if (weight_[r] * cfg_.k_onset_odds > T(1)) apart = false;
+    }
+    if (apart && any_other) {
+      verdict_ = EstimateVerdict::kIsolated;
+      by_timing_ = true;
+    }
   }
 
   // The model's steady outputs for every hypothesis and factor at the window's inputs.
@@ -557,15 +836,22 @@ class FaultEstimator {
       insert(f);
     }
     const T best_chi = n_ranked_ > 0 ? ranked_[0].chi2 : chi0;
+    best_chi_ = best_chi;
     const T delta = cfg_.k_delta * scale;
     n_consistent_ = 0;
     while (n_consistent_ < n_ranked_ && ranked_[n_consistent_].chi2 <= best_chi + delta) ++n_consistent_;
+    by_timing_ = false;
+    for (int r = 0; r < n_ranked_; ++r) {
+      weight_[r] = std::exp(-T(0.5) * (ranked_[r].chi2 - best_chi) / scale);
+      onset_from_[r] = t_origin_;
+    }
     if (chi0 <= best_chi + cfg_.k_present * scale) {
       verdict_ = EstimateVerdict::kNoFault;
     } else if (per > cfg_.k_unexplained && best_chi > cfg_.explained_share * chi0) {
       verdict_ = EstimateVerdict::kUnexplained;
     } else {
       verdict_ = n_consistent_ == 1 ? EstimateVerdict::kIsolated : EstimateVerdict::kAmbiguous;
+      if (verdict_ == EstimateVerdict::kAmbiguous && n_past_ > 0) weigh_onsets(best_chi, scale);
     }
   }
 
@@ -615,9 +901,36 @@ class FaultEstimator {
   bool ok_[kHz][kGz] = {};
   T sum_[kNz] = {};
   std::uint32_t n_[kNz] = {};
+  // The record before the episode (observe()): the window being observed, and the ring.
+  struct PastWindow {
+    Inputs u{};
+    T t0 = T(0), t1 = T(0);  ///< first and last sample [s]
+    T mean[kNz] = {};        ///< mean residual (measured − model) [channel unit]
+    T var[kNz] = {};         ///< its variance: noise and model error [channel unit²]
+    T y0[kNz] = {};          ///< the nominal model's steady output [channel unit]
+    unsigned valid = 0;      ///< bit i: channel i read
+  };
+  bool origin_set_ = false;
+  T t_origin_ = T(0);  ///< the earliest onset: the data's or the last episode's end [s]
+  T t_detect_ = T(0);  ///< the episode's start [s]
+  bool pre_armed_ = false, pre_open_ = false;
+  Inputs pre_u_{};
+  T pre_t_open_ = T(0), pre_t_first_ = T(0), pre_t_last_ = T(0);
+  T pre_y0_[kNz] = {}, pre_err_[kNz] = {}, pre_sum_[kNz] = {};
+  std::uint32_t pre_n_[kNz] = {};
+  PastWindow past_[kPast]{};
+  int n_past_ = 0, first_past_ = 0;
+  // Per hypothesis, at past_factor_: its misfit's sums in each earlier window (past_misfit).
+  T past_a_[kHz][kPast] = {}, past_b_[kHz][kPast] = {};
+  T past_factor_[kHz] = {};
+  bool past_cached_[kHz] = {};
   // Verdict.
   EstimateVerdict verdict_ = EstimateVerdict::kNone;
   Fit ranked_[static_cast<std::size_t>(Ranked)]{};
+  T weight_[static_cast<std::size_t>(Ranked)] = {};
+  T onset_from_[static_cast<std::size_t>(Ranked)] = {};
+  bool by_timing_ = false;
+  T best_chi_ = T(0);
   int n_ranked_ = 0, n_consistent_ = 0;
   T chi0_all_ = T(0);
   int dof_all_ = 0;
