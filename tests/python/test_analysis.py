@@ -39,19 +39,17 @@ def test_simulate_rejects_bad_steps():
         hstmon.simulate("paper", steps=["nosuchinput=1@1"])
 
 
-def test_gap_equals_cli(root, cli, tmp_path, sim):
-    c = hstmon.Circuit.rig("paper")
-    fit = tmp_path / "fit.csv"
-    check = tmp_path / "check.csv"
-    fit.write_text((root / "examples/circuits/paper.csv").read_text())
-    check.write_text((root / "examples/circuits/paper_dm_fault.csv").read_text())
+def test_gap_equals_cli(root, cli, tmp_path):
+    data = root / "tests/data/validation_paper"
+    c = hstmon.Circuit.load(data / "paper.json")
+    fit, check = data / "logs/gap_leak_pmi_fit.csv.gz", data / "logs/gap_leak_pmi_check.csv.gz"
     want = run_json_lines([cli, "gap", "--circuit", c.path, "--fit", str(fit), "--check", str(check), "--json"], root)
     g = hstmon.gap(str(fit), str(check), c)
-    assert g.verdict == want[0]["verdict"]
+    assert g.verdict == want[0]["verdict"] == "leak(Pmi)"
     assert list(g.ranked["effect"]) == [e["effect"] for e in want[0]["ranked"]]
-    assert np.allclose(g.ranked["magnitude"], [e["magnitude"] for e in want[0]["ranked"]], rtol=1e-12)
-    folder = g.report(tmp_path / "gap")
-    assert "Verdict" in folder.read_text()
+    assert list(g.ranked["magnitude"]) == [e["magnitude"] for e in want[0]["ranked"]]
+    assert dict(g.where["mean_fit"]) == want[0]["mean_residual_fit"]
+    assert "leak(Pmi)" in g.report(tmp_path / "gap").read_text()
 
 
 def test_identify_equals_cli(root, cli, tmp_path):
