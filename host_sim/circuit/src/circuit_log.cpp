@@ -304,6 +304,39 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
   return std::nullopt;
 }
 
+// What becomes of a data row for its time: kept, skipped (a lenient read, the time not
+// above the last kept row's: noted) or an error (msg). With o.rate the time is the row
+// index's (t0 the first row's logged time). The one rule of the text and column readers.
+enum class RowTime { kKeep, kSkip, kFail };
+
+RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
+                 std::size_t t_col, std::size_t& skipped, std::string& msg) {
+  if (o.rate > 0.0) {
+    // Time from the row index: a rounded or missing time column no longer matters.
+    if (log.t.empty() && std::isfinite(t)) t0 = t;
+    t = t0 + static_cast<double>(log.t.size()) / o.rate;
+    return RowTime::kKeep;
+  }
+  if (log.t.empty() || t > log.t.back()) return RowTime::kKeep;
+  msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
+        " s (a logger that rounds its time: give the sample rate, --rate HZ)";
+  if (!o.lenient) return RowTime::kFail;
+  ++skipped;
+  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
+                      ": row skipped");
+  return RowTime::kSkip;
+}
+
+// A kept row's values (by header column, SI) into the log's columns.
+void keep_row(CircuitLog& log, const std::vector<Target>& targets, const std::vector<double>& values, double t) {
+  log.t.push_back(t);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const Target& tg = targets[k];
+    if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+    if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+  }
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -415,25 +448,11 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         t_col = col;
       }
     }
-    if (o.rate > 0.0) {
-      // Time from the row index: a rounded or missing time column no longer matters.
-      if (log.t.empty() && std::isfinite(t)) t0 = t;
-      t = t0 + static_cast<double>(log.t.size()) / o.rate;
-    } else if (!log.t.empty() && !(t > log.t.back())) {
-      const std::string msg = "time not strictly increasing: " + format_value(t) + " s after " +
-                              format_value(log.t.back()) + " s (a logger that rounds its time: give the sample rate, --rate HZ)";
-      if (!o.lenient) return fail(line_no, t_col, msg);
-      ++skipped;
-      log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
-                          ": row skipped");
-      continue;
-    }
-    log.t.push_back(t);
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      const Target& tg = targets[k];
-      if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-      if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-    }
+    std::string msg;
+    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
+    if (kept == RowTime::kSkip) continue;
+    keep_row(log, targets, values, t);
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
   if (log.error) {
@@ -609,24 +628,11 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
       if (!o.lenient || log.t.empty()) return fail(log.error->line, log.error->column, log.error->message);
       return log;  // lenient: the rows before the bad one
     }
-    if (o.rate > 0.0) {
-      if (log.t.empty() && std::isfinite(t)) t0 = t;
-      t = t0 + static_cast<double>(log.t.size()) / o.rate;
-    } else if (!log.t.empty() && !(t > log.t.back())) {
-      const std::string msg = "time not strictly increasing: " + format_value(t) + " s after " +
-                              format_value(log.t.back()) + " s (a logger that rounds its time: give the sample rate, --rate HZ)";
-      if (!o.lenient) return fail(line_no, t_col, msg);
-      ++skipped;
-      log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
-                          ": row skipped");
-      continue;
-    }
-    log.t.push_back(t);
-    for (std::size_t k = 0; k < targets.size(); ++k) {
-      const Target& tg = targets[k];
-      if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-      if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-    }
+    std::string msg;
+    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
+    if (kept == RowTime::kSkip) continue;
+    keep_row(log, targets, values, t);
   }
   if (skipped * 20 > rows) {
     return fail(rows + 1, 1, "--lenient would skip " + std::to_string(skipped) + " of " + std::to_string(rows) +

@@ -106,8 +106,22 @@ class Circuit:
         return f"hstmon.Circuit({self.name!r} from {self.path!r}{params})"
 
 
+_loaded: Dict[tuple, Circuit] = {}
+
+
 def _load_again(path: str, params: str) -> Circuit:
-    return Circuit(_core.Circuit(path, params))
+    """An unpickled Circuit: loaded once per process while its files are unchanged, so a
+    Dask worker builds its fault table once, not per task."""
+    def stamp(p: str) -> float:
+        try:
+            return os.stat(p).st_mtime_ns if p else 0
+        except OSError:
+            return -1
+    implied = params or os.path.splitext(path)[0] + ".params.json"  # <stem>.params.json beside it
+    key = (path, params, stamp(path), stamp(implied))
+    if key not in _loaded:
+        _loaded[key] = Circuit(_core.Circuit(path, params))
+    return _loaded[key]
 
 
 _default: Optional[Circuit] = None

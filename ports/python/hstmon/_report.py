@@ -24,6 +24,15 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
+def _write(folder: Path, text: list, notes: list) -> Path:
+    """report.md: the text, then the notes."""
+    if notes:
+        text += ["## Notes", ""] + [f"- {n}" for n in notes] + [""]
+    path = folder / "report.md"
+    path.write_text("\n".join(text), encoding="utf-8")
+    return path
+
+
 def replay_report(result: Any, folder: Path) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     fig = result.plot()
@@ -40,11 +49,7 @@ def replay_report(result: Any, folder: Path) -> Path:
             _table(result.events) if len(result.events) else "No fault detected.", "",
             "## Residuals (measured − model, SI)", "", _table(result.stats.reset_index()), "",
             "![residuals](residuals.png)", ""]
-    if result.notes:
-        text += ["## Notes", ""] + [f"- {n}" for n in result.notes] + [""]
-    path = folder / "report.md"
-    path.write_text("\n".join(text), encoding="utf-8")
-    return path
+    return _write(folder, text, result.notes)
 
 
 def gap_report(result: Any, folder: Path) -> Path:
@@ -60,11 +65,7 @@ def gap_report(result: Any, folder: Path) -> Path:
             "## Where the gap lies (mean of model − reading over the fit log's points, in sensor σ)", "",
             _table(result.where.reset_index()), "", "## Candidates, best check RMS first", "",
             _table(result.ranked), ""]
-    if result.notes:
-        text += ["## Notes", ""] + [f"- {n}" for n in result.notes] + [""]
-    path = folder / "report.md"
-    path.write_text("\n".join(text), encoding="utf-8")
-    return path
+    return _write(folder, text, result.notes)
 
 
 def identify_report(result: Any, folder: Path) -> Path:
@@ -76,8 +77,4 @@ def identify_report(result: Any, folder: Path) -> Path:
             f"{len(result.points)} operating points; residual RMS (model − mean reading, in sensor σ) "
             f"{result.rms_before:.3g} before, {result.rms_after:.3g} after ({result.status}).", "",
             _table(result.parameters), "", "The fitted parameter file: fitted.params.json", ""]
-    if result.notes:
-        text += ["## Notes", ""] + [f"- {n}" for n in result.notes] + [""]
-    path = folder / "report.md"
-    path.write_text("\n".join(text), encoding="utf-8")
-    return path
+    return _write(folder, text, result.notes)

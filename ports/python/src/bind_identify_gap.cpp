@@ -63,18 +63,6 @@ py::dict identify(const std::shared_ptr<Circuit>& c, const std::vector<std::shar
   return d;
 }
 
-const char* unit_of(const circuit_tools::LoadedCircuit& c, const gap::CircuitEffect& e) {
-  switch (e.kind) {
-    case gap::CircuitEffect::Kind::kLeak: return "m3/(s*Pa)";
-    case gap::CircuitEffect::Kind::kFriction: return "N*m*s/rad";
-    case gap::CircuitEffect::Kind::kTorqueLoss: return "N*m";
-    case gap::CircuitEffect::Kind::kOffset:
-      return host::circuit_si_unit(c.file.sensors[static_cast<std::size_t>(e.index)].quantity);
-    case gap::CircuitEffect::Kind::kParam: return "-";
-  }
-  return "";
-}
-
 py::dict gap_of(const std::shared_ptr<Circuit>& c, const std::shared_ptr<Log>& fit, const std::shared_ptr<Log>& check) {
   gap::CircuitGapResult r;
   {
@@ -87,7 +75,7 @@ py::dict gap_of(const std::shared_ptr<Circuit>& c, const std::shared_ptr<Log>& f
     py::dict d;
     d["effect"] = e.effect.name;
     d["magnitude"] = e.magnitude;
-    d["unit"] = unit_of(c->loaded(), e.effect);
+    d["unit"] = gap::effect_unit(c->loaded(), e.effect);
     d["rms_fit"] = e.rms_fit;
     d["rms_check"] = e.rms_check;
     d["z_check"] = e.z_check;

@@ -7,6 +7,7 @@
 
 #include "binding.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_circuit/replay_outcome.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
@@ -128,17 +129,6 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   return d;
 }
 
-// Why the replay stopped before its first tick (its note says), as the CLI reports it.
-std::string not_replayed(const CircuitReplayResult& r) {
-  if (r.ticks > 0) return {};
-  const std::string tail = ": nothing replayed";
-  for (const std::string& n : r.notes) {
-    const std::size_t at = n.rfind(tail);
-    if (at != std::string::npos) return n.substr(0, at);
-  }
-  return "the log has no rows";
-}
-
 py::dict replay(const std::shared_ptr<Log>& log, double tick, const std::string& init, bool diagnose, bool fit,
                 bool keep_trace) {
   if (!(tick >= 0.0)) throw py::value_error("tick must be >= 0 s (0 = the log's median period, at most 10 ms)");
@@ -164,7 +154,7 @@ py::dict replay(const std::shared_ptr<Log>& log, double tick, const std::string&
     if (diagnose) o.table = c.fault_table();
     r = circuit_tools::replay_circuit(c.loaded(), log->data, o);
   }
-  if (const std::string why = not_replayed(r); !why.empty()) {
+  if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
     throw LocatedError(host::SourceError{c.path(), 0, 0, "nothing replayed on " + log->data.path + ": " + why});
   }
   return result_of(c.loaded(), r, keep_trace);
