@@ -29,3 +29,12 @@ def test_stats_are_per_channel_in_si(root):
     assert list(s.index) == [x["name"] for x in r.circuit.sensors]
     assert set(s["unit"]) <= {"Pa", "rad/s", "m^3/s", "m3/s"}
     assert (s.loc[s["measured"], "n"] > 0).all()
+
+
+def test_threads_give_the_same_answer(root):
+    # The GIL is released while a log is read and replayed: threads replay side by side.
+    from concurrent.futures import ThreadPoolExecutor
+    log = str(root / "examples/prv_blockage.csv")
+    with ThreadPoolExecutor(2) as pool:
+        a, b = pool.map(lambda _: hstmon.replay(log), range(2))
+    assert a.events.equals(b.events) and a.stats.equals(b.stats)
