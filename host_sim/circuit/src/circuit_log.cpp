@@ -337,6 +337,24 @@ void keep_row(CircuitLog& log, const std::vector<Target>& targets, const std::ve
   }
 }
 
+// A log of circuit c with no rows yet, named `path` in messages.
+CircuitLog empty_log(std::string path, const host::CircuitFile& c) {
+  CircuitLog log;
+  log.path = std::move(path);
+  log.inputs.assign(c.inputs.size(), {});
+  log.sensors.assign(c.sensors.size(), {});
+  return log;
+}
+
+// The log failed at line:col: the error set, no rows kept.
+CircuitLog failed(CircuitLog& log, std::size_t line, std::size_t col, std::string msg) {
+  log.error = SourceError{log.path, line, col, std::move(msg)};
+  log.t.clear();
+  for (auto& v : log.inputs) v.clear();
+  for (auto& v : log.sensors) v.clear();
+  return log;
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -352,17 +370,8 @@ CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c,
 
 CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,
                              const host::ReadOptions& o) {
-  CircuitLog log;
-  log.path = std::move(path_for_messages);
-  log.inputs.assign(c.inputs.size(), {});
-  log.sensors.assign(c.sensors.size(), {});
-  auto fail = [&](std::size_t line, std::size_t col, std::string msg) {
-    log.error = SourceError{log.path, line, col, std::move(msg)};
-    log.t.clear();
-    for (auto& v : log.inputs) v.clear();
-    for (auto& v : log.sensors) v.clear();
-    return log;
-  };
+  CircuitLog log = empty_log(std::move(path_for_messages), c);
+  auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
   // A bad data row in a lenient read: reading stops there and the rows before it stay.
   auto stop = [&](std::size_t line, std::size_t col, std::string msg) {
     if (!o.lenient) return fail(line, col, std::move(msg));
@@ -575,17 +584,8 @@ std::vector<bool> circuit_log_columns_used(const std::vector<std::string>& names
 CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const std::vector<const double*>& columns,
                                     std::size_t rows, std::string source, const host::CircuitFile& c,
                                     const host::ReadOptions& o) {
-  CircuitLog log;
-  log.path = std::move(source);
-  log.inputs.assign(c.inputs.size(), {});
-  log.sensors.assign(c.sensors.size(), {});
-  auto fail = [&](std::size_t line, std::size_t col, std::string msg) {
-    log.error = SourceError{log.path, line, col, std::move(msg)};
-    log.t.clear();
-    for (auto& v : log.inputs) v.clear();
-    for (auto& v : log.sensors) v.clear();
-    return log;
-  };
+  CircuitLog log = empty_log(std::move(source), c);
+  auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
   std::vector<Target> targets;
   if (auto e = column_targets(names, c, o, log, targets)) return fail(e->line, e->column, e->message);
   for (std::size_t k = 0; k < targets.size(); ++k) {
