@@ -1,5 +1,6 @@
 # Release packages (CPack; scripts/release.sh builds and checks them, docs/packaging.md):
-#   hstmon-<version>-Linux.deb      the host programs, the core headers, the C API and
+#   hstmon-<version>-Linux.deb      the host programs, the core headers, the C API, the
+#                                   Python module (lib/python3.X/dist-packages/hstmon) and
 #                                   the examples (share/hstmon/examples), installed under /usr
 #   hstmon-<version>-Source.tar.gz  the source tree without build trees and VCS data
 # The version is project(VERSION), as for every other manifest.
@@ -18,6 +19,13 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # the package states what a clean Debian needs; Eigen for the installed headers' users.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libeigen3-dev, gnuplot")
+# The Python module (ports/python), where built: for the Python this build ran, with the
+# Debian packages its import and its plots need; the programs need none of them.
+if(TARGET hstmon_python)
+  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+    "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), python3 (<< ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}.99), python3-numpy, python3-pandas")
+  set(CPACK_DEBIAN_PACKAGE_SUGGESTS "${CPACK_DEBIAN_PACKAGE_SUGGESTS}, python3-matplotlib, python3-dask, python3-distributed")
+endif()
 
 set(CPACK_SOURCE_GENERATOR TGZ)
 set(CPACK_SOURCE_PACKAGE_FILE_NAME hstmon-${PROJECT_VERSION}-Source)

@@ -71,7 +71,9 @@ done
 
 if [[ $do_build -eq 1 ]]; then
   if [[ ! -f "$build/CMakeCache.txt" ]]; then
-    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null || exit 2
+    # No Python module: it compiles every library position-independent, and the counts
+    # are of the code a program (or firmware) runs.
+    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DHSTMON_BUILD_PYTHON=OFF >/dev/null || exit 2
   fi
   cmake --build "$build" -j2 --target hstmon_count_ticks hstmon_count_engine_ticks >/dev/null || exit 2
 fi

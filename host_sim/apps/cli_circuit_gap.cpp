@@ -12,23 +12,10 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_gap/circuit_gap.hpp"
-#include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::cli {
 
 namespace {
-
-const char* unit_of(const circuit_tools::LoadedCircuit& c, const gap::CircuitEffect& e) {
-  switch (e.kind) {
-    case gap::CircuitEffect::Kind::kLeak: return "m3/(s*Pa)";
-    case gap::CircuitEffect::Kind::kFriction: return "N*m*s/rad";
-    case gap::CircuitEffect::Kind::kTorqueLoss: return "N*m";
-    case gap::CircuitEffect::Kind::kOffset:
-      return host::circuit_si_unit(c.file.sensors[static_cast<std::size_t>(e.index)].quantity);
-    case gap::CircuitEffect::Kind::kParam: return "-";
-  }
-  return "";
-}
 
 std::string verdict_words(const gap::CircuitGapResult& r) {
   if (r.verdict == "none") {
@@ -74,7 +61,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
     for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = number_or_null(r.mean_fit[ch]);
     nlohmann::json ranked = nlohmann::json::array();
     for (const auto& e : r.ranked) {
-      ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", unit_of(c, e.effect)},
+      ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", gap::effect_unit(c, e.effect)},
                         {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)},
                         {"z_check", number_or_null(e.z_check)}});
     }
@@ -100,7 +87,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
              "shrink");
   for (const auto& e : r.ranked) {
     const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
-    fmt::print("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude, unit_of(c, e.effect),
+    fmt::print("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude, gap::effect_unit(c, e.effect),
                e.rms_fit, e.rms_check, shrink);
   }
   return kExitOk;

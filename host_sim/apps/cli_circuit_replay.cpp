@@ -15,6 +15,7 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_circuit/replay_outcome.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
@@ -164,17 +165,6 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
   return std::fclose(f) == 0 && ok ? std::string() : "write failed: " + path;
 }
 
-/// Why replay_circuit() stopped before its first tick (its note says), or "".
-std::string not_replayed(const CircuitReplayResult& r) {
-  if (r.ticks > 0) return {};
-  const std::string tail = ": nothing replayed";
-  for (const std::string& n : r.notes) {
-    const std::size_t at = n.rfind(tail);
-    if (at != std::string::npos) return n.substr(0, at);
-  }
-  return "the log has no rows";
-}
-
 }  // namespace
 
 int run_circuit_replay(const CircuitReplayArgs& a) {
@@ -199,7 +189,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   // A run that did not happen has no residuals to report, least of all quiet ones.
-  if (const std::string why = not_replayed(r); !why.empty()) {
+  if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
     fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", a.circuit, a.log, why);
     return kExitBadInput;
   }

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -303,6 +304,57 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
   return std::nullopt;
 }
 
+// What becomes of a data row for its time: kept, skipped (a lenient read, the time not
+// above the last kept row's: noted) or an error (msg). With o.rate the time is the row
+// index's (t0 the first row's logged time). The one rule of the text and column readers.
+enum class RowTime { kKeep, kSkip, kFail };
+
+RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
+                 std::size_t t_col, std::size_t& skipped, std::string& msg) {
+  if (o.rate > 0.0) {
+    // Time from the row index: a rounded or missing time column no longer matters.
+    if (log.t.empty() && std::isfinite(t)) t0 = t;
+    t = t0 + static_cast<double>(log.t.size()) / o.rate;
+    return RowTime::kKeep;
+  }
+  if (log.t.empty() || t > log.t.back()) return RowTime::kKeep;
+  msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
+        " s (a logger that rounds its time: give the sample rate, --rate HZ)";
+  if (!o.lenient) return RowTime::kFail;
+  ++skipped;
+  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
+                      ": row skipped");
+  return RowTime::kSkip;
+}
+
+// A kept row's values (by header column, SI) into the log's columns.
+void keep_row(CircuitLog& log, const std::vector<Target>& targets, const std::vector<double>& values, double t) {
+  log.t.push_back(t);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const Target& tg = targets[k];
+    if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+    if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+  }
+}
+
+// A log of circuit c with no rows yet, named `path` in messages.
+CircuitLog empty_log(std::string path, const host::CircuitFile& c) {
+  CircuitLog log;
+  log.path = std::move(path);
+  log.inputs.assign(c.inputs.size(), {});
+  log.sensors.assign(c.sensors.size(), {});
+  return log;
+}
+
+// The log failed at line:col: the error set, no rows kept.
+CircuitLog failed(CircuitLog& log, std::size_t line, std::size_t col, std::string msg) {
+  log.error = SourceError{log.path, line, col, std::move(msg)};
+  log.t.clear();
+  for (auto& v : log.inputs) v.clear();
+  for (auto& v : log.sensors) v.clear();
+  return log;
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -318,17 +370,8 @@ CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c,
 
 CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,
                              const host::ReadOptions& o) {
-  CircuitLog log;
-  log.path = std::move(path_for_messages);
-  log.inputs.assign(c.inputs.size(), {});
-  log.sensors.assign(c.sensors.size(), {});
-  auto fail = [&](std::size_t line, std::size_t col, std::string msg) {
-    log.error = SourceError{log.path, line, col, std::move(msg)};
-    log.t.clear();
-    for (auto& v : log.inputs) v.clear();
-    for (auto& v : log.sensors) v.clear();
-    return log;
-  };
+  CircuitLog log = empty_log(std::move(path_for_messages), c);
+  auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
   // A bad data row in a lenient read: reading stops there and the rows before it stay.
   auto stop = [&](std::size_t line, std::size_t col, std::string msg) {
     if (!o.lenient) return fail(line, col, std::move(msg));
@@ -414,25 +457,11 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         t_col = col;
       }
     }
-    if (o.rate > 0.0) {
-      // Time from the row index: a rounded or missing time column no longer matters.
-      if (log.t.empty() && std::isfinite(t)) t0 = t;
-      t = t0 + static_cast<double>(log.t.size()) / o.rate;
-    } else if (!log.t.empty() && !(t > log.t.back())) {
-      const std::string msg = "time not strictly increasing: " + format_value(t) + " s after " +
-                              format_value(log.t.back()) + " s (a logger that rounds its time: give the sample rate, --rate HZ)";
-      if (!o.lenient) return fail(line_no, t_col, msg);
-      ++skipped;
-      log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
-                          ": row skipped");
-      continue;
-    }
-    log.t.push_back(t);
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      const Target& tg = targets[k];
-      if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-      if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-    }
+    std::string msg;
+    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
+    if (kept == RowTime::kSkip) continue;
+    keep_row(log, targets, values, t);
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
   if (log.error) {
@@ -476,6 +505,140 @@ std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log, 
     os << '\n';
   }
   return os.str();
+}
+
+}  // namespace hstmon::circuit_tools
+
+namespace hstmon::circuit_tools {
+
+namespace {
+
+// A header row of `names` for read_header: joined at a separator none of them holds; the
+// 1-based character column where each starts (to turn the reader's columns into numbers).
+bool header_of(const std::vector<std::string>& names, std::string& line, Layout& lay, std::vector<std::size_t>& starts) {
+  for (const char sep : {',', ';', '\t'}) {
+    bool clash = false;
+    for (const std::string& n : names) clash = clash || n.find(sep) != std::string::npos || n.find('\n') != std::string::npos;
+    if (clash) continue;
+    lay = Layout{};
+    lay.header_line = 1;
+    lay.sep = sep;
+    line.clear();
+    starts.clear();
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      if (k > 0) line += sep;
+      starts.push_back(char_column(line, line.size()));
+      line += names[k];
+    }
+    return true;
+  }
+  return false;
+}
+
+// The 1-based column number of the field at character column `col` of the header row.
+std::size_t field_number(const std::vector<std::size_t>& starts, std::size_t col) {
+  std::size_t k = 0;
+  while (k + 1 < starts.size() && starts[k + 1] <= col) ++k;
+  return k + 1;
+}
+
+// The header's targets, with every position in its error and notes a column number.
+std::optional<SourceError> column_targets(const std::vector<std::string>& names, const host::CircuitFile& c,
+                                          const host::ReadOptions& o, CircuitLog& log, std::vector<Target>& targets) {
+  std::string line;
+  Layout lay;
+  std::vector<std::size_t> starts;
+  if (!header_of(names, line, lay, starts)) {
+    return SourceError{log.path, 1, 1, "every separator (',', ';', tab) occurs in some column name"};
+  }
+  const std::size_t first_note = log.notes.size();
+  std::optional<SourceError> err = read_header(line, 1, lay, c, o, log, targets);
+  if (err && err->line == 1) err->column = field_number(starts, err->column);
+  const std::string head = log.path + ":1:";
+  for (std::size_t i = first_note; i < log.notes.size(); ++i) {
+    std::string& n = log.notes[i];
+    if (n.compare(0, head.size(), head) != 0) continue;
+    const std::size_t colon = n.find(':', head.size());
+    if (colon == std::string::npos) continue;
+    const std::size_t col = static_cast<std::size_t>(std::strtoul(n.c_str() + head.size(), nullptr, 10));
+    n = head + std::to_string(field_number(starts, col)) + n.substr(colon);
+  }
+  return err;
+}
+
+}  // namespace
+
+std::vector<bool> circuit_log_columns_used(const std::vector<std::string>& names, const host::CircuitFile& c,
+                                           const host::ReadOptions& o, std::optional<host::SourceError>& error) {
+  CircuitLog log;
+  std::vector<Target> targets;
+  error = column_targets(names, c, o, log, targets);
+  std::vector<bool> used;
+  if (error) return used;
+  for (const Target& tg : targets) {
+    used.push_back(tg.kind == Target::kTime || tg.kind == Target::kInput || tg.kind == Target::kSensor);
+  }
+  return used;
+}
+
+CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const std::vector<const double*>& columns,
+                                    std::size_t rows, std::string source, const host::CircuitFile& c,
+                                    const host::ReadOptions& o) {
+  CircuitLog log = empty_log(std::move(source), c);
+  auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
+  std::vector<Target> targets;
+  if (auto e = column_targets(names, c, o, log, targets)) return fail(e->line, e->column, e->message);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const bool used = targets[k].kind == Target::kTime || targets[k].kind == Target::kInput ||
+                      targets[k].kind == Target::kSensor;
+    if (used && (k >= columns.size() || columns[k] == nullptr)) {
+      return fail(1, k + 1, "column '" + names[k] + "' has no values");
+    }
+  }
+  if (rows == 0) return fail(1, 1, "no data rows after the header");
+  log.t.reserve(rows);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    if (targets[k].kind == Target::kInput) log.inputs[static_cast<std::size_t>(targets[k].index)].reserve(rows);
+    if (targets[k].kind == Target::kSensor) log.sensors[static_cast<std::size_t>(targets[k].index)].reserve(rows);
+  }
+  std::size_t skipped = 0;
+  double t0 = 0.0;
+  std::vector<double> values(targets.size(), 0.0);
+  for (std::size_t i = 0; i < rows; ++i) {
+    const std::size_t line_no = i + 2;  // as in a CSV file of these columns
+    double t = NAN;
+    std::size_t t_col = 1;
+    bool bad = false;
+    for (std::size_t k = 0; k < targets.size() && !bad; ++k) {
+      const Target& tg = targets[k];
+      if (tg.kind != Target::kTime && tg.kind != Target::kInput && tg.kind != Target::kSensor) continue;
+      const double v = tg.conv.to_si(columns[k][i]);
+      if (!std::isfinite(v)) {
+        log.error = SourceError{log.path, line_no, k + 1, "value is not finite"};
+        bad = true;
+        break;
+      }
+      values[k] = v;
+      if (tg.kind == Target::kTime) {
+        t = v;
+        t_col = k + 1;
+      }
+    }
+    if (bad) {
+      if (!o.lenient || log.t.empty()) return fail(log.error->line, log.error->column, log.error->message);
+      return log;  // lenient: the rows before the bad one
+    }
+    std::string msg;
+    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
+    if (kept == RowTime::kSkip) continue;
+    keep_row(log, targets, values, t);
+  }
+  if (skipped * 20 > rows) {
+    return fail(rows + 1, 1, "--lenient would skip " + std::to_string(skipped) + " of " + std::to_string(rows) +
+                                 " rows (more than 5 %) whose time does not increase: give the sample rate, --rate HZ");
+  }
+  return log;
 }
 
 }  // namespace hstmon::circuit_tools

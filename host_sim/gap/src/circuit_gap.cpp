@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "circuit_judge.hpp"
+#include "hstmon_host/circuit_units.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
 
 namespace hstmon::gap {
@@ -91,6 +92,18 @@ double fit_magnitude(const circuit_tools::LoadedCircuit& c, const CircuitEffect&
 }
 
 }  // namespace
+
+const char* effect_unit(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e) {
+  switch (e.kind) {
+    case CircuitEffect::Kind::kLeak: return "m3/(s*Pa)";
+    case CircuitEffect::Kind::kFriction: return "N*m*s/rad";
+    case CircuitEffect::Kind::kTorqueLoss: return "N*m";
+    case CircuitEffect::Kind::kOffset:
+      return host::circuit_si_unit(c.file.sensors[static_cast<std::size_t>(e.index)].quantity);
+    case CircuitEffect::Kind::kParam: return "-";
+  }
+  return "";
+}
 
 std::vector<CircuitEffect> circuit_effects(const circuit_tools::LoadedCircuit& c) {
   const host::HostCircuit& d = c.file.circuit;

@@ -61,6 +61,24 @@ CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c,
 CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,
                              const host::ReadOptions& o = {});
 
+/// Which of a header's column names (`p_mi[bar]`, `t`, …) a log of circuit c reads: the
+/// time, the circuit's inputs and sensors, under o's maps; the others are ignored (with
+/// a note). For a log held as columns (a pandas DataFrame): the columns to convert.
+/// @param error  set, and the result empty, for a header the reader refuses (its message;
+///               line 1, column = the 1-based column number)
+std::vector<bool> circuit_log_columns_used(const std::vector<std::string>& names, const host::CircuitFile& c,
+                                           const host::ReadOptions& o, std::optional<host::SourceError>& error);
+
+/// A log held as columns, read as parse_circuit_log reads text whose header row is
+/// `names`: the same names, units, maps, notes and errors, the same time and value checks
+/// (finite, time rising, o.rate, o.lenient), without a text round trip. columns[k] holds
+/// `rows` values of column k in its header unit; nullptr where circuit_log_columns_used is
+/// false. Errors name `source`, line = the row as a CSV file of these columns would have
+/// it (the header line 1, the first row line 2), column = the 1-based column number.
+CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const std::vector<const double*>& columns,
+                                    std::size_t rows, std::string source, const host::CircuitFile& c,
+                                    const host::ReadOptions& o = {});
+
 /// The log as text: `t[s]`, the present input columns, then the present sensor columns,
 /// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g".
 /// @param comments  lines written first as "# ..."

@@ -68,6 +68,10 @@ struct CircuitGapResult {
 /// The candidates of circuit c (see the file comment).
 std::vector<CircuitEffect> circuit_effects(const circuit_tools::LoadedCircuit& c);
 
+/// The unit of effect e's magnitude: "m3/(s*Pa)", "N*m*s/rad", "N*m", the channel's SI
+/// unit for an offset, "-" for a parameter's relative change.
+const char* effect_unit(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e);
+
 /// c with effect e of magnitude m added (an offset leaves the circuit unchanged).
 circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m);
 

@@ -1,0 +1,172 @@
+// hstmon._core.replay: a circuit log through the circuit's monitor (circuit_replay.hpp),
+// with the options and the fault table of `hstmon replay --circuit`.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <limits>
+
+#include "binding.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_circuit/replay_outcome.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::python {
+
+namespace {
+
+using circuit_tools::CircuitReplayResult;
+
+py::dict stats_of(const host::ChannelStats& s) {
+  py::dict d;
+  d["n"] = s.n;
+  if (s.n == 0) return d;  // as the CLI: no statistics without samples
+  d["mean"] = s.mean();
+  d["rms"] = s.rms();
+  d["max_abs"] = s.max_abs;
+  d["max"] = s.max_signed;
+  d["t_max"] = s.t_max;
+  d["noise"] = s.noise();
+  return d;
+}
+
+py::dict event_of(const host::ReplayEvent& e) {
+  py::list cands;
+  for (const host::ReplayCandidate& c : e.candidates) {
+    py::dict d;
+    d["fault"] = c.fault;
+    d["score"] = c.score;
+    d["size"] = c.size;
+    d["size_lo"] = c.size_lo;
+    d["size_hi"] = c.size_hi;
+    d["size_text"] = c.size_text;
+    cands.append(d);
+  }
+  py::dict d;
+  d["t"] = e.t;
+  d["event"] = e.event;
+  d["consistent"] = e.consistent;
+  d["candidates"] = cands;
+  d["why"] = e.why;
+  return d;
+}
+
+// Per row and channel, one field of the trace as a rows × channels array.
+py::array_t<double> trace_field(const CircuitReplayResult& r, std::size_t channels,
+                                std::vector<double> circuit_tools::CircuitTraceRow::*field) {
+  py::array_t<double> a({static_cast<py::ssize_t>(r.trace.size()), static_cast<py::ssize_t>(channels)});
+  auto w = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < r.trace.size(); ++i) {
+    const std::vector<double>& v = r.trace[i].*field;
+    for (std::size_t ch = 0; ch < channels; ++ch) {
+      w(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(ch)) = ch < v.size() ? v[ch] : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return a;
+}
+
+py::dict trace_of(const CircuitReplayResult& r, std::size_t channels) {
+  py::array_t<double> t(static_cast<py::ssize_t>(r.trace.size()));
+  py::array_t<std::uint32_t> health(static_cast<py::ssize_t>(r.trace.size()));
+  auto tw = t.mutable_unchecked<1>();
+  auto hw = health.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.trace.size(); ++i) {
+    tw(static_cast<py::ssize_t>(i)) = r.trace[i].t;
+    hw(static_cast<py::ssize_t>(i)) = r.trace[i].health;
+  }
+  py::dict d;
+  d["t"] = t;
+  d["y"] = trace_field(r, channels, &circuit_tools::CircuitTraceRow::y);
+  d["y_hat"] = trace_field(r, channels, &circuit_tools::CircuitTraceRow::y_hat);
+  d["r"] = trace_field(r, channels, &circuit_tools::CircuitTraceRow::r);
+  d["bound"] = trace_field(r, channels, &circuit_tools::CircuitTraceRow::bound);
+  d["health"] = health;
+  return d;
+}
+
+py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayResult& r, bool keep_trace) {
+  py::dict d;
+  d["rows"] = r.rows;
+  d["ticks"] = r.ticks;
+  d["tick"] = r.tick;
+  d["t_first"] = r.t_first;
+  d["t_last"] = r.t_last;
+  d["states"] = r.states;
+  d["stiff_nodes"] = r.stiff_nodes;
+  d["start"] = to_string(r.start);
+  d["startup_hold"] = r.startup_hold;
+  d["health"] = host::health_names(r.health);
+  d["unhealthy_rows"] = r.unhealthy_rows;
+  d["max_substeps"] = r.max_substeps;
+  d["table_rows"] = r.table_rows;
+  d["undetectable"] = r.undetectable;
+  // As the CLI: a replay without a fault table has no diagnosis to report.
+  d["status"] = r.table_rows > 0 ? r.final_status : std::string("not_run");
+  d["notes"] = r.notes;
+  py::list channels;
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
+    const host::CircuitSensor& s = c.file.sensors[ch];
+    py::dict row = stats_of(r.channels[ch]);
+    row["channel"] = s.name;
+    row["unit"] = host::circuit_si_unit(s.quantity);
+    row["measured"] = static_cast<bool>(r.measured[ch]);
+    row["sensor_noise"] = s.noise;
+    row["clipped_rows"] = r.clipped[ch];
+    channels.append(row);
+  }
+  d["channels"] = channels;
+  py::list events;
+  for (const host::ReplayEvent& e : r.events) events.append(event_of(e));
+  d["events"] = events;
+  py::dict env;
+  env["checked"] = r.envelope.checked;
+  env["out"] = r.envelope.out;
+  env["t0"] = r.envelope.t0;
+  env["t1"] = r.envelope.t1;
+  env["text"] = r.envelope.text;
+  d["envelope"] = env;
+  if (keep_trace) d["trace"] = trace_of(r, r.channels.size());
+  return d;
+}
+
+py::dict replay(const std::shared_ptr<Log>& log, double tick, const std::string& init, bool diagnose, bool fit,
+                bool keep_trace) {
+  if (!(tick >= 0.0)) throw py::value_error("tick must be >= 0 s (0 = the log's median period, at most 10 ms)");
+  circuit_tools::CircuitReplayOptions o;
+  o.tick = tick;
+  if (init == "auto") {
+    o.init = host::InitMode::kAuto;
+  } else if (init == "rest") {
+    o.init = host::InitMode::kRest;
+  } else if (init == "steady") {
+    o.init = host::InitMode::kSteady;
+  } else {
+    throw py::value_error("init must be 'auto', 'rest' or 'steady', not '" + init + "'");
+  }
+  o.diagnose = diagnose;
+  o.fit = fit;
+  o.keep_trace = keep_trace;
+  o.fault_table = fdi::circuit_signature_table;  // the committed headers' table, as the CLI
+  const Circuit& c = *log->circuit;
+  CircuitReplayResult r;
+  {
+    py::gil_scoped_release release;
+    if (diagnose) o.table = c.fault_table();
+    r = circuit_tools::replay_circuit(c.loaded(), log->data, o);
+  }
+  if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
+    throw LocatedError(host::SourceError{c.path(), 0, 0, "nothing replayed on " + log->data.path + ": " + why});
+  }
+  return result_of(c.loaded(), r, keep_trace);
+}
+
+}  // namespace
+
+void bind_replay(py::module_& m) {
+  m.def("replay", &replay, py::arg("log"), py::arg("tick") = 0.0, py::arg("init") = "auto", py::arg("diagnose") = true,
+        py::arg("fit") = true, py::arg("keep_trace") = false,
+        "Replays a log through its circuit's monitor; a dict of the result (SI units)");
+  m.def("health_names", &host::health_names, py::arg("flags"), "names of the observer's HealthFlag bits");
+}
+
+}  // namespace hstmon::python
