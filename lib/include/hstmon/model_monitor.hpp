@@ -27,8 +27,10 @@
 ///    first-order transducer lag of up to τ_s can make of the model's own transient) plus
 ///    half the learned ADC step; in steady operation the widening is 0;
 ///  - optionally (Config::model_transient, on for circuit monitors) also by the envelope
-///    of the model's distance from its steady state, decaying with τ_m: the parameter
-///    uncertainty's share of a long, lightly damped transient after an input step;
+///    of the model's distance from its steady state, decaying with τ_m (the slowest time
+///    constant at the operating point: with bound_carry, the slower of the last input
+///    change's two points', else the last reset's): the parameter uncertainty's share of a
+///    long, lightly damped transient after an input step;
 ///  - optionally (Config::bound_carry, on for circuit monitors) by the model bound in
 ///    force before the last input change, held while the model is on its way and then
 ///    decaying with the slower of the two operating points' time
@@ -621,6 +623,16 @@ class ModelMonitor
     const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;
     this->tau_here_ = tau_new;
     this->carry_decay_ = tau > T(0) ? std::exp(-obs_.config().tick / tau) : T(0);
+    // The model transient's envelope and the baseline's settle follow the same time
+    // constant, not the last reset's: a closed circuit started at rest has seconds-long
+    // modes there that a running machine has not, and an envelope decaying with them kept
+    // a 3 bar sensor offset (12σ) hidden for seconds after every load step. observe() set
+    // settled_from_ from the old constant on this tick.
+    if (tau > T(0)) {
+      settled_from_ += T(5) * (tau - tau_m_);
+      tau_m_ = tau;
+      env_decay_ = std::exp(-obs_.config().tick / tau);
+    }
     if (this->timing_lead_ > T(0) && bound_valid_) start_lead(tau_new);
   }
 
@@ -652,7 +664,7 @@ class ModelMonitor
   T decay_ = T(0);              ///< e^(−tick/τ_s) [-]
   T hold_ = T(0);               ///< start-up hold-off [s]
   T hold_until_ = T(0);         ///< no judgement before this time [s]; NaN until the first step
-  T tau_m_ = T(0);              ///< model's slowest time constant at the last reset's steady state [s]
+  T tau_m_ = T(0);              ///< model's slowest time constant at the operating point (module comment) [s]
   T settled_from_ = T(0);       ///< the baseline follows the residuals from this time on [s]
   bool bound_valid_ = false;
   bool steady_ok_ = false;      ///< y_steady_ holds the current inputs' steady outputs
