@@ -47,7 +47,7 @@ std::string same_fit_classes(const Estimator& est, int shown) {
                 "tells its members apart";
 }
 
-// Why an isolation by timing names the first: "R_ip-, R_im- (since 21.6 s) would have shown
+// Why an isolation by timing names the first: "R_ip-, R_im- (after 21.6 s) would have shown
 // in the steady stretches before the detection had they begun earlier; R_ext_b- fits any
 // start since 0 s".
 std::string timing_reason(const Estimator& est) {
@@ -58,9 +58,10 @@ std::string timing_reason(const Estimator& est) {
     others += fmt::format("{}{} (after {:.3g} s)", others.empty() ? "" : ", ", est.fit(r).name, est.onset_from(r));
     lead = std::fmax(lead, est.weight(r));
   }
+  const std::string odds = lead > 1e-6 ? fmt::format("{:.0f} times as likely or more", 1.0 / lead) : "far likelier";
   return fmt::format("isolated by timing: {} would have shown in the steady stretches before the detection had "
-                     "they begun earlier; {} fits any start since {:.3g} s, {:.0f} times as likely or more",
-                     others, est.fit(0).name, est.onset_from(0), 1.0 / lead);
+                     "they begun earlier; {} fits any start since {:.3g} s, {}",
+                     others, est.fit(0).name, est.onset_from(0), odds);
 }
 
 }  // namespace
