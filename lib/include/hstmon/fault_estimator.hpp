@@ -280,7 +280,7 @@ class FaultEstimator {
     }
     if (t < pre_t_open_) return;
     if (!pre_open_) {
-      if (!nominal_at(u, pre_y0_, pre_err_)) {
+      if (!nominal_at(u, pre_y0_, pre_bound_)) {
         pre_t_open_ = t + cfg_.settle_max;  // no steady state here: try again later
         return;
       }
@@ -397,21 +397,15 @@ class FaultEstimator {
     t_open_ = t + settle_time(u);
   }
 
-  // The nominal model's steady outputs at u and its model error (k_model·bound) there.
-  bool nominal_at(const Inputs& u, T (&y0)[kNz], T (&err)[kNz]) noexcept {
+  // The nominal model's steady outputs at u and its model bound there (0 where it has none).
+  bool nominal_at(const Inputs& u, Output& y0, T (&bound)[kNz]) noexcept {
     model_.set_params(nominal_);
     model_.set_inputs(u);
     typename Model::State xs;
     if (!model_.valid() || !model_.steady_state(xs)) return false;
-    const Output y = model_.outputs(xs);
-    T b[kNz] = {};
-    T (&bound)[kNz] = b;
+    y0 = model_.outputs(xs);
     if (Bound::compute(model_, eps_, bound) != Status::kOk) {
-      for (int i = 0; i < kN; ++i) b[i] = T(0);
-    }
-    for (int i = 0; i < kN; ++i) {
-      y0[i] = y[i];
-      err[i] = cfg_.k_model * b[i];
+      for (int i = 0; i < kN; ++i) bound[i] = T(0);
     }
     return true;
   }
@@ -435,8 +429,9 @@ class FaultEstimator {
       w.y0[i] = pre_y0_[i];
       if (pre_n_[i] == 0) continue;
       const T n = std::fmin(static_cast<T>(pre_n_[i]), cfg_.n_cap);
+      const T err = cfg_.k_model * pre_bound_[i];
       w.mean[i] = pre_sum_[i] / static_cast<T>(pre_n_[i]);
-      w.var[i] = sigma_[i] * sigma_[i] / n + pre_err_[i] * pre_err_[i];
+      w.var[i] = sigma_[i] * sigma_[i] / n + err * err;
       w.valid |= 1u << i;
     }
   }
@@ -584,20 +579,9 @@ class FaultEstimator {
 
   // The model's steady outputs for every hypothesis and factor at the window's inputs.
   bool open_window(const Inputs& u) noexcept {
-    model_.set_params(nominal_);
-    model_.set_inputs(u);
+    if (!nominal_at(u, y0_, bound_)) return false;
+    for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * bound_[i];
     typename Model::State xs;
-    if (!model_.valid() || !model_.steady_state(xs)) return false;
-    y0_ = model_.outputs(xs);
-    T b[kNz] = {};
-    T (&bound)[kNz] = b;
-    if (Bound::compute(model_, eps_, bound) != Status::kOk) {
-      for (int i = 0; i < kN; ++i) b[i] = T(0);
-    }
-    for (int i = 0; i < kN; ++i) {
-      bound_[i] = b[i];
-      model_err_[i] = cfg_.k_model * b[i];
-    }
     // A channel whose pre-fault residual lay beyond k_baseline_far of the model bound sat
     // far from the model (a relief valve the model has cracked and the machine has not):
     // its sensitivities may differ from the model's, so it is fitted as without a baseline.
@@ -916,7 +900,8 @@ class FaultEstimator {
   bool pre_armed_ = false, pre_open_ = false;
   Inputs pre_u_{};
   T pre_t_open_ = T(0), pre_t_first_ = T(0), pre_t_last_ = T(0);
-  T pre_y0_[kNz] = {}, pre_err_[kNz] = {}, pre_sum_[kNz] = {};
+  Output pre_y0_{};
+  T pre_bound_[kNz] = {}, pre_sum_[kNz] = {};
   std::uint32_t pre_n_[kNz] = {};
   PastWindow past_[kPast]{};
   int n_past_ = 0, first_past_ = 0;
