@@ -69,15 +69,22 @@ void raise_if_unusable(const circuit_tools::CircuitLog& log, bool lenient) {
 
 namespace {
 
+// What an input and a sensor column have alike: name, log column, display and SI unit, quantity.
+template <class Column>
+py::dict column_of(const Column& c) {
+  py::dict d;
+  d["name"] = c.name;
+  d["column"] = c.column;
+  d["unit"] = c.unit.empty() ? std::string(host::circuit_si_unit(c.quantity)) : c.unit;
+  d["si_unit"] = host::circuit_si_unit(c.quantity);
+  d["quantity"] = host::circuit_quantity_name(c.quantity);
+  return d;
+}
+
 py::list inputs_of(const host::CircuitFile& f) {
   py::list out;
   for (const host::CircuitInput& i : f.inputs) {
-    py::dict d;
-    d["name"] = i.name;
-    d["column"] = i.column;
-    d["unit"] = i.unit.empty() ? std::string(host::circuit_si_unit(i.quantity)) : i.unit;
-    d["si_unit"] = host::circuit_si_unit(i.quantity);
-    d["quantity"] = host::circuit_quantity_name(i.quantity);
+    py::dict d = column_of(i);
     d["value"] = i.value ? py::object(py::float_(*i.value)) : py::object(py::none());
     out.append(d);
   }
@@ -87,12 +94,7 @@ py::list inputs_of(const host::CircuitFile& f) {
 py::list sensors_of(const host::CircuitFile& f) {
   py::list out;
   for (const host::CircuitSensor& s : f.sensors) {
-    py::dict d;
-    d["name"] = s.name;
-    d["column"] = s.column;
-    d["unit"] = s.unit.empty() ? std::string(host::circuit_si_unit(s.quantity)) : s.unit;
-    d["si_unit"] = host::circuit_si_unit(s.quantity);
-    d["quantity"] = host::circuit_quantity_name(s.quantity);
+    py::dict d = column_of(s);
     d["noise"] = s.noise;
     d["lo"] = s.lo;
     d["hi"] = s.hi;
