@@ -159,11 +159,7 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     // Withheld until a steady window has judged it (a matcher clear follows an input
     // change, where the bound jumps), and while the windows say a fault is there.
     if (!sensor_lock_ && impl_->ok && est.verdict() != EstimateVerdict::kNoFault) return;
-    active_ = false;
-    impl_->holding = false;
-    est.reset();
-    est.forget_past(t);
-    last_key_.clear();
+    end_episode(t);
     emit(e, out);
     return;
   }
@@ -174,6 +170,16 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     last_key_.clear();
     emit(e, out);
   }
+}
+
+// The episode ends at t (cleared): its windows held the fault, so the record of the
+// machine before the next one starts here.
+void FaultFitDiagnosis::end_episode(double t) {
+  active_ = false;
+  impl_->holding = false;
+  impl_->est.reset();
+  impl_->est.forget_past(t);
+  last_key_.clear();
 }
 
 // An episode from t: the estimator's windows start after a settle, and if the inputs have
@@ -252,11 +258,7 @@ void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vect
     host::ReplayEvent e;
     e.t = t;
     e.event = "cleared";
-    active_ = false;
-    impl_->holding = false;
-    impl_->est.reset();
-    impl_->est.forget_past(t);
-    last_key_.clear();
+    end_episode(t);
     emit(std::move(e), out);
     return;
   }
