@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
                  "(default steady), --no-noise, --params, --step, --fault");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
-  app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 (repeatable)");
+  app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
   app.add_option("--fault", o.faults,
                  "with --circuit: parameter fault PARAM=FACTOR@T, the parameter times FACTOR from T on, e.g. "
                  "Rmlkg=0.5@3 (repeatable)");

@@ -214,4 +214,16 @@ TEST(CircuitSchedule, Steps) {
   EXPECT_TRUE(ct::parse_input_step("throttle=0.7@-1", c.file, s).has_value());
 }
 
+// A bare number for a speed would be 1000 rad/s: an error that names the unit to write.
+TEST(CircuitSchedule, BareNumberForADimensionedInputIsAnErrorNamingItsUnit) {
+  const ct::LoadedCircuit c = test_stand();
+  ct::InputStep s;
+  const auto err = ct::parse_input_step("n_drive=1000@2.5", c.file, s);
+  ASSERT_TRUE(err.has_value());
+  EXPECT_NE(err->find("give the unit of n_drive (speed)"), std::string::npos) << *err;
+  EXPECT_NE(err->find("'n_drive=1000 "), std::string::npos) << *err;
+  EXPECT_FALSE(ct::parse_input_step("n_drive=1000 rad/s@2.5", c.file, s).has_value());
+  EXPECT_FALSE(ct::parse_input_step("throttle=0.7@1", c.file, s).has_value());  // a fraction needs none
+}
+
 }  // namespace

@@ -8,6 +8,33 @@
 
 namespace hstmon::circuit_tools {
 
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+/// True when a value's text is a number alone, with no unit after it ("2.5", not "2.5 mm2").
+bool bare_number(std::string_view value) {
+  value = trim(value);
+  double v = 0.0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
+  return r.ec == std::errc() && r.ptr == value.data() + value.size();
+}
+
+/// Quantities an engineer rarely writes in SI (bar, rpm, L/min, cc/rev, mm², L): a bare
+/// number for one of these is more likely a slip than m² or Pa. The others (torque in N·m,
+/// orifice coefficients, resistances, …) are written in SI anyway.
+bool needs_unit(host::CircuitQuantity q) {
+  using Q = host::CircuitQuantity;
+  return q == Q::kPressure || q == Q::kSpeed || q == Q::kFlow || q == Q::kDisplacement || q == Q::kArea ||
+         q == Q::kVolume;
+}
+
+}  // namespace
+
 std::optional<std::string> parse_input_step(std::string_view text, const host::CircuitFile& c, InputStep& out) {
   const std::size_t eq = text.find('=');
   const std::size_t at = text.rfind('@');
@@ -21,8 +48,15 @@ std::optional<std::string> parse_input_step(std::string_view text, const host::C
     for (const auto& in : c.inputs) known += (known.empty() ? "" : ", ") + in.name;
     return "--step: circuit " + c.name + " has no input '" + name + "' (inputs: " + known + ")";
   }
-  const host::ValueResult v =
-      host::parse_circuit_value(c.inputs[static_cast<std::size_t>(i)].quantity, text.substr(eq + 1, at - eq - 1));
+  const host::CircuitInput& in = c.inputs[static_cast<std::size_t>(i)];
+  const std::string_view value_text = text.substr(eq + 1, at - eq - 1);
+  if (needs_unit(in.quantity) && bare_number(value_text)) {
+    const std::string unit = in.unit.empty() ? host::circuit_si_unit(in.quantity) : in.unit;
+    return "--step " + std::string(text) + ": give the unit of " + name + " (" + host::circuit_quantity_name(in.quantity) +
+           "), e.g. '" + name + "=" + std::string(trim(value_text)) + " " + unit + "@" +
+           std::string(text.substr(at + 1)) + "'";
+  }
+  const host::ValueResult v = host::parse_circuit_value(in.quantity, value_text);
   if (!v.ok()) return "--step " + std::string(text) + ": " + v.error;
   const std::string_view ts = text.substr(at + 1);
   double t = 0.0;
