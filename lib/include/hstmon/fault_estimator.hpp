@@ -20,7 +20,12 @@
 /// episode) last changed; it holds the mean reading per channel. When it opens, the
 /// model's steady outputs are solved at its inputs for every hypothesis at every factor
 /// of a fixed grid (kGrid factors, log-spaced, 1 among them); its χ² against the mean
-/// reading is then cheap to update as samples arrive. Windows add up in χ²; a window's
+/// reading is then cheap to update as samples arrive. Between two grid factors the model's
+/// outputs are taken as a straight line in ln(factor), so the χ² summed over windows is an
+/// exact quadratic on each grid interval (its node values and Σ w·(y_g+1 − y_g)², kept per
+/// interval): the best size is found where a hypothesis's outputs, not its steeply curved
+/// χ², are interpolated — a leak 6× the model's sits between grid factors 4.5 and 9 and is
+/// fitted there, not missed. Windows add up in χ²; a window's
 /// weight per channel is 1/s², s² = σ²/min(n, n_cap) + (k_model·bound)²: the model
 /// bound (parameter uncertainty) at that point stands for the model error the fit cannot
 /// remove, and the cap for noise that is not white.
@@ -201,7 +206,7 @@ class FaultEstimator {
   /// Forgets the episode (windows, fits, verdict); the next window opens after a settle.
   void reset() noexcept {
     for (int k = 0; k < count_; ++k) {
-      for (int g = 0; g < kGrid; ++g) chi_[k][g] = T(0);
+      chi_[k] = Curve{};
       floor_[k] = T(0);
     }
     for (int i = 0; i < kChannels; ++i) sens_a_[i] = sens_b_[i] = T(0);
@@ -388,6 +393,14 @@ class FaultEstimator {
     return j < 0 ? -kSteps[-j] : kSteps[j];
   }
 
+  // χ² of one hypothesis over ln(factor): its values at the grid factors and, per grid
+  // interval, gap = Σ w·(y_g+1 − y_g)² (HUGE where either end has no steady state). With
+  // the outputs linear in x on an interval, χ²(t) = χ_g + t·(χ_g+1 − χ_g − gap) + t²·gap,
+  // t = (x − x_g)/(x_g+1 − x_g) ∈ [0, 1]: exact for that interpolation, and convex.
+  struct Curve {
+    T chi[kGz] = {};
+    T gap[kGz] = {};  ///< [g]: interval g … g+1; the last entry is unused
+  };
   bool inputs_close(const Inputs& a, const Inputs& b) const noexcept { return inputs_within(a, b, cfg_.input_tolerance); }
 
   void begin_settle(T t, const Inputs& u) noexcept {
@@ -642,11 +655,10 @@ class FaultEstimator {
     return noise + base_var_[i] + share * share;
   }
 
-  // The open window's χ² per hypothesis and factor, added to the closed windows' sums.
-  void window_terms(T (&chi)[kHz][kGz], T& chi0, T (&sa)[kNz], T (&sb)[kNz], int& dof) const noexcept {
-    for (int k = 0; k < count_; ++k) {
-      for (int g = 0; g < kGrid; ++g) chi[k][g] = chi_[k][g];
-    }
+  // The open window's χ² per hypothesis and factor (and the spread between neighbouring
+  // factors' outputs, Curve::gap), added to the closed windows' sums.
+  void window_terms(Curve (&chi)[kHz], T& chi0, T (&sa)[kNz], T (&sb)[kNz], int& dof) const noexcept {
+    for (int k = 0; k < count_; ++k) chi[k] = chi_[k];
     chi0 = chi0_;
     dof = dof_;
     for (int i = 0; i < kN; ++i) {
@@ -668,15 +680,18 @@ class FaultEstimator {
       if (hyps_[k].kind == HypothesisKind::kSensor) continue;
       for (int g = 0; g < kGrid; ++g) {
         if (!ok_[k][g]) {
-          chi[k][g] = T(HUGE_VAL);
+          chi[k].chi[g] = T(HUGE_VAL);
           continue;
         }
-        T s = T(0);
+        T s = T(0), d = T(0);
+        const bool next = g + 1 < kGrid && ok_[k][g + 1];
         for (int i = 0; i < kN; ++i) {
           const T r = mean[i] - ys_[k][g][i];
           s += w[i] * r * r;
+          if (next) d += w[i] * (ys_[k][g + 1][i] - ys_[k][g][i]) * (ys_[k][g + 1][i] - ys_[k][g][i]);
         }
-        chi[k][g] += s;
+        chi[k].chi[g] += s;
+        if (g + 1 < kGrid) chi[k].gap[g] = next ? chi[k].gap[g] + d : T(HUGE_VAL);
       }
     }
   }
@@ -691,9 +706,7 @@ class FaultEstimator {
     int d_before = dof_;
     window_terms(scratch_, chi0_, sens_a_, sens_b_, dof_);
     add_window_floors(scratch_, floor_);
-    for (int k = 0; k < count_; ++k) {
-      for (int g = 0; g < kGrid; ++g) chi_[k][g] = scratch_[k][g];
-    }
+    for (int k = 0; k < count_; ++k) chi_[k] = scratch_[k];
     last_chi0_w_ = chi0_ - c0_before;
     last_dof_w_ = static_cast<T>(dof_ - d_before);
     ++windows_;
@@ -701,54 +714,96 @@ class FaultEstimator {
     return true;
   }
 
-  // The least χ² of one grid row: a parabola through the best grid point and its
-  // neighbours in ln(factor). curvature 0 when there is no parabola (an end of the grid).
+  static bool interval_ok(const Curve& c, int g) noexcept {
+    return std::isfinite(c.chi[g]) && std::isfinite(c.chi[g + 1]) && std::isfinite(c.gap[g]);
+  }
+  static T at(const Curve& c, int g, T t) noexcept {
+    return c.chi[g] + t * (c.chi[g + 1] - c.chi[g] - c.gap[g]) + t * t * c.gap[g];
+  }
+  static T x_at(int g, T t) noexcept { return grid_log(g) + t * (grid_log(g + 1) - grid_log(g)); }
+
+  // The least χ² of a curve and where it lies (x = ln factor); on a grid node where no
+  // interval around it is usable.
   struct Vertex {
-    int g = kGrid / 2;
-    T x = T(0), chi2 = T(0), curvature = T(0);
+    int g = kGrid / 2;  ///< the interval (or node) holding the least value
+    T t = T(0), x = T(0), chi2 = T(0);
   };
-  static Vertex vertex(const T (&chi)[kGz]) noexcept {
+  static Vertex vertex(const Curve& c) noexcept {
     Vertex v;
+    v.chi2 = c.chi[v.g];
     for (int g = 0; g < kGrid; ++g) {
-      if (chi[g] < chi[v.g]) v.g = g;
+      if (c.chi[g] < v.chi2) {
+        v.g = g;
+        v.t = T(0);
+        v.chi2 = c.chi[g];
+      }
     }
-    const int gb = v.g;
-    v.x = grid_log(gb);
-    v.chi2 = chi[gb];
-    if (gb == 0 || gb == kGrid - 1 || !std::isfinite(chi[gb - 1]) || !std::isfinite(chi[gb + 1])) return v;
-    // Parabola through three unevenly spaced points.
-    const T x0 = grid_log(gb - 1), x1 = grid_log(gb), x2 = grid_log(gb + 1);
-    const T y0 = chi[gb - 1], y1 = chi[gb], y2 = chi[gb + 1];
-    const T d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
-    const T a = (d12 - d01) / (x2 - x0);
-    if (!(a > T(0))) return v;
-    v.curvature = a;
-    const T b = d01 - a * (x0 + x1);
-    const T xm = -b / (T(2) * a);
-    if (xm > x0 && xm < x2) {
-      v.x = xm;
-      v.chi2 = std::fmin(y1, std::fmax(T(0), y1 + (d01 + a * (x1 - x0)) * (xm - x1) + a * (xm - x1) * (xm - x1)));
+    for (int g = 0; g + 1 < kGrid; ++g) {
+      if (!interval_ok(c, g) || !(c.gap[g] > T(0))) continue;
+      const T t = (c.chi[g] - c.chi[g + 1] + c.gap[g]) / (T(2) * c.gap[g]);
+      if (!(t > T(0) && t < T(1))) continue;
+      const T y = std::fmax(T(0), at(c, g, t));
+      if (y < v.chi2) {
+        v.g = g;
+        v.t = t;
+        v.chi2 = y;
+      }
     }
+    v.x = v.g + 1 < kGrid ? x_at(v.g, v.t) : grid_log(v.g);
     return v;
   }
 
-  // Best factor of hypothesis k from its χ² over the factor grid; the interval where χ²
-  // rises by `scale`. A sum over windows whose valleys lie apart is no parabola: its
-  // vertex is kept at or above the sum of the windows' own least χ² (floor).
-  Fit fit_param(int k, const T (&chi)[kGz], T floor, T scale) const noexcept {
+  // Where the curve first reaches `level` walking from the vertex towards dir (−1 or +1),
+  // as ln factor; the grid's end when it never does.
+  static T crossing(const Curve& c, const Vertex& v, T level, int dir) noexcept {
+    int g = v.g;
+    T t = v.t;
+    if (dir > 0 && (g + 1 >= kGrid)) return grid_log(kGrid - 1);
+    if (dir < 0 && t <= T(0)) {
+      if (g == 0) return grid_log(0);
+      --g;
+      t = T(1);
+    }
+    for (;;) {
+      if (!interval_ok(c, g)) return grid_log(dir > 0 ? g : g + 1);
+      // Roots of gap·τ² + (χ_g+1 − χ_g − gap)·τ + χ_g − level = 0 beyond t in dir.
+      const T a = c.gap[g], b = c.chi[g + 1] - c.chi[g] - c.gap[g], k = c.chi[g] - level;
+      T root = T(-1);
+      if (a > T(0)) {
+        const T disc = b * b - T(4) * a * k;
+        if (disc >= T(0)) {
+          const T sq = std::sqrt(disc);
+          const T r = dir > 0 ? (-b + sq) / (T(2) * a) : (-b - sq) / (T(2) * a);
+          root = r;
+        }
+      } else if (b != T(0)) {
+        root = -k / b;
+      }
+      if (dir > 0 ? (root >= t && root <= T(1)) : (root <= t && root >= T(0))) return x_at(g, root);
+      if (dir > 0) {
+        if (g + 2 >= kGrid) return grid_log(kGrid - 1);
+        ++g;
+        t = T(0);
+      } else {
+        if (g == 0) return grid_log(0);
+        --g;
+        t = T(1);
+      }
+    }
+  }
+
+  // Best factor of hypothesis k from its χ² curve; the interval where χ² rises by
+  // `scale`. A sum over windows whose valleys lie apart is no single valley: its least
+  // value is kept at or above the sum of the windows' own least χ² (floor).
+  Fit fit_param(int k, const Curve& c, T floor, T scale) const noexcept {
     Fit f;
     f.hyp = static_cast<std::int16_t>(k);
-    const Vertex v = vertex(chi);
-    const int gb = v.g;
-    if (v.curvature > T(0)) {
-      const T half = std::sqrt(scale / v.curvature);
-      f.lo = std::exp(v.x - half);
-      f.hi = std::exp(v.x + half);
-    } else {
-      f.lo = std::exp(gb > 0 ? grid_log(gb - 1) : v.x);
-      f.hi = std::exp(gb < kGrid - 1 ? grid_log(gb + 1) : v.x);
-    }
-    f.chi2 = std::fmax(v.chi2, std::fmin(floor, chi[gb]));
+    const Vertex v = vertex(c);
+    f.lo = std::exp(crossing(c, v, v.chi2 + scale, -1));
+    f.hi = std::exp(crossing(c, v, v.chi2 + scale, +1));
+    T node = c.chi[0];  // the least χ² at a grid factor: the floor never lifts the fit above it
+    for (int g = 1; g < kGrid; ++g) node = std::fmin(node, c.chi[g]);
+    f.chi2 = std::fmax(v.chi2, std::fmin(floor, node));
     f.factor = std::exp(v.x);
     f.name = f.factor >= T(1) ? hyps_[k].plus : hyps_[k].minus;
     return f;
@@ -774,11 +829,14 @@ class FaultEstimator {
   }
 
   // Adds each hypothesis's least χ² in one window (sums − the closed windows' sums) to floor.
-  void add_window_floors(const T (&sums)[kHz][kGz], T (&floor)[kHz]) const noexcept {
+  void add_window_floors(const Curve (&sums)[kHz], T (&floor)[kHz]) const noexcept {
     for (int k = 0; k < count_; ++k) {
       if (hyps_[k].kind == HypothesisKind::kSensor) continue;
-      T one[kGz];
-      for (int g = 0; g < kGrid; ++g) one[g] = sums[k][g] - chi_[k][g];
+      Curve one;
+      for (int g = 0; g < kGrid; ++g) {
+        one.chi[g] = sums[k].chi[g] - chi_[k].chi[g];
+        one.gap[g] = sums[k].gap[g] - chi_[k].gap[g];
+      }
       floor[k] += vertex(one).chi2;
     }
   }
@@ -797,7 +855,7 @@ class FaultEstimator {
     rank(scratch_, floor, chi0, sa, sb, dof);
   }
 
-  void rank(const T (&chi)[kHz][kGz], const T (&floor)[kHz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz],
+  void rank(const Curve (&chi)[kHz], const T (&floor)[kHz], T chi0, const T (&sa)[kNz], const T (&sb)[kNz],
             int dof) noexcept {
     chi0_all_ = chi0;
     dof_all_ = dof;
@@ -808,7 +866,7 @@ class FaultEstimator {
       if (hyps_[k].kind == HypothesisKind::kSensor) {
         best = std::fmin(best, fit_sensor(k, chi0, sa, sb, T(1)).chi2);
       } else {
-        for (int g = 0; g < kGrid; ++g) best = std::fmin(best, chi[k][g]);
+        best = std::fmin(best, vertex(chi[k]).chi2);
       }
     }
     const T per = best / static_cast<T>(dof);
@@ -861,7 +919,7 @@ class FaultEstimator {
   bool configured_ = false;
   T factor_[kGz] = {};
   // Closed windows of the episode, summed.
-  T chi_[kHz][kGz] = {};
+  Curve chi_[kHz] = {};
   T floor_[kHz] = {};  ///< per hypothesis, the sum of each closed window's least χ² [-]
   T chi0_ = T(0);
   T sens_a_[kNz] = {}, sens_b_[kNz] = {};
@@ -881,7 +939,7 @@ class FaultEstimator {
   unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
   T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
   T ys_[kHz][kGz][kNz] = {};
-  T scratch_[kHz][kGz] = {};  ///< decide()'s sums with the open window
+  Curve scratch_[kHz] = {};  ///< decide()'s sums with the open window
   bool ok_[kHz][kGz] = {};
   T sum_[kNz] = {};
   std::uint32_t n_[kNz] = {};
