@@ -22,12 +22,15 @@ namespace {
 void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   fmt::print("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit, a.logs.size(), r.points.size());
   for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
-  fmt::print("\n  {:<12} {:>14} {:>14} {:>10} {:>12}\n", "parameter", "start", "fitted", "change", "std. error");
+  fmt::print("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change", "std. error",
+             "monitor's bound");
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const int k = c.file.param_index(r.names[j]);
     const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
-    fmt::print("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   [{}]\n", r.names[j], r.start[j], r.value[j],
-               100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], unit);
+    const std::string bound = fmt::format("±{:.2g}% {}", 100.0 * r.uncertainty[j], r.pinned[j] ? "(was " : "(kept");
+    fmt::print("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j], r.value[j],
+               100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
+               r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
   }
   fmt::print("\n  residual RMS (model − mean reading, in sensor σ): {:.3g} before, {:.3g} after ({})\n", r.rms_before,
              r.rms_after, r.status);
@@ -37,7 +40,14 @@ void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircui
 void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   nlohmann::json params = nlohmann::json::array();
   for (std::size_t j = 0; j < r.names.size(); ++j) {
-    params.push_back({{"name", r.names[j]}, {"start", r.start[j]}, {"value", r.value[j]}, {"rel_se", number_or_null(r.rel_se[j])}});
+    params.push_back({{"name", r.names[j]},
+                      {"start", r.start[j]},
+                      {"value", r.value[j]},
+                      {"rel_se", number_or_null(r.rel_se[j])},
+                      {"moved", static_cast<bool>(r.moved[j])},
+                      {"uncertainty", r.uncertainty[j]},
+                      {"prior_uncertainty", r.prior_uncertainty[j]},
+                      {"pinned", static_cast<bool>(r.pinned[j])}});
   }
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : r.points) {

@@ -15,6 +15,42 @@ namespace {
 
 using Model = host::HostCircuitModel;
 
+std::string percent(double rel) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2g %%", 100.0 * rel);
+  return buf;
+}
+
+/// What the fit may hand on: per fitted parameter its 95 % interval (Student's t on the
+/// residual degrees of freedom, since s² is estimated from few points), whether the move
+/// from the start lies beyond it, and the uncertainty the monitor's bound takes after
+/// commissioning (kLeastUncertainty at least; never wider than it was known before).
+void judge_fitted_values(const circuit_tools::LoadedCircuit& c, const std::vector<int>& idx, bool determined,
+                         std::size_t m, CircuitFitResult& r) {
+  const auto known = circuit_tools::circuit_uncertainty(c);
+  const double t95 = m > idx.size() ? t_quantile(0.05, static_cast<double>(m - idx.size())) : 0.0;
+  std::string kept, unmoved;
+  for (std::size_t j = 0; j < idx.size(); ++j) {
+    const double prior = known.rel[idx[j]];
+    const double ci = t95 * r.rel_se[j];
+    const bool pinned = determined && std::isfinite(ci) && ci < prior;
+    r.prior_uncertainty.push_back(prior);
+    r.pinned.push_back(pinned);
+    r.uncertainty.push_back(pinned ? std::max(ci, kLeastUncertainty) : prior);
+    r.moved.push_back(std::isfinite(ci) && std::fabs(std::log(r.value[j] / r.start[j])) > ci);
+    if (!pinned && prior > 0.0) kept += (kept.empty() ? "" : ", ") + r.names[j] + " (±" + percent(prior) + ")";
+    if (!r.moved.back()) unmoved += (unmoved.empty() ? "" : ", ") + r.names[j];
+  }
+  if (!kept.empty()) {
+    r.notes.push_back("the points do not pin " + kept +
+                      " tighter than it was known: the monitor keeps that uncertainty for it (a wide bound)");
+  }
+  if (!unmoved.empty()) {
+    r.notes.push_back("the data do not show a change of " + unmoved +
+                      ": its start value lies within the fit's 95 % interval");
+  }
+}
+
 }  // namespace
 
 bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
@@ -109,12 +145,14 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
   DenseMatrix jac;
   const std::vector<double> steps(idx.size(), 1e-4);
   r.rel_se.assign(idx.size(), std::nan(""));
+  bool determined = false;
   if (m > idx.size() && central_jacobian(f, m, lm.x, steps, jac)) {
     const LinearStats st = linear_stats(jac, lm.ssr / static_cast<double>(m - idx.size()));
     for (std::size_t j = 0; j < idx.size(); ++j) r.rel_se[j] = st.se[j];  // d ln p = dp/p
     // A condition beyond 1e6 (of the column-scaled Jacobian) is a direction the points
     // do not see: the central differences leave its singular value at rounding, not 0.
-    if (st.rank < idx.size() || !(st.condition <= 1e6)) {
+    determined = st.rank == idx.size() && st.condition <= 1e6;
+    if (!determined) {
       char cond[32];
       std::snprintf(cond, sizeof cond, "%.3g", st.condition);
       r.notes.push_back("the operating points do not tell the fitted parameters apart (condition " + std::string(cond) +
@@ -122,6 +160,7 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     }
   }
   if (!lm.converged) r.notes.push_back("the solver stopped without converging: " + lm.status_text);
+  judge_fitted_values(c, idx, determined && lm.converged, m, r);
   return r;
 }
 
@@ -134,13 +173,23 @@ std::string fitted_values_json(const circuit_tools::LoadedCircuit& c, const Circ
   for (std::size_t j = 0; j < r.names.size(); ++j) params[r.names[j]] = r.value[j];
   nlohmann::ordered_json inputs = nlohmann::ordered_json::object();
   for (std::size_t i = 0; i < c.file.inputs.size(); ++i) inputs[c.file.inputs[i].name] = c.values.inputs.v[i];
+  nlohmann::ordered_json uncertainty = nlohmann::ordered_json::object();
+  const auto& stated = c.values.uncertainty;
+  for (std::size_t k = 0; k < stated.size() && k < c.file.params.size(); ++k) {
+    if (stated[k]) uncertainty[c.file.params[k].name] = *stated[k];
+  }
+  for (std::size_t j = 0; j < r.names.size() && j < r.uncertainty.size(); ++j) {
+    uncertainty[r.names[j]] = r.uncertainty[j];
+  }
   std::string fitted;
   for (const auto& n : r.names) fitted += (fitted.empty() ? "" : ", ") + n;
-  const nlohmann::ordered_json j = {{"circuit", c.file.name},
-                                    {"description", "hstmon identify --circuit: " + fitted + " fitted to " +
-                                                        std::to_string(r.points.size()) + " operating points; SI units"},
-                                    {"params", params},
-                                    {"inputs", inputs}};
+  const nlohmann::ordered_json j = {
+      {"circuit", c.file.name},
+      {"description", "hstmon identify --circuit: " + fitted + " fitted to " + std::to_string(r.points.size()) +
+                          " operating points; SI units; uncertainty: the fit's 95 % interval where it pins a value"},
+      {"params", params},
+      {"inputs", inputs},
+      {"uncertainty", uncertainty}};
   return j.dump(2) + "\n";
 }
 

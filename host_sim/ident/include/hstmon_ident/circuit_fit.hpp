@@ -50,6 +50,14 @@ struct CircuitFitResult {
   std::vector<std::string> names;        ///< fitted parameters
   std::vector<double> start, value;      ///< their values before and after [SI]
   std::vector<double> rel_se;            ///< standard error relative to the value [-]
+  /// Per fitted parameter: the relative uncertainty the monitor's model bound takes after
+  /// this fit [-] — the 95 % interval t·SE (at least kLeastUncertainty) where the points pin
+  /// the value tighter than it was known, else the uncertainty it had (`pinned` false).
+  std::vector<double> uncertainty, prior_uncertainty;
+  std::vector<bool> pinned;
+  /// Per fitted parameter: the move from the start lies beyond its 95 % interval (the data
+  /// show it); false: the start is as consistent with the points as the fitted value.
+  std::vector<bool> moved;
   double rms_before = 0.0, rms_after = 0.0;  ///< RMS of the residuals [σ]
   std::string status;                    ///< the solver's stop reason
   std::vector<std::string> notes;
@@ -74,8 +82,15 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o);
 
+/// The least relative uncertainty a fit hands the model bound [-]: the values hold at the
+/// healthy log's oil temperature and wear; 0.1 % keeps a day's drift of a pinned value
+/// from reading as a fault while still far below the 2 % default.
+inline constexpr double kLeastUncertainty = 0.001;
+
 /// A parameter file for c (docs/circuits.md's format) with the values of c overridden
-/// by the fitted ones; every number in SI.
+/// by the fitted ones, every number in SI, and an "uncertainty" section: the fitted
+/// parameters' `uncertainty` (commissioning: the monitor's bound follows what the healthy
+/// log pinned) and every uncertainty c's own parameter file stated.
 std::string fitted_values_json(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r);
 
 }  // namespace hstmon::ident
