@@ -70,6 +70,16 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
     add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
+  nlohmann::json leads = nlohmann::json::array();
+  for (std::size_t ch = 0; ch < r.bound_lead.size(); ++ch) {
+    const auto& l = r.bound_lead[ch];
+    const bool named = l.param >= 0 && static_cast<std::size_t>(l.param) < c.file.params.size();
+    leads.push_back({{"channel", c.file.sensors[ch].name},
+                     {"bound", l.bound},
+                     {"lead", named ? nlohmann::json(c.file.params[static_cast<std::size_t>(l.param)].name) : nlohmann::json()},
+                     {"share", l.share}});
+  }
+  fmt::print("{}\n", nlohmann::json{{"type", "bound"}, {"at", "last row"}, {"channels", leads}}.dump());
   fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
                                      {"checked", r.envelope.checked},
                                      {"out", r.envelope.out},
@@ -127,6 +137,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
       for (const auto& n : r.undetectable) joined += (joined.empty() ? "" : ", ") + n;
       fmt::print("  not detectable at the nominal inputs (no channel moves by 1 sigma at 30 %): {}\n", joined);
     }
+    if (const std::string lead = bound_lead_sentence(c, r); !lead.empty()) fmt::print("  {}\n", lead);
     fmt::print("\n  envelope: {}\n", r.envelope.text);
     print_events(r.events, r.final_status);
   }
@@ -153,13 +164,24 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
     k.push_back(u.ok() ? 1.0 / u.conversion.factor : 1.0);
     head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}],b_{0}[{1}]", s.name, unit);
   }
-  std::fprintf(f, "%s,health\n", head.c_str());
+  head += ",health";
+  // After the numbers: per channel the parameter leading its model bound, and its share.
+  for (const host::CircuitSensor& s : c.file.sensors) head += fmt::format(",lead_{0},lead_share_{0}[-]", s.name);
+  std::fprintf(f, "%s\n", head.c_str());
   for (const auto& tr : r.trace) {
     std::string line = fmt::format("{}", tr.t);
     for (std::size_t ch = 0; ch < k.size(); ++ch) {
       line += fmt::format(",{},{},{},{}", tr.y[ch] * k[ch], tr.y_hat[ch] * k[ch], tr.r[ch] * k[ch], tr.bound[ch] * k[ch]);
     }
-    std::fprintf(f, "%s,%u\n", line.c_str(), tr.health);
+    line += fmt::format(",{}", tr.health);
+    for (std::size_t ch = 0; ch < k.size(); ++ch) {
+      const bool named = ch < tr.lead.size() && tr.lead[ch].param >= 0 &&
+                         static_cast<std::size_t>(tr.lead[ch].param) < c.file.params.size();
+      line += named ? fmt::format(",{},{:.3g}", c.file.params[static_cast<std::size_t>(tr.lead[ch].param)].name,
+                                  tr.lead[ch].share)
+                    : std::string(",,nan");
+    }
+    std::fprintf(f, "%s\n", line.c_str());
   }
   const bool ok = std::ferror(f) == 0;
   return std::fclose(f) == 0 && ok ? std::string() : "write failed: " + path;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "hstmon_circuit/bound_lead.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::cli {
@@ -27,6 +28,20 @@ double min_span(const host::CircuitSensor& s, double scale) {
 }
 
 }  // namespace
+
+std::string bound_lead_sentence(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitReplayResult& r) {
+  std::string line;
+  for (std::size_t ch = 0; ch < r.bound_lead.size() && ch < r.measured.size(); ++ch) {
+    if (!r.measured[ch]) continue;
+    std::string unit;
+    double scale = 1.0;
+    display_unit(c.file.sensors[ch], unit, scale);
+    const std::string lead = circuit_tools::lead_text(c, r.bound_lead[ch]);
+    line += fmt::format("{}{} ±{:.3g} {}{}", line.empty() ? "" : ", ", c.file.sensors[ch].name,
+                        r.bound_lead[ch].bound * scale, unit, lead.empty() ? "" : " (" + lead + ")");
+  }
+  return line.empty() ? line : "model bound at the last row's inputs (the parameter that leads it): " + line;
+}
 
 PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitReplayResult& r) {
   PlotTrace trace;
@@ -57,6 +72,7 @@ ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_too
     rc.stats = r.channels[ch];
     rep.channels.push_back(rc);
   }
+  if (const std::string lead = bound_lead_sentence(c, r); !lead.empty()) rep.notes.push_back(lead);
   rep.diagnosed = a.diagnose && r.table_rows > 0;
   rep.plot = circuit_plot_trace(c, r);
   return rep;

@@ -15,6 +15,10 @@ namespace hstmon::cli {
 /// unit from the circuit file (SI where it gives none). Refers to c and r (keep them).
 PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitReplayResult& r);
 
+/// "model bound at the last row's inputs (the parameter that leads it): p_s ±2.83 bar
+/// (Pc 30 %), …" over the measured channels, in each sensor's unit; "" when there is none.
+std::string bound_lead_sentence(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitReplayResult& r);
+
 /// The replay's report for write_replay_report(). Refers to c and r (keep them).
 ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_tools::LoadedCircuit& c,
                                    const circuit_tools::CircuitReplayResult& r);

@@ -202,8 +202,42 @@ TEST(CircuitCli, ReplayWritesResidualsInTheSensorsUnits) {
   std::string head, first;
   std::getline(f, head);
   std::getline(f, first);
-  EXPECT_EQ(head, "t[s],p_line[bar],p_line_hat[bar],r_p_line[bar],b_p_line[bar],q[L/min],q_hat[L/min],r_q[L/min],b_q[L/min],health");
-  EXPECT_EQ(std::count(first.begin(), first.end(), ','), 9) << first;
+  EXPECT_EQ(head,
+            "t[s],p_line[bar],p_line_hat[bar],r_p_line[bar],b_p_line[bar],q[L/min],q_hat[L/min],r_q[L/min],b_q[L/min],"
+            "health,lead_p_line,lead_share_p_line[-],lead_q,lead_share_q[-]");
+  EXPECT_EQ(std::count(first.begin(), first.end(), ','), 13) << first;
+  // At full throttle below the relief, the pump's displacement makes the flow meter's
+  // bound (q = D·n less a small leak) and the throttle's coefficient leads the pressure's.
+  EXPECT_NE(first.find(",k_throttle,"), std::string::npos) << first;
+  EXPECT_NE(first.find(",D,0.9"), std::string::npos) << first;
+}
+
+// The text and the JSON say what leads each channel's model bound, so a user sees which
+// value to pin down (identify --circuit) to make smaller faults visible there.
+TEST(CircuitCli, ReplaySaysWhichParameterLeadsEachBound) {
+  const std::string args = " replay --circuit " + kDir + "test_stand.json " + kDir + "test_stand.csv";
+  const CliRun text = run(std::string(HSTMON_CLI) + args);
+  EXPECT_EQ(text.exit_code, 0) << text.out;
+  EXPECT_NE(text.out.find("model bound at the last row's inputs (the parameter that leads it): p_line ±"),
+            std::string::npos)
+      << text.out;
+  const CliRun json = run(std::string(HSTMON_CLI) + args + " --json");
+  bool seen = false;
+  std::istringstream lines(json.out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded() || j["type"] != "bound") continue;
+    seen = true;
+    ASSERT_EQ(j["channels"].size(), 2u) << line;
+    for (const auto& ch : j["channels"]) {
+      EXPECT_GT(ch["bound"].get<double>(), 0.0) << line;
+      EXPECT_TRUE(ch["lead"].is_string()) << line;
+      EXPECT_GT(ch["share"].get<double>(), 0.0) << line;
+      EXPECT_LE(ch["share"].get<double>(), 1.0) << line;
+    }
+  }
+  EXPECT_TRUE(seen) << json.out;
 }
 
 // hstmon-sim --inputs re-runs a logged profile with ramps: the independent simulator's

@@ -40,6 +40,9 @@ def json_lines(result) -> List[Dict[str, Any]]:
             j["t_max"] = ch["t_max"]
             j["noise"] = _num(ch["noise"])
         lines.append(j)
+    lines.append({"type": "bound", "at": "last row",
+                  "channels": [{"channel": b["channel"], "bound": b["bound"], "lead": b["lead"], "share": b["share"]}
+                               for b in raw["bound"]]})
     env = raw["envelope"]
     lines.append({"type": "envelope", "checked": env["checked"], "out": env["out"], "text": env["text"]})
     lines += [event_line(e) for e in raw["events"]]

@@ -222,6 +222,9 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   for (const host::CircuitSensor& s : c.file.sensors) sigma.push_back(sensor_sigma(s));
   EnvelopeCheck envelope(c, model, sigma);
   bool out_of_envelope = false;
+  // The trace's bound leads, recomputed where the monitor's bound changed (an input change).
+  std::vector<ChannelBoundLead> leads;
+  std::vector<double> lead_bound;
   auto drain_events = [&](double t_now, const Model::Inputs& u) {
     while (mon->pop_event(ev)) {
       if (out_of_envelope) continue;
@@ -291,6 +294,12 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
         tr.r.push_back((rv & (1u << ch)) != 0 ? obs.residual()[i] : std::nan(""));
         tr.bound.push_back(mon->evaluator().bound(i));
       }
+      const double* mb = mon->model_bound();
+      if (lead_bound.empty() || !std::equal(lead_bound.begin(), lead_bound.end(), mb)) {
+        lead_bound.assign(mb, mb + channels);
+        leads = bound_leads(c, model, u);
+      }
+      tr.lead = leads;
       res.trace.push_back(std::move(tr));
     }
   }
@@ -299,6 +308,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   res.final_status = to_string(mon->matcher().status());
   envelope.finish();
   res.envelope = envelope.result();
+  res.bound_lead = bound_leads(c, model, u_prev);
   if (out_of_envelope) {
     res.final_status = "out_of_envelope";
   } else if (diag) {

@@ -104,6 +104,16 @@ class ReplayResult:
         return self.raw["envelope"]
 
     @property
+    def bound(self) -> "pd.DataFrame":
+        """Per channel, the model bound at the last row's inputs [SI] and the parameter whose
+        uncertainty leads it (``lead``, ``share`` of the bound): what ``identify`` would pin
+        down to make smaller faults visible there."""
+        cols = ["bound", "lead", "share"]
+        rows = [{k: b[k] for k in cols} for b in self.raw["bound"]]
+        return pd.DataFrame(rows, columns=cols, index=pd.Index([b["channel"] for b in self.raw["bound"]],
+                                                               name="channel"))
+
+    @property
     def notes(self) -> List[str]:
         """The reader's notes (file:line:column) and the replay's."""
         return list(self._data.notes) + list(self.raw["notes"])

@@ -125,6 +125,18 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   env["t1"] = r.envelope.t1;
   env["text"] = r.envelope.text;
   d["envelope"] = env;
+  py::list leads;  // per channel, what leads its model bound at the last row's inputs
+  for (std::size_t ch = 0; ch < r.bound_lead.size(); ++ch) {
+    const auto& l = r.bound_lead[ch];
+    py::dict row;
+    row["channel"] = c.file.sensors[ch].name;
+    row["bound"] = l.bound;
+    const bool named = l.param >= 0 && static_cast<std::size_t>(l.param) < c.file.params.size();
+    row["lead"] = named ? py::object(py::str(c.file.params[static_cast<std::size_t>(l.param)].name)) : py::none();
+    row["share"] = l.share;
+    leads.append(row);
+  }
+  d["bound"] = leads;
   if (keep_trace) d["trace"] = trace_of(r, r.channels.size());
   return d;
 }

@@ -24,6 +24,7 @@
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/bound_lead.hpp"
 #include "hstmon_circuit/envelope_check.hpp"
 #include "hstmon_host/replay.hpp"
 
@@ -55,6 +56,8 @@ struct CircuitTraceRow {
   /// uncertainty at the operating point, carried over input changes) + transient allowance
   /// + 2σ; beyond it the CUSUM accumulates [SI]
   std::vector<double> bound;
+  /// Per channel, what leads the model bound at this row's operating point (bound_lead.hpp)
+  std::vector<ChannelBoundLead> lead;
   std::uint32_t health = 0;       ///< HealthFlag bits of the row's tick
 };
 
@@ -78,6 +81,9 @@ struct CircuitReplayResult {
   /// "out_of_envelope" (envelope_check.hpp: the model does not describe this machine)
   std::string final_status = "nominal";
   EnvelopeResult envelope;                    ///< does the model describe this machine at its first steady stretch?
+  /// Per channel, the model bound at the last row's inputs and the parameter that leads it
+  /// (empty when there is no steady state there)
+  std::vector<ChannelBoundLead> bound_lead;
   std::size_t table_rows = 0;                 ///< hypotheses in the circuit's fault table (0: not run)
   std::vector<std::string> undetectable;      ///< parameter faults without a row (no visible steady change)
   std::vector<CircuitTraceRow> trace;         ///< per row, if CircuitReplayOptions::keep_trace

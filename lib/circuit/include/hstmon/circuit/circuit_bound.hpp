@@ -32,6 +32,14 @@ struct CircuitUncertainty {
   T rel[kExtent<Cap::kParams>]{};
 };
 
+/// What makes up each channel's bound: the parameter whose ±ε moves the channel most on
+/// its own, and by how much (compute()'s optional output).
+template <typename T, int N>
+struct BoundLead {
+  int param[kExtent<N>]{};   ///< parameter index, −1 where no uncertain parameter moves the channel
+  T change[kExtent<N>]{};    ///< its largest steady output change [channel unit]
+};
+
 /// The steady-state outputs of model at its inputs [output units]; false if none.
 template <typename T, class Cap>
 bool steady_outputs(const CircuitModel<T, Cap>& model, typename CircuitModel<T, Cap>::Output& y) noexcept {
@@ -68,10 +76,18 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
   ///                perturbed copies, each at its own steady state [s] (0 where none is
   ///                stable): a ±ε machine may sit on the other side of a valve's opening,
   ///                with that side's time constant; one eigenvalue problem per solve more
+  /// @param lead   out, optional: per channel the parameter that moves it most on its own
+  ///                (a user's question: which value to pin down to narrow this channel's bound)
   /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState
   static Status compute(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>],
-                        T* slowest_tau = nullptr) noexcept {
+                        T* slowest_tau = nullptr, circuit::BoundLead<T, kN>* lead = nullptr) noexcept {
     for (int i = 0; i < kN; ++i) m[i] = T(0);
+    if (lead != nullptr) {
+      for (int i = 0; i < kN; ++i) {
+        lead->param[i] = -1;
+        lead->change[i] = T(0);
+      }
+    }
     for (int k = 0; k < Cap::kParams; ++k) {
       const T e = eps.rel[k];
       if (!(std::isfinite(e) && e >= T(0) && e < T(0.5))) return Status::kInvalidParams;
@@ -115,7 +131,13 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
         }
       }
       v.v[k] = v0;
-      for (int i = 0; i < kN; ++i) m[i] += d[i];
+      for (int i = 0; i < kN; ++i) {
+        m[i] += d[i];
+        if (lead != nullptr && d[i] > lead->change[i]) {
+          lead->param[i] = k;
+          lead->change[i] = d[i];
+        }
+      }
     }
     // The corners: channel i's "up" and "down" machines. A corner without a steady state
     // (the machine stalls) adds nothing: the sum stands.
