@@ -80,7 +80,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   if (r.verdict == "insufficient_data") return kExitOk;
   fmt::print("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n", r.z_fit,
              r.z_check);
-  fmt::print("\n  where the gap lies (mean of model − reading over the fit log's points, in sensor σ):\n   ");
+  fmt::print("\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ");
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) fmt::print(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
   fmt::print("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
   fmt::print("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS", "check RMS",

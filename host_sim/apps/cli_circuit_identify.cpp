@@ -32,7 +32,7 @@ void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircui
                100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
                r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
   }
-  fmt::print("\n  residual RMS (model − mean reading, in sensor σ): {:.3g} before, {:.3g} after ({})\n", r.rms_before,
+  fmt::print("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n", r.rms_before,
              r.rms_after, r.status);
   if (!a.out.empty()) fmt::print("  parameter file written: {}\n", a.out);
 }

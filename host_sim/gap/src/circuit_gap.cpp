@@ -31,8 +31,8 @@ double rms(const std::vector<double>& r) {
   return std::sqrt(s / static_cast<double>(r.size()));
 }
 
-// Residuals of c with effect e of magnitude m at the points; an offset m [channel SI, as
-// model − reading] is subtracted from its channel's residuals. Empty when some point has
+// Residuals of c with effect e of magnitude m at the points; an offset m [channel SI:
+// reading = true + m] is subtracted from its channel's residuals. Empty when some point has
 // no steady state.
 std::vector<double> effect_residuals(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m,
                                      const detail::PointSet& s) {
@@ -343,8 +343,6 @@ CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circui
     er.rms_check = rms_or_inf(after);
     er.z_check = after.empty() ? er.rms_check : detail::circuit_allowance(c, C, after).z;
     er.ok = std::isfinite(er.rms_fit) && std::isfinite(er.rms_check);
-    // An offset is reported as reading = true + o: residual model − reading = −o.
-    if (e.kind == CircuitEffect::Kind::kOffset) er.magnitude = -er.magnitude;
     r.ranked.push_back(er);
   }
   std::stable_sort(r.ranked.begin(), r.ranked.end(), [](const CircuitEffectResult& a, const CircuitEffectResult& b) {

@@ -25,7 +25,7 @@ struct PointSet {
 /// the points' rows, at least the sensor's stated σ.
 PointSet circuit_point_set(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& log);
 
-/// Residuals (model − mean)/σ per point and measured channel for parameter values p.
+/// Residuals (mean − model)/σ per point and measured channel for parameter values p.
 /// @return false when some point has no steady state
 bool point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p, const PointSet& s,
                      std::vector<double>& res);

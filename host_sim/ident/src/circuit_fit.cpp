@@ -66,7 +66,7 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
     if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
     for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
       if (!std::isfinite(pt.mean[ch])) continue;
-      res.push_back((y[static_cast<int>(ch)] - pt.mean[ch]) / circuit_tools::sensor_sigma(c.file.sensors[ch]));
+      res.push_back((pt.mean[ch] - y[static_cast<int>(ch)]) / circuit_tools::sensor_sigma(c.file.sensors[ch]));
     }
   }
   return true;
@@ -105,7 +105,7 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
               " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit";
     return r;
   }
-  // Residuals (model − mean)/σ at every point and measured channel for the fitted
+  // Residuals (mean − model)/σ at every point and measured channel for the fitted
   // ln(p/p₀) x (circuit_point_residuals), and the same spread back per point and channel.
   auto residuals = [&](const std::vector<double>& x, std::vector<double>& res) {
     Model::Params p = c.values.params;

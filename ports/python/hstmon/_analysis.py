@@ -68,7 +68,7 @@ class IdentifyResult:
     @property
     def points(self) -> pd.DataFrame:
         """The operating points: ``log`` (index in the logs given), ``t0``/``t1`` [s],
-        ``rows``, and per channel the residual (model − mean reading, in σ) before and after."""
+        ``rows``, and per channel the residual (mean reading − model, in σ) before and after."""
         rows = []
         names = [s["name"] for s in self.circuit.sensors]
         for p in self.raw["points"]:
@@ -150,7 +150,7 @@ class GapResult:
 
     @property
     def where(self) -> pd.DataFrame:
-        """Per channel: the mean residual over the fit log's points (model − reading, in σ;
+        """Per channel: the mean residual over the fit log's points (measured − model, in σ;
         where the gap lies), and the σ each log is weighed in [SI]."""
         return pd.DataFrame({"mean_fit": self.raw["mean_fit"], "noise_fit": self.raw["noise_fit"],
                              "noise_check": self.raw["noise_check"]},

@@ -62,7 +62,7 @@ def gap_report(result: Any, folder: Path) -> Path:
             f"**Verdict: {result.verdict}**", "",
             f"Beyond noise and parameter uncertainty: fit {result.raw['z_fit']:.3g}, check "
             f"{result.raw['z_check']:.3g} σ (no gap at 2 or less).", "",
-            "## Where the gap lies (mean of model − reading over the fit log's points, in sensor σ)", "",
+            "## Where the gap lies (mean of measured − model over the fit log's points, in sensor σ)", "",
             _table(result.where.reset_index()), "", "## Candidates, best check RMS first", "",
             _table(result.ranked), ""]
     return _write(folder, text, result.notes)
@@ -74,7 +74,7 @@ def identify_report(result: Any, folder: Path) -> Path:
     result.points.to_csv(folder / "points.csv", index=False)
     (folder / "fitted.params.json").write_text(result.values_json, encoding="utf-8")
     text = [f"# hstmon identify on {result.circuit.name}", "",
-            f"{len(result.points)} operating points; residual RMS (model − mean reading, in sensor σ) "
+            f"{len(result.points)} operating points; residual RMS (mean reading − model, in sensor σ) "
             f"{result.rms_before:.3g} before, {result.rms_after:.3g} after ({result.status}).", "",
             _table(result.parameters), "", "The fitted parameter file: fitted.params.json", ""]
     return _write(folder, text, result.notes)

@@ -13,7 +13,7 @@
 /// means, a split beyond 8 standard errors and 3 of the sensor's σ) is split there, each side
 /// settling again, with a note; a piece whose outputs still trend by more than 3 σ over it
 /// (a start from rest still settling) is left out, with a note.
-/// Per point and measured channel the residual is (model − mean reading)/σ, σ the sensor's
+/// Per point and measured channel the residual is (mean reading − model)/σ (measured − model), σ the sensor's
 /// noise (1 % of the span without one). Parameters are fitted as ln(p/p₀), so they stay
 /// positive and their steps are relative; standard errors come from the linearised
 /// covariance at the optimum.
@@ -41,7 +41,7 @@ struct CircuitOperatingPoint {
   std::size_t n = 0;                  ///< rows averaged
   std::vector<double> inputs;         ///< the held inputs [SI], by input index
   std::vector<double> mean;           ///< mean reading per channel [SI] (NaN where not logged)
-  std::vector<double> before, after;  ///< model − mean per channel, in σ, at the start and the fit
+  std::vector<double> before, after;  ///< mean reading − model per channel, in σ, at the start and the fit
 };
 
 /// Result of fit_circuit().
@@ -72,7 +72,7 @@ std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools:
                                                             double min_duration,
                                                             std::vector<std::string>* notes = nullptr);
 
-/// Residuals (model − mean)/σ at every point and measured channel, in point then channel
+/// Residuals (mean − model)/σ at every point and measured channel, in point then channel
 /// order, for circuit c with parameter values p (c's inputs apart from those the points
 /// hold). @return false when some point has no steady state
 bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
