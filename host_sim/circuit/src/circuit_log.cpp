@@ -307,10 +307,13 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
 // What becomes of a data row for its time: kept, skipped (a lenient read, the time not
 // above the last kept row's: noted) or an error (msg). With o.rate the time is the row
 // index's (t0 the first row's logged time). The one rule of the text and column readers.
+// `t_col()` is the time field's column, asked for only by the note (counting a text
+// row's characters costs more than the rest of the row).
 enum class RowTime { kKeep, kSkip, kFail };
 
+template <class TimeColumn>
 RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
-                 std::size_t t_col, std::size_t& skipped, std::string& msg) {
+                 const TimeColumn& t_col, std::size_t& skipped, std::string& msg) {
   if (o.rate > 0.0) {
     // Time from the row index: a rounded or missing time column no longer matters.
     if (log.t.empty() && std::isfinite(t)) t0 = t;
@@ -322,7 +325,7 @@ RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double&
         " s (a logger that rounds its time: give the sample rate, --rate HZ)";
   if (!o.lenient) return RowTime::kFail;
   ++skipped;
-  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
+  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col()) + ": note: " + msg +
                       ": row skipped");
   return RowTime::kSkip;
 }
@@ -433,33 +436,35 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
       return stop(line_no, char_column(line, off),
                   "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size()));
     }
-    // The row's values first, kept only when the whole row is good.
-    values.assign(fields.size(), 0.0);
+    // The row's values first, kept only when the whole row is good. A field's column is
+    // counted only for a message.
+    values.resize(fields.size());
+    const auto col = [&](std::size_t k) { return char_column(line, offs[k]); };
     double t = NAN;
-    std::size_t t_col = 1;
+    std::size_t t_field = fields.size();  // none: column 1
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const Target& tg = targets[k];
       if (tg.kind == Target::kIgnored) continue;
-      const std::size_t col = char_column(line, offs[k]);
       if (tg.kind == Target::kUnnamed) {
-        if (!trim(fields[k]).empty()) return stop(line_no, col, host::kUnnamedValueMessage);
+        if (!trim(fields[k]).empty()) return stop(line_no, col(k), host::kUnnamedValueMessage);
         continue;
       }
       double v = 0.0;
       if (!parse_number(fields[k], sep != ',', v)) {
-        return stop(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
+        return stop(line_no, col(k), "not a number: '" + std::string(trim(fields[k])) + "'");
       }
       v = tg.conv.to_si(v);
-      if (!std::isfinite(v)) return stop(line_no, col, "value is not finite");
+      if (!std::isfinite(v)) return stop(line_no, col(k), "value is not finite");
       values[k] = v;
       if (tg.kind == Target::kTime) {
         t = v;
-        t_col = col;
+        t_field = k;
       }
     }
+    const auto t_col = [&] { return t_field < fields.size() ? col(t_field) : std::size_t{1}; };
     std::string msg;
     const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
-    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col(), msg);
     if (kept == RowTime::kSkip) continue;
     keep_row(log, targets, values, t);
   }
@@ -629,7 +634,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
       return log;  // lenient: the rows before the bad one
     }
     std::string msg;
-    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    const RowTime kept = row_time(o, log, t, t0, line_no, [t_col] { return t_col; }, skipped, msg);
     if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
     if (kept == RowTime::kSkip) continue;
     keep_row(log, targets, values, t);
