@@ -15,6 +15,7 @@
 #include "hstmon_host/text_encoding.hpp"
 #include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
+#include "fast_decimal.hpp"  // ports/host's exact fast path for the numbers loggers write
 
 namespace hstmon::circuit_tools {
 
@@ -358,6 +359,109 @@ CircuitLog failed(CircuitLog& log, std::size_t line, std::size_t col, std::strin
   return log;
 }
 
+/// A data row read: its values by header column (SI; ignored columns untouched), its
+/// time, and where the time field starts (null: no time column) for the messages.
+struct RowValues {
+  std::vector<double> v;
+  double t = NAN;
+  const char* t_field = nullptr;
+};
+
+/// A bad data row: the 1-based character column of the field, and what is wrong.
+struct RowError {
+  std::size_t column;
+  std::string message;
+};
+
+/// True when the separator can never be part of a number fast_decimal reads (a decimal
+/// comma is read only where the separator is not ','), so a number that stops at it
+/// ends the field there: quick_row may read the rows.
+bool quick_rows_possible(char sep) { return sep == ',' || sep == ';' || sep == '\t'; }
+
+/// The common data row in one pass; what it reads is what row_values would. Each number
+/// field is one fast_decimal (bit-identical to the std::from_chars that parse_number
+/// uses, which is why the fast path may decide alone) from the field's start to its
+/// separator, with the blanks and '+' parse_number trims skipped around it; an ignored
+/// field is passed over. A field fast_decimal leaves to from_chars (nan, 20 digits), a
+/// ragged row, a non-finite value or text in the unnamed last column returns null:
+/// nothing decided, and row_values reads the row and words its message. Otherwise
+/// returns the line's end (its '\n', or the text's end). [p, end): the rest of the text,
+/// so fast_decimal's 8-byte loads stay inside it.
+const char* quick_row(const char* p, const char* end, const std::vector<Target>& targets, char sep, bool decimal_comma,
+                      RowValues& row) {
+  // trim()'s blanks, never the separator (a tab can be both).
+  const auto lead_blank = [sep](char ch) { return (ch == ' ' || ch == '\t') && ch != sep; };
+  const auto tail_blank = [sep](char ch) { return (ch == ' ' || ch == '\t' || ch == '\r') && ch != sep; };
+  row.t = NAN;
+  row.t_field = nullptr;
+  const char* f = p;  // the field's start, then where it ended
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    if (k != 0) {
+      if (f == end || *f != sep) return nullptr;  // fewer fields than the header, or a bad field
+      ++f;
+    }
+    const Target& tg = targets[k];
+    if (tg.kind == Target::kIgnored) {
+      while (f < end && *f != sep && *f != '\n') ++f;
+      continue;
+    }
+    const char* q = f;
+    while (q < end && lead_blank(*q)) ++q;
+    if (tg.kind != Target::kUnnamed) {
+      if (q < end && *q == '+') ++q;
+      double v;
+      if (!host::detail::fast_decimal(q, end, v, q, decimal_comma)) return nullptr;
+      v = tg.conv.to_si(v);
+      if (!std::isfinite(v)) return nullptr;
+      row.v[k] = v;
+      if (tg.kind == Target::kTime) {
+        row.t = v;
+        row.t_field = f;
+      }
+    }
+    while (q < end && tail_blank(*q)) ++q;
+    f = q;
+  }
+  return f == end || *f == '\n' ? f : nullptr;  // else more fields than the header, or a bad last field
+}
+
+/// Any data row (the line without its '\r'), split at the separator, every field
+/// trimmed: the values, or the first bad field (a ragged row first) at its column.
+std::optional<RowError> row_values(std::string_view line, const std::vector<Target>& targets, char sep,
+                                   std::vector<std::string_view>& fields, std::vector<std::size_t>& offs,
+                                   RowValues& row) {
+  split(line, sep, fields, offs);
+  if (fields.size() != targets.size()) {
+    const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
+    return RowError{char_column(line, off),
+                    "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size())};
+  }
+  // A field's column is counted only for a message.
+  const auto col = [&](std::size_t k) { return char_column(line, offs[k]); };
+  row.t = NAN;
+  row.t_field = nullptr;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const Target& tg = targets[k];
+    if (tg.kind == Target::kIgnored) continue;
+    if (tg.kind == Target::kUnnamed) {
+      if (!trim(fields[k]).empty()) return RowError{col(k), host::kUnnamedValueMessage};
+      continue;
+    }
+    double v = 0.0;
+    if (!parse_number(fields[k], sep != ',', v)) {
+      return RowError{col(k), "not a number: '" + std::string(trim(fields[k])) + "'"};
+    }
+    v = tg.conv.to_si(v);
+    if (!std::isfinite(v)) return RowError{col(k), "value is not finite"};
+    row.v[k] = v;
+    if (tg.kind == Target::kTime) {
+      row.t = v;
+      row.t_field = line.data() + offs[k];
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -408,65 +512,51 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
 
   std::vector<Target> targets;
   bool header_seen = false;
+  const bool quick = quick_rows_possible(sep);
+  const char* const text_end = text.data() + text.size();
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
-  std::vector<double> values;
+  RowValues row;
   std::size_t line_no = 0, pos = 0;
   while (pos <= text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    std::string_view line = text.substr(pos, (nl == std::string_view::npos ? text.size() : nl) - pos);
-    pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
     ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    const std::string_view body = trim(line);
-    if (body.empty() || body.front() == '#') continue;
+    const char* const p = text.data() + pos;
+    // The common data row: after the header, not the units row, and starting with neither
+    // a blank nor '#' (so neither blank nor a comment).
+    const char* const eol = quick && header_seen && line_no != units_line && p != text_end && *p != ' ' &&
+                                    *p != '\t' && *p != '#' && *p != '\r' && *p != '\n'
+                                ? quick_row(p, text_end, targets, sep, sep != ',', row)
+                                : nullptr;
+    std::string_view line;
+    if (eol != nullptr) {
+      line = std::string_view(p, static_cast<std::size_t>(eol - p));
+      pos = eol == text_end ? text.size() + 1 : static_cast<std::size_t>(eol - text.data()) + 1;
+    } else {
+      const std::size_t nl = text.find('\n', pos);
+      line = text.substr(pos, (nl == std::string_view::npos ? text.size() : nl) - pos);
+      pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      const std::string_view body = trim(line);
+      if (body.empty() || body.front() == '#') continue;
 
-    if (!header_seen && line_no < header_line) continue;  // metadata, or units above the names
-    if (line_no == units_line) continue;                   // taken with the header
-    if (!header_seen) {
-      header_seen = true;
-      if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
-      continue;
-    }
-
-    split(line, sep, fields, offs);
-    ++data_rows;
-    if (fields.size() != targets.size()) {
-      const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
-      return stop(line_no, char_column(line, off),
-                  "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size()));
-    }
-    // The row's values first, kept only when the whole row is good. A field's column is
-    // counted only for a message.
-    values.resize(fields.size());
-    const auto col = [&](std::size_t k) { return char_column(line, offs[k]); };
-    double t = NAN;
-    std::size_t t_field = fields.size();  // none: column 1
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      const Target& tg = targets[k];
-      if (tg.kind == Target::kIgnored) continue;
-      if (tg.kind == Target::kUnnamed) {
-        if (!trim(fields[k]).empty()) return stop(line_no, col(k), host::kUnnamedValueMessage);
+      if (!header_seen && line_no < header_line) continue;  // metadata, or units above the names
+      if (line_no == units_line) continue;                   // taken with the header
+      if (!header_seen) {
+        header_seen = true;
+        if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
+        row.v.assign(targets.size(), 0.0);
         continue;
       }
-      double v = 0.0;
-      if (!parse_number(fields[k], sep != ',', v)) {
-        return stop(line_no, col(k), "not a number: '" + std::string(trim(fields[k])) + "'");
-      }
-      v = tg.conv.to_si(v);
-      if (!std::isfinite(v)) return stop(line_no, col(k), "value is not finite");
-      values[k] = v;
-      if (tg.kind == Target::kTime) {
-        t = v;
-        t_field = k;
-      }
+      if (auto e = row_values(line, targets, sep, fields, offs, row)) return stop(line_no, e->column, e->message);
     }
-    const auto t_col = [&] { return t_field < fields.size() ? col(t_field) : std::size_t{1}; };
+    ++data_rows;
+    const auto t_col = [&] {
+      return row.t_field ? char_column(line, static_cast<std::size_t>(row.t_field - line.data())) : std::size_t{1};
+    };
     std::string msg;
-    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    const RowTime kept = row_time(o, log, row.t, t0, line_no, t_col, skipped, msg);
     if (kept == RowTime::kFail) return fail(line_no, t_col(), msg);
-    if (kept == RowTime::kSkip) continue;
-    keep_row(log, targets, values, t);
+    if (kept == RowTime::kKeep) keep_row(log, targets, row.v, row.t);
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
   if (log.error) {
