@@ -308,10 +308,22 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
 // What becomes of a data row for its time: kept, skipped (a lenient read, the time not
 // above the last kept row's: noted) or an error (msg). With o.rate the time is the row
 // index's (t0 the first row's logged time). The one rule of the text and column readers.
-// `t_col()` is the time field's column, asked for only by the note (counting a text
-// row's characters costs more than the rest of the row).
 enum class RowTime { kKeep, kSkip, kFail };
 
+// row_time's rare case, out of the row loop: the time does not rise (t_col: its column).
+RowTime time_not_rising(const host::ReadOptions& o, CircuitLog& log, double t, std::size_t line_no, std::size_t t_col,
+                        std::size_t& skipped, std::string& msg) {
+  msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
+        " s (a logger that rounds its time: give the sample rate, --rate HZ)";
+  if (!o.lenient) return RowTime::kFail;
+  ++skipped;
+  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
+                      ": row skipped");
+  return RowTime::kSkip;
+}
+
+// `t_col()` is the time field's column, counted only when the time does not rise
+// (counting a text row's characters costs more than the rest of the row).
 template <class TimeColumn>
 RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
                  const TimeColumn& t_col, std::size_t& skipped, std::string& msg) {
@@ -322,13 +334,7 @@ RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double&
     return RowTime::kKeep;
   }
   if (log.t.empty() || t > log.t.back()) return RowTime::kKeep;
-  msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
-        " s (a logger that rounds its time: give the sample rate, --rate HZ)";
-  if (!o.lenient) return RowTime::kFail;
-  ++skipped;
-  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col()) + ": note: " + msg +
-                      ": row skipped");
-  return RowTime::kSkip;
+  return time_not_rising(o, log, t, line_no, t_col(), skipped, msg);
 }
 
 // A kept row's values (by header column, SI) into the log's columns.
@@ -385,8 +391,9 @@ bool quick_rows_possible(char sep) { return sep == ',' || sep == ';' || sep == '
 /// field is passed over. A field fast_decimal leaves to from_chars (nan, 20 digits), a
 /// ragged row, a non-finite value or text in the unnamed last column returns null:
 /// nothing decided, and row_values reads the row and words its message. Otherwise
-/// returns the line's end (its '\n', or the text's end). [p, end): the rest of the text,
-/// so fast_decimal's 8-byte loads stay inside it.
+/// returns the line's end (its '\n', or the text's end), the row's values read as
+/// row_values reads them. [p, end): the rest of the text, so fast_decimal's 8-byte loads
+/// stay inside it.
 const char* quick_row(const char* p, const char* end, const std::vector<Target>& targets, char sep, bool decimal_comma,
                       RowValues& row) {
   // trim()'s blanks, never the separator (a tab can be both).
@@ -394,35 +401,39 @@ const char* quick_row(const char* p, const char* end, const std::vector<Target>&
   const auto tail_blank = [sep](char ch) { return (ch == ' ' || ch == '\t' || ch == '\r') && ch != sep; };
   row.t = NAN;
   row.t_field = nullptr;
-  const char* f = p;  // the field's start, then where it ended
-  for (std::size_t k = 0; k < targets.size(); ++k) {
-    if (k != 0) {
-      if (f == end || *f != sep) return nullptr;  // fewer fields than the header, or a bad field
-      ++f;
-    }
-    const Target& tg = targets[k];
-    if (tg.kind == Target::kIgnored) {
-      while (f < end && *f != sep && *f != '\n') ++f;
-      continue;
-    }
-    const char* q = f;
-    while (q < end && lead_blank(*q)) ++q;
-    if (tg.kind != Target::kUnnamed) {
-      if (q < end && *q == '+') ++q;
+  // The header's columns through a local pointer (stores through row would otherwise
+  // make the compiler load the vector's data again for every field).
+  const Target* const last = targets.data() + targets.size() - 1;
+  const char* f = p;  // the field's start
+  for (const Target* tg = targets.data();; ++tg) {
+    const char* q = f;  // where the field's text ends
+    if (tg->kind == Target::kTime || tg->kind == Target::kInput || tg->kind == Target::kSensor) {
       double v;
-      if (!host::detail::fast_decimal(q, end, v, q, decimal_comma)) return nullptr;
-      v = tg.conv.to_si(v);
+      if (!host::detail::fast_decimal(f, end, v, q, decimal_comma)) {
+        // Blanks or a '+' before the number: rare, so looked for only now.
+        const char* s = f;
+        while (s < end && lead_blank(*s)) ++s;
+        if (s < end && *s == '+') ++s;
+        if (s == f || !host::detail::fast_decimal(s, end, v, q, decimal_comma)) return nullptr;
+      }
+      v = tg->conv.to_si(v);
       if (!std::isfinite(v)) return nullptr;
-      row.v[k] = v;
-      if (tg.kind == Target::kTime) {
+      row.v[static_cast<std::size_t>(tg - targets.data())] = v;
+      if (tg->kind == Target::kTime) {
         row.t = v;
         row.t_field = f;
       }
+    } else if (tg->kind == Target::kIgnored) {
+      while (q < end && *q != sep && *q != '\n') ++q;
+    }  // the unnamed column: blanks only, taken next
+    if (q == end || *q != sep) {
+      while (q < end && tail_blank(*q)) ++q;
+      // The line's end after the last field; else fewer fields than the header, or a bad field.
+      if (q == end || *q != sep) return tg == last && (q == end || *q == '\n') ? q : nullptr;
     }
-    while (q < end && tail_blank(*q)) ++q;
-    f = q;
+    if (tg == last) return nullptr;  // more fields than the header
+    f = q + 1;
   }
-  return f == end || *f == '\n' ? f : nullptr;  // else more fields than the header, or a bad last field
 }
 
 /// Any data row (the line without its '\r'), split at the separator, every field
@@ -517,16 +528,16 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
   RowValues row;
+  std::string msg;  // a time that does not rise
   std::size_t line_no = 0, pos = 0;
   while (pos <= text.size()) {
     ++line_no;
     const char* const p = text.data() + pos;
     // The common data row: after the header, not the units row, and starting with neither
     // a blank nor '#' (so neither blank nor a comment).
-    const char* const eol = quick && header_seen && line_no != units_line && p != text_end && *p != ' ' &&
-                                    *p != '\t' && *p != '#' && *p != '\r' && *p != '\n'
-                                ? quick_row(p, text_end, targets, sep, sep != ',', row)
-                                : nullptr;
+    const bool quick_line = quick && header_seen && line_no != units_line && p != text_end && *p != ' ' &&
+                            *p != '\t' && *p != '#' && *p != '\r' && *p != '\n';
+    const char* const eol = quick_line ? quick_row(p, text_end, targets, sep, sep != ',', row) : nullptr;
     std::string_view line;
     if (eol != nullptr) {
       line = std::string_view(p, static_cast<std::size_t>(eol - p));
@@ -553,7 +564,6 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     const auto t_col = [&] {
       return row.t_field ? char_column(line, static_cast<std::size_t>(row.t_field - line.data())) : std::size_t{1};
     };
-    std::string msg;
     const RowTime kept = row_time(o, log, row.t, t0, line_no, t_col, skipped, msg);
     if (kept == RowTime::kFail) return fail(line_no, t_col(), msg);
     if (kept == RowTime::kKeep) keep_row(log, targets, row.v, row.t);
