@@ -28,6 +28,9 @@ struct Target {
   enum Kind { kIgnored, kTime, kInput, kSensor, kUnnamed } kind = kIgnored;  // kUnnamed: a trailing separator's
   int index = -1;
   host::UnitConversion conv;
+  /// An input's or sensor's column of the log, once it exists (attach_columns): the log's
+  /// vectors of columns are never resized, so the pointer stays valid.
+  std::vector<double>* dst = nullptr;
 };
 
 std::string_view trim(std::string_view s) {
@@ -337,13 +340,37 @@ RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double&
   return time_not_rising(o, log, t, line_no, t_col(), skipped, msg);
 }
 
+// Each input's and sensor's target given its column of the log, so that a kept row's
+// values go straight there.
+void attach_columns(std::vector<Target>& targets, CircuitLog& log) {
+  for (Target& tg : targets) {
+    if (tg.kind == Target::kInput) tg.dst = &log.inputs[static_cast<std::size_t>(tg.index)];
+    if (tg.kind == Target::kSensor) tg.dst = &log.sensors[static_cast<std::size_t>(tg.index)];
+  }
+}
+
+// Room for `rows` rows in the log's time column and the header's input and sensor columns.
+void reserve_rows(CircuitLog& log, const std::vector<Target>& targets, std::size_t rows) {
+  log.t.reserve(rows);
+  for (const Target& tg : targets) {
+    if (tg.dst != nullptr) tg.dst->reserve(rows);
+  }
+}
+
 // A kept row's values (by header column, SI) into the log's columns.
 void keep_row(CircuitLog& log, const std::vector<Target>& targets, const std::vector<double>& values, double t) {
   log.t.push_back(t);
   for (std::size_t k = 0; k < targets.size(); ++k) {
-    const Target& tg = targets[k];
-    if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-    if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+    if (targets[k].dst != nullptr) targets[k].dst->push_back(values[k]);
+  }
+}
+
+// The values of a row that is not kept, taken back (quick_row and row_values append an
+// input's or sensor's value as they read it): every such column as long as the time
+// column again.
+void drop_unkept(CircuitLog& log, const std::vector<Target>& targets) {
+  for (const Target& tg : targets) {
+    if (tg.dst != nullptr) tg.dst->resize(log.t.size());
   }
 }
 
@@ -365,10 +392,10 @@ CircuitLog failed(CircuitLog& log, std::size_t line, std::size_t col, std::strin
   return log;
 }
 
-/// A data row read: its values by header column (SI; ignored columns untouched), its
-/// time, and where the time field starts (null: no time column) for the messages.
-struct RowValues {
-  std::vector<double> v;
+/// A data row's time, and where the time field starts (null: no time column) for the
+/// messages. Its other values are appended to their columns of the log as they are read
+/// (Target::dst), and taken back (drop_unkept) when the row is not kept.
+struct RowTimeField {
   double t = NAN;
   const char* t_field = nullptr;
 };
@@ -390,19 +417,19 @@ bool quick_rows_possible(char sep) { return sep == ',' || sep == ';' || sep == '
 /// separator, with the blanks and '+' parse_number trims skipped around it; an ignored
 /// field is passed over. A field fast_decimal leaves to from_chars (nan, 20 digits), a
 /// ragged row, a non-finite value or text in the unnamed last column returns null:
-/// nothing decided, and row_values reads the row and words its message. Otherwise
-/// returns the line's end (its '\n', or the text's end), the row's values read as
-/// row_values reads them. [p, end): the rest of the text, so fast_decimal's 8-byte loads
-/// stay inside it.
+/// nothing decided (what it appended is dropped: drop_unkept), and row_values reads the
+/// row and words its message. Otherwise returns the line's end (its '\n', or the text's
+/// end), the row's values read as row_values reads them. [p, end): the rest of the text,
+/// so fast_decimal's 8-byte loads stay inside it.
 const char* quick_row(const char* p, const char* end, const std::vector<Target>& targets, char sep, bool decimal_comma,
-                      RowValues& row) {
+                      RowTimeField& row) {
   // trim()'s blanks, never the separator (a tab can be both).
   const auto lead_blank = [sep](char ch) { return (ch == ' ' || ch == '\t') && ch != sep; };
   const auto tail_blank = [sep](char ch) { return (ch == ' ' || ch == '\t' || ch == '\r') && ch != sep; };
   row.t = NAN;
   row.t_field = nullptr;
-  // The header's columns through a local pointer (stores through row would otherwise
-  // make the compiler load the vector's data again for every field).
+  // The header's columns through a local pointer: every push_back stores a pointer, which
+  // the compiler would otherwise take to maybe change the vector's own.
   const Target* const last = targets.data() + targets.size() - 1;
   const char* f = p;  // the field's start
   for (const Target* tg = targets.data();; ++tg) {
@@ -418,10 +445,11 @@ const char* quick_row(const char* p, const char* end, const std::vector<Target>&
       }
       v = tg->conv.to_si(v);
       if (!std::isfinite(v)) return nullptr;
-      row.v[static_cast<std::size_t>(tg - targets.data())] = v;
       if (tg->kind == Target::kTime) {
         row.t = v;
         row.t_field = f;
+      } else {
+        tg->dst->push_back(v);
       }
     } else if (tg->kind == Target::kIgnored) {
       while (q < end && *q != sep && *q != '\n') ++q;
@@ -437,10 +465,11 @@ const char* quick_row(const char* p, const char* end, const std::vector<Target>&
 }
 
 /// Any data row (the line without its '\r'), split at the separator, every field
-/// trimmed: the values, or the first bad field (a ragged row first) at its column.
+/// trimmed: its values read (the time into row, the others appended to their columns),
+/// or the first bad field (a ragged row first) at its column.
 std::optional<RowError> row_values(std::string_view line, const std::vector<Target>& targets, char sep,
                                    std::vector<std::string_view>& fields, std::vector<std::size_t>& offs,
-                                   RowValues& row) {
+                                   RowTimeField& row) {
   split(line, sep, fields, offs);
   if (fields.size() != targets.size()) {
     const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
@@ -464,10 +493,11 @@ std::optional<RowError> row_values(std::string_view line, const std::vector<Targ
     }
     v = tg.conv.to_si(v);
     if (!std::isfinite(v)) return RowError{col(k), "value is not finite"};
-    row.v[k] = v;
     if (tg.kind == Target::kTime) {
       row.t = v;
       row.t_field = line.data() + offs[k];
+    } else {
+      tg.dst->push_back(v);
     }
   }
   return std::nullopt;
@@ -527,7 +557,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   const char* const text_end = text.data() + text.size();
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
-  RowValues row;
+  RowTimeField row;
   std::string msg;  // a time that does not rise
   std::size_t line_no = 0, pos = 0;
   while (pos <= text.size()) {
@@ -538,6 +568,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     const bool quick_line = quick && header_seen && line_no != units_line && p != text_end && *p != ' ' &&
                             *p != '\t' && *p != '#' && *p != '\r' && *p != '\n';
     const char* const eol = quick_line ? quick_row(p, text_end, targets, sep, sep != ',', row) : nullptr;
+    if (quick_line && eol == nullptr) drop_unkept(log, targets);  // the general path reads the row again
     std::string_view line;
     if (eol != nullptr) {
       line = std::string_view(p, static_cast<std::size_t>(eol - p));
@@ -555,10 +586,13 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
       if (!header_seen) {
         header_seen = true;
         if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
-        row.v.assign(targets.size(), 0.0);
+        attach_columns(targets, log);
         continue;
       }
-      if (auto e = row_values(line, targets, sep, fields, offs, row)) return stop(line_no, e->column, e->message);
+      if (auto e = row_values(line, targets, sep, fields, offs, row)) {
+        drop_unkept(log, targets);
+        return stop(line_no, e->column, e->message);
+      }
     }
     ++data_rows;
     const auto t_col = [&] {
@@ -566,7 +600,8 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     };
     const RowTime kept = row_time(o, log, row.t, t0, line_no, t_col, skipped, msg);
     if (kept == RowTime::kFail) return fail(line_no, t_col(), msg);
-    if (kept == RowTime::kKeep) keep_row(log, targets, row.v, row.t);
+    if (kept == RowTime::kKeep) log.t.push_back(row.t);
+    if (kept == RowTime::kSkip) drop_unkept(log, targets);
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
   if (log.error) {
@@ -701,11 +736,8 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
     }
   }
   if (rows == 0) return fail(1, 1, "no data rows after the header");
-  log.t.reserve(rows);
-  for (std::size_t k = 0; k < targets.size(); ++k) {
-    if (targets[k].kind == Target::kInput) log.inputs[static_cast<std::size_t>(targets[k].index)].reserve(rows);
-    if (targets[k].kind == Target::kSensor) log.sensors[static_cast<std::size_t>(targets[k].index)].reserve(rows);
-  }
+  attach_columns(targets, log);
+  reserve_rows(log, targets, rows);
   std::size_t skipped = 0;
   double t0 = 0.0;
   std::vector<double> values(targets.size(), 0.0);
