@@ -1,5 +1,6 @@
 #include "hstmon_circuit/circuit_log.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
 #include "fast_decimal.hpp"  // ports/host's exact fast path for the numbers loggers write
+#include "row_estimate.hpp"  // and its row count for reserving the columns
 
 namespace hstmon::circuit_tools {
 
@@ -587,6 +589,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
         header_seen = true;
         if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
         attach_columns(targets, log);
+        reserve_rows(log, targets, host::detail::estimate_rows(text.data() + std::min(pos, text.size()), text_end));
         continue;
       }
       if (auto e = row_values(line, targets, sep, fields, offs, row)) {
