@@ -505,6 +505,27 @@ std::optional<RowError> row_values(std::string_view line, const std::vector<Targ
   return std::nullopt;
 }
 
+// The text as the rows are read: its head in UTF-8 (converted into `storage` when it
+// was not), without a BOM. A NUL byte is an error at its place: not a text log.
+std::optional<SourceError> text_to_read(std::string_view& text, const host::ReadOptions& o, const std::string& path,
+                                        std::string& storage) {
+  text = host::log_text_in_utf8(text, o.encoding, storage);
+  if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
+      static_cast<unsigned char>(text[2]) == 0xBF) {
+    text.remove_prefix(3);
+  }
+  const std::size_t z = text.find('\0');
+  if (z == std::string_view::npos) return std::nullopt;
+  std::size_t line = 1, start = 0;
+  for (std::size_t i = 0; i < z; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      start = i + 1;
+    }
+  }
+  return SourceError{path, line, char_column(text.substr(start), z - start), "NUL byte: not a text log"};
+}
+
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
@@ -532,22 +553,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
   std::string converted;       // the text with its head in UTF-8, when it was not
-  text = host::log_text_in_utf8(text, o.encoding, converted);
-  if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
-      static_cast<unsigned char>(text[2]) == 0xBF) {
-    text.remove_prefix(3);
-  }
-  if (text.find('\0') != std::string_view::npos) {
-    std::size_t line = 1, start = 0;
-    const std::size_t z = text.find('\0');
-    for (std::size_t i = 0; i < z; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        start = i + 1;
-      }
-    }
-    return fail(line, char_column(text.substr(start), z - start), "NUL byte: not a text log");
-  }
+  if (auto e = text_to_read(text, o, log.path, converted)) return fail(e->line, e->column, e->message);
 
   const Layout lay = find_layout(text, o, log);
   const std::size_t header_line = lay.header_line, units_line = lay.units_line;
