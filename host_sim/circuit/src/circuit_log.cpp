@@ -1,5 +1,6 @@
 #include "hstmon_circuit/circuit_log.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -15,6 +16,8 @@
 #include "hstmon_host/text_encoding.hpp"
 #include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
+#include "fast_decimal.hpp"  // ports/host's exact fast path for the numbers loggers write
+#include "row_estimate.hpp"  // and its row count for reserving the columns
 
 namespace hstmon::circuit_tools {
 
@@ -27,6 +30,9 @@ struct Target {
   enum Kind { kIgnored, kTime, kInput, kSensor, kUnnamed } kind = kIgnored;  // kUnnamed: a trailing separator's
   int index = -1;
   host::UnitConversion conv;
+  /// An input's or sensor's column of the log, once it exists (attach_columns): the log's
+  /// vectors of columns are never resized, so the pointer stays valid.
+  std::vector<double>* dst = nullptr;
 };
 
 std::string_view trim(std::string_view s) {
@@ -309,15 +315,9 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
 // index's (t0 the first row's logged time). The one rule of the text and column readers.
 enum class RowTime { kKeep, kSkip, kFail };
 
-RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
-                 std::size_t t_col, std::size_t& skipped, std::string& msg) {
-  if (o.rate > 0.0) {
-    // Time from the row index: a rounded or missing time column no longer matters.
-    if (log.t.empty() && std::isfinite(t)) t0 = t;
-    t = t0 + static_cast<double>(log.t.size()) / o.rate;
-    return RowTime::kKeep;
-  }
-  if (log.t.empty() || t > log.t.back()) return RowTime::kKeep;
+// row_time's rare case, out of the row loop: the time does not rise (t_col: its column).
+RowTime time_not_rising(const host::ReadOptions& o, CircuitLog& log, double t, std::size_t line_no, std::size_t t_col,
+                        std::size_t& skipped, std::string& msg) {
   msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
         " s (a logger that rounds its time: give the sample rate, --rate HZ)";
   if (!o.lenient) return RowTime::kFail;
@@ -327,13 +327,52 @@ RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double&
   return RowTime::kSkip;
 }
 
+// `t_col()` is the time field's column, counted only when the time does not rise
+// (counting a text row's characters costs more than the rest of the row).
+template <class TimeColumn>
+RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
+                 const TimeColumn& t_col, std::size_t& skipped, std::string& msg) {
+  if (o.rate > 0.0) {
+    // Time from the row index: a rounded or missing time column no longer matters.
+    if (log.t.empty() && std::isfinite(t)) t0 = t;
+    t = t0 + static_cast<double>(log.t.size()) / o.rate;
+    return RowTime::kKeep;
+  }
+  if (log.t.empty() || t > log.t.back()) return RowTime::kKeep;
+  return time_not_rising(o, log, t, line_no, t_col(), skipped, msg);
+}
+
+// Each input's and sensor's target given its column of the log, so that a kept row's
+// values go straight there.
+void attach_columns(std::vector<Target>& targets, CircuitLog& log) {
+  for (Target& tg : targets) {
+    if (tg.kind == Target::kInput) tg.dst = &log.inputs[static_cast<std::size_t>(tg.index)];
+    if (tg.kind == Target::kSensor) tg.dst = &log.sensors[static_cast<std::size_t>(tg.index)];
+  }
+}
+
+// Room for `rows` rows in the log's time column and the header's input and sensor columns.
+void reserve_rows(CircuitLog& log, const std::vector<Target>& targets, std::size_t rows) {
+  log.t.reserve(rows);
+  for (const Target& tg : targets) {
+    if (tg.dst != nullptr) tg.dst->reserve(rows);
+  }
+}
+
 // A kept row's values (by header column, SI) into the log's columns.
 void keep_row(CircuitLog& log, const std::vector<Target>& targets, const std::vector<double>& values, double t) {
   log.t.push_back(t);
   for (std::size_t k = 0; k < targets.size(); ++k) {
-    const Target& tg = targets[k];
-    if (tg.kind == Target::kInput) log.inputs[static_cast<std::size_t>(tg.index)].push_back(values[k]);
-    if (tg.kind == Target::kSensor) log.sensors[static_cast<std::size_t>(tg.index)].push_back(values[k]);
+    if (targets[k].dst != nullptr) targets[k].dst->push_back(values[k]);
+  }
+}
+
+// The values of a row that is not kept, taken back (quick_row and row_values append an
+// input's or sensor's value as they read it): every such column as long as the time
+// column again.
+void drop_unkept(CircuitLog& log, const std::vector<Target>& targets) {
+  for (const Target& tg : targets) {
+    if (tg.dst != nullptr) tg.dst->resize(log.t.size());
   }
 }
 
@@ -353,6 +392,138 @@ CircuitLog failed(CircuitLog& log, std::size_t line, std::size_t col, std::strin
   for (auto& v : log.inputs) v.clear();
   for (auto& v : log.sensors) v.clear();
   return log;
+}
+
+/// A data row's time, and where the time field starts (null: no time column) for the
+/// messages. Its other values are appended to their columns of the log as they are read
+/// (Target::dst), and taken back (drop_unkept) when the row is not kept.
+struct RowTimeField {
+  double t = NAN;
+  const char* t_field = nullptr;
+};
+
+/// A bad data row: the 1-based character column of the field, and what is wrong.
+struct RowError {
+  std::size_t column;
+  std::string message;
+};
+
+/// True when the separator can never be part of a number fast_decimal reads (a decimal
+/// comma is read only where the separator is not ','), so a number that stops at it
+/// ends the field there: quick_row may read the rows.
+bool quick_rows_possible(char sep) { return sep == ',' || sep == ';' || sep == '\t'; }
+
+/// The common data row in one pass; what it reads is what row_values would. Each number
+/// field is one fast_decimal (bit-identical to the std::from_chars that parse_number
+/// uses, which is why the fast path may decide alone) from the field's start to its
+/// separator, with the blanks and '+' parse_number trims skipped around it; an ignored
+/// field is passed over. A field fast_decimal leaves to from_chars (nan, 20 digits), a
+/// ragged row, a non-finite value or text in the unnamed last column returns null:
+/// nothing decided (what it appended is dropped: drop_unkept), and row_values reads the
+/// row and words its message. Otherwise returns the line's end (its '\n', or the text's
+/// end), the row's values read as row_values reads them. [p, end): the rest of the text,
+/// so fast_decimal's 8-byte loads stay inside it.
+const char* quick_row(const char* p, const char* end, const std::vector<Target>& targets, char sep, bool decimal_comma,
+                      RowTimeField& row) {
+  // trim()'s blanks, never the separator (a tab can be both).
+  const auto lead_blank = [sep](char ch) { return (ch == ' ' || ch == '\t') && ch != sep; };
+  const auto tail_blank = [sep](char ch) { return (ch == ' ' || ch == '\t' || ch == '\r') && ch != sep; };
+  row.t = NAN;
+  row.t_field = nullptr;
+  // The header's columns through a local pointer: every push_back stores a pointer, which
+  // the compiler would otherwise take to maybe change the vector's own.
+  const Target* const last = targets.data() + targets.size() - 1;
+  const char* f = p;  // the field's start
+  for (const Target* tg = targets.data();; ++tg) {
+    const char* q = f;  // where the field's text ends
+    if (tg->kind == Target::kTime || tg->kind == Target::kInput || tg->kind == Target::kSensor) {
+      double v;
+      if (!host::detail::fast_decimal(f, end, v, q, decimal_comma)) {
+        // Blanks or a '+' before the number: rare, so looked for only now.
+        const char* s = f;
+        while (s < end && lead_blank(*s)) ++s;
+        if (s < end && *s == '+') ++s;
+        if (s == f || !host::detail::fast_decimal(s, end, v, q, decimal_comma)) return nullptr;
+      }
+      v = tg->conv.to_si(v);
+      if (!std::isfinite(v)) return nullptr;
+      if (tg->kind == Target::kTime) {
+        row.t = v;
+        row.t_field = f;
+      } else {
+        tg->dst->push_back(v);
+      }
+    } else if (tg->kind == Target::kIgnored) {
+      while (q < end && *q != sep && *q != '\n') ++q;
+    }  // the unnamed column: blanks only, taken next
+    if (q == end || *q != sep) {
+      while (q < end && tail_blank(*q)) ++q;
+      // The line's end after the last field; else fewer fields than the header, or a bad field.
+      if (q == end || *q != sep) return tg == last && (q == end || *q == '\n') ? q : nullptr;
+    }
+    if (tg == last) return nullptr;  // more fields than the header
+    f = q + 1;
+  }
+}
+
+/// Any data row (the line without its '\r'), split at the separator, every field
+/// trimmed: its values read (the time into row, the others appended to their columns),
+/// or the first bad field (a ragged row first) at its column.
+std::optional<RowError> row_values(std::string_view line, const std::vector<Target>& targets, char sep,
+                                   std::vector<std::string_view>& fields, std::vector<std::size_t>& offs,
+                                   RowTimeField& row) {
+  split(line, sep, fields, offs);
+  if (fields.size() != targets.size()) {
+    const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
+    return RowError{char_column(line, off),
+                    "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size())};
+  }
+  // A field's column is counted only for a message.
+  const auto col = [&](std::size_t k) { return char_column(line, offs[k]); };
+  row.t = NAN;
+  row.t_field = nullptr;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const Target& tg = targets[k];
+    if (tg.kind == Target::kIgnored) continue;
+    if (tg.kind == Target::kUnnamed) {
+      if (!trim(fields[k]).empty()) return RowError{col(k), host::kUnnamedValueMessage};
+      continue;
+    }
+    double v = 0.0;
+    if (!parse_number(fields[k], sep != ',', v)) {
+      return RowError{col(k), "not a number: '" + std::string(trim(fields[k])) + "'"};
+    }
+    v = tg.conv.to_si(v);
+    if (!std::isfinite(v)) return RowError{col(k), "value is not finite"};
+    if (tg.kind == Target::kTime) {
+      row.t = v;
+      row.t_field = line.data() + offs[k];
+    } else {
+      tg.dst->push_back(v);
+    }
+  }
+  return std::nullopt;
+}
+
+// The text as the rows are read: its head in UTF-8 (converted into `storage` when it
+// was not), without a BOM. A NUL byte is an error at its place: not a text log.
+std::optional<SourceError> text_to_read(std::string_view& text, const host::ReadOptions& o, const std::string& path,
+                                        std::string& storage) {
+  text = host::log_text_in_utf8(text, o.encoding, storage);
+  if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
+      static_cast<unsigned char>(text[2]) == 0xBF) {
+    text.remove_prefix(3);
+  }
+  const std::size_t z = text.find('\0');
+  if (z == std::string_view::npos) return std::nullopt;
+  std::size_t line = 1, start = 0;
+  for (std::size_t i = 0; i < z; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      start = i + 1;
+    }
+  }
+  return SourceError{path, line, char_column(text.substr(start), z - start), "NUL byte: not a text log"};
 }
 
 }  // namespace
@@ -382,22 +553,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
   std::string converted;       // the text with its head in UTF-8, when it was not
-  text = host::log_text_in_utf8(text, o.encoding, converted);
-  if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF && static_cast<unsigned char>(text[1]) == 0xBB &&
-      static_cast<unsigned char>(text[2]) == 0xBF) {
-    text.remove_prefix(3);
-  }
-  if (text.find('\0') != std::string_view::npos) {
-    std::size_t line = 1, start = 0;
-    const std::size_t z = text.find('\0');
-    for (std::size_t i = 0; i < z; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        start = i + 1;
-      }
-    }
-    return fail(line, char_column(text.substr(start), z - start), "NUL byte: not a text log");
-  }
+  if (auto e = text_to_read(text, o, log.path, converted)) return fail(e->line, e->column, e->message);
 
   const Layout lay = find_layout(text, o, log);
   const std::size_t header_line = lay.header_line, units_line = lay.units_line;
@@ -405,63 +561,56 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
 
   std::vector<Target> targets;
   bool header_seen = false;
+  const bool quick = quick_rows_possible(sep);
+  const char* const text_end = text.data() + text.size();
   std::vector<std::string_view> fields;
   std::vector<std::size_t> offs;
-  std::vector<double> values;
+  RowTimeField row;
+  std::string msg;  // a time that does not rise
   std::size_t line_no = 0, pos = 0;
   while (pos <= text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    std::string_view line = text.substr(pos, (nl == std::string_view::npos ? text.size() : nl) - pos);
-    pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
     ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    const std::string_view body = trim(line);
-    if (body.empty() || body.front() == '#') continue;
+    const char* const p = text.data() + pos;
+    // The common data row: after the header, not the units row, and starting with neither
+    // a blank nor '#' (so neither blank nor a comment).
+    const bool quick_line = quick && header_seen && line_no != units_line && p != text_end && *p != ' ' &&
+                            *p != '\t' && *p != '#' && *p != '\r' && *p != '\n';
+    const char* const eol = quick_line ? quick_row(p, text_end, targets, sep, sep != ',', row) : nullptr;
+    if (quick_line && eol == nullptr) drop_unkept(log, targets);  // the general path reads the row again
+    std::string_view line;
+    if (eol != nullptr) {
+      line = std::string_view(p, static_cast<std::size_t>(eol - p));
+      pos = eol == text_end ? text.size() + 1 : static_cast<std::size_t>(eol - text.data()) + 1;
+    } else {
+      const std::size_t nl = text.find('\n', pos);
+      line = text.substr(pos, (nl == std::string_view::npos ? text.size() : nl) - pos);
+      pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      const std::string_view body = trim(line);
+      if (body.empty() || body.front() == '#') continue;
 
-    if (!header_seen && line_no < header_line) continue;  // metadata, or units above the names
-    if (line_no == units_line) continue;                   // taken with the header
-    if (!header_seen) {
-      header_seen = true;
-      if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
-      continue;
-    }
-
-    split(line, sep, fields, offs);
-    ++data_rows;
-    if (fields.size() != targets.size()) {
-      const std::size_t off = fields.size() > targets.size() ? offs[targets.size()] : line.size();
-      return stop(line_no, char_column(line, off),
-                  "row has " + std::to_string(fields.size()) + " fields, the header " + std::to_string(targets.size()));
-    }
-    // The row's values first, kept only when the whole row is good.
-    values.assign(fields.size(), 0.0);
-    double t = NAN;
-    std::size_t t_col = 1;
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      const Target& tg = targets[k];
-      if (tg.kind == Target::kIgnored) continue;
-      const std::size_t col = char_column(line, offs[k]);
-      if (tg.kind == Target::kUnnamed) {
-        if (!trim(fields[k]).empty()) return stop(line_no, col, host::kUnnamedValueMessage);
+      if (!header_seen && line_no < header_line) continue;  // metadata, or units above the names
+      if (line_no == units_line) continue;                   // taken with the header
+      if (!header_seen) {
+        header_seen = true;
+        if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
+        attach_columns(targets, log);
+        reserve_rows(log, targets, host::detail::estimate_rows(text.data() + std::min(pos, text.size()), text_end));
         continue;
       }
-      double v = 0.0;
-      if (!parse_number(fields[k], sep != ',', v)) {
-        return stop(line_no, col, "not a number: '" + std::string(trim(fields[k])) + "'");
-      }
-      v = tg.conv.to_si(v);
-      if (!std::isfinite(v)) return stop(line_no, col, "value is not finite");
-      values[k] = v;
-      if (tg.kind == Target::kTime) {
-        t = v;
-        t_col = col;
+      if (auto e = row_values(line, targets, sep, fields, offs, row)) {
+        drop_unkept(log, targets);
+        return stop(line_no, e->column, e->message);
       }
     }
-    std::string msg;
-    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
-    if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
-    if (kept == RowTime::kSkip) continue;
-    keep_row(log, targets, values, t);
+    ++data_rows;
+    const auto t_col = [&] {
+      return row.t_field ? char_column(line, static_cast<std::size_t>(row.t_field - line.data())) : std::size_t{1};
+    };
+    const RowTime kept = row_time(o, log, row.t, t0, line_no, t_col, skipped, msg);
+    if (kept == RowTime::kFail) return fail(line_no, t_col(), msg);
+    if (kept == RowTime::kKeep) log.t.push_back(row.t);
+    if (kept == RowTime::kSkip) drop_unkept(log, targets);
   }
   if (!header_seen) return fail(line_no, 1, "empty log: no header row");
   if (log.error) {
@@ -596,11 +745,8 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
     }
   }
   if (rows == 0) return fail(1, 1, "no data rows after the header");
-  log.t.reserve(rows);
-  for (std::size_t k = 0; k < targets.size(); ++k) {
-    if (targets[k].kind == Target::kInput) log.inputs[static_cast<std::size_t>(targets[k].index)].reserve(rows);
-    if (targets[k].kind == Target::kSensor) log.sensors[static_cast<std::size_t>(targets[k].index)].reserve(rows);
-  }
+  attach_columns(targets, log);
+  reserve_rows(log, targets, rows);
   std::size_t skipped = 0;
   double t0 = 0.0;
   std::vector<double> values(targets.size(), 0.0);
@@ -629,7 +775,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
       return log;  // lenient: the rows before the bad one
     }
     std::string msg;
-    const RowTime kept = row_time(o, log, t, t0, line_no, t_col, skipped, msg);
+    const RowTime kept = row_time(o, log, t, t0, line_no, [t_col] { return t_col; }, skipped, msg);
     if (kept == RowTime::kFail) return fail(line_no, t_col, msg);
     if (kept == RowTime::kSkip) continue;
     keep_row(log, targets, values, t);

@@ -20,6 +20,7 @@
 #include "hstmon_host/text_encoding.hpp"
 #include "hstmon_host/text_source.hpp"
 #include "fast_decimal.hpp"
+#include "row_estimate.hpp"
 #include "text_util.hpp"
 #include "utf8_check.hpp"
 
@@ -62,19 +63,6 @@ struct ColumnSpec {
 
 /// Largest field the decimal-comma path copies (longer fields are refused as bad numbers).
 constexpr std::size_t kMaxCommaField = 64;
-
-/// Rows to reserve for the data in [p, end): the line density of the first 256 KiB
-/// scaled to the whole text, with 10 % margin (exact for small texts). A longer tail
-/// only costs one regrowth; counting every line would cost a full pass.
-std::size_t estimate_rows(const char* p, const char* end) noexcept {
-  constexpr std::size_t kSample = std::size_t{256} << 10;
-  const auto total = static_cast<std::size_t>(end - p);
-  const std::size_t sample = std::min(total, kSample);
-  const auto lines = static_cast<std::size_t>(std::count(p, p + sample, '\n')) + 1;
-  if (sample == total) return lines;
-  const double per_byte = static_cast<double>(lines) / static_cast<double>(sample);
-  return static_cast<std::size_t>(per_byte * static_cast<double>(total) * 1.1) + 16;
-}
 
 /// Splits [begin, end) at `sep`; each field trimmed and unquoted (log_layout.hpp).
 std::vector<Field> split_fields(const char* begin, const char* end, char sep) {
@@ -754,7 +742,7 @@ class Parser {
 
   void parse_rows(Line line) {
     delims_.resize(cols_.size());
-    const std::size_t max_rows = src_ != nullptr ? chunk_rows_ : estimate_rows(line.begin, end_);
+    const std::size_t max_rows = src_ != nullptr ? chunk_rows_ : detail::estimate_rows(line.begin, end_);
     for (ColumnSpec& c : cols_) {
       if (c.dst != nullptr) c.dst->reserve(max_rows);
     }
