@@ -7,6 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "cli_circuit_gap_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
@@ -27,6 +28,48 @@ std::string verdict_words(const gap::CircuitGapResult& r) {
     return r.verdict + ": a parameter off beyond its stated uncertainty; hstmon identify --circuit fits it";
   }
   return r.verdict;
+}
+
+void print_json(const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResult& r) {
+  nlohmann::json noise = nlohmann::json::object();
+  for (std::size_t ch = 0; ch < r.noise_fit.size() && ch < c.file.sensors.size(); ++ch) {
+    noise[c.file.sensors[ch].name] = {{"fit", r.noise_fit[ch]}, {"check", r.noise_check[ch]}};
+  }
+  nlohmann::json where = nlohmann::json::object();
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = number_or_null(r.mean_fit[ch]);
+  nlohmann::json ranked = nlohmann::json::array();
+  for (const auto& e : r.ranked) {
+    ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", gap::effect_unit(c, e.effect)},
+                      {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)},
+                      {"z_check", number_or_null(e.z_check)}});
+  }
+  const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
+                            {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", number_or_null(r.rms_check)},
+                            {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict},
+                            {"z_fit", number_or_null(r.z_fit)}, {"z_check", number_or_null(r.z_check)},
+                            {"noise", noise}, {"evidence_missing", r.evidence_missing}, {"notes", r.notes}};
+  fmt::print("{}\n", j.dump());
+}
+
+std::string gap_text(const CircuitGapArgs& a, const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResult& r) {
+  std::string t = fmt::format("hstmon gap --circuit {}: fit {} ({} operating points), check {} ({})\n", a.circuit, a.fit,
+                              r.fit_points, a.check, r.check_points);
+  t += fmt::format("\n  verdict: {}\n", verdict_words(r));
+  for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
+  if (r.verdict == "insufficient_data") return t;
+  t += fmt::format("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n",
+                   r.z_fit, r.z_check);
+  t += "\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ";
+  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) t += fmt::format(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
+  t += fmt::format("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
+  t += fmt::format("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS",
+                   "check RMS", "shrink");
+  for (const auto& e : r.ranked) {
+    const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
+    t += fmt::format("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude,
+                     gap::effect_unit(c, e.effect), e.rms_fit, e.rms_check, shrink);
+  }
+  return t;
 }
 
 }  // namespace
@@ -52,43 +95,20 @@ int run_circuit_gap(const CircuitGapArgs& a) {
     fmt::print(stderr, "hstmon gap --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;
   }
-  nlohmann::json noise = nlohmann::json::object();
-  for (std::size_t ch = 0; ch < r.noise_fit.size() && ch < c.file.sensors.size(); ++ch) {
-    noise[c.file.sensors[ch].name] = {{"fit", r.noise_fit[ch]}, {"check", r.noise_check[ch]}};
-  }
+  const std::string text = gap_text(a, c, r);
   if (a.json) {
-    nlohmann::json where = nlohmann::json::object();
-    for (std::size_t ch = 0; ch < r.channels.size(); ++ch) where[r.channels[ch]] = number_or_null(r.mean_fit[ch]);
-    nlohmann::json ranked = nlohmann::json::array();
-    for (const auto& e : r.ranked) {
-      ranked.push_back({{"effect", e.effect.name}, {"magnitude", number_or_null(e.magnitude)}, {"unit", gap::effect_unit(c, e.effect)},
-                        {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)},
-                        {"z_check", number_or_null(e.z_check)}});
-    }
-    const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
-                              {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", number_or_null(r.rms_check)},
-                              {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict},
-                              {"z_fit", number_or_null(r.z_fit)}, {"z_check", number_or_null(r.z_check)},
-                              {"noise", noise}, {"evidence_missing", r.evidence_missing}, {"notes", r.notes}};
-    fmt::print("{}\n", j.dump());
-    return kExitOk;
+    print_json(c, r);
+  } else {
+    fmt::print("{}", text);
   }
-  fmt::print("hstmon gap --circuit {}: fit {} ({} operating points), check {} ({})\n", a.circuit, a.fit, r.fit_points,
-             a.check, r.check_points);
-  fmt::print("\n  verdict: {}\n", verdict_words(r));
-  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
-  if (r.verdict == "insufficient_data") return kExitOk;
-  fmt::print("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n", r.z_fit,
-             r.z_check);
-  fmt::print("\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ");
-  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) fmt::print(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
-  fmt::print("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
-  fmt::print("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS", "check RMS",
-             "shrink");
-  for (const auto& e : r.ranked) {
-    const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
-    fmt::print("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude, gap::effect_unit(c, e.effect),
-               e.rms_fit, e.rms_check, shrink);
+  if (!a.report.empty()) {
+    std::string warning;
+    const std::string err = write_circuit_report(a.report, circuit_gap_report(a, c, r, verdict_words(r), text), warning);
+    if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
+    if (!err.empty()) {
+      fmt::print(stderr, "hstmon gap: error: {}\n", err);
+      return kExitBadInput;
+    }
   }
   return kExitOk;
 }

@@ -14,6 +14,7 @@ struct CircuitGapArgs {
   std::string params;  ///< "" = <stem>.params.json beside it
   std::string fit, check;
   bool json = false;
+  std::string report;      ///< report folder ("" = none): report.md, report.html, figure.svg
   host::ReadOptions read;  ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_circuit_identify_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
@@ -19,22 +20,25 @@ namespace hstmon::cli {
 
 namespace {
 
-void print_human(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
-  fmt::print("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit, a.logs.size(), r.points.size());
-  for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
-  fmt::print("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change", "std. error",
-             "monitor's bound");
+std::string human_text(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
+                       const ident::CircuitFitResult& r) {
+  std::string t = fmt::format("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit,
+                              a.logs.size(), r.points.size());
+  for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
+  t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",
+                   "std. error", "monitor's bound");
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const int k = c.file.param_index(r.names[j]);
     const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
     const std::string bound = fmt::format("±{:.2g}% {}", 100.0 * r.uncertainty[j], r.pinned[j] ? "(was " : "(kept");
-    fmt::print("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j], r.value[j],
-               100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
-               r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
+    t += fmt::format("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j],
+                     r.value[j], 100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
+                     r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
   }
-  fmt::print("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n", r.rms_before,
-             r.rms_after, r.status);
-  if (!a.out.empty()) fmt::print("  parameter file written: {}\n", a.out);
+  t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
+                   r.rms_before, r.rms_after, r.status);
+  if (!a.out.empty()) t += fmt::format("  parameter file written: {}\n", a.out);
+  return t;
 }
 
 void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
@@ -100,10 +104,20 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
       return kExitBadInput;
     }
   }
+  const std::string text = human_text(a, c, r);
   if (a.json) {
     print_json(c, r);
   } else {
-    print_human(a, c, r);
+    fmt::print("{}", text);
+  }
+  if (!a.report.empty()) {
+    std::string warning;
+    const std::string err = write_circuit_report(a.report, circuit_identify_report(a, c, r, text), warning);
+    if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
+    if (!err.empty()) {
+      fmt::print(stderr, "hstmon identify: error: {}\n", err);
+      return kExitBadInput;
+    }
   }
   return kExitOk;
 }

@@ -15,6 +15,7 @@ struct CircuitIdentifyArgs {
   std::string params;              ///< starting values ("" = <stem>.params.json beside it)
   std::vector<std::string> fit;    ///< parameter names
   std::string out;                 ///< parameter file to write ("" = none)
+  std::string report;              ///< report folder ("" = none): report.md, report.html, figure.svg
   bool json = false;
   double min_duration = 0.2;       ///< [s]
   host::ReadOptions read;          ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)

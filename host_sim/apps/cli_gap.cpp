@@ -111,7 +111,7 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       exit_code = run_gap_command(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--report", "--refit-nominal", "--effects", "--max-step"})) {
+    if (!refuse_with_circuit(*cmd, {"--refit-nominal", "--effects", "--max-step"})) {
       exit_code = kExitUsage;
       return;
     }
@@ -127,6 +127,7 @@ void add_gap_command(CLI::App& app, int& exit_code) {
     c.fit = args->fit;
     c.check = args->check;
     c.json = args->json;
+    c.report = args->report;
     exit_code = run_circuit_gap(c);
   });
 }

@@ -427,7 +427,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "parameter file to write (JSON, read by replay --params)");
   cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
   cmd->add_flag("--json", args->json, "print the results as JSON instead of the human report");
-  cmd->add_option("--report", args->report, "directory for report.txt, report.json, report.html (one self-contained page) and SVG plots");
+  cmd->add_option("--report", args->report, "directory for the report: report.html (one self-contained page) and SVG plots; the thesis rig adds report.txt and report.json, a circuit report.md, figure.svg and plots.gp");
   add_log_options(*cmd, args->io, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)",
                   "--params,--prior");
   cmd->add_option("--min-duration", args->min_duration, "shortest steady window [s]")->capture_default_str();
@@ -462,7 +462,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
       exit_code = run_identify(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--header", "--report", "--min-samples", "--assume-steady", "--setting-per-window",
+    if (!refuse_with_circuit(*cmd, {"--header", "--min-samples", "--assume-steady", "--setting-per-window",
                             "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
                             "--studies"})) {
       exit_code = kExitUsage;
@@ -481,6 +481,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
     c.fit = args->fit;
     c.out = args->out;
     c.json = args->json;
+    c.report = args->report;
     if (cmd->count("--min-duration") > 0) c.min_duration = args->min_duration;
     exit_code = run_circuit_identify(c);
   });

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -238,6 +241,45 @@ TEST(CircuitCli, ReplaySaysWhichParameterLeadsEachBound) {
     }
   }
   EXPECT_TRUE(seen) << json.out;
+}
+
+// identify --circuit and gap --circuit write a report folder as replay does: report.md
+// and report.html with the verdict first and the values in an engineer's units, and the
+// figure's data and script, which redraw it from inside the folder.
+TEST(CircuitCli, IdentifyAndGapWriteAReportThatRedrawsFromItsFolder) {
+  const std::string v = std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_circuits/";
+  const std::filesystem::path base = std::filesystem::temp_directory_path() / ("hstmon_circuit_reports_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(base);
+  const std::string ident_dir = (base / "identify").string(), gap_dir = (base / "gap").string();
+  const CliRun ident = run(std::string(HSTMON_CLI) + " identify --circuit " + v + "circuit.json --fit Dm,c_m " + v +
+                           "logs/nominal_A.csv.gz --report " + ident_dir + " 2>&1");
+  ASSERT_EQ(ident.exit_code, 0) << ident.out;
+  const CliRun gap = run(std::string(HSTMON_CLI) + " gap --circuit " + v + "circuit.json --fit " + v +
+                         "logs/gap_offset_fit.csv.gz --check " + v + "logs/gap_offset_check.csv.gz --report " + gap_dir +
+                         " 2>&1");
+  ASSERT_EQ(gap.exit_code, 0) << gap.out;
+  auto text_of = [](const std::filesystem::path& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  const std::string ident_md = text_of(std::filesystem::path(ident_dir) / "report.md");
+  EXPECT_NE(ident_md.find("**Verdict:** 2 parameter(s) fitted to"), std::string::npos) << ident_md;
+  EXPECT_NE(ident_md.find("| Dm | 56 cc/rev |"), std::string::npos) << ident_md;  // cc/rev, not m3/rad
+  EXPECT_NE(ident_md.find("eps 60 %"), std::string::npos) << ident_md;
+  const std::string gap_md = text_of(std::filesystem::path(gap_dir) / "report.md");
+  EXPECT_NE(gap_md.find("**Verdict:** offset(p_a)"), std::string::npos) << gap_md;
+  EXPECT_NE(gap_md.find("| offset(p_a) | 2.03 bar |"), std::string::npos) << gap_md;  // bar, not Pa
+  for (const std::string& dir : {ident_dir, gap_dir}) {
+    for (const char* f : {"report.md", "report.html", "plots.gp", "figure.dat"}) {
+      EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / f)) << dir << "/" << f;
+    }
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) continue;
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "figure.svg")) << dir;
+    std::filesystem::remove(std::filesystem::path(dir) / "figure.svg");
+    EXPECT_EQ(std::system(("cd '" + dir + "' && gnuplot plots.gp 2>/dev/null").c_str()), 0) << dir;
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "figure.svg")) << "redrawn in " << dir;
+  }
+  std::filesystem::remove_all(base);
 }
 
 // hstmon-sim --inputs re-runs a logged profile with ramps: the independent simulator's

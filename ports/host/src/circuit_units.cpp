@@ -1,6 +1,7 @@
 #include "hstmon_host/circuit_units.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -93,6 +94,31 @@ const char* circuit_si_unit(CircuitQuantity q) noexcept {
     if (n.q == q) return n.si;
   }
   return "?";
+}
+
+const char* engineering_unit(CircuitQuantity q) noexcept {
+  switch (q) {
+    case CircuitQuantity::kPressure: return "bar";
+    case CircuitQuantity::kSpeed: return "rpm";
+    case CircuitQuantity::kFlow: return "L/min";
+    case CircuitQuantity::kDisplacement: return "cc/rev";
+    case CircuitQuantity::kResistance: return "bar/(L/min)";
+    case CircuitQuantity::kArea: return "mm2";
+    case CircuitQuantity::kStiffness: return "bar/L";
+    case CircuitQuantity::kVolume: return "L";
+    case CircuitQuantity::kTorque: return "N*m";
+    case CircuitQuantity::kFraction: return "%";
+    default: return circuit_si_unit(q);
+  }
+}
+
+std::string engineering_text(CircuitQuantity q, double si, int digits) {
+  const char* unit = engineering_unit(q);
+  const UnitResult u = parse_circuit_unit(q, unit);
+  const double v = u.ok() ? u.conversion.from_si(si) : si;
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g %s", digits, v, u.ok() ? unit : circuit_si_unit(q));
+  return b;
 }
 
 bool parse_circuit_quantity(std::string_view name, CircuitQuantity& q) noexcept {

@@ -37,6 +37,15 @@ bool parse_circuit_quantity(std::string_view name, CircuitQuantity& q) noexcept;
 /// Every quantity name, comma separated (for messages).
 std::string circuit_quantity_list();
 
+/// The unit an engineer reads quantity q in, for tables and plots: bar, rpm, L/min,
+/// cc/rev, bar/(L/min), mm2, bar/L, L, N*m, % (SI where no other is usual: orifice
+/// coefficients, inertias, damping, densities). parse_circuit_unit knows each.
+const char* engineering_unit(CircuitQuantity q) noexcept;
+
+/// A value of quantity q [SI] in engineering_unit(q), e.g. "2.29e+11 Pa*s/m3" →
+/// "0.382 bar/(L/min)"; `digits` significant digits.
+std::string engineering_text(CircuitQuantity q, double si, int digits = 3);
+
 /// Conversion of a unit of quantity q to SI (error in the result if unknown).
 UnitResult parse_circuit_unit(CircuitQuantity q, std::string_view unit);
 

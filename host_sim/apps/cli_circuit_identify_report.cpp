@@ -1,0 +1,104 @@
+// The report of `identify --circuit` (cli_circuit_identify_report.hpp).
+#include "cli_circuit_identify_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "hstmon_host/circuit_units.hpp"
+
+namespace hstmon::cli {
+
+namespace {
+
+ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
+  ReportTable t{"Fitted parameters",
+                {"parameter", "start", "fitted", "change", "std. error", "monitor's bound", "the data show a change"},
+                {}};
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    const auto q = c.file.params[static_cast<std::size_t>(c.file.param_index(r.names[j]))].quantity;
+    t.rows.push_back({r.names[j], host::engineering_text(q, r.start[j], 4), host::engineering_text(q, r.value[j], 4),
+                      fmt::format("{:+.2f} %", 100.0 * (r.value[j] / r.start[j] - 1.0)),
+                      std::isfinite(r.rel_se[j]) ? fmt::format("{:.2g} %", 100.0 * r.rel_se[j]) : "not determined",
+                      r.pinned[j] ? fmt::format("±{:.2g} % (was ±{:.2g} %)", 100.0 * r.uncertainty[j],
+                                                100.0 * r.prior_uncertainty[j])
+                                  : fmt::format("±{:.2g} % (kept)", 100.0 * r.uncertainty[j]),
+                      r.moved[j] ? "yes" : "no: the start lies within the 95 % interval"});
+  }
+  return t;
+}
+
+std::string inputs_text(const circuit_tools::LoadedCircuit& c, const ident::CircuitOperatingPoint& p) {
+  std::string s;
+  for (std::size_t i = 0; i < p.inputs.size() && i < c.file.inputs.size(); ++i) {
+    s += (s.empty() ? "" : ", ") + c.file.inputs[i].name + " " +
+         host::engineering_text(c.file.inputs[i].quantity, p.inputs[i], 4);
+  }
+  return s;
+}
+
+ReportTable point_table(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
+                        const ident::CircuitFitResult& r) {
+  ReportTable t{"Operating points (measured − model, in each sensor's σ: start values → fitted)",
+                {"#", "log", "t [s]", "rows", "inputs"},
+                {}};
+  for (const auto& s : c.file.sensors) t.header.push_back(s.name);
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const auto& p = r.points[k];
+    const std::string log = p.log < a.logs.size() ? std::filesystem::path(a.logs[p.log]).filename().string() : "?";
+    std::vector<std::string> row = {std::to_string(k + 1), log,
+                                    fmt::format("{:.3f} … {:.3f}", p.t0, p.t1), std::to_string(p.n),
+                                    inputs_text(c, p)};
+    for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+      const bool has = ch < p.before.size() && std::isfinite(p.before[ch]);
+      row.push_back(has ? fmt::format("{:+.3g} → {:+.3g}", p.before[ch], ch < p.after.size() ? p.after[ch] : NAN)
+                        : "not logged");
+    }
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+std::vector<ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
+  std::vector<ReportPanel> panels;
+  for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+    ReportPanel p{c.file.sensors[ch].name, "operating point", "measured − model [σ]", {}, {}};
+    ReportSeries before{"start values", {}, "points pt 6 ps 1.3"}, after{"fitted", {}, "points pt 7 ps 1.1"};
+    bool any = false;
+    for (std::size_t k = 0; k < r.points.size(); ++k) {
+      const auto& pt = r.points[k];
+      p.x.push_back(static_cast<double>(k + 1));
+      before.y.push_back(ch < pt.before.size() ? pt.before[ch] : NAN);
+      after.y.push_back(ch < pt.after.size() ? pt.after[ch] : NAN);
+      any = any || std::isfinite(before.y.back());
+    }
+    if (!any) continue;  // a channel the logs do not have: nothing to draw
+    p.series = {before, after};
+    panels.push_back(std::move(p));
+  }
+  return panels;
+}
+
+}  // namespace
+
+CircuitReport circuit_identify_report(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
+                                      const ident::CircuitFitResult& r, const std::string& text) {
+  CircuitReport rep;
+  rep.title = "hstmon identify --circuit report: " + c.file.name;
+  std::size_t pinned = 0;
+  for (bool p : r.pinned) pinned += p ? 1 : 0;
+  rep.verdict = fmt::format(
+      "{} parameter(s) fitted to {} operating point(s); residual RMS {:.3g} σ before, {:.3g} σ after; {} of them "
+      "pinned tighter than they were known",
+      r.names.size(), r.points.size(), r.rms_before, r.rms_after, pinned);
+  rep.tone = pinned == r.names.size() && r.notes.empty() ? sim::VerdictTone::kGood : sim::VerdictTone::kWarning;
+  rep.tables = {parameter_table(c, r), point_table(a, c, r)};
+  rep.notes = r.notes;
+  rep.panels = point_panels(c, r);
+  rep.figure_caption = "Steady residual per operating point, start values and fitted";
+  rep.text = text;
+  return rep;
+}
+
+}  // namespace hstmon::cli
