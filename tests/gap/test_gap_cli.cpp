@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -80,6 +81,22 @@ TEST(GapCli, JsonHasEquationsForEveryPressureNodeAndTheShaft) {
     for (const char* k : {"unit", "mean", "rms", "rms_over_noise"}) EXPECT_TRUE(e.contains(k)) << k;
   }
   EXPECT_EQ(names, "flow:p_mi flow:p_mo flow:p_pp torque:w_m ");
+}
+
+// The report folder's plots.gp names its files relative to the folder, so the plots
+// redraw from inside it (cd DIR && gnuplot plots.gp), wherever gap ran.
+TEST(GapCli, ReportPlotsRedrawFromInsideTheFolder) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path log = write("report.csv", log_text(400, 6e-8));
+  const fs::path dir = log.parent_path() / "report";
+  fs::remove_all(dir);
+  const CliRun r = run("--fit '" + log.string() + "' --check '" + log.string() + "' --report '" + dir.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_TRUE(fs::exists(dir / "plots.gp"));
+  fs::remove(dir / "residual_time.png");
+  EXPECT_EQ(std::system(("cd '" + dir.string() + "' && gnuplot plots.gp 2>/dev/null").c_str()), 0);
+  EXPECT_TRUE(fs::exists(dir / "residual_time.png"));
+  fs::remove_all(dir);
 }
 
 }  // namespace

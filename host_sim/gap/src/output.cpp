@@ -426,12 +426,14 @@ std::string write_report(const GapResult& r, const std::string& dir, const std::
   }
   bool present[kChannels];
   for (std::size_t c = 0; c < kChannels; ++c) present[c] = r.where_fit.channels[c].present && r.where_check.channels[c].present;
-  const std::string script = plot_script(r, fs::path(dir), present);
+  // File names relative to the folder: plots.gp reruns from inside it (cd DIR && gnuplot
+  // plots.gp); gnuplot changes into it first here, as a user would.
+  const std::string script = plot_script(r, fs::path(), present);
   {
     std::ofstream f(fs::path(dir) / "plots.gp");  // kept, so the plots can be restyled by hand
     f << script;
   }
-  const std::string plot_error = sim::run_gnuplot(script);
+  const std::string plot_error = sim::run_gnuplot("cd " + gnuplot_quote(fs::path(dir).string()) + "\n" + script);
   struct Figure {
     const char* file;
     const char* title;
