@@ -82,9 +82,11 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o);
 
-/// The least relative uncertainty a fit hands the model bound [-]: the values hold at the
-/// healthy log's oil temperature and wear; 0.1 % keeps a day's drift of a pinned value
-/// from reading as a fault while still far below the 2 % default.
+/// The least relative uncertainty a fit hands the model bound [-]. A long healthy log can
+/// pin a value to 0.01 %, but only at that log's oil temperature and wear: a floor keeps
+/// the bound from shrinking to what one log happened to show, while staying far below
+/// the 2 % default. A judgement, not a measurement; state a wider one in the parameter
+/// file where the oil temperature varies.
 inline constexpr double kLeastUncertainty = 0.001;
 
 /// A parameter file for c (docs/circuits.md's format) with the values of c overridden
