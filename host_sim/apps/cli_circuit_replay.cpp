@@ -12,6 +12,7 @@
 #include "cli_circuit_replay_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
+#include "hstmon_circuit/bound_lead.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
@@ -73,10 +74,10 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
   nlohmann::json leads = nlohmann::json::array();
   for (std::size_t ch = 0; ch < r.bound_lead.size(); ++ch) {
     const auto& l = r.bound_lead[ch];
-    const bool named = l.param >= 0 && static_cast<std::size_t>(l.param) < c.file.params.size();
+    const std::string name = circuit_tools::lead_name(c, l);
     leads.push_back({{"channel", c.file.sensors[ch].name},
                      {"bound", l.bound},
-                     {"lead", named ? nlohmann::json(c.file.params[static_cast<std::size_t>(l.param)].name) : nlohmann::json()},
+                     {"lead", name.empty() ? nlohmann::json() : nlohmann::json(name)},
                      {"share", l.share}});
   }
   fmt::print("{}\n", nlohmann::json{{"type", "bound"}, {"at", "last row"}, {"channels", leads}}.dump());
@@ -175,11 +176,8 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
     }
     line += fmt::format(",{}", tr.health);
     for (std::size_t ch = 0; ch < k.size(); ++ch) {
-      const bool named = ch < tr.lead.size() && tr.lead[ch].param >= 0 &&
-                         static_cast<std::size_t>(tr.lead[ch].param) < c.file.params.size();
-      line += named ? fmt::format(",{},{:.3g}", c.file.params[static_cast<std::size_t>(tr.lead[ch].param)].name,
-                                  tr.lead[ch].share)
-                    : std::string(",,nan");
+      const std::string name = ch < tr.lead.size() ? circuit_tools::lead_name(c, tr.lead[ch]) : std::string();
+      line += name.empty() ? std::string(",,nan") : fmt::format(",{},{:.3g}", name, tr.lead[ch].share);
     }
     std::fprintf(f, "%s\n", line.c_str());
   }

@@ -17,7 +17,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <random>
@@ -36,8 +35,11 @@
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/log_reader.hpp"
+#include "../support/replay_events.hpp"
 
 namespace {
+
+using hstmon_test::event_lines;
 
 namespace ct = hstmon::circuit_tools;
 
@@ -58,17 +60,6 @@ ct::CircuitReplayOptions cli_options(const ct::LoadedCircuit& c) {
   ct::CircuitReplayOptions o;
   o.table = &it->second;
   return o;
-}
-
-std::string describe(const ct::CircuitReplayResult& r) {
-  std::string s;
-  for (const auto& e : r.events) {
-    char b[64];
-    std::snprintf(b, sizeof b, "\n  t = %.3f %s:", e.t, e.event.c_str());
-    s += b;
-    for (const auto& c : e.candidates) s += " " + c.fault;
-  }
-  return s.empty() ? std::string(" (no events)") : s;
 }
 
 ct::InputStep step(const ct::LoadedCircuit& c, const std::string& text, bool fault) {
@@ -94,7 +85,7 @@ TEST(CircuitMonitor, ShippedLogsRaiseNoEvent) {
     ASSERT_TRUE(log.ok());
     const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
     EXPECT_GT(r.table_rows, c.file.sensors.size()) << name << ": parameter rows besides the sensor rows";
-    EXPECT_TRUE(r.events.empty()) << name << describe(r);
+    EXPECT_TRUE(r.events.empty()) << name << "\n" << event_lines(r);
     EXPECT_EQ(r.final_status, "nominal") << name;
   }
 }
@@ -123,7 +114,7 @@ TEST(CircuitMonitor, StartsAndInputStepsRaiseNoEvent) {
     o.seed = 21 + static_cast<std::uint64_t>(&k - cases);
     for (const auto& s : k.steps) o.steps.push_back(step(c, s, false));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o);
-    EXPECT_TRUE(r.events.empty()) << k.name << (k.from_rest ? " from rest" : " steady") << describe(r);
+    EXPECT_TRUE(r.events.empty()) << k.name << (k.from_rest ? " from rest" : " steady") << "\n" << event_lines(r);
   }
 }
 
@@ -149,14 +140,14 @@ TEST(CircuitMonitor, ParameterFaultDetectedAfterItAndTruthInTheSet) {
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
     ASSERT_FALSE(r.events.empty()) << k.name << " " << k.fault << ": not detected";
     EXPECT_EQ(r.events.front().event, "detected");
-    EXPECT_GE(r.events.front().t, 5.0) << k.name << " " << k.fault << describe(r);
-    EXPECT_LE(r.events.front().t, 6.0) << k.name << " " << k.fault << describe(r);
+    EXPECT_GE(r.events.front().t, 5.0) << k.name << " " << k.fault << "\n" << event_lines(r);
+    EXPECT_LE(r.events.front().t, 6.0) << k.name << " " << k.fault << "\n" << event_lines(r);
     // The last decision (isolated or ambiguous) names the truth among its candidates.
     const auto& last = r.events.back();
-    EXPECT_TRUE(last.event == "isolated" || last.event == "ambiguous") << k.name << " " << k.fault << describe(r);
+    EXPECT_TRUE(last.event == "isolated" || last.event == "ambiguous") << k.name << " " << k.fault << "\n" << event_lines(r);
     bool in_set = false;
     for (const auto& cand : last.candidates) in_set = in_set || cand.fault == k.truth;
-    EXPECT_TRUE(in_set) << k.name << " " << k.fault << describe(r);
+    EXPECT_TRUE(in_set) << k.name << " " << k.fault << "\n" << event_lines(r);
   }
 }
 
@@ -186,9 +177,9 @@ TEST(CircuitMonitor, MeasuredDriveSpeedGivesTheCleanLogsDiagnosis) {
   for (double& w : measured.inputs[drive]) w += rpm_noise(rng);
   const ct::CircuitReplayResult a = ct::replay_circuit(c, clean, cli_options(c));
   const ct::CircuitReplayResult b = ct::replay_circuit(c, measured, cli_options(c));
-  ASSERT_FALSE(a.events.empty()) << describe(a);
-  ASSERT_FALSE(b.events.empty()) << describe(b);
-  const std::string both = "clean:" + describe(a) + "\nmeasured:" + describe(b);
+  ASSERT_FALSE(a.events.empty()) << "\n" << event_lines(a);
+  ASSERT_FALSE(b.events.empty()) << "\n" << event_lines(b);
+  const std::string both = "clean:\n" + event_lines(a) + "measured:\n" + event_lines(b);
   // The drive speed's noise enters the model's flow, so the residual is a little noisier
   // and the CUSUM a few samples slower: 0.1 s is 20 samples. Near-equal candidates may
   // swap places window by window (each swap an event), so the verdicts are compared, not
@@ -214,11 +205,11 @@ TEST(CircuitMonitor, ThesisCircuitGivesTheDemoDiagnosis) {
   const ct::CircuitLog log = ct::read_circuit_log(example("prv_blockage.csv"), c.file);
   ASSERT_TRUE(log.ok()) << log.error->to_string();
   const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
-  ASSERT_GE(r.events.size(), 2u) << describe(r);
+  ASSERT_GE(r.events.size(), 2u) << "\n" << event_lines(r);
   EXPECT_EQ(r.events[0].event, "detected");
-  EXPECT_NEAR(r.events[0].t, 80.03, 1e-9) << describe(r);
-  EXPECT_EQ(r.events[1].event, "isolated") << describe(r);
-  EXPECT_NEAR(r.events[1].t, 80.18, 1e-9) << describe(r);
+  EXPECT_NEAR(r.events[0].t, 80.03, 1e-9) << "\n" << event_lines(r);
+  EXPECT_EQ(r.events[1].event, "isolated") << "\n" << event_lines(r);
+  EXPECT_NEAR(r.events[1].t, 80.18, 1e-9) << "\n" << event_lines(r);
   ASSERT_FALSE(r.events[1].candidates.empty());
   EXPECT_EQ(r.events[1].candidates[0].fault, "kp-");
 }
@@ -269,15 +260,15 @@ TEST(CircuitMonitor, MachineWithShutReliefValveAtCrackingRaisesNoEventButLeakIsF
     const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
     const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
     if (!leak) {
-      EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
+      EXPECT_TRUE(r.events.empty()) << "nominal" << "\n" << event_lines(r);
       continue;
     }
     ASSERT_FALSE(r.events.empty()) << "R_leak- not detected";
     EXPECT_EQ(r.events.front().event, "detected");
-    EXPECT_GE(r.events.front().t, 5.0) << describe(r);
+    EXPECT_GE(r.events.front().t, 5.0) << "\n" << event_lines(r);
     bool in_set = false;
     for (const auto& cand : r.events.back().candidates) in_set = in_set || cand.fault == "R_leak-";
-    EXPECT_TRUE(in_set) << describe(r);
+    EXPECT_TRUE(in_set) << "\n" << event_lines(r);
   }
 }
 
@@ -314,16 +305,16 @@ TEST(CircuitMonitor, MachineWhoseCheckValveLeadsTheModelsRaisesNoEventButPumpLos
     const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
     const ct::CircuitReplayResult r = ct::replay_circuit(c, log, {});
     if (!loss) {
-      EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
+      EXPECT_TRUE(r.events.empty()) << "nominal" << "\n" << event_lines(r);
       continue;
     }
     ASSERT_FALSE(r.events.empty()) << "Dp- not detected";
     EXPECT_EQ(r.events.front().event, "detected");
-    EXPECT_GE(r.events.front().t, 4.5) << describe(r);
-    EXPECT_LE(r.events.front().t, 5.5) << describe(r);
+    EXPECT_GE(r.events.front().t, 4.5) << "\n" << event_lines(r);
+    EXPECT_LE(r.events.front().t, 5.5) << "\n" << event_lines(r);
     bool in_set = false;
     for (const auto& cand : r.events.back().candidates) in_set = in_set || cand.fault == "Dp-";
-    EXPECT_TRUE(in_set) << describe(r);
+    EXPECT_TRUE(in_set) << "\n" << event_lines(r);
   }
 }
 
@@ -428,12 +419,12 @@ TEST(CircuitMonitor, FaultFittedAcrossOperatingPointsWithItsSize) {
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
     ASSERT_FALSE(r.events.empty()) << k.name << ": not detected";
     for (const auto& e : r.events) {
-      EXPECT_NE(e.event, "cleared") << k.name << ": a persisting fault cleared" << describe(r);
+      EXPECT_NE(e.event, "cleared") << k.name << ": a persisting fault cleared" << "\n" << event_lines(r);
     }
     const auto& last = r.events.back();
-    ASSERT_EQ(last.event, "isolated") << k.name << describe(r);
+    ASSERT_EQ(last.event, "isolated") << k.name << "\n" << event_lines(r);
     ASSERT_FALSE(last.candidates.empty());
-    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.name << describe(r);
+    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.name << "\n" << event_lines(r);
     EXPECT_NEAR(last.candidates.front().size, k.factor, 0.05 * k.factor) << k.name;
     EXPECT_LE(last.candidates.front().size_lo, last.candidates.front().size);
     EXPECT_GE(last.candidates.front().size_hi, last.candidates.front().size);
@@ -455,19 +446,19 @@ TEST(CircuitMonitor, FaultInsideTheBoundFoundAsAStepAtHeldInputs) {
     if (fault) o.steps.push_back(step(c, "Dm=0.92@6", true));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
     if (!fault) {
-      EXPECT_TRUE(r.events.empty()) << "nominal" << describe(r);
+      EXPECT_TRUE(r.events.empty()) << "nominal" << "\n" << event_lines(r);
       continue;
     }
     ASSERT_FALSE(r.events.empty()) << "not detected";
     const auto& first = r.events.front();
     EXPECT_EQ(first.event, "detected");
     EXPECT_GE(first.t, 6.0);
-    EXPECT_LE(first.t, 7.0) << describe(r);
+    EXPECT_LE(first.t, 7.0) << "\n" << event_lines(r);
     EXPECT_NE(first.why.find("while the inputs held still"), std::string::npos) << first.why;
     const auto& last = r.events.back();
-    ASSERT_EQ(last.event, "isolated") << describe(r);
-    EXPECT_EQ(last.candidates.front().fault, "Dm-") << describe(r);
-    EXPECT_NEAR(last.candidates.front().size, 0.92, 0.02) << describe(r);
+    ASSERT_EQ(last.event, "isolated") << "\n" << event_lines(r);
+    EXPECT_EQ(last.candidates.front().fault, "Dm-") << "\n" << event_lines(r);
+    EXPECT_NEAR(last.candidates.front().size, 0.92, 0.02) << "\n" << event_lines(r);
   }
 }
 
@@ -491,12 +482,12 @@ TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
   ASSERT_FALSE(r.events.empty()) << "not detected";
   EXPECT_EQ(r.events.front().event, "detected");
   EXPECT_GE(r.events.front().t, 2.5);
-  EXPECT_LE(r.events.front().t, 2.95) << describe(r);
+  EXPECT_LE(r.events.front().t, 2.95) << "\n" << event_lines(r);
   const auto& last = r.events.back();
-  ASSERT_TRUE(last.event == "isolated" || last.event == "ambiguous") << describe(r);
+  ASSERT_TRUE(last.event == "isolated" || last.event == "ambiguous") << "\n" << event_lines(r);
   bool truth = false;
   for (const auto& k : last.candidates) truth = truth || k.fault == "Rf+";
-  EXPECT_TRUE(truth) << describe(r);
+  EXPECT_TRUE(truth) << "\n" << event_lines(r);
 }
 
 // A crossport relief setting dropped early shows only when a load later needs more than
@@ -527,12 +518,12 @@ TEST(CircuitMonitor, FaultSilentUntilALaterLoadIsIsolatedByTiming) {
     o.steps.push_back(step(c, k.fault, true));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
     ASSERT_FALSE(r.events.empty()) << k.fault << ": not detected";
-    EXPECT_GE(r.events.front().t, k.shows) << k.fault << describe(r);
+    EXPECT_GE(r.events.front().t, k.shows) << k.fault << "\n" << event_lines(r);
     const auto& last = r.events.back();
-    ASSERT_EQ(last.event, "isolated") << k.fault << describe(r);
-    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.fault << describe(r);
-    EXPECT_NEAR(last.candidates.front().size, k.factor, 0.2 * (1.0 - k.factor)) << k.fault << describe(r);
-    for (const auto& e : r.events) EXPECT_NE(e.event, "cleared") << k.fault << describe(r);
+    ASSERT_EQ(last.event, "isolated") << k.fault << "\n" << event_lines(r);
+    EXPECT_EQ(last.candidates.front().fault, k.truth) << k.fault << "\n" << event_lines(r);
+    EXPECT_NEAR(last.candidates.front().size, k.factor, 0.2 * (1.0 - k.factor)) << k.fault << "\n" << event_lines(r);
+    for (const auto& e : r.events) EXPECT_NE(e.event, "cleared") << k.fault << "\n" << event_lines(r);
   }
 }
 
@@ -556,11 +547,11 @@ TEST(CircuitMonitor, SensorOffsetAfterALoadStepIsFoundAtTheRunningMachinesPace) 
   }
   const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
   ASSERT_FALSE(r.events.empty()) << "not detected";
-  EXPECT_GE(r.events.front().t, 6.0) << describe(r);
-  EXPECT_LE(r.events.front().t, 6.5) << describe(r);
+  EXPECT_GE(r.events.front().t, 6.0) << "\n" << event_lines(r);
+  EXPECT_LE(r.events.front().t, 6.5) << "\n" << event_lines(r);
   const auto& last = r.events.back();
-  ASSERT_FALSE(last.candidates.empty()) << describe(r);
-  EXPECT_EQ(last.candidates.front().fault, "sensor_p_b") << describe(r);
+  ASSERT_FALSE(last.candidates.empty()) << "\n" << event_lines(r);
+  EXPECT_EQ(last.candidates.front().fault, "sensor_p_b") << "\n" << event_lines(r);
 }
 
 // A machine the model cannot describe (its pump delivers half the flow of the file's)
@@ -581,15 +572,15 @@ TEST(CircuitMonitor, MachineOutsideTheEnvelopeIsSaidSoAndNoFaultIsNamed) {
     EXPECT_TRUE(r.envelope.checked) << r.envelope.text;
     if (!other) {
       EXPECT_FALSE(r.envelope.out) << r.envelope.text;
-      EXPECT_TRUE(r.events.empty()) << describe(r);
+      EXPECT_TRUE(r.events.empty()) << "\n" << event_lines(r);
       continue;
     }
     EXPECT_TRUE(r.envelope.out) << r.envelope.text;
     EXPECT_NE(r.envelope.text.find("does not describe this machine"), std::string::npos) << r.envelope.text;
     EXPECT_EQ(r.final_status, "out_of_envelope");
     for (const auto& e : r.events) {
-      EXPECT_NE(e.event, "isolated") << describe(r);
-      EXPECT_NE(e.event, "ambiguous") << describe(r);
+      EXPECT_NE(e.event, "isolated") << "\n" << event_lines(r);
+      EXPECT_NE(e.event, "ambiguous") << "\n" << event_lines(r);
     }
   }
 }

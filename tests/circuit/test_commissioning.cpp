@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -18,8 +17,11 @@
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_host/circuit_values.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
+#include "../support/replay_events.hpp"
 
 namespace {
+
+using hstmon_test::event_lines;
 
 namespace ct = hstmon::circuit_tools;
 namespace id = hstmon::ident;
@@ -82,17 +84,6 @@ ct::LoadedCircuit commission(const ct::CircuitLog& healthy) {
   return out;
 }
 
-std::string describe(const ct::CircuitReplayResult& r) {
-  std::string s;
-  for (const auto& e : r.events) {
-    char b[64];
-    std::snprintf(b, sizeof b, "\n  t = %.3f %s:", e.t, e.event.c_str());
-    s += b;
-    for (const auto& c : e.candidates) s += " " + c.fault;
-  }
-  return s.empty() ? std::string(" (no events)") : s;
-}
-
 /// The verdict at the end of the log names `truth` alone (or leads an isolated group).
 bool isolated_on(const ct::CircuitReplayResult& r, const std::string& truth) {
   if (r.final_status != "isolated" || r.events.empty()) return false;
@@ -118,7 +109,7 @@ TEST(Commissioning, HealthyMachineStaysSilentOnEitherFile) {
   const ct::CircuitLog later = run(machine(), 5);
   for (const ct::LoadedCircuit* c : {&data_sheet(), &commissioned}) {
     const ct::CircuitReplayResult r = ct::replay_circuit(*c, later, {});
-    EXPECT_TRUE(r.events.empty()) << describe(r);
+    EXPECT_TRUE(r.events.empty()) << "\n" << event_lines(r);
   }
 }
 
@@ -128,8 +119,8 @@ TEST(Commissioning, LeakOfFivePercentOfThePumpFlowIsIsolatedOnlyAfterCommissioni
   const ct::CircuitLog faulty = run(machine(), 2, {"R_leak=0.163@8"});
   const ct::CircuitReplayResult blanket = ct::replay_circuit(data_sheet(), faulty, {});
   const ct::CircuitReplayResult tight = ct::replay_circuit(commissioned, faulty, {});
-  EXPECT_FALSE(isolated_on(blanket, "R_leak-")) << describe(blanket);
-  ASSERT_TRUE(isolated_on(tight, "R_leak-")) << describe(tight);
+  EXPECT_FALSE(isolated_on(blanket, "R_leak-")) << "\n" << event_lines(blanket);
+  ASSERT_TRUE(isolated_on(tight, "R_leak-")) << "\n" << event_lines(tight);
   const auto& fit = tight.events.back().candidates.front();
   const double truth = 0.163 * 0.9;  // against the data sheet's R_leak; the fit is against the commissioned one
   const double fitted = fit.size * commissioned.values.params.v[commissioned.file.param_index("R_leak")] /
@@ -150,8 +141,8 @@ TEST(Commissioning, SensorOffsetOfOnePercentOfRangeIsIsolatedOnlyAfterCommission
   }
   const ct::CircuitReplayResult blanket = ct::replay_circuit(data_sheet(), faulty, {});
   const ct::CircuitReplayResult tight = ct::replay_circuit(commissioned, faulty, {});
-  EXPECT_FALSE(isolated_on(blanket, "sensor_p_line")) << describe(blanket);
-  ASSERT_TRUE(isolated_on(tight, "sensor_p_line")) << describe(tight);
+  EXPECT_FALSE(isolated_on(blanket, "sensor_p_line")) << "\n" << event_lines(blanket);
+  ASSERT_TRUE(isolated_on(tight, "sensor_p_line")) << "\n" << event_lines(tight);
   EXPECT_NEAR(tight.events.back().candidates.front().size, 4e5, 0.8e5);
 }
 

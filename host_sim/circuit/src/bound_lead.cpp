@@ -26,11 +26,17 @@ std::vector<ChannelBoundLead> bound_leads(const LoadedCircuit& c, const host::Ho
   return out;
 }
 
-std::string lead_text(const LoadedCircuit& c, const ChannelBoundLead& lead) {
+std::string lead_name(const LoadedCircuit& c, const ChannelBoundLead& lead) {
   if (lead.param < 0 || static_cast<std::size_t>(lead.param) >= c.file.params.size()) return "";
+  return c.file.params[static_cast<std::size_t>(lead.param)].name;
+}
+
+std::string lead_text(const LoadedCircuit& c, const ChannelBoundLead& lead) {
+  const std::string name = lead_name(c, lead);
+  if (name.empty()) return name;
   char b[64];
   std::snprintf(b, sizeof b, " %.0f %%", 100.0 * lead.share);
-  return c.file.params[static_cast<std::size_t>(lead.param)].name + b;
+  return name + b;
 }
 
 }  // namespace hstmon::circuit_tools

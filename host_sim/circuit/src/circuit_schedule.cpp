@@ -5,16 +5,13 @@
 #include <cmath>
 
 #include "hstmon_host/circuit_units.hpp"
+#include "text_util.hpp"  // ports/host/src: the host port's trim
 
 namespace hstmon::circuit_tools {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
+using host::detail::trim;
 
 /// True when a value's text is a number alone, with no unit after it ("2.5", not "2.5 mm2").
 bool bare_number(std::string_view value) {

@@ -131,8 +131,8 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
     py::dict row;
     row["channel"] = c.file.sensors[ch].name;
     row["bound"] = l.bound;
-    const bool named = l.param >= 0 && static_cast<std::size_t>(l.param) < c.file.params.size();
-    row["lead"] = named ? py::object(py::str(c.file.params[static_cast<std::size_t>(l.param)].name)) : py::none();
+    const std::string name = circuit_tools::lead_name(c, l);
+    row["lead"] = name.empty() ? py::object(py::none()) : py::object(py::str(name));
     row["share"] = l.share;
     leads.append(row);
   }

@@ -26,6 +26,9 @@ struct ChannelBoundLead {
 std::vector<ChannelBoundLead> bound_leads(const LoadedCircuit& c, const host::HostCircuitModel& model,
                                           const host::HostCircuitModel::Inputs& u);
 
+/// The leading parameter's name ("" where nothing leads).
+std::string lead_name(const LoadedCircuit& c, const ChannelBoundLead& lead);
+
 /// "Dp 64 %" for one channel ("" where nothing leads).
 std::string lead_text(const LoadedCircuit& c, const ChannelBoundLead& lead);
 
