@@ -99,6 +99,11 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
     add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
+  fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
+                                     {"checked", r.envelope.checked},
+                                     {"out", r.envelope.out},
+                                     {"text", r.envelope.text}}
+                        .dump());
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", r.final_status}, {"events", r.events.size()}}.dump());
 }
@@ -145,6 +150,7 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
   }
+  if (!a.no_diagnosis) fmt::print("\n  envelope: {}\n", r.envelope.text);
   print_events(r.events, r.final_status);
   const auto names = host::health_names(r.health);
   if (names.empty()) {

@@ -44,7 +44,8 @@ struct ReplayReport {
 };
 
 /// A report with what every replay result has (host::ReplayResult, a circuit's
-/// CircuitReplayResult): span, tick, hold-off, notes, events, final status, health. The
+/// CircuitReplayResult): span, tick, hold-off, notes (with the envelope check's sentence),
+/// events, final status, health. The
 /// caller adds the channels, the plot and whether the matcher ran.
 template <class Result>
 ReplayReport replay_report_facts(const std::string& log, const Result& r) {
@@ -56,6 +57,7 @@ ReplayReport replay_report_facts(const std::string& log, const Result& r) {
   rep.tick = r.tick;
   rep.startup_hold = r.startup_hold;
   rep.notes = r.notes;
+  rep.notes.push_back("envelope: " + r.envelope.text);
   rep.events = r.events;
   rep.final_status = r.final_status;
   rep.health = r.health;

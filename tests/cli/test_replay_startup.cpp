@@ -53,16 +53,36 @@ TEST(ReplayStartup, StartFromRestAndLoadStepsRaiseNothing) {
   }
 }
 
-// A 50 % PRV blockage present from the first sample: reported once the start-up is over.
-TEST(ReplayStartup, FaultFromTheFirstSampleIsReportedAfterTheStartUp) {
+// A 50 % PRV blockage present from the first sample: the machine is never seen healthy,
+// so the data cannot tell the fault from a model that does not fit this machine. The
+// monitor detects it once the start-up is over; at the first steady stretch the envelope
+// check withdraws the diagnosis and says what it had named.
+TEST(ReplayStartup, FaultFromTheFirstSampleIsOutOfTheEnvelopeAndNamedAsWhatItResembles) {
   for (double rate : {1000.0, 100.0}) {
     const auto sc = sim::with_input_fault(sim::thesis_rig_run(rig_from_rest(3.0)), &hstmon::ThesisInputs<double>::kp,
                                           0.5, 0.0);
     const auto r = replay(sc, rate, 0.0);
+    ASSERT_EQ(r.events.size(), 1u) << rate << " Hz:\n" << event_lines(r);
+    EXPECT_EQ(r.events.front().event, "out_of_envelope");
+    EXPECT_GE(r.events.front().t, r.startup_hold) << "not judged during the start-up";
+    EXPECT_NE(r.events.front().why.find("which named kp-"), std::string::npos) << event_lines(r);
+    EXPECT_EQ(r.final_status, "out_of_envelope");
+    EXPECT_TRUE(r.envelope.checked && r.envelope.out) << r.envelope.text;
+  }
+}
+
+// The same blockage from 2 s, after the machine was seen steady: the envelope holds, and
+// the fault is detected after its onset and isolated.
+TEST(ReplayStartup, FaultAfterTheFirstSteadyStretchIsIsolated) {
+  for (double rate : {1000.0, 100.0}) {
+    const auto sc = sim::with_input_fault(sim::thesis_rig_run(rig_from_rest(5.0)), &hstmon::ThesisInputs<double>::kp,
+                                          0.5, 2.0);
+    const auto r = replay(sc, rate, 0.0);
+    EXPECT_TRUE(r.envelope.checked && !r.envelope.out) << r.envelope.text;
     ASSERT_FALSE(r.events.empty()) << rate << " Hz";
     EXPECT_EQ(r.events.front().event, "detected");
-    EXPECT_GE(r.events.front().t, r.startup_hold) << "not judged during the start-up";
-    EXPECT_LT(r.events.front().t, r.startup_hold + 0.05) << event_lines(r);
+    EXPECT_GE(r.events.front().t, 2.0) << event_lines(r);
+    EXPECT_LT(r.events.front().t, 2.05) << event_lines(r);
     EXPECT_EQ(r.final_status, "isolated") << event_lines(r);
     ASSERT_FALSE(r.events.back().candidates.empty());
     EXPECT_EQ(r.events.back().candidates.front().fault, "kp-") << event_lines(r);

@@ -9,11 +9,12 @@
 
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/engine.hpp"
+#include "hstmon/envelope_check.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
-#include "hstmon_circuit/envelope_check.hpp"
 #include "hstmon_circuit/fault_fit_diagnosis.hpp"
 #include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/envelope_result.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -31,6 +32,20 @@ double median_interval(const std::vector<double>& t) {
   std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
   return d[d.size() / 2];
 }
+
+// The circuit's sensors as the envelope sentence names them: in their logged units.
+std::vector<host::EnvelopeChannel> envelope_channels(const LoadedCircuit& c) {
+  std::vector<host::EnvelopeChannel> out;
+  for (const host::CircuitSensor& s : c.file.sensors) {
+    const host::UnitResult unit = host::parse_circuit_unit(s.quantity, s.unit);
+    out.push_back({s.name, s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit,
+                   unit.ok() ? 1.0 / unit.conversion.factor : 1.0});
+  }
+  return out;
+}
+
+const char* const kEnvelopeRemedy =
+    "Run `hstmon identify --circuit` on healthy steady data, or `hstmon gap --circuit`";
 
 std::string number(double v) {
   char b[32];
@@ -218,9 +233,17 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   std::unique_ptr<FaultFitDiagnosis> diag;
   if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
   // Outside the model's envelope at the first steady stretch, nothing more is diagnosed.
-  std::vector<double> sigma;
-  for (const host::CircuitSensor& s : c.file.sensors) sigma.push_back(sensor_sigma(s));
-  EnvelopeCheck envelope(c, model, sigma);
+  EnvelopeCheck<Model> envelope;
+  {
+    double sigma[Model::kOutputs] = {};
+    for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sensor_sigma(c.file.sensors[ch]);
+    envelope.configure(model, sigma);
+  }
+  const std::vector<host::EnvelopeChannel> envelope_names = envelope_channels(c);
+  auto envelope_now = [&] {
+    return host::envelope_result(host::envelope_figures(envelope, EnvelopeCheck<Model>::Config{}.window), envelope_names,
+                                 kEnvelopeRemedy);
+  };
   bool out_of_envelope = false;
   // The trace's bound leads, recomputed where the monitor's bound changed (an input change).
   std::vector<ChannelBoundLead> leads;
@@ -249,18 +272,11 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     drain_events(t[k], u);
     if (!res.events.empty()) envelope.detected(res.events.front().t);
     envelope.add(t[k], u, obs.residual().data(), obs.residual_valid() & compared, mon->model_bound());
-    if (!out_of_envelope && envelope.result().out && o.diagnose && res.table_rows > 0) {
+    if (!out_of_envelope && envelope.verdict() == EnvelopeVerdict::kOutside && o.diagnose && res.table_rows > 0) {
       // It supersedes what was said before (a detection while the run settled names
       // faults on a model that does not apply).
       out_of_envelope = true;
-      host::ReplayEvent e;
-      e.t = t[k];
-      e.event = "out_of_envelope";
-      e.why = envelope.result().text;
-      if (!res.events.empty()) {
-        e.why += " (it withdraws the " + std::to_string(res.events.size()) + " diagnosis event(s) before it)";
-      }
-      res.events.assign(1, std::move(e));
+      res.events.assign(1, host::out_of_envelope_event(t[k], envelope_now(), res.events));
     }
     if (diag && !out_of_envelope) {
       FaultFitDiagnosis::Row row;
@@ -307,7 +323,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   res.ticks = obs.ticks();
   res.final_status = to_string(mon->matcher().status());
   envelope.finish();
-  res.envelope = envelope.result();
+  res.envelope = envelope_now();
   res.bound_lead = bound_leads(c, model, u_prev);
   if (out_of_envelope) {
     res.final_status = "out_of_envelope";

@@ -51,6 +51,10 @@ class ThesisReducedModel {
   /// True when the inputs are finite and kp is non-negative.
   static bool inputs_valid(const Inputs& u) noexcept { return thesis_inputs_valid(u); }
 
+  /// True when the model's parameters are valid (params_valid), as a circuit model's
+  /// valid() says its values resolved: what settle_time() asks before a steady solve.
+  bool valid() const noexcept { return params_valid(p_); }
+
   /// Replaces the parameters and recomputes the derived coefficients. O(1).
   void set_params(const Params& p) noexcept {
     p_ = p;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "hstmon/generated/thesis_signatures.hpp"
+#include "hstmon/envelope_check.hpp"
 #include "hstmon/monitor.hpp"
 #include "hstmon/residual_bounds.hpp"
 #include "hstmon/thesis_reduced.hpp"
@@ -34,6 +35,13 @@ namespace {
 // engine's ThesisCircuitModel (Monitor<double>) or the hand-written specialisation.
 using MonEngine = Monitor<double>;
 using MonSpecialised = ModelMonitor<ThesisReducedModel<double>>;
+
+// The thesis rig's channels as the envelope sentence names them (the human table's units).
+const std::vector<EnvelopeChannel>& thesis_envelope_channels() {
+  static const std::vector<EnvelopeChannel> names = {
+      {"p_mi", "bar", 1e-5}, {"p_mo", "bar", 1e-5}, {"p_pp", "bar", 1e-5}, {"w_m", "rpm", 30.0 / M_PI}};
+  return names;
+}
 
 // Median of the positive sample intervals; 0 for fewer than two rows.
 double median_interval(const std::vector<double>& t) {
@@ -77,6 +85,10 @@ struct ChunkedReplay::State {
   ReplayResult res;
   MonEngine mon_engine;
   MonSpecialised mon_specialised;
+  // Does the model describe this machine? Judged at the first steady stretch (envelope_check.hpp).
+  EnvelopeCheck<MonEngine::Model> envelope_engine;
+  EnvelopeCheck<MonSpecialised::Model> envelope_specialised;
+  bool out_of_envelope = false;  // then nothing more is diagnosed
   bool started = false;   // first row seen: tick, columns and initial state fixed
   bool failed = false;    // configuration refused: nothing replayed
   std::size_t row = 0;    // 0-based index of the next row in the log
@@ -99,6 +111,15 @@ struct ChunkedReplay::State {
   }
   void run(const LogData& log, std::size_t rows_total) {
     with_monitor([&](auto& mon) { run(mon, log, rows_total); });
+  }
+
+  EnvelopeCheck<MonEngine::Model>& envelope(MonEngine&) { return envelope_engine; }
+  EnvelopeCheck<MonSpecialised::Model>& envelope(MonSpecialised&) { return envelope_specialised; }
+  template <class Mon>
+  EnvelopeResult envelope_now(Mon& mon) {
+    const auto& check = envelope(mon);
+    return envelope_result(envelope_figures(check, typename std::decay_t<decltype(check)>::Config{}.window),
+                           thesis_envelope_channels(), "Run `hstmon identify` on healthy steady data, or `hstmon gap`");
   }
 
   template <class Mon>
@@ -178,6 +199,9 @@ void ChunkedReplay::State::start(Mon& mon, const LogData& log) {
   }
   res.startup_hold = mon.startup_hold();
   u_prev = u0;
+  double sigma[4];
+  for (int c = 0; c < 4; ++c) sigma[c] = mon.evaluator().sigma(c);
+  envelope(mon).configure(mon.observer().model(), sigma);
 }
 
 // The monitor over one chunk's rows (row numbers and statistics continue across chunks).
@@ -199,8 +223,11 @@ void ChunkedReplay::State::run(Mon& mon, const LogData& log, std::size_t rows_to
   typename Obs::Measurement m;
   const typename Obs::Measurement none;
   typename Mon::Event ev;
+  auto& env = envelope(mon);
   auto drain_events = [&] {
-    while (mon.pop_event(ev)) res.events.push_back(to_replay_event(ev));
+    while (mon.pop_event(ev)) {
+      if (!out_of_envelope) res.events.push_back(to_replay_event(ev));
+    }
   };
 
   for (std::size_t k = 0; k < rows; ++k, ++row) {
@@ -216,6 +243,14 @@ void ChunkedReplay::State::run(Mon& mon, const LogData& log, std::size_t rows_to
     m.valid = mask;
     mon.step(t[k], u, m);
     drain_events();
+    if (!res.events.empty()) env.detected(res.events.front().t);
+    env.add(t[k], u, obs.residual().data(), obs.residual_valid(), mon.model_bound());
+    if (!out_of_envelope && env.verdict() == EnvelopeVerdict::kOutside && options.diagnose) {
+      // It supersedes what was said before: a detection while the run settled names
+      // faults on a model that does not apply.
+      out_of_envelope = true;
+      res.events.assign(1, out_of_envelope_event(t[k], envelope_now(mon), res.events));
+    }
     if (row == 0) {
       for (int c = 0; c < 4; ++c) res.thresholds[static_cast<std::size_t>(c)] = mon.evaluator().bound(c);
     }
@@ -278,9 +313,11 @@ void ChunkedReplay::add(const LogData& chunk, std::size_t rows_total) {
 ReplayResult ChunkedReplay::finish() {
   ReplayResult res = std::move(s_->res);
   if (s_->started && !s_->failed) {
-    s_->with_monitor([&res](const auto& mon) {
+    s_->with_monitor([this, &res](auto& mon) {
       res.ticks = mon.observer().ticks();
-      res.final_status = to_string(mon.matcher().status());
+      res.final_status = s_->out_of_envelope ? "out_of_envelope" : to_string(mon.matcher().status());
+      s_->envelope(mon).finish();
+      res.envelope = s_->envelope_now(mon);
     });
   }
   return res;

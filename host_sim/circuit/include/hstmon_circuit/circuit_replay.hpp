@@ -25,7 +25,7 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/bound_lead.hpp"
-#include "hstmon_circuit/envelope_check.hpp"
+#include "hstmon_host/envelope_result.hpp"
 #include "hstmon_host/replay.hpp"
 
 namespace hstmon::circuit_tools {
@@ -78,9 +78,9 @@ struct CircuitReplayResult {
   double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
   std::vector<host::ReplayEvent> events;      ///< matcher events in time order (if diagnose)
   /// Matcher status after the last row, or the fit's (fault_fit_diagnosis.hpp), or
-  /// "out_of_envelope" (envelope_check.hpp: the model does not describe this machine)
+  /// "out_of_envelope" (hstmon/envelope_check.hpp: the model does not describe this machine)
   std::string final_status = "nominal";
-  EnvelopeResult envelope;                    ///< does the model describe this machine at its first steady stretch?
+  host::EnvelopeResult envelope;                  ///< does the model describe this machine at its first steady stretch?
   /// Per channel, the model bound at the last row's inputs and the parameter that leads it
   /// (empty when there is no steady state there)
   std::vector<ChannelBoundLead> bound_lead;

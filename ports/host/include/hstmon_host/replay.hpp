@@ -18,6 +18,8 @@
 #include "hstmon/thesis_params.hpp"
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/initial_state.hpp"
+#include "hstmon_host/envelope_result.hpp"
+#include "hstmon_host/replay_event.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/sensor_ranges.hpp"
 
@@ -61,29 +63,6 @@ struct TraceRow {
   std::uint32_t health = 0;           ///< observer HealthFlag bits of this row's tick
 };
 
-/// A ranked fault hypothesis of an event.
-struct ReplayCandidate {
-  std::string fault;   ///< "kp-", "sensor_p_pp", …
-  double score = 0.0;  ///< matcher score in [0, 1] (higher is better; the matcher's cosine, a negative one shown as 0) [-]
-  /// The fault's estimated size, when a fit over the steady windows gave one: the factor
-  /// on the parameter or input [-] (0.9 = 10 % low), or a sensor's offset [SI]; NaN if none.
-  double size = std::numeric_limits<double>::quiet_NaN();
-  double size_lo = std::numeric_limits<double>::quiet_NaN();  ///< lower end of its interval [same]
-  double size_hi = std::numeric_limits<double>::quiet_NaN();  ///< upper end [same]
-  std::string size_text;  ///< the size in an engineer's words ("Dm: −15 % ± 2 %"); empty if none
-};
-
-/// A matcher event: an episode detected, isolated, ambiguous, unexplained or cleared.
-struct ReplayEvent {
-  double t = 0.0;                          ///< log time [s]
-  std::string event;                       ///< "detected", "isolated", "ambiguous", "unexplained", "cleared"
-  int consistent = 0;                      ///< hypotheses still consistent (may exceed candidates.size())
-  std::vector<ReplayCandidate> candidates; ///< best first (empty for "cleared", and for a detection without a ranking yet)
-  /// What raised the event when not the matcher: e.g. "a step in p_mi while the inputs
-  /// held still" (the candidates then follow from the first steady window); "" otherwise.
-  std::string why;
-};
-
 /// Result of a replay.
 struct ReplayResult {
   std::size_t rows = 0;                       ///< log rows replayed
@@ -100,7 +79,10 @@ struct ReplayResult {
   double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
   std::vector<TraceRow> trace;                ///< per row, if ReplayOptions::keep_trace
   std::vector<ReplayEvent> events;            ///< matcher events in time order (if diagnose)
-  std::string final_status = "nominal";       ///< matcher status after the last row
+  /// Matcher status after the last row, or "out_of_envelope" (the model does not describe
+  /// this machine at its first steady stretch: nothing is diagnosed)
+  std::string final_status = "nominal";
+  EnvelopeResult envelope;                    ///< does the model describe this machine at its first steady stretch?
   std::array<double, 4> thresholds{};         ///< residual bound per channel at the first row (model bound + 2σ) [SI]
   std::vector<std::string> notes;             ///< what the replay assumed (defaults used, tick)
 };

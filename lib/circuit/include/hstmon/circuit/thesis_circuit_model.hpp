@@ -75,6 +75,8 @@ class ThesisCircuitModel {
   static bool params_valid(const Params& p) noexcept { return thesis_params_valid(p); }
   /// True when the inputs are finite and kp (an orifice coefficient) is not negative.
   static bool inputs_valid(const Inputs& u) noexcept { return thesis_inputs_valid(u); }
+  /// True when the circuit's values resolved for the parameters (settle_time() asks).
+  bool valid() const noexcept { return m_.valid(); }
 
   /// Replaces the parameters (and re-resolves the circuit's values). O(elements).
   void set_params(const Params& p) noexcept {
