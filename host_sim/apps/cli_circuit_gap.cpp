@@ -80,6 +80,19 @@ int run_circuit_gap(const CircuitGapArgs& a) {
     fmt::print(stderr, "{}\n", err->to_string());
     return kExitBadInput;
   }
+  gap::CircuitGapOptions o;
+  o.effects = a.effects;
+  std::string unknown;
+  (void)gap::chosen_effects(c, o.effects, unknown);
+  if (!unknown.empty()) {
+    std::string names, none;
+    for (const gap::CircuitEffect& e : gap::chosen_effects(c, {}, none)) names += (names.empty() ? "" : ", ") + e.name;
+    fmt::print(stderr,
+               "hstmon gap: error: --effects: '{}' is none of {}'s candidates ({}) nor a kind of them (leak, friction, "
+               "torque_loss, offset, parameter)\n",
+               unknown, a.circuit, names);
+    return kExitUsage;
+  }
   circuit_tools::CircuitLog logs[2];
   const std::string* paths[2] = {&a.fit, &a.check};
   for (int i = 0; i < 2; ++i) {
@@ -90,7 +103,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
       return kExitBadInput;
     }
   }
-  const gap::CircuitGapResult r = gap::circuit_gap(c, logs[0], logs[1]);
+  const gap::CircuitGapResult r = gap::circuit_gap(c, logs[0], logs[1], o);
   if (r.error) {
     fmt::print(stderr, "hstmon gap --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;

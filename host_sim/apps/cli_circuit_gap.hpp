@@ -3,6 +3,7 @@
 // (hstmon_gap circuit_gap.hpp): candidates derived from the circuit, fitted on one log,
 // judged on the withheld one.
 #include <string>
+#include <vector>
 
 #include "hstmon_host/log_reader.hpp"
 
@@ -15,6 +16,7 @@ struct CircuitGapArgs {
   std::string fit, check;
   bool json = false;
   std::string report;      ///< report folder ("" = none): report.md, report.html, figure.svg
+  std::vector<std::string> effects;  ///< --effects: candidate names or kinds ("" = all; circuit_gap.hpp)
   host::ReadOptions read;  ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 

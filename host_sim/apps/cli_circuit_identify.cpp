@@ -4,13 +4,16 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_circuit_identify_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
+#include "hstmon_circuit/circuit_header.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_host/circuit_units.hpp"
@@ -38,6 +41,7 @@ std::string human_text(const CircuitIdentifyArgs& a, const circuit_tools::Loaded
   t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
                    r.rms_before, r.rms_after, r.status);
   if (!a.out.empty()) t += fmt::format("  parameter file written: {}\n", a.out);
+  if (!a.header.empty()) t += fmt::format("  C++ header written: {} (the circuit at the fitted values)\n", a.header);
   return t;
 }
 
@@ -66,6 +70,58 @@ void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitRe
   fmt::print("{}\n", j.dump());
 }
 
+
+// --noise-pressure / --noise-speed: the weights' σ for every sensor of that quantity.
+void override_noise(const CircuitIdentifyArgs& a, circuit_tools::LoadedCircuit& c) {
+  for (host::CircuitSensor& s : c.file.sensors) {
+    if (s.quantity == host::CircuitQuantity::kPressure && a.noise_pressure > 0.0) s.noise = a.noise_pressure;
+    if (s.quantity == host::CircuitQuantity::kSpeed && a.noise_speed > 0.0) s.noise = a.noise_speed;
+  }
+}
+
+// The header's namespace: its file stem as a C++ identifier ("my-stand.hpp" → my_stand).
+std::string header_namespace(const std::string& path) {
+  std::string n = std::filesystem::path(path).stem().string();
+  for (char& ch : n) {
+    if (std::isalnum(static_cast<unsigned char>(ch)) == 0) ch = '_';
+  }
+  if (n.empty() || std::isdigit(static_cast<unsigned char>(n.front())) != 0) n = "circuit_" + n;
+  return n;
+}
+
+// --header: the circuit at the fitted values (and their uncertainty), as
+// hstmon-circuit-header writes it, through the parameter file the fit makes.
+std::string write_header(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
+                         const ident::CircuitFitResult& r) {
+  namespace fs = std::filesystem;
+  const std::string params = a.out.empty() ? (fs::temp_directory_path() / "hstmon_identify_header.params.json").string()
+                                           : a.out;
+  if (a.out.empty()) {
+    std::ofstream f(params);
+    f << ident::fitted_values_json(c, r);
+    if (!f) return "cannot write " + params;
+  }
+  circuit_tools::LoadedCircuit fitted;
+  const auto load_error = circuit_tools::load_circuit(a.circuit, params, fitted);
+  if (a.out.empty()) {
+    std::error_code ec;
+    fs::remove(params, ec);
+  }
+  if (load_error) return load_error->to_string();
+  circuit_tools::CircuitHeaderOptions o;
+  o.name = header_namespace(a.header);
+  std::string fitted_names;
+  for (const auto& n : r.names) fitted_names += (fitted_names.empty() ? "" : ",") + n;
+  o.source_note = "hstmon identify --circuit " + a.circuit + " --fit " + fitted_names + " (" +
+                  std::to_string(r.points.size()) + " operating points)";
+  std::string error;
+  const std::string text = circuit_tools::circuit_header(fitted, o, error);
+  if (text.empty()) return error;
+  std::ofstream f(a.header);
+  f << text;
+  return f ? std::string() : "cannot write " + a.header;
+}
+
 }  // namespace
 
 int run_circuit_identify(const CircuitIdentifyArgs& a) {
@@ -78,6 +134,7 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
     fmt::print(stderr, "{}\n", err->to_string());
     return kExitBadInput;
   }
+  override_noise(a, c);
   std::vector<circuit_tools::CircuitLog> logs;
   for (const std::string& path : a.logs) {
     circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, a.read);
@@ -91,6 +148,9 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   ident::CircuitFitOptions o;
   o.fit = a.fit;
   o.min_duration = a.min_duration;
+  o.min_samples = a.min_samples;
+  o.assume_steady = a.assume_steady;
+  o.min_settings = a.min_settings;
   const ident::CircuitFitResult r = ident::fit_circuit(c, logs, o);
   if (r.error) {
     fmt::print(stderr, "hstmon identify --circuit {}: {}\n", a.circuit, *r.error);
@@ -101,6 +161,12 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
     f << ident::fitted_values_json(c, r);
     if (!f) {
       fmt::print(stderr, "hstmon identify: cannot write {}\n", a.out);
+      return kExitBadInput;
+    }
+  }
+  if (!a.header.empty()) {
+    if (const std::string err = write_header(a, c, r); !err.empty()) {
+      fmt::print(stderr, "hstmon identify: error: --header {}: {}\n", a.header, err);
       return kExitBadInput;
     }
   }

@@ -18,6 +18,12 @@ struct CircuitIdentifyArgs {
   std::string report;              ///< report folder ("" = none): report.md, report.html, figure.svg
   bool json = false;
   double min_duration = 0.2;       ///< [s]
+  std::size_t min_samples = 1;     ///< fewest rows in an operating point
+  bool assume_steady = false;      ///< every held stretch is steady from its first row (DAS logs)
+  std::size_t min_settings = 0;    ///< fewest distinct operating points accepted (0: what the fit needs)
+  double noise_pressure = 0.0;     ///< σ of every pressure sensor for the weights [Pa]; 0 = the circuit file's
+  double noise_speed = 0.0;        ///< σ of every speed sensor [rad/s]; 0 = the circuit file's
+  std::string header;              ///< generated C++ header of the circuit at the fitted values ("" = none)
   host::ReadOptions read;          ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 

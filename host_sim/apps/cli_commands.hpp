@@ -29,12 +29,18 @@ inline bool read_params_option(const std::string& path, host::ParamsFileResult& 
   return false;
 }
 
-/// With --circuit: the first of `options` given on cmd is refused ("hstmon CMD: error: OPT
-/// does not go with --circuit (yet)"); returns false then, the command exits kExitUsage.
-inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<const char*> options) {
-  for (const char* opt : options) {
-    if (cmd.count(opt) > 0) {
-      fmt::print(stderr, "hstmon {}: error: {} does not go with --circuit (yet)\n", cmd.get_name(), opt);
+/// An option of the thesis rig's own analyses that has no meaning for a circuit, and why.
+struct ThesisOnlyOption {
+  const char* option;
+  const char* why;  ///< the sentence after "does not go with --circuit: "
+};
+
+/// With --circuit: false (after "hstmon CMD: error: OPT does not go with --circuit: WHY")
+/// when one of `options` was given on cmd; the command then exits kExitUsage.
+inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<ThesisOnlyOption> options) {
+  for (const ThesisOnlyOption& o : options) {
+    if (cmd.count(o.option) > 0) {
+      fmt::print(stderr, "hstmon {}: error: {} does not go with --circuit: {}\n", cmd.get_name(), o.option, o.why);
       return false;
     }
   }

@@ -97,7 +97,10 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
   cmd->add_option("--report", args->report, "directory for report.md, report.html (one self-contained page) and PNG plots");
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
-  cmd->add_option("--effects", args->effects, "restrict the library to these effects (names)");
+  cmd->add_option("--effects", args->effects,
+                  "restrict the library to these effects (names; with --circuit a candidate's name, e.g. leak(p_b), or "
+                  "a kind: leak, friction, torque_loss, offset, parameter)")
+      ->delimiter(',');
   cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();
   cmd->add_option("--thesis-model", args->thesis_model,
                   "the thesis rig's equations: specialised (hand-written, the default: about 7x faster) or engine "
@@ -111,7 +114,13 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       exit_code = run_gap_command(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--refit-nominal", "--effects", "--max-step"})) {
+    if (!refuse_with_circuit(
+            *cmd, {{"--refit-nominal",
+                    "each of the circuit's parameters is a candidate of its own (parameter(NAME)); to refit them, run "
+                    "`hstmon identify --circuit FILE --fit NAME --out P.json` on the fit log and give --params P.json"},
+                   {"--max-step",
+                    "the circuit gap compares steady operating points and simulates nothing, so there is no step to "
+                    "set"}})) {
       exit_code = kExitUsage;
       return;
     }
@@ -128,6 +137,7 @@ void add_gap_command(CLI::App& app, int& exit_code) {
     c.check = args->check;
     c.json = args->json;
     c.report = args->report;
+    c.effects = args->effects;
     exit_code = run_circuit_gap(c);
   });
 }

@@ -462,9 +462,17 @@ void add_identify_command(CLI::App& app, int& exit_code) {
       exit_code = run_identify(*args);
       return;
     }
-    if (!refuse_with_circuit(*cmd, {"--header", "--min-samples", "--assume-steady", "--setting-per-window",
-                            "--min-settings", "--noise-pressure", "--noise-speed", "--paper", "--cd", "--rho",
-                            "--studies"})) {
+    const char* const paper_alone =
+        "the paper rig's table analysis needs no model; run `hstmon identify --paper FILE.csv` (with --cd, --rho, "
+        "--studies) on its own";
+    if (!refuse_with_circuit(
+            *cmd, {{"--setting-per-window",
+                    "a circuit's operating points are its held input settings; log the input that sets the load "
+                    "(or name it in the circuit file) so each window has its own"},
+                   {"--paper", paper_alone},
+                   {"--cd", paper_alone},
+                   {"--rho", paper_alone},
+                   {"--studies", paper_alone}})) {
       exit_code = kExitUsage;
       return;
     }
@@ -483,6 +491,12 @@ void add_identify_command(CLI::App& app, int& exit_code) {
     c.json = args->json;
     c.report = args->report;
     if (cmd->count("--min-duration") > 0) c.min_duration = args->min_duration;
+    if (cmd->count("--min-samples") > 0) c.min_samples = args->min_samples;
+    if (cmd->count("--min-settings") > 0) c.min_settings = args->min_settings;
+    c.assume_steady = args->assume_steady;
+    c.noise_pressure = args->noise_pressure;
+    c.noise_speed = args->noise_speed;
+    c.header = args->header;
     exit_code = run_circuit_identify(c);
   });
 }

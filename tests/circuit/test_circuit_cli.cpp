@@ -282,6 +282,51 @@ TEST(CircuitCli, IdentifyAndGapWriteAReportThatRedrawsFromItsFolder) {
   std::filesystem::remove_all(base);
 }
 
+// identify's and gap's options go with --circuit: --min-samples and --min-settings bound
+// the operating points, --noise-pressure sets the weights, --header writes the circuit
+// at the fitted values; gap's --effects picks candidates by name or kind. The options that
+// mean nothing for a circuit are refused with the reason and what to run instead.
+TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
+  const std::string v = std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_circuits/";
+  const std::string ident = std::string(HSTMON_CLI) + " identify --circuit " + v + "circuit.json --fit Dm " + v +
+                            "logs/nominal_A.csv.gz";
+  const std::string header =
+      (std::filesystem::temp_directory_path() / ("hstmon_fitted_" + std::to_string(::getpid()) + ".hpp")).string();
+  CliRun r = run(ident + " --min-samples 100 --noise-pressure 5e4 --header " + header + " 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("C++ header written"), std::string::npos) << r.out;
+  std::ifstream h(header);
+  const std::string text((std::istreambuf_iterator<char>(h)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("namespace hstmon::generated::hstmon_fitted_"), std::string::npos);
+  EXPECT_NE(text.find("hstmon identify --circuit"), std::string::npos) << "the header says where its values came from";
+  std::filesystem::remove(header);
+  r = run(ident + " --min-settings 50 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("fewer than the 50 asked for (--min-settings)"), std::string::npos) << r.out;
+  r = run(ident + " --setting-per-window 2>&1");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("--setting-per-window does not go with --circuit: a circuit's operating points"),
+            std::string::npos)
+      << r.out;
+
+  const std::string gap = std::string(HSTMON_CLI) + " gap --circuit " + v + "circuit.json --fit " + v +
+                          "logs/gap_offset_fit.csv.gz --check " + v + "logs/gap_offset_check.csv.gz --json";
+  r = run(gap + " --effects 'offset,leak(B)'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& c : j.at("ranked")) names.push_back(c.at("effect").get<std::string>());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"leak(B)", "offset(p_a)", "offset(p_b)", "offset(p_c)", "offset(w_m)"}));
+  EXPECT_EQ(j.at("verdict").get<std::string>(), "offset(p_a)");
+  r = run(gap + " --effects 'leak(Q)' 2>&1");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("'leak(Q)' is none of"), std::string::npos) << r.out;
+  r = run(gap + " --max-step 1e-4 2>&1");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("simulates nothing"), std::string::npos) << r.out;
+}
+
 // hstmon-sim --inputs re-runs a logged profile with ramps: the independent simulator's
 // paper-rig log (0.4 s ramps of both valve areas, from rest) drives paper.json, row for
 // row; the re-run agrees with that simulator's steady readings to 0.2 %, and its own

@@ -297,9 +297,45 @@ void decide(CircuitGapResult& r) {
 
 }  // namespace
 
+std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c, const std::vector<std::string>& effects,
+                                          std::string& unknown) {
+  std::vector<CircuitEffect> all = circuit_effects(c);
+  for (const auto& e : parameter_effects(c)) all.push_back(e);
+  unknown.clear();
+  if (effects.empty()) return all;
+  // A kind is the name's part before its parenthesis: "leak(p_b)" is a leak.
+  auto kind_of = [](const CircuitEffect& e) { return e.name.substr(0, e.name.find('(')); };
+  std::vector<CircuitEffect> out;
+  for (const std::string& want : effects) {
+    const bool any = std::any_of(all.begin(), all.end(), [&](const CircuitEffect& e) {
+      return e.name == want || kind_of(e) == want;
+    });
+    if (!any) {
+      unknown = want;
+      return {};
+    }
+  }
+  for (const CircuitEffect& e : all) {
+    if (std::any_of(effects.begin(), effects.end(),
+                    [&](const std::string& want) { return e.name == want || kind_of(e) == want; })) {
+      out.push_back(e);
+    }
+  }
+  return out;
+}
+
 CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& fit,
-                             const circuit_tools::CircuitLog& check) {
+                             const circuit_tools::CircuitLog& check, const CircuitGapOptions& o) {
   CircuitGapResult r;
+  std::string unknown;
+  const std::vector<CircuitEffect> candidates = chosen_effects(c, o.effects, unknown);
+  if (!unknown.empty()) {
+    std::string names, none;
+    for (const CircuitEffect& e : chosen_effects(c, {}, none)) names += (names.empty() ? "" : ", ") + e.name;
+    r.error = "--effects: '" + unknown + "' is none of this circuit's candidates (" + names +
+              ") nor a kind of them (leak, friction, torque_loss, offset, parameter)";
+    return r;
+  }
   const detail::PointSet F = detail::circuit_point_set(c, fit), C = detail::circuit_point_set(c, check);
   r.fit_points = F.points.size();
   r.check_points = C.points.size();
@@ -325,8 +361,6 @@ CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circui
   r.mean_fit = channel_means(base, F, channels);
   for (std::size_t ch = 0; ch < channels; ++ch) r.channels.push_back(c.file.sensors[ch].name);
 
-  std::vector<CircuitEffect> candidates = circuit_effects(c);
-  for (const auto& e : parameter_effects(c)) candidates.push_back(e);
   for (const CircuitEffect& e : candidates) {
     CircuitEffectResult er;
     er.effect = e;

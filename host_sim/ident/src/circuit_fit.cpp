@@ -94,7 +94,19 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     r.error = "nothing to fit: name the parameters with --fit";
     return r;
   }
-  r.points = circuit_operating_points(c, logs, o.min_duration, &r.notes);
+  CircuitPointRules rules;
+  rules.min_duration = o.min_duration;
+  rules.min_samples = o.min_samples;
+  rules.assume_steady = o.assume_steady;
+  r.points = circuit_operating_points(c, logs, rules, &r.notes);
+  if (o.min_settings > 0) {
+    const std::size_t settings = distinct_settings(r.points);
+    if (settings < o.min_settings) {
+      r.error = std::to_string(settings) + " distinct operating point(s) (held input settings) in the logs, fewer than "
+                "the " + std::to_string(o.min_settings) + " asked for (--min-settings): log more settings";
+      return r;
+    }
+  }
   const std::size_t channels = c.file.sensors.size();
   std::size_t m = 0;
   for (const auto& p : r.points) {

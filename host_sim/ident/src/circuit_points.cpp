@@ -146,8 +146,10 @@ std::size_t row_at(const circuit_tools::CircuitLog& log, std::size_t from, std::
 }
 
 void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit& desc, const circuit_tools::CircuitLog& log,
-                 std::size_t index, double min_duration, std::vector<CircuitOperatingPoint>& out,
+                 std::size_t index, const CircuitPointRules& rules, std::vector<CircuitOperatingPoint>& out,
                  std::vector<std::string>& notes) {
+  const double min_duration = rules.assume_steady ? 0.0 : rules.min_duration;
+  const std::size_t min_samples = rules.assume_steady ? 1 : std::max<std::size_t>(1, rules.min_samples);
   const std::size_t rows = log.rows();
   const std::size_t n_in = c.file.inputs.size();
   auto logged = [&](std::size_t i) { return i < log.inputs.size() && log.inputs[i].size() == rows; };
@@ -177,13 +179,13 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
     const Model m(desc, c.values.params, u);
     Model::State xs;
     const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
-    const double settle = rate > 0.0 ? 5.0 / rate : HUGE_VAL;
+    const double settle = rules.assume_steady ? 0.0 : rate > 0.0 ? 5.0 / rate : HUGE_VAL;
     // Steady pieces: after the settle, split where an output steps (then settle again).
     std::vector<Stretch> todo{{row_at(log, start, end, log.t[start] + settle), end}};
     while (!todo.empty()) {
       const Stretch s = todo.back();
       todo.pop_back();
-      if (s.a >= s.b || log.t[s.b - 1] - log.t[s.a] < min_duration) continue;
+      if (s.a >= s.b || s.b - s.a < min_samples || log.t[s.b - 1] - log.t[s.a] < min_duration) continue;
       std::string channel;
       double size = 0.0;
       const std::size_t at = find_step(c, log, s, channel, size);
@@ -218,17 +220,40 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
 
 std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
                                                             const std::vector<circuit_tools::CircuitLog>& logs,
-                                                            double min_duration, std::vector<std::string>* notes) {
+                                                            const CircuitPointRules& rules,
+                                                            std::vector<std::string>* notes) {
   host::HostCircuit desc = c.file.circuit;
   desc.stiff_mask = 0;
   std::vector<CircuitOperatingPoint> out;
   std::vector<std::string> said;
-  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, min_duration, out, said);
+  for (std::size_t l = 0; l < logs.size(); ++l) find_points(c, desc, logs[l], l, rules, out, said);
   std::sort(out.begin(), out.end(), [](const CircuitOperatingPoint& a, const CircuitOperatingPoint& b) {
     return a.log != b.log ? a.log < b.log : a.t0 < b.t0;
   });
   if (notes != nullptr) notes->insert(notes->end(), said.begin(), said.end());
   return out;
+}
+
+std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
+                                                            const std::vector<circuit_tools::CircuitLog>& logs,
+                                                            double min_duration, std::vector<std::string>* notes) {
+  CircuitPointRules rules;
+  rules.min_duration = min_duration;
+  return circuit_operating_points(c, logs, rules, notes);
+}
+
+std::size_t distinct_settings(const std::vector<CircuitOperatingPoint>& points) {
+  std::vector<const std::vector<double>*> seen;
+  for (const CircuitOperatingPoint& p : points) {
+    const bool known = std::any_of(seen.begin(), seen.end(), [&](const std::vector<double>* q) {
+      for (std::size_t i = 0; i < p.inputs.size() && i < q->size(); ++i) {
+        if (std::fabs(p.inputs[i] - (*q)[i]) > kInputRelative * std::fabs((*q)[i]) + 1e-12) return false;
+      }
+      return true;
+    });
+    if (!known) seen.push_back(&p.inputs);
+  }
+  return seen.size();
 }
 
 }  // namespace hstmon::ident

@@ -75,8 +75,21 @@ const char* effect_unit(const circuit_tools::LoadedCircuit& c, const CircuitEffe
 /// c with effect e of magnitude m added (an offset leaves the circuit unchanged).
 circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m);
 
-/// Fits every candidate on `fit`, judges it on `check`.
+/// Options of circuit_gap().
+struct CircuitGapOptions {
+  /// The candidates tried: each a candidate's name ("leak(p_b)") or a kind (leak, friction,
+  /// torque_loss, offset, parameter); empty = all of them.
+  std::vector<std::string> effects;
+};
+
+/// The candidates of c that `effects` names (CircuitGapOptions::effects), in c's order.
+/// @param unknown  out: the first name that matches no candidate, else empty
+std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c, const std::vector<std::string>& effects,
+                                          std::string& unknown);
+
+/// Fits every candidate (or those `o` names) on `fit`, judges it on `check`. A name in
+/// `o.effects` that matches no candidate sets `error`.
 CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& fit,
-                             const circuit_tools::CircuitLog& check);
+                             const circuit_tools::CircuitLog& check, const CircuitGapOptions& o = {});
 
 }  // namespace hstmon::gap

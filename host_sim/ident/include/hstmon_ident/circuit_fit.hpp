@@ -28,10 +28,24 @@
 
 namespace hstmon::ident {
 
+/// What makes a stretch of a log an operating point.
+struct CircuitPointRules {
+  double min_duration = 0.2;      ///< shortest steady stretch after the settle time [s]
+  std::size_t min_samples = 1;    ///< fewest rows averaged into a point
+  /// Every held stretch is steady from its first row (a DAS log recorded only at steady
+  /// state): no settle time, no shortest duration, stretches of one row accepted.
+  bool assume_steady = false;
+};
+
 /// What to fit and how to find operating points.
 struct CircuitFitOptions {
   std::vector<std::string> fit;   ///< names of the parameters to fit (named, not literal)
   double min_duration = 0.2;      ///< shortest steady stretch after the settle time [s]
+  std::size_t min_samples = 1;    ///< fewest rows in an operating point
+  bool assume_steady = false;     ///< CircuitPointRules::assume_steady
+  /// Fewest distinct operating points (held input settings) the fit accepts; fewer is an
+  /// error that says how many were found. 0: only the count the parameters need.
+  std::size_t min_settings = 0;
 };
 
 /// One operating point.
@@ -69,8 +83,17 @@ struct CircuitFitResult {
 /// @param notes  out, optional: a sentence per held stretch split where an output stepped
 std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
                                                             const std::vector<circuit_tools::CircuitLog>& logs,
+                                                            const CircuitPointRules& rules,
+                                                            std::vector<std::string>* notes = nullptr);
+/// The same with the default rules but for the shortest duration [s].
+std::vector<CircuitOperatingPoint> circuit_operating_points(const circuit_tools::LoadedCircuit& c,
+                                                            const std::vector<circuit_tools::CircuitLog>& logs,
                                                             double min_duration,
                                                             std::vector<std::string>* notes = nullptr);
+
+/// How many distinct held input settings `points` cover (each input within the held-input
+/// tolerance, 0.5 %, of a setting already counted).
+std::size_t distinct_settings(const std::vector<CircuitOperatingPoint>& points);
 
 /// Residuals (mean − model)/σ at every point and measured channel, in point then channel
 /// order, for circuit c with parameter values p (c's inputs apart from those the points
