@@ -159,6 +159,7 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
     if (logged(i)) tolerance[i] = kInputNoise * column_noise(log.inputs[i]);
   }
   std::size_t start = 0;
+  double prev_rate = 0.0;  // the previous held stretch's slowest rate [1/s]; 0 before the first
   while (start < rows) {
     std::size_t end = start + 1;
     for (; end < rows; ++end) {
@@ -179,7 +180,11 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
     const Model m(desc, c.values.params, u);
     Model::State xs;
     const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
-    const double settle = rules.assume_steady ? 0.0 : rate > 0.0 ? 5.0 / rate : HUGE_VAL;
+    // The machine leaves the last point at that point's pace as much as it reaches this
+    // one at its own (the monitor's settle, model_monitor.hpp): the slower of the two.
+    const double pace = prev_rate > 0.0 && rate > 0.0 ? std::min(rate, prev_rate) : rate;
+    prev_rate = rate;
+    const double settle = rules.assume_steady ? 0.0 : pace > 0.0 ? 5.0 / pace : HUGE_VAL;
     // Steady pieces: after the settle, split where an output steps (then settle again).
     std::vector<Stretch> todo{{row_at(log, start, end, log.t[start] + settle), end}};
     while (!todo.empty()) {
