@@ -7,28 +7,16 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "cli_circuit_gap_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_gap/circuit_gap.hpp"
+#include "hstmon_gap/circuit_gap_report.hpp"
 
 namespace hstmon::cli {
 
 namespace {
-
-std::string verdict_words(const gap::CircuitGapResult& r) {
-  if (r.verdict == "none") {
-    return "no gap: the model meets both logs' operating points within 2 sigma of noise and parameter uncertainty";
-  }
-  if (r.verdict == "insufficient_data") return "insufficient data: " + r.evidence_missing;
-  if (r.verdict == "unexplained") return "no single candidate explains the gap (none halves the check log's residual)";
-  if (r.verdict.rfind("parameter(", 0) == 0) {
-    return r.verdict + ": a parameter off beyond its stated uncertainty; hstmon identify --circuit fits it";
-  }
-  return r.verdict;
-}
 
 void print_json(const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResult& r) {
   nlohmann::json noise = nlohmann::json::object();
@@ -49,27 +37,6 @@ void print_json(const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResu
                             {"z_fit", number_or_null(r.z_fit)}, {"z_check", number_or_null(r.z_check)},
                             {"noise", noise}, {"evidence_missing", r.evidence_missing}, {"notes", r.notes}};
   fmt::print("{}\n", j.dump());
-}
-
-std::string gap_text(const CircuitGapArgs& a, const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResult& r) {
-  std::string t = fmt::format("hstmon gap --circuit {}: fit {} ({} operating points), check {} ({})\n", a.circuit, a.fit,
-                              r.fit_points, a.check, r.check_points);
-  t += fmt::format("\n  verdict: {}\n", verdict_words(r));
-  for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
-  if (r.verdict == "insufficient_data") return t;
-  t += fmt::format("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n",
-                   r.z_fit, r.z_check);
-  t += "\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ";
-  for (std::size_t ch = 0; ch < r.channels.size(); ++ch) t += fmt::format(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
-  t += fmt::format("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
-  t += fmt::format("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS",
-                   "check RMS", "shrink");
-  for (const auto& e : r.ranked) {
-    const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
-    t += fmt::format("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude,
-                     gap::effect_unit(c, e.effect), e.rms_fit, e.rms_check, shrink);
-  }
-  return t;
 }
 
 }  // namespace
@@ -108,7 +75,8 @@ int run_circuit_gap(const CircuitGapArgs& a) {
     fmt::print(stderr, "hstmon gap --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;
   }
-  const std::string text = gap_text(a, c, r);
+  const gap::CircuitGapRun run{a.circuit, a.fit, a.check};
+  const std::string text = gap::circuit_gap_text(run, c, r);
   if (a.json) {
     print_json(c, r);
   } else {
@@ -116,7 +84,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   }
   if (!a.report.empty()) {
     std::string warning;
-    const std::string err = write_circuit_report(a.report, circuit_gap_report(a, c, r, verdict_words(r), text), warning);
+    const std::string err = sim::write_circuit_report(a.report, gap::circuit_gap_report(run, c, r, text), warning);
     if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
     if (!err.empty()) {
       fmt::print(stderr, "hstmon gap: error: {}\n", err);

@@ -10,7 +10,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "cli_circuit_identify_report.hpp"
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/circuit_header.hpp"
@@ -18,32 +17,11 @@
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
+#include "hstmon_ident/circuit_identify_report.hpp"
 
 namespace hstmon::cli {
 
 namespace {
-
-std::string human_text(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
-                       const ident::CircuitFitResult& r) {
-  std::string t = fmt::format("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit,
-                              a.logs.size(), r.points.size());
-  for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
-  t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",
-                   "std. error", "monitor's bound");
-  for (std::size_t j = 0; j < r.names.size(); ++j) {
-    const int k = c.file.param_index(r.names[j]);
-    const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
-    const std::string bound = fmt::format("±{:.2g}% {}", 100.0 * r.uncertainty[j], r.pinned[j] ? "(was " : "(kept");
-    t += fmt::format("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j],
-                     r.value[j], 100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
-                     r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
-  }
-  t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
-                   r.rms_before, r.rms_after, r.status);
-  if (!a.out.empty()) t += fmt::format("  parameter file written: {}\n", a.out);
-  if (!a.header.empty()) t += fmt::format("  C++ header written: {} (the circuit at the fitted values)\n", a.header);
-  return t;
-}
 
 void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   nlohmann::json params = nlohmann::json::array();
@@ -170,7 +148,8 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
       return kExitBadInput;
     }
   }
-  const std::string text = human_text(a, c, r);
+  const ident::CircuitIdentifyRun run{a.circuit, a.logs, a.out, a.header};
+  const std::string text = ident::circuit_identify_text(run, c, r);
   if (a.json) {
     print_json(c, r);
   } else {
@@ -178,7 +157,7 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   }
   if (!a.report.empty()) {
     std::string warning;
-    const std::string err = write_circuit_report(a.report, circuit_identify_report(a, c, r, text), warning);
+    const std::string err = sim::write_circuit_report(a.report, ident::circuit_identify_report(run, c, r, text), warning);
     if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
     if (!err.empty()) {
       fmt::print(stderr, "hstmon identify: error: {}\n", err);

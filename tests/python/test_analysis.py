@@ -52,6 +52,26 @@ def test_gap_equals_cli(root, cli, tmp_path):
     assert "leak(Pmi)" in g.report(tmp_path / "gap").read_text()
 
 
+def test_gap_and_identify_reports_are_the_clis(root, cli, tmp_path):
+    """The report folder from Python is the one the CLI writes, byte for byte."""
+    import subprocess
+    data = root / "tests/data/validation_paper"
+    c = hstmon.Circuit.load(data / "paper.json")
+    fit, check = str(data / "logs/gap_leak_pmi_fit.csv.gz"), str(data / "logs/gap_leak_pmi_check.csv.gz")
+    subprocess.run([cli, "gap", "--circuit", c.path, "--fit", fit, "--check", check, "--report", str(tmp_path / "cli_gap")],
+                   check=True, capture_output=True)
+    g = hstmon.gap(fit, check, c)
+    assert g.text.startswith(f"hstmon gap --circuit {c.path}: fit {fit}")
+    g.report(tmp_path / "py_gap")
+    log = str(root / "examples/circuits/paper.csv")
+    subprocess.run([cli, "identify", "--circuit", c.path, "--fit", "Dm", log, "--report", str(tmp_path / "cli_id")],
+                   check=True, capture_output=True)
+    hstmon.identify(log, "Dm", c).report(tmp_path / "py_id")
+    for name in ("gap", "id"):
+        for f in ("report.md", "report.html"):
+            assert (tmp_path / f"py_{name}" / f).read_bytes() == (tmp_path / f"cli_{name}" / f).read_bytes(), (name, f)
+
+
 def test_identify_equals_cli(root, cli, tmp_path):
     c = hstmon.Circuit.rig("paper")
     log = root / "examples/circuits/paper.csv"

@@ -53,9 +53,15 @@ def _only_read_options(options: Dict[str, Any], function: str) -> Dict[str, Any]
 class IdentifyResult:
     """The result of hstmon.identify: fitted values [SI] and residuals in sensor σ."""
 
-    def __init__(self, circuit: Circuit, raw: Dict[str, Any]) -> None:
+    def __init__(self, circuit: Circuit, outcome: Any) -> None:
         self.circuit = circuit
-        self.raw = raw
+        self._outcome = outcome
+        self.raw = outcome.as_dict()
+
+    @property
+    def text(self) -> str:
+        """What ``hstmon identify --circuit`` prints for the same fit."""
+        return self._outcome.text
 
     @property
     def parameters(self) -> pd.DataFrame:
@@ -100,7 +106,9 @@ class IdentifyResult:
         Path(path).write_text(self.values_json, encoding="utf-8")
 
     def report(self, folder: PathLike) -> Path:
-        """Writes report.md, parameters.csv, points.csv and fitted.params.json to folder."""
+        """Writes the report folder ``hstmon identify --circuit --report`` writes (report.md,
+        report.html, the figure with figure.dat and plots.gp), plus parameters.csv,
+        points.csv and fitted.params.json; returns the path of report.md."""
         from ._report import identify_report
         return identify_report(self, Path(folder))
 
@@ -121,17 +129,29 @@ def identify(logs: Union[LogLike, Sequence[LogLike]], fit: Union[str, Sequence[s
     names = [n.strip() for n in fit.split(",")] if isinstance(fit, str) else list(fit)
     read_kw = _only_read_options(read_options, "identify")
     data = [_logs.read(c, log, f"DataFrame {k}", **read_kw) for k, log in enumerate(logs)]
-    return IdentifyResult(c, _core.identify(c._core, data, names, float(min_duration)))
+    labels = [os.fspath(x) if not isinstance(x, pd.DataFrame) else f"DataFrame {k}" for k, x in enumerate(logs)]
+    return IdentifyResult(c, _core.identify(c._core, data, names, float(min_duration), labels))
 
 
 class GapResult:
     """The result of hstmon.gap: the verdict, where the gap lies, and the candidates ranked."""
 
-    def __init__(self, circuit: Circuit, raw: Dict[str, Any], fit_log: str, check_log: str) -> None:
+    def __init__(self, circuit: Circuit, outcome: Any, fit_log: str, check_log: str) -> None:
         self.circuit = circuit
-        self.raw = raw
+        self._outcome = outcome
+        self.raw = outcome.as_dict()
         self.fit_log = fit_log
         self.check_log = check_log
+
+    @property
+    def text(self) -> str:
+        """What ``hstmon gap --circuit`` prints for the same logs."""
+        return self._outcome.text
+
+    @property
+    def verdict_text(self) -> str:
+        """The verdict in one sentence, as the CLI says it."""
+        return self._outcome.verdict_text
 
     @property
     def verdict(self) -> str:
@@ -165,7 +185,9 @@ class GapResult:
         return json.dumps(self.raw, allow_nan=False, default=str)
 
     def report(self, folder: PathLike) -> Path:
-        """Writes report.md, ranked.csv and where.csv to folder."""
+        """Writes the report folder ``hstmon gap --circuit --report`` writes (report.md,
+        report.html, the figure with figure.dat and plots.gp), plus ranked.csv and
+        where.csv; returns the path of report.md."""
         from ._report import gap_report
         return gap_report(self, Path(folder))
 
@@ -181,4 +203,4 @@ def gap(fit: LogLike, check: LogLike, circuit: CircuitLike = None, params: Optio
     logs = [_logs.read(c, log, name, **read_kw) for log, name in ((fit, "fit DataFrame"), (check, "check DataFrame"))]
     label = [os.fspath(x) if not isinstance(x, pd.DataFrame) else n
              for x, n in ((fit, "fit DataFrame"), (check, "check DataFrame"))]
-    return GapResult(c, _core.gap(c._core, logs[0], logs[1]), label[0], label[1])
+    return GapResult(c, _core.gap(c._core, logs[0], logs[1], label[0], label[1]), label[0], label[1])

@@ -1,4 +1,5 @@
-"""Reports in a folder: report.md with the verdict and the tables, CSV tables, a figure."""
+"""Reports in a folder. identify and gap write the CLI's own report (the C++ core's writer)
+plus CSV tables of their results; replay writes report.md, CSV tables and a figure."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -52,29 +53,26 @@ def replay_report(result: Any, folder: Path) -> Path:
     return _write(folder, text, result.notes)
 
 
-def gap_report(result: Any, folder: Path) -> Path:
+def _cli_report(outcome: Any, folder: Path) -> Path:
+    """The CLI's own report folder (report.md, report.html, figure), written by the C++ core."""
     folder.mkdir(parents=True, exist_ok=True)
+    missing = outcome.report(str(folder))
+    if missing:
+        import warnings
+        warnings.warn(f"{folder}: no figure: {missing}", stacklevel=3)
+    return folder / "report.md"
+
+
+def gap_report(result: Any, folder: Path) -> Path:
+    path = _cli_report(result._outcome, folder)
     result.ranked.to_csv(folder / "ranked.csv", index=False)
     result.where.to_csv(folder / "where.csv")
-    text = [f"# hstmon gap on {result.circuit.name}", "",
-            f"Fit log {result.fit_log} ({result.raw['fit_points']} operating points), check log "
-            f"{result.check_log} ({result.raw['check_points']}).", "",
-            f"**Verdict: {result.verdict}**", "",
-            f"Beyond noise and parameter uncertainty: fit {result.raw['z_fit']:.3g}, check "
-            f"{result.raw['z_check']:.3g} σ (no gap at 2 or less).", "",
-            "## Where the gap lies (mean of measured − model over the fit log's points, in sensor σ)", "",
-            _table(result.where.reset_index()), "", "## Candidates, best check RMS first", "",
-            _table(result.ranked), ""]
-    return _write(folder, text, result.notes)
+    return path
 
 
 def identify_report(result: Any, folder: Path) -> Path:
-    folder.mkdir(parents=True, exist_ok=True)
+    path = _cli_report(result._outcome, folder)
     result.parameters.to_csv(folder / "parameters.csv", index=False)
     result.points.to_csv(folder / "points.csv", index=False)
     (folder / "fitted.params.json").write_text(result.values_json, encoding="utf-8")
-    text = [f"# hstmon identify on {result.circuit.name}", "",
-            f"{len(result.points)} operating points; residual RMS (mean reading − model, in sensor σ) "
-            f"{result.rms_before:.3g} before, {result.rms_after:.3g} after ({result.status}).", "",
-            _table(result.parameters), "", "The fitted parameter file: fitted.params.json", ""]
-    return _write(folder, text, result.notes)
+    return path

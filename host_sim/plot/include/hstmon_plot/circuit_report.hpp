@@ -1,5 +1,6 @@
 #pragma once
-// `--report DIR` of `identify --circuit` and `gap --circuit`: report.md, report.html (one
+// The report folder of `identify --circuit` and `gap --circuit` (the CLI and the Python
+// module write the same one): report.md, report.html (one
 // self-contained page) and the plots, with the plots' data and script (plots.gp) in the
 // folder, so `cd DIR && gnuplot plots.gp` redraws them. Values in an engineer's units
 // (bar, rpm, L/min, cc/rev: host::engineering_unit); residuals in each sensor's σ.
@@ -8,7 +9,7 @@
 
 #include "hstmon_plot/html_report.hpp"
 
-namespace hstmon::cli {
+namespace hstmon::sim {
 
 /// One table of a report (header and rows of cells, already formatted).
 struct ReportTable {
@@ -51,4 +52,4 @@ struct CircuitReport {
 /// @return empty on success, else why the report could not be written
 std::string write_circuit_report(const std::string& dir, const CircuitReport& r, std::string& plot_warning);
 
-}  // namespace hstmon::cli
+}  // namespace hstmon::sim

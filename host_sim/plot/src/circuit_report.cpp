@@ -1,5 +1,5 @@
-// The report folder of `identify --circuit` and `gap --circuit` (cli_circuit_report.hpp).
-#include "cli_circuit_report.hpp"
+// The report folder of `identify --circuit` and `gap --circuit` (circuit_report.hpp).
+#include "hstmon_plot/circuit_report.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 
 #include "hstmon_plot/gnuplot.hpp"
 
-namespace hstmon::cli {
+namespace hstmon::sim {
 
 namespace {
 
@@ -117,4 +117,4 @@ std::string write_circuit_report(const std::string& dir, const CircuitReport& r,
   return page.write((d / "report.html").string());
 }
 
-}  // namespace hstmon::cli
+}  // namespace hstmon::sim

@@ -1,5 +1,5 @@
-// The report of `identify --circuit` (cli_circuit_identify_report.hpp).
-#include "cli_circuit_identify_report.hpp"
+// The text and report of `identify --circuit` (circuit_identify_report.hpp).
+#include "hstmon_ident/circuit_identify_report.hpp"
 
 #include <fmt/format.h>
 
@@ -8,12 +8,12 @@
 
 #include "hstmon_host/circuit_units.hpp"
 
-namespace hstmon::cli {
+namespace hstmon::ident {
 
 namespace {
 
-ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
-  ReportTable t{"Fitted parameters",
+sim::ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  sim::ReportTable t{"Fitted parameters",
                 {"parameter", "start", "fitted", "change", "std. error", "monitor's bound", "the data show a change"},
                 {}};
   for (std::size_t j = 0; j < r.names.size(); ++j) {
@@ -29,7 +29,7 @@ ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const ident::
   return t;
 }
 
-std::string inputs_text(const circuit_tools::LoadedCircuit& c, const ident::CircuitOperatingPoint& p) {
+std::string inputs_text(const circuit_tools::LoadedCircuit& c, const CircuitOperatingPoint& p) {
   std::string s;
   for (std::size_t i = 0; i < p.inputs.size() && i < c.file.inputs.size(); ++i) {
     s += (s.empty() ? "" : ", ") + c.file.inputs[i].name + " " +
@@ -38,9 +38,9 @@ std::string inputs_text(const circuit_tools::LoadedCircuit& c, const ident::Circ
   return s;
 }
 
-ReportTable point_table(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
-                        const ident::CircuitFitResult& r) {
-  ReportTable t{"Operating points (measured − model, in each sensor's σ: start values → fitted)",
+sim::ReportTable point_table(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
+                        const CircuitFitResult& r) {
+  sim::ReportTable t{"Operating points (measured − model, in each sensor's σ: start values → fitted)",
                 {"#", "log", "t [s]", "rows", "inputs"},
                 {}};
   for (const auto& s : c.file.sensors) t.header.push_back(s.name);
@@ -60,11 +60,11 @@ ReportTable point_table(const CircuitIdentifyArgs& a, const circuit_tools::Loade
   return t;
 }
 
-std::vector<ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
-  std::vector<ReportPanel> panels;
+std::vector<sim::ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  std::vector<sim::ReportPanel> panels;
   for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
-    ReportPanel p{c.file.sensors[ch].name, "operating point", "measured − model [σ]", {}, {}};
-    ReportSeries before{"start values", {}, "points pt 6 ps 1.3"}, after{"fitted", {}, "points pt 7 ps 1.1"};
+    sim::ReportPanel p{c.file.sensors[ch].name, "operating point", "measured − model [σ]", {}, {}};
+    sim::ReportSeries before{"start values", {}, "points pt 6 ps 1.3"}, after{"fitted", {}, "points pt 7 ps 1.1"};
     bool any = false;
     for (std::size_t k = 0; k < r.points.size(); ++k) {
       const auto& pt = r.points[k];
@@ -82,9 +82,31 @@ std::vector<ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c, con
 
 }  // namespace
 
-CircuitReport circuit_identify_report(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
-                                      const ident::CircuitFitResult& r, const std::string& text) {
-  CircuitReport rep;
+std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
+                                  const CircuitFitResult& r) {
+  std::string t = fmt::format("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit,
+                              a.logs.size(), r.points.size());
+  for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
+  t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",
+                   "std. error", "monitor's bound");
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    const int k = c.file.param_index(r.names[j]);
+    const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
+    const std::string bound = fmt::format("±{:.2g}% {}", 100.0 * r.uncertainty[j], r.pinned[j] ? "(was " : "(kept");
+    t += fmt::format("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j],
+                     r.value[j], 100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
+                     r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
+  }
+  t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
+                   r.rms_before, r.rms_after, r.status);
+  if (!a.out.empty()) t += fmt::format("  parameter file written: {}\n", a.out);
+  if (!a.header.empty()) t += fmt::format("  C++ header written: {} (the circuit at the fitted values)\n", a.header);
+  return t;
+}
+
+sim::CircuitReport circuit_identify_report(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
+                                           const CircuitFitResult& r, const std::string& text) {
+  sim::CircuitReport rep;
   rep.title = "hstmon identify --circuit report: " + c.file.name;
   std::size_t pinned = 0;
   for (bool p : r.pinned) pinned += p ? 1 : 0;
@@ -101,4 +123,4 @@ CircuitReport circuit_identify_report(const CircuitIdentifyArgs& a, const circui
   return rep;
 }
 
-}  // namespace hstmon::cli
+}  // namespace hstmon::ident
