@@ -9,6 +9,8 @@ namespace hstmon::fdi {
 int CausalGraph::add_node(Node n) {
   if (find(n.name) >= 0) throw std::invalid_argument("duplicate node " + n.name);
   nodes_.push_back(std::move(n));
+  in_.emplace_back();
+  out_.emplace_back();
   return static_cast<int>(nodes_.size()) - 1;
 }
 
@@ -17,8 +19,11 @@ int CausalGraph::add_edge(Edge e) {
   if (e.from < 0 || e.from >= n || e.to < 0 || e.to >= n) throw std::invalid_argument("edge node index out of range");
   if (e.sign != 1 && e.sign != -1) throw std::invalid_argument("edge sign must be +1 or -1");
   if (e.param.empty() != (e.param_sign == 0)) throw std::invalid_argument("edge parameter sign without parameter");
+  const int index = static_cast<int>(edges_.size());
+  in_[static_cast<std::size_t>(e.to)].push_back(index);
+  out_[static_cast<std::size_t>(e.from)].push_back(index);
   edges_.push_back(std::move(e));
-  return static_cast<int>(edges_.size()) - 1;
+  return index;
 }
 
 int CausalGraph::find(std::string_view name) const {
@@ -34,20 +39,14 @@ int CausalGraph::at(std::string_view name) const {
   return i;
 }
 
-std::vector<int> CausalGraph::in_edges(int n) const {
-  std::vector<int> r;
-  for (std::size_t i = 0; i < edges_.size(); ++i) {
-    if (edges_[i].to == n) r.push_back(static_cast<int>(i));
-  }
-  return r;
+const std::vector<int>& CausalGraph::in_edges(int n) const {
+  static const std::vector<int> none;
+  return n >= 0 && static_cast<std::size_t>(n) < in_.size() ? in_[static_cast<std::size_t>(n)] : none;
 }
 
-std::vector<int> CausalGraph::out_edges(int n) const {
-  std::vector<int> r;
-  for (std::size_t i = 0; i < edges_.size(); ++i) {
-    if (edges_[i].from == n) r.push_back(static_cast<int>(i));
-  }
-  return r;
+const std::vector<int>& CausalGraph::out_edges(int n) const {
+  static const std::vector<int> none;
+  return n >= 0 && static_cast<std::size_t>(n) < out_.size() ? out_[static_cast<std::size_t>(n)] : none;
 }
 
 std::vector<std::string> CausalGraph::parameters() const {

@@ -65,16 +65,17 @@ class CausalGraph {
   int find(std::string_view name) const;
   /// Node index by name. @throws std::invalid_argument if absent
   int at(std::string_view name) const;
-  /// Indices of the edges into node n, in insertion order.
-  std::vector<int> in_edges(int n) const;
-  /// Indices of the edges out of node n, in insertion order.
-  std::vector<int> out_edges(int n) const;
+  /// Indices of the edges into node n, in insertion order (empty for no such node).
+  const std::vector<int>& in_edges(int n) const;
+  /// Indices of the edges out of node n, in insertion order (empty for no such node).
+  const std::vector<int>& out_edges(int n) const;
   /// Distinct parameter names on edges, in first-appearance order.
   std::vector<std::string> parameters() const;
 
  private:
   std::vector<Node> nodes_;
   std::vector<Edge> edges_;
+  std::vector<std::vector<int>> in_, out_;  ///< per node: the edges into and out of it (the propagations ask per node)
 };
 
 /// Name of an edge type as in the thesis: "" (instantaneous), "dt", "1/dt".
