@@ -84,6 +84,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
   fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
                                      {"checked", r.envelope.checked},
                                      {"out", r.envelope.out},
+                                     {"unverified", r.envelope.unverified},
                                      {"text", r.envelope.text}}
                         .dump());
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());

@@ -60,6 +60,8 @@ void print_events(const std::vector<host::ReplayEvent>& events, const std::strin
       fmt::print("    t = {:>9.3f} s  isolated: {}\n", e.t, candidate_list(e, 3));
     } else if (e.event == "out_of_envelope") {
       fmt::print("    t = {:>9.3f} s  out of envelope: {}\n", e.t, e.why);
+    } else if (e.event == "unverified") {
+      fmt::print("    t = {:>9.3f} s  {}\n", e.t, e.why);
     } else if (e.event == "detected" && e.candidates.empty()) {
       fmt::print("    t = {:>9.3f} s  detected: {}; candidates from the first steady window\n", e.t,
                  e.why.empty() ? "residuals beyond their bounds" : e.why);

@@ -28,6 +28,9 @@ std::string verdict(const ReplayReport& r, sim::VerdictTone& tone) {
   } else if (r.final_status == "out_of_envelope") {
     text = "out of envelope: " + r.events.back().why;
     tone = sim::VerdictTone::kWarning;
+  } else if (r.final_status == "unverified") {
+    text = r.events.back().why;
+    tone = sim::VerdictTone::kWarning;
   } else {
     // The last event that names candidates says what the matcher ended with.
     const host::ReplayEvent* last = nullptr;

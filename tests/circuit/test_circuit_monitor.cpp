@@ -584,3 +584,35 @@ TEST(CircuitMonitor, MachineOutsideTheEnvelopeIsSaidSoAndNoFaultIsNamed) {
     }
   }
 }
+
+// A test-stand export in the shape of a real one: 0.6 s at 4.8 kHz, an unlogged valve
+// that halves the loading throttle at 0.08 s. The fault is detected before the machine
+// was ever seen to match the model for long, and the log ends before a steady stretch
+// could be judged: unverified, no fault named. The same switch in a 6 s log, after the
+// machine ran quiet, is a fault and is named.
+TEST(CircuitMonitor, DetectionBeforeTheMachineWasSeenToMatchIsUnverifiedOnAShortLog) {
+  const ct::LoadedCircuit c = load("test_stand");
+  for (const double duration : {0.6, 6.0}) {
+    ct::CircuitSimOptions o;
+    o.duration = duration;
+    o.rate = 4800.0;
+    o.seed = 3;
+    const double at = duration < 1.0 ? 0.08 : 3.0;
+    o.steps.push_back(step(c, "k_throttle=0.5@" + std::to_string(at), true));
+    const ct::CircuitReplayResult r = ct::replay_circuit(c, ct::simulate_circuit(c, o), cli_options(c));
+    ASSERT_FALSE(r.events.empty()) << duration << " s: the switch is detected";
+    if (duration < 1.0) {
+      EXPECT_TRUE(r.envelope.unverified) << r.envelope.text;
+      EXPECT_EQ(r.final_status, "unverified") << "\n" << event_lines(r);
+      ASSERT_EQ(r.events.size(), 1u) << "\n" << event_lines(r);
+      EXPECT_EQ(r.events.front().event, "unverified");
+      EXPECT_TRUE(r.events.front().candidates.empty());
+    } else {
+      EXPECT_FALSE(r.envelope.unverified) << r.envelope.text;
+      EXPECT_NE(r.final_status, "unverified") << "\n" << event_lines(r);
+      ASSERT_FALSE(r.events.back().candidates.empty()) << "\n" << event_lines(r);
+      const std::string first = r.events.back().candidates.front().fault;
+      EXPECT_TRUE(first == "k_throttle-" || first == "throttle-") << "\n" << event_lines(r);
+    }
+  }
+}

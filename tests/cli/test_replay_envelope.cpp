@@ -11,6 +11,7 @@
 #include "hstmon_sim/log_layout.hpp"
 #include "hstmon_sim/machine_error.hpp"
 #include "hstmon_sim/measure.hpp"
+#include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/rig_run.hpp"
 #include "hstmon_sensors/sensor_presets.hpp"
 #include "../support/replay_events.hpp"
@@ -60,6 +61,27 @@ TEST(ReplayEnvelope, AMachineWithinTheStatedUncertaintyIsWithinTheEnvelope) {
     EXPECT_TRUE(r.events.empty()) << machine << ":\n" << event_lines(r);
     EXPECT_EQ(r.final_status, "nominal");
   }
+}
+
+// A 50 % PRV blockage from the first sample of a 0.5 s log from rest: detected once the
+// start-up is over, before the machine was ever seen to match the model, and the log ends
+// before a steady stretch could be judged: unverified, no fault named.
+TEST(ReplayEnvelope, ADetectionOnAShortLogNeverSeenHealthyIsUnverified) {
+  sim::RigRun run;
+  run.duration = 0.5;
+  run.from_rest = true;
+  const auto sc = sim::with_input_fault(sim::thesis_rig_run(run), &hstmon::ThesisInputs<double>::kp, 0.5, 0.0);
+  const auto ms = sim::measure(sc, sim::rig_fast_sensors(1000.0), 5, hstmon::ThesisParams<double>{});
+  std::ostringstream os;
+  sim::write_log(os, ms, {});
+  const auto log = hstmon::host::read_log_from_memory(os.str(), "short.csv", {});
+  ASSERT_TRUE(log.ok());
+  const auto r = hstmon::host::replay(log, {}, {}, {});
+  EXPECT_TRUE(r.envelope.unverified) << r.envelope.text;
+  EXPECT_EQ(r.final_status, "unverified") << event_lines(r);
+  ASSERT_EQ(r.events.size(), 1u) << event_lines(r);
+  EXPECT_EQ(r.events.front().event, "unverified");
+  EXPECT_NE(r.events.front().why.find("which named kp-"), std::string::npos) << event_lines(r);
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ def json_lines(result) -> List[Dict[str, Any]]:
                   "channels": [{"channel": b["channel"], "bound": b["bound"], "lead": b["lead"], "share": b["share"]}
                                for b in raw["bound"]]})
     env = raw["envelope"]
-    lines.append({"type": "envelope", "checked": env["checked"], "out": env["out"], "text": env["text"]})
+    lines.append({"type": "envelope", "checked": env["checked"], "out": env["out"], "unverified": env["unverified"],
+                  "text": env["text"]})
     lines += [event_line(e) for e in raw["events"]]
     lines.append({"type": "diagnosis", "status": raw["status"], "events": len(raw["events"])})
     return lines

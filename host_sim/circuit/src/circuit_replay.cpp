@@ -239,6 +239,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sensor_sigma(c.file.sensors[ch]);
     envelope.configure(model, sigma);
   }
+  envelope.start(res.t_first + res.startup_hold);
   const std::vector<host::EnvelopeChannel> envelope_names = envelope_channels(c);
   auto envelope_now = [&] {
     return host::envelope_result(host::envelope_figures(envelope, EnvelopeCheck<Model>::Config{}.window), envelope_names,
@@ -276,7 +277,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       // It supersedes what was said before (a detection while the run settled names
       // faults on a model that does not apply).
       out_of_envelope = true;
-      res.events.assign(1, host::out_of_envelope_event(t[k], envelope_now(), res.events));
+      res.events.assign(1, host::envelope_event(t[k], envelope_now(), res.events));
     }
     if (diag && !out_of_envelope) {
       FaultFitDiagnosis::Row row;
@@ -327,6 +328,11 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   res.bound_lead = bound_leads(c, model, u_prev);
   if (out_of_envelope) {
     res.final_status = "out_of_envelope";
+  } else if (res.envelope.unverified && o.diagnose && res.table_rows > 0 && !res.events.empty()) {
+    // Detected before the machine was seen to match the model, and never judged: no fault
+    // can be named on it.
+    res.events.assign(1, host::envelope_event(res.t_last, res.envelope, res.events));
+    res.final_status = "unverified";
   } else if (diag) {
     diag->finish(res.t_last, res.events);
     res.final_status = diag->status();

@@ -11,8 +11,13 @@
 /// 5 % of the tolerance and their noise; a machine still running up is tried again
 /// later). Over that window, per channel, the mean residual is judged against twice the
 /// matcher's own tolerance, 2·(model bound + 2σ). Beyond it on any channel: outside.
-/// A window not begun by the first detection is given up: it would judge the fault, not
-/// the machine. A log without such a stretch is not checked.
+/// A detection once the machine has been seen to run within the matcher's tolerance (the
+/// monitor quiet for `window` seconds after its start-up hold) is a fault: a window not
+/// begun by then is given up, as it would judge the fault, not the machine. A detection
+/// before that leaves the machine never seen to match the model: the check goes on to the
+/// first steady stretch, and if the log ends before one, the verdict is unverified (the
+/// data cannot tell a fault from a model that does not fit). A log without a steady
+/// stretch and without such a detection is not checked.
 ///
 /// Fixed-size state (a copy of the model and a few sums per channel), no heap: the same
 /// check serves every model's replay on the host, and fits on a target.
@@ -30,7 +35,8 @@ enum class EnvelopeVerdict : std::uint8_t {
   kPending = 0,  ///< no steady stretch judged yet
   kWithin = 1,   ///< judged: every channel within its tolerance
   kOutside = 2,  ///< judged: some channel beyond it (the model does not describe the machine)
-  kGivenUp = 3,  ///< a fault was detected before a steady stretch began: nothing judged
+  kGivenUp = 3,  ///< a fault was detected after the machine ran quiet, before a steady stretch: nothing judged
+  kUnverified = 4,  ///< detected before the machine was ever seen to match the model, and no steady stretch followed
 };
 
 /// The envelope check of one log through the monitor of Model (model_concept.hpp).
@@ -59,10 +65,16 @@ class EnvelopeCheck {
     for (int ch = 0; ch < kChannels; ++ch) sigma_[ch] = sigma[ch];
     verdict_ = EnvelopeVerdict::kPending;
     holding_ = false;
+    early_ = false;
     t_detected_ = T(-1);
+    t_quiet_from_ = T(0);
     t_from_ = t_last_ = T(0);
     clear_sums();
   }
+
+  /// From t [s] the monitor can detect (the log's first row plus its start-up hold): a
+  /// detection within `window` of it comes before the machine was seen to match the model.
+  void start(T t) noexcept { t_quiet_from_ = t; }
 
   /// One row.
   /// @param t      sample time [s]
@@ -89,7 +101,7 @@ class EnvelopeCheck {
     // The machine may still be settling where the model has (a start from rest runs up
     // at the machine's own pace): an unsteady window is dropped and the next one tried.
     if (!steady()) {
-      if (t_detected_ >= T(0)) {
+      if (t_detected_ >= T(0) && !early_) {
         verdict_ = EnvelopeVerdict::kGivenUp;
         return;
       }
@@ -105,17 +117,22 @@ class EnvelopeCheck {
   void detected(T t) noexcept {
     if (verdict_ != EnvelopeVerdict::kPending || t_detected_ >= T(0)) return;
     t_detected_ = t;
-    if (!holding_ || t < t_from_) verdict_ = EnvelopeVerdict::kGivenUp;
+    early_ = t < t_quiet_from_ + cfg_.window;
+    if (!early_ && (!holding_ || t < t_from_)) verdict_ = EnvelopeVerdict::kGivenUp;
   }
 
-  /// At the end of the log: judges a stretch that is steady, however far its window got.
+  /// At the end of the log: judges a stretch that is steady, however far its window got;
+  /// else, after a detection before the machine was seen to match the model, unverified.
   void finish() noexcept {
     if (verdict_ == EnvelopeVerdict::kPending && holding_ && t_last_ - t_from_ >= cfg_.window && steady()) judge();
+    if (verdict_ == EnvelopeVerdict::kPending && early_) verdict_ = EnvelopeVerdict::kUnverified;
   }
 
   EnvelopeVerdict verdict() const noexcept { return verdict_; }
   /// The first detection [s]; < 0 before one.
   T detected_at() const noexcept { return t_detected_; }
+  /// Whether that detection came before the machine was seen to match the model.
+  bool early_detection() const noexcept { return early_; }
   /// The window judged (or being filled): its first and last sample times [s].
   T t0() const noexcept { return t_from_; }
   T t1() const noexcept { return t_last_; }
@@ -140,8 +157,9 @@ class EnvelopeCheck {
   }
 
   void begin_hold(T t, const Inputs& u) noexcept {
-    // A stretch that starts after a detection would judge the fault, not the machine.
-    if (t_detected_ >= T(0)) {
+    // A stretch that starts after a detection would judge the fault, not the machine
+    // (unless the machine was never seen to match the model before it).
+    if (t_detected_ >= T(0) && !early_) {
       verdict_ = EnvelopeVerdict::kGivenUp;
       return;
     }
@@ -178,6 +196,8 @@ class EnvelopeCheck {
   EnvelopeVerdict verdict_ = EnvelopeVerdict::kPending;
   Inputs u_hold_{};
   bool holding_ = false;
+  bool early_ = false;    ///< the first detection came before the machine was seen to match the model
+  T t_quiet_from_ = T(0); ///< the monitor can detect from here [s]
   T t_from_ = T(0);      ///< the window starts here (after the settle) [s]
   T t_last_ = T(0);      ///< its last sample so far [s]
   T t_detected_ = T(-1); ///< the first detection [s]; < 0 before it

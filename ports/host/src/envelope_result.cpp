@@ -29,7 +29,7 @@ EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<Envel
   EnvelopeResult r;
   r.t0 = f.t0;
   r.t1 = f.t1;
-  char b[200];
+  char b[320];
   switch (f.verdict) {
     case EnvelopeVerdict::kPending:
       std::snprintf(b, sizeof b,
@@ -44,6 +44,15 @@ EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<Envel
                     "shows the machine as it was",
                     f.t_detected);
       r.text = b;
+      return r;
+    case EnvelopeVerdict::kUnverified:
+      std::snprintf(b, sizeof b,
+                    "unverified: a fault was detected (t = %.4g s) before the machine was seen to match the model, and "
+                    "no steady stretch followed to judge it, so the data cannot tell a fault from a model that does "
+                    "not fit this machine; no fault is named. ",
+                    f.t_detected);
+      r.unverified = true;
+      r.text = b + remedy;
       return r;
     case EnvelopeVerdict::kWithin:
     case EnvelopeVerdict::kOutside: break;
@@ -65,10 +74,10 @@ EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<Envel
   return r;
 }
 
-ReplayEvent out_of_envelope_event(double t, const EnvelopeResult& envelope, const std::vector<ReplayEvent>& before) {
+ReplayEvent envelope_event(double t, const EnvelopeResult& envelope, const std::vector<ReplayEvent>& before) {
   ReplayEvent e;
   e.t = t;
-  e.event = "out_of_envelope";
+  e.event = envelope.unverified ? "unverified" : "out_of_envelope";
   e.why = envelope.text;
   if (before.empty()) return e;
   e.why += " (it withdraws the " + std::to_string(before.size()) + " diagnosis event(s) before it";

@@ -202,6 +202,7 @@ void ChunkedReplay::State::start(Mon& mon, const LogData& log) {
   double sigma[4];
   for (int c = 0; c < 4; ++c) sigma[c] = mon.evaluator().sigma(c);
   envelope(mon).configure(mon.observer().model(), sigma);
+  envelope(mon).start(res.t_first + res.startup_hold);
 }
 
 // The monitor over one chunk's rows (row numbers and statistics continue across chunks).
@@ -249,7 +250,7 @@ void ChunkedReplay::State::run(Mon& mon, const LogData& log, std::size_t rows_to
       // It supersedes what was said before: a detection while the run settled names
       // faults on a model that does not apply.
       out_of_envelope = true;
-      res.events.assign(1, out_of_envelope_event(t[k], envelope_now(mon), res.events));
+      res.events.assign(1, envelope_event(t[k], envelope_now(mon), res.events));
     }
     if (row == 0) {
       for (int c = 0; c < 4; ++c) res.thresholds[static_cast<std::size_t>(c)] = mon.evaluator().bound(c);
@@ -318,6 +319,12 @@ ReplayResult ChunkedReplay::finish() {
       res.final_status = s_->out_of_envelope ? "out_of_envelope" : to_string(mon.matcher().status());
       s_->envelope(mon).finish();
       res.envelope = s_->envelope_now(mon);
+      // Detected before the machine was seen to match the model, and never judged: no
+      // fault can be named on it.
+      if (res.envelope.unverified && s_->options.diagnose && !res.events.empty()) {
+        res.events.assign(1, envelope_event(res.t_last, res.envelope, res.events));
+        res.final_status = "unverified";
+      }
     });
   }
   return res;

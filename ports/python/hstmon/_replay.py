@@ -67,14 +67,14 @@ class ReplayResult:
     @property
     def status(self) -> str:
         """The diagnosis at the end of the log: ``nominal``, ``detected``, ``isolated``,
-        ``ambiguous``, ``unexplained``, ``out_of_envelope``, or ``not_run`` (no fault table
+        ``ambiguous``, ``unexplained``, ``out_of_envelope``, ``unverified``, or ``not_run`` (no fault table
         or ``diagnosis=False``)."""
         return self.raw["status"]
 
     @property
     def events(self) -> pd.DataFrame:
         """The monitor's events in time order: ``t`` [s], ``event`` (detected, isolated,
-        ambiguous, unexplained, cleared, out_of_envelope), ``faults`` (names, best first),
+        ambiguous, unexplained, cleared, out_of_envelope, unverified), ``faults`` (names, best first),
         ``scores`` (the matcher's score per fault, 0…1), ``consistent`` (hypotheses still
         consistent), ``sizes`` (the fit's size per fault in words, "" without one), ``why``."""
         rows = [{"t": e["t"], "event": e["event"],

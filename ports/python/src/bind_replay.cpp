@@ -121,6 +121,7 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   py::dict env;
   env["checked"] = r.envelope.checked;
   env["out"] = r.envelope.out;
+  env["unverified"] = r.envelope.unverified;
   env["t0"] = r.envelope.t0;
   env["t1"] = r.envelope.t1;
   env["text"] = r.envelope.text;

@@ -15,6 +15,9 @@ namespace hstmon::host {
 struct EnvelopeResult {
   bool checked = false;       ///< a steady stretch was found and judged
   bool out = false;           ///< the machine lies outside the model's envelope there
+  /// Not checked, and a fault was detected before the machine was ever seen to match the
+  /// model: the data cannot tell that fault from a model that does not fit the machine.
+  bool unverified = false;
   double t0 = 0.0, t1 = 0.0;  ///< the window judged [s]
   std::string text;           ///< one sentence: where and by how much, or why it was not checked
 };
@@ -59,11 +62,12 @@ EnvelopeFigures envelope_figures(const EnvelopeCheck<Model>& check, double windo
 EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<EnvelopeChannel>& channels,
                                const std::string& remedy);
 
-/// The event that replaces a replay's diagnosis once the check finds the machine outside
-/// the model's envelope at t [s]: `why` is the check's sentence, and says what the events
+/// The event that replaces a replay's diagnosis at t [s] when the check finds the machine
+/// outside the model's envelope ("out_of_envelope") or cannot verify that the model
+/// describes it ("unverified"): `why` is the check's sentence, and says what the events
 /// `before` it (withdrawn) had named. A fault present before the machine was first seen
 /// steady looks like a model that does not fit, and only a check on a healthy log (identify,
 /// gap) tells the two apart.
-ReplayEvent out_of_envelope_event(double t, const EnvelopeResult& envelope, const std::vector<ReplayEvent>& before);
+ReplayEvent envelope_event(double t, const EnvelopeResult& envelope, const std::vector<ReplayEvent>& before);
 
 }  // namespace hstmon::host

@@ -80,7 +80,8 @@ struct ReplayResult {
   std::vector<TraceRow> trace;                ///< per row, if ReplayOptions::keep_trace
   std::vector<ReplayEvent> events;            ///< matcher events in time order (if diagnose)
   /// Matcher status after the last row, or "out_of_envelope" (the model does not describe
-  /// this machine at its first steady stretch: nothing is diagnosed)
+  /// this machine at its first steady stretch) or "unverified" (detected before the machine
+  /// was seen to match the model, and never judged): then nothing is diagnosed
   std::string final_status = "nominal";
   EnvelopeResult envelope;                    ///< does the model describe this machine at its first steady stretch?
   std::array<double, 4> thresholds{};         ///< residual bound per channel at the first row (model bound + 2σ) [SI]

@@ -21,10 +21,11 @@ struct ReplayCandidate {
 };
 
 /// A matcher event: an episode detected, isolated, ambiguous, unexplained or cleared; or
-/// out_of_envelope (the model does not describe the machine; `why` says where).
+/// the envelope check's out_of_envelope (the model does not describe the machine) or
+/// unverified (detected before the machine was seen to match the model); `why` says why.
 struct ReplayEvent {
   double t = 0.0;                          ///< log time [s]
-  std::string event;                       ///< "detected", "isolated", "ambiguous", "unexplained", "cleared", "out_of_envelope"
+  std::string event;                       ///< "detected", "isolated", "ambiguous", "unexplained", "cleared", "out_of_envelope", "unverified", "out_of_envelope"
   int consistent = 0;                      ///< hypotheses still consistent (may exceed candidates.size())
   std::vector<ReplayCandidate> candidates; ///< best first (empty for "cleared", and for a detection without a ranking yet)
   /// What raised the event when not the matcher: e.g. "a step in p_mi while the inputs
