@@ -81,12 +81,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                      {"share", l.share}});
   }
   fmt::print("{}\n", nlohmann::json{{"type", "bound"}, {"at", "last row"}, {"channels", leads}}.dump());
-  fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
-                                     {"checked", r.envelope.checked},
-                                     {"out", r.envelope.out},
-                                     {"unverified", r.envelope.unverified},
-                                     {"text", r.envelope.text}}
-                        .dump());
+  fmt::print("{}\n", envelope_json(r.envelope).dump());
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
   const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", status}, {"events", r.events.size()}}.dump());

@@ -47,6 +47,10 @@ std::string candidate_list(const host::ReplayEvent& e, std::size_t show) {
   return out;
 }
 
+nlohmann::json envelope_json(const host::EnvelopeResult& e) {
+  return {{"type", "envelope"}, {"checked", e.checked}, {"out", e.out}, {"unverified", e.unverified}, {"text", e.text}};
+}
+
 void print_events(const std::vector<host::ReplayEvent>& events, const std::string& final_status) {
   if (events.empty()) {
     fmt::print("\n  diagnosis: no fault detected (status {})\n", final_status);

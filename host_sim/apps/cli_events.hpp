@@ -21,6 +21,8 @@ void add_residual_stats(nlohmann::json& j, const host::ChannelStats& s);
 
 /// One event as a JSON line object: {"type":"event","t",...,"candidates":[{fault,score}]}.
 nlohmann::json event_json(const host::ReplayEvent& e);
+/// The envelope check's JSON line: {"type":"envelope","checked","out","unverified","text"}.
+nlohmann::json envelope_json(const host::EnvelopeResult& e);
 
 /// Candidates in words: "kp- (0.998), Pbp+ (0.71) and 3 more" (at most `show` named).
 std::string candidate_list(const host::ReplayEvent& e, std::size_t show);

@@ -99,12 +99,7 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
     add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
-  fmt::print("{}\n", nlohmann::json{{"type", "envelope"},
-                                     {"checked", r.envelope.checked},
-                                     {"out", r.envelope.out},
-                                     {"unverified", r.envelope.unverified},
-                                     {"text", r.envelope.text}}
-                        .dump());
+  fmt::print("{}\n", envelope_json(r.envelope).dump());
   for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", r.final_status}, {"events", r.events.size()}}.dump());
 }

@@ -7,6 +7,18 @@ namespace hstmon::host {
 
 namespace {
 
+// A number as %g and as %.4g.
+std::string g(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+std::string g4(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
 // "(t = 0.1 … 0.6 s)"
 std::string span(double t0, double t1) {
   char b[80];
@@ -29,30 +41,21 @@ EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<Envel
   EnvelopeResult r;
   r.t0 = f.t0;
   r.t1 = f.t1;
-  char b[320];
   switch (f.verdict) {
     case EnvelopeVerdict::kPending:
-      std::snprintf(b, sizeof b,
-                    "not checked: no stretch of held inputs long enough to settle and judge (%g s after 3 time "
-                    "constants)",
-                    f.window);
-      r.text = b;
+      r.text = "not checked: no stretch of held inputs long enough to settle and judge (" + g(f.window) +
+               " s after 3 time constants)";
       return r;
     case EnvelopeVerdict::kGivenUp:
-      std::snprintf(b, sizeof b,
-                    "not checked: a fault was detected (t = %.4g s) before the machine held steady, so no stretch "
-                    "shows the machine as it was",
-                    f.t_detected);
-      r.text = b;
+      r.text = "not checked: a fault was detected (t = " + g4(f.t_detected) +
+               " s) before the machine held steady, so no stretch shows the machine as it was";
       return r;
     case EnvelopeVerdict::kUnverified:
-      std::snprintf(b, sizeof b,
-                    "unverified: a fault was detected (t = %.4g s) before the machine was seen to match the model, and "
-                    "no steady stretch followed to judge it, so the data cannot tell a fault from a model that does "
-                    "not fit this machine; no fault is named. ",
-                    f.t_detected);
       r.unverified = true;
-      r.text = b + remedy;
+      r.text = "unverified: a fault was detected (t = " + g4(f.t_detected) +
+               " s) before the machine was seen to match the model, and no steady stretch followed to judge it, so "
+               "the data cannot tell a fault from a model that does not fit this machine; no fault is named. " +
+               remedy;
       return r;
     case EnvelopeVerdict::kWithin:
     case EnvelopeVerdict::kOutside: break;
