@@ -176,14 +176,8 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   } else {
     fmt::print("{}", text);
   }
-  if (!a.report.empty()) {
-    std::string warning;
-    const std::string err = write_circuit_report(a.report, circuit_identify_report(a, c, r, text), warning);
-    if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
-    if (!err.empty()) {
-      fmt::print(stderr, "hstmon identify: error: {}\n", err);
-      return kExitBadInput;
-    }
+  if (!a.report.empty() && !report_written("identify", a.report, circuit_identify_report(a, c, r, text))) {
+    return kExitBadInput;
   }
   return kExitOk;
 }

@@ -117,4 +117,15 @@ std::string write_circuit_report(const std::string& dir, const CircuitReport& r,
   return page.write((d / "report.html").string());
 }
 
+bool report_written(const char* command, const std::string& dir, const CircuitReport& r) {
+  std::string warning;
+  const std::string err = write_circuit_report(dir, r, warning);
+  if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", dir, warning);
+  if (!err.empty()) {
+    fmt::print(stderr, "hstmon {}: error: {}\n", command, err);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace hstmon::cli

@@ -51,4 +51,10 @@ struct CircuitReport {
 /// @return empty on success, else why the report could not be written
 std::string write_circuit_report(const std::string& dir, const CircuitReport& r, std::string& plot_warning);
 
+/// write_circuit_report for `hstmon <command> --circuit … --report dir`, saying on stderr
+/// why the figure is missing ("dir: note: no figure: …") or why the report could not be
+/// written ("hstmon <command>: error: …").
+/// @return false when the report could not be written
+bool report_written(const char* command, const std::string& dir, const CircuitReport& r);
+
 }  // namespace hstmon::cli
