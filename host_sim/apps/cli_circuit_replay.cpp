@@ -38,13 +38,13 @@ const char* start_words(InitialState k) {
 
 void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
   nlohmann::json head = replay_head_json(a.log, r);
-  head.update(nlohmann::json{{"circuit", c.file.name},
-                             {"circuit_file", a.circuit},
-                             {"params_file", c.params_path},
-                             {"fault_table_rows", r.table_rows},
-                             {"undetectable", r.undetectable},
-                             {"states", r.states},
-                             {"stiff_nodes", r.stiff_nodes}});
+  head["circuit"] = c.file.name;
+  head["circuit_file"] = a.circuit;
+  head["params_file"] = c.params_path;
+  head["fault_table_rows"] = r.table_rows;
+  head["undetectable"] = r.undetectable;
+  head["states"] = r.states;
+  head["stiff_nodes"] = r.stiff_nodes;
   fmt::print("{}\n", head.dump());
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     const auto& s = r.channels[ch];
