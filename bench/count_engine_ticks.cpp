@@ -24,11 +24,13 @@
 #include <cstring>
 #include <exception>
 
+#include "count_driver.hpp"
 #include "engine_workload.hpp"
 
 namespace {
 
 using hstmon_bench::EngineMeasurements;
+using hstmon_bench::plausible;
 using hstmon_bench::ThesisCircuit;
 
 constexpr int kWarmup = 64;
@@ -57,8 +59,6 @@ void measure(Sim& sim, const Inputs& u, const EngineMeasurements<T>& table, long
   run<Sim, T>(sim, u, table, kWarmup, n);
   CALLGRIND_STOP_INSTRUMENTATION;
 }
-
-bool plausible(double w) { return std::isfinite(w) && w > 100.0 && w < 250.0; }
 
 template <typename T>
 int engine(const ThesisCircuit& c, long n) {
@@ -105,15 +105,8 @@ int odeint_compiled(long n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: %s <variant> [ticks]   (variants: see count_engine_ticks.cpp)\n", argv[0]);
-    return 2;
-  }
-  const long n = argc == 3 ? std::strtol(argv[2], nullptr, 10) : 10000;
-  if (n <= 0) {
-    std::fprintf(stderr, "ticks must be positive\n");
-    return 2;
-  }
+  const long n = hstmon_bench::ticks_argument(argc, argv, "count_engine_ticks.cpp");
+  if (n <= 0) return 2;
   try {
     const ThesisCircuit c(HSTMON_SOURCE_DIR);
     const char* v = argv[1];

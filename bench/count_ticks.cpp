@@ -24,10 +24,12 @@
 #include <cstring>
 
 #include "bench_common.hpp"
+#include "count_driver.hpp"
 
 namespace {
 
 using hstmon_bench::MeasurementTable;
+using hstmon_bench::plausible;
 using hstmon_bench::Reduced;
 
 constexpr int kWarmup = 64;
@@ -59,8 +61,6 @@ void measure(Sim& sim, const MeasurementTable<T>& table, long n) {
   run(sim, table, kWarmup, n);
   CALLGRIND_STOP_INSTRUMENTATION;
 }
-
-bool plausible(double w) { return std::isfinite(w) && w > 100.0 && w < 250.0; }
 
 /// tick: 1 ms (one RK4 step at the nominal point) or 10 ms (a PLC scan: nominal_substeps).
 template <typename T>
@@ -133,15 +133,8 @@ int odeint_full(long n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: %s <variant> [ticks]   (variants: see count_ticks.cpp)\n", argv[0]);
-    return 2;
-  }
-  const long n = argc == 3 ? std::strtol(argv[2], nullptr, 10) : 10000;
-  if (n <= 0) {
-    std::fprintf(stderr, "ticks must be positive\n");
-    return 2;
-  }
+  const long n = hstmon_bench::ticks_argument(argc, argv, "count_ticks.cpp");
+  if (n <= 0) return 2;
   const char* v = argv[1];
   if (std::strcmp(v, "ours_double") == 0) return ours<double>(n);
   if (std::strcmp(v, "ours_float") == 0) return ours<float>(n);

@@ -7,16 +7,7 @@
 # by what the other users leave free.
 #   bash scripts/fleet_speed.sh [BUILD_DIR] [RUNS]     (default build/host-release, 3)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build/host-release}
-runs=${2:-3}
-if [[ ! -x $build/bin/hstmon || ! -x $build/bin/hstmon-sim ]]; then
-  cmake --preset host-release >/dev/null
-  cmake --build "$build" -j2 --target hstmon hstmon-sim >/dev/null
-fi
-build=$(cd "$build" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/speed_setup.sh" "$@"
 for seed in 0 1 2 3 4 5 6 7 8 9; do
   "$build/bin/hstmon-sim" --scenario rig --load steps --duration 60 --rate 1000 --seed $((seed + 1)) --out "$tmp/src$seed.csv"
 done

@@ -8,16 +8,7 @@
 # so the figures are for a log the machine has just written or read.
 #   bash scripts/replay_speed.sh [BUILD_DIR] [RUNS]     (default build/host-release, 3)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build/host-release}
-runs=${2:-3}
-if [[ ! -x $build/bin/hstmon || ! -x $build/bin/hstmon-sim ]]; then
-  cmake --preset host-release >/dev/null
-  cmake --build "$build" -j2 --target hstmon hstmon-sim >/dev/null
-fi
-build=$(cd "$build" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/speed_setup.sh" "$@"
 for minutes in 15 60; do
   log=$tmp/rig_${minutes}min.csv
   "$build/bin/hstmon-sim" --scenario rig --load steps --duration $((minutes * 60)) --rate 1000 --seed 1 --out "$log"

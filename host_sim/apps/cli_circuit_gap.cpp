@@ -82,14 +82,8 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   } else {
     fmt::print("{}", text);
   }
-  if (!a.report.empty()) {
-    std::string warning;
-    const std::string err = sim::write_circuit_report(a.report, gap::circuit_gap_report(run, c, r, text), warning);
-    if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
-    if (!err.empty()) {
-      fmt::print(stderr, "hstmon gap: error: {}\n", err);
-      return kExitBadInput;
-    }
+  if (!a.report.empty() && !report_written("gap", a.report, gap::circuit_gap_report(run, c, r, text))) {
+    return kExitBadInput;
   }
   return kExitOk;
 }

@@ -155,14 +155,8 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   } else {
     fmt::print("{}", text);
   }
-  if (!a.report.empty()) {
-    std::string warning;
-    const std::string err = sim::write_circuit_report(a.report, ident::circuit_identify_report(run, c, r, text), warning);
-    if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", a.report, warning);
-    if (!err.empty()) {
-      fmt::print(stderr, "hstmon identify: error: {}\n", err);
-      return kExitBadInput;
-    }
+  if (!a.report.empty() && !report_written("identify", a.report, ident::circuit_identify_report(run, c, r, text))) {
+    return kExitBadInput;
   }
   return kExitOk;
 }

@@ -37,26 +37,14 @@ const char* start_words(InitialState k) {
 }
 
 void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
-  const nlohmann::json head = {{"type", "replay"},
-                               {"log", a.log},
-                               {"circuit", c.file.name},
-                               {"circuit_file", a.circuit},
-                               {"params_file", c.params_path},
-                               {"rows", r.rows},
-                               {"t_first", r.t_first},
-                               {"t_last", r.t_last},
-                               {"tick_s", r.tick},
-                               {"ticks", r.ticks},
-                               {"start", to_string(r.start)},
-                               {"startup_hold_s", r.startup_hold},
-                               {"fault_table_rows", r.table_rows},
-                               {"undetectable", r.undetectable},
-                               {"states", r.states},
-                               {"stiff_nodes", r.stiff_nodes},
-                               {"health", host::health_names(r.health)},
-                               {"unhealthy_rows", r.unhealthy_rows},
-                               {"max_substeps", r.max_substeps},
-                               {"notes", r.notes}};
+  nlohmann::json head = replay_head_json(a.log, r);
+  head["circuit"] = c.file.name;
+  head["circuit_file"] = a.circuit;
+  head["params_file"] = c.params_path;
+  head["fault_table_rows"] = r.table_rows;
+  head["undetectable"] = r.undetectable;
+  head["states"] = r.states;
+  head["stiff_nodes"] = r.stiff_nodes;
   fmt::print("{}\n", head.dump());
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     const auto& s = r.channels[ch];
@@ -81,10 +69,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                      {"share", l.share}});
   }
   fmt::print("{}\n", nlohmann::json{{"type", "bound"}, {"at", "last row"}, {"channels", leads}}.dump());
-  fmt::print("{}\n", envelope_json(r.envelope).dump());
-  for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
-  const std::string status = r.table_rows > 0 ? r.final_status : std::string("not_run");
-  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", status}, {"events", r.events.size()}}.dump());
+  print_json_diagnosis(r.envelope, r.events, r.table_rows > 0 ? r.final_status : std::string("not_run"));
 }
 
 void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
@@ -138,14 +123,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
     fmt::print("\n  envelope: {}\n", r.envelope.text);
     print_events(r.events, r.final_status);
   }
-  const auto names = host::health_names(r.health);
-  if (names.empty()) {
-    fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
-  } else {
-    std::string joined;
-    for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
-    fmt::print("\n  observer health: {} on {} rows — results there are not trustworthy\n", joined, r.unhealthy_rows);
-  }
+  print_observer_health(r.health, r.unhealthy_rows, r.max_substeps);
 }
 
 // Measured, model, residual and the matcher's bound on it per row in each sensor's unit

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hstmon_host/params_file.hpp"
+#include "hstmon_plot/circuit_report.hpp"
 
 namespace hstmon::cli {
 
@@ -43,6 +44,21 @@ inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<Thesi
       fmt::print(stderr, "hstmon {}: error: {} does not go with --circuit: {}\n", cmd.get_name(), o.option, o.why);
       return false;
     }
+  }
+  return true;
+}
+
+/// sim::write_circuit_report for `hstmon <command> --circuit … --report dir`, saying on
+/// stderr why the figure is missing ("dir: note: no figure: …") or why the report could
+/// not be written ("hstmon <command>: error: …").
+/// @return false when the report could not be written
+inline bool report_written(const char* command, const std::string& dir, const sim::CircuitReport& r) {
+  std::string warning;
+  const std::string err = sim::write_circuit_report(dir, r, warning);
+  if (!warning.empty()) fmt::print(stderr, "{}: note: no figure: {}\n", dir, warning);
+  if (!err.empty()) {
+    fmt::print(stderr, "hstmon {}: error: {}\n", command, err);
+    return false;
   }
   return true;
 }

@@ -81,4 +81,22 @@ void print_events(const std::vector<host::ReplayEvent>& events, const std::strin
   fmt::print("    status at the end of the log: {}\n", final_status);
 }
 
+void print_json_diagnosis(const host::EnvelopeResult& envelope, const std::vector<host::ReplayEvent>& events,
+                          const std::string& final_status) {
+  fmt::print("{}\n", envelope_json(envelope).dump());
+  for (const auto& e : events) fmt::print("{}\n", event_json(e).dump());
+  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", final_status}, {"events", events.size()}}.dump());
+}
+
+void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps) {
+  const auto names = host::health_names(health);
+  if (names.empty()) {
+    fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", max_substeps);
+  } else {
+    std::string joined;
+    for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
+    fmt::print("\n  observer health: {} on {} rows — results there are not trustworthy\n", joined, unhealthy_rows);
+  }
+}
+
 }  // namespace hstmon::cli

@@ -78,20 +78,7 @@ struct Progress {
 };
 
 void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
-  nlohmann::json head = {{"type", "replay"},
-                         {"log", a.log},
-                         {"rows", r.rows},
-                         {"t_first", r.t_first},
-                         {"t_last", r.t_last},
-                         {"tick_s", r.tick},
-                         {"ticks", r.ticks},
-                         {"start", to_string(r.start)},
-                         {"startup_hold_s", r.startup_hold},
-                         {"health", host::health_names(r.health)},
-                         {"unhealthy_rows", r.unhealthy_rows},
-                         {"max_substeps", r.max_substeps},
-                         {"notes", r.notes}};
-  fmt::print("{}\n", head.dump());
+  fmt::print("{}\n", replay_head_json(a.log, r).dump());
   for (int c = 0; c < 4; ++c) {
     const auto& s = r.channels[static_cast<std::size_t>(c)];
     nlohmann::json j = {{"type", "residual"}, {"channel", kDisplay[c].name}, {"unit", c == 3 ? "rad/s" : "Pa"},
@@ -99,9 +86,7 @@ void print_json(const ReplayArgs& a, const host::ReplayResult& r) {
     add_residual_stats(j, s);
     fmt::print("{}\n", j.dump());
   }
-  fmt::print("{}\n", envelope_json(r.envelope).dump());
-  for (const auto& e : r.events) fmt::print("{}\n", event_json(e).dump());
-  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", r.final_status}, {"events", r.events.size()}}.dump());
+  print_json_diagnosis(r.envelope, r.events, r.final_status);
 }
 
 const char* start_words(InitialState k) {
@@ -148,14 +133,7 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   }
   if (!a.no_diagnosis) fmt::print("\n  envelope: {}\n", r.envelope.text);
   print_events(r.events, r.final_status);
-  const auto names = host::health_names(r.health);
-  if (names.empty()) {
-    fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", r.max_substeps);
-  } else {
-    std::string joined;
-    for (const auto& n : names) joined += (joined.empty() ? "" : ", ") + n;
-    fmt::print("\n  observer health: {} on {} rows — results there are not trustworthy\n", joined, r.unhealthy_rows);
-  }
+  print_observer_health(r.health, r.unhealthy_rows, r.max_substeps);
 }
 
 // Worth a progress line: more than about 200 000 rows (16 MB of text).

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -17,24 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli_run.hpp"
+
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;  // stdout (stderr with merge)
-};
+using hstmon_test::CliRun;
 
-CliRun run(const std::string& cmd_line) {
-  CliRun r;
-  FILE* p = popen(cmd_line.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
+CliRun run(const std::string& cmd_line) { return hstmon_test::run_command(cmd_line); }
 
 const std::string kDir = std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/";
 

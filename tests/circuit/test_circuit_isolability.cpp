@@ -3,7 +3,6 @@
 // steady signature and on the monitor's table (slopes and orders too), and the JSON of
 // `hstmon-fdi isolability --circuit`.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -14,6 +13,8 @@
 #include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
+
+#include "../support/cli_run.hpp"
 
 namespace {
 
@@ -185,14 +186,9 @@ TEST(CircuitIsolability, AddedSensorsAreRankedOnTheMonitorsTable) {
 }
 
 std::string run(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  EXPECT_EQ(pclose(p), 0) << cmd;
-  return out;
+  const hstmon_test::CliRun r = hstmon_test::run_command(cmd);
+  EXPECT_EQ(r.exit_code, 0) << cmd;
+  return r.out;
 }
 
 TEST(CircuitIsolability, JsonSaysWhatSplitsEachPair) {

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -22,6 +21,8 @@
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_stream.hpp"
 #include "hstmon_host/text_encoding.hpp"
+
+#include "../support/cli_run.hpp"
 
 namespace {
 
@@ -242,14 +243,9 @@ TEST(LogShapes, CliBadMapExitsTwo) {
   const std::string circuit = std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/thesis.json";
   for (const std::string& extra : {std::string(), "--circuit " + circuit}) {
     const std::string cmd = cli + " replay " + extra + " --map nope=p_mi " + path + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    ASSERT_NE(p, nullptr);
-    std::string out;
-    char buf[4096];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    const int status = pclose(p);
-    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << cmd << "\n" << out;
-    EXPECT_NE(out.find("column map entry 'nope' matches no column; the columns are 't', 'p_sup'"), std::string::npos)
-        << out;
+    const hstmon_test::CliRun r = hstmon_test::run_command(cmd);
+    EXPECT_EQ(r.exit_code, 2) << cmd << "\n" << r.out;
+    EXPECT_NE(r.out.find("column map entry 'nope' matches no column; the columns are 't', 'p_sup'"), std::string::npos)
+        << r.out;
   }
 }

@@ -3,37 +3,21 @@
 // (host_sim/src/cli_log_options.hpp), and report in one style. The Spider8 export as the
 // instrument writes it loads with one documented command.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
 
+#include "../support/cli_run.hpp"
 #include "../support/instrument_exports.hpp"
 
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun run(const std::string& args) {
-  CliRun r;
-  const std::string cmd = std::string(HSTMON_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
+using hstmon_test::CliRun;
+using hstmon_test::run_hstmon;
 
 // Per process: CTest runs this file's tests as separate processes side by side, and one
 // rewriting a shared file while another reads it left the reader an empty file.
@@ -66,60 +50,62 @@ std::size_t longest_line(const std::string& s) {
 }  // namespace
 
 TEST(CliLogOptions, ReplayLoadsTheSpider8ExportWithOneCommand) {
-  const CliRun r = run("replay " + spider8_path() + " " + spider8_options());
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("3000 rows, t = 0 … 0.624792 s"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("Ppp [bar]"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("error"), std::string::npos) << r.output;
+  const CliRun r = run_hstmon("replay " + spider8_path() + " " + spider8_options());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("3000 rows, t = 0 … 0.624792 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Ppp [bar]"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("error"), std::string::npos) << r.out;
   // Notes in the table's units: bar, not 3500000.000000 Pa.
-  EXPECT_NE(r.output.find("held at the parameter value 35 bar"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("3500000"), std::string::npos) << r.output;
+  EXPECT_NE(r.out.find("held at the parameter value 35 bar"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("3500000"), std::string::npos) << r.out;
 }
 
 TEST(CliLogOptions, ReplayWithoutRateNamesIt) {
   const std::string maps = hstmon_test::spider8_map_args();
-  const CliRun strict = run("replay " + spider8_path() + " " + maps);
-  EXPECT_EQ(strict.exit_code, 2) << strict.output;
-  EXPECT_NE(strict.output.find(spider8_path() + ":4:1: error: time not strictly increasing"), std::string::npos)
-      << strict.output;
-  EXPECT_NE(strict.output.find("--rate HZ"), std::string::npos) << strict.output;
+  const CliRun strict = run_hstmon("replay " + spider8_path() + " " + maps);
+  EXPECT_EQ(strict.exit_code, 2) << strict.out;
+  EXPECT_NE(strict.out.find(spider8_path() + ":4:1: error: time not strictly increasing"), std::string::npos)
+      << strict.out;
+  EXPECT_NE(strict.out.find("--rate HZ"), std::string::npos) << strict.out;
   // --lenient does not drop 79 % of the file quietly.
-  const CliRun lenient = run("replay --lenient " + spider8_path() + " " + maps);
-  EXPECT_EQ(lenient.exit_code, 2) << lenient.output;
-  EXPECT_TRUE(std::regex_search(lenient.output, std::regex(":4:1: error: time not strictly increasing in 2374 of 3000 rows")))
-      << lenient.output;
-  EXPECT_EQ(lenient.output.find("residual"), std::string::npos) << "nothing replayed";
-  EXPECT_LT(std::count(lenient.output.begin(), lenient.output.end(), '\n'), 10) << lenient.output;
+  const CliRun lenient = run_hstmon("replay --lenient " + spider8_path() + " " + maps);
+  EXPECT_EQ(lenient.exit_code, 2) << lenient.out;
+  EXPECT_TRUE(std::regex_search(lenient.out, std::regex(":4:1: error: time not strictly increasing in 2374 of 3000 rows")))
+      << lenient.out;
+  EXPECT_EQ(lenient.out.find("residual"), std::string::npos) << "nothing replayed";
+  EXPECT_LT(std::count(lenient.out.begin(), lenient.out.end(), '\n'), 10) << lenient.out;
 }
 
 TEST(CliLogOptions, IdentifyTakesTheLogOptions) {
-  const CliRun r = run("identify " + spider8_path() + " " + spider8_options() + " --out " +
+  const CliRun r = run_hstmon("identify " + spider8_path() + " " + spider8_options() + " --out " +
                        write_file("id.json", ""));
   // The log is read whole (0.625 s holds no 1 s steady window: that, not the log, is the error).
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(spider8_path() + ": error: no steady window (3000 rows;"), std::string::npos) << r.output;
-  const CliRun no_rate = run("identify " + spider8_path() + " --map '#1=t' --out " + write_file("id2.json", ""));
-  EXPECT_EQ(no_rate.exit_code, 2) << no_rate.output;
-  EXPECT_NE(no_rate.output.find(":4:1: error: time not strictly increasing"), std::string::npos) << no_rate.output;
-  EXPECT_NE(no_rate.output.find("--rate HZ"), std::string::npos) << no_rate.output;
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find(spider8_path() + ": error: no steady window (3000 rows;"), std::string::npos) << r.out;
+  const CliRun no_rate = run_hstmon("identify " + spider8_path() + " --map '#1=t' --out " + write_file("id2.json", ""));
+  EXPECT_EQ(no_rate.exit_code, 2) << no_rate.out;
+  EXPECT_NE(no_rate.out.find(":4:1: error: time not strictly increasing"), std::string::npos) << no_rate.out;
+  EXPECT_NE(no_rate.out.find("--rate HZ"), std::string::npos) << no_rate.out;
   // --params is identify's parameter file too (--prior stays as its old name).
   const std::string bad = write_file("bad_params.json", "{\n  \"model\": \"thesis\",\n  \"params\": {\"Dm\": -1}\n}\n");
-  const CliRun params = run("identify " + spider8_path() + " " + spider8_options() + " --params " + bad + " --out x");
-  EXPECT_EQ(params.exit_code, 2) << params.output;
-  EXPECT_NE(params.output.find(bad + ":3:"), std::string::npos) << params.output;
-  const CliRun prior = run("identify " + spider8_path() + " " + spider8_options() + " --prior " + bad + " --out x");
-  EXPECT_EQ(prior.exit_code, 2) << prior.output;
-  EXPECT_NE(prior.output.find(bad + ":3:"), std::string::npos) << prior.output;
+  const CliRun params =
+      run_hstmon("identify " + spider8_path() + " " + spider8_options() + " --params " + bad + " --out x");
+  EXPECT_EQ(params.exit_code, 2) << params.out;
+  EXPECT_NE(params.out.find(bad + ":3:"), std::string::npos) << params.out;
+  const CliRun prior =
+      run_hstmon("identify " + spider8_path() + " " + spider8_options() + " --prior " + bad + " --out x");
+  EXPECT_EQ(prior.exit_code, 2) << prior.out;
+  EXPECT_NE(prior.out.find(bad + ":3:"), std::string::npos) << prior.out;
 }
 
 TEST(CliLogOptions, GapTakesTheLogOptions) {
-  const CliRun r = run("gap --fit " + spider8_path() + " --check " + spider8_path() + " " + spider8_options() +
+  const CliRun r = run_hstmon("gap --fit " + spider8_path() + " --check " + spider8_path() + " " + spider8_options() +
                        " --effects sensor_lag");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("verdict"), std::string::npos) << r.output;
-  const CliRun no_rate = run("gap --fit " + spider8_path() + " --check " + spider8_path() + " --map '#1=t'");
-  EXPECT_EQ(no_rate.exit_code, 2) << no_rate.output;
-  EXPECT_NE(no_rate.output.find(":4:1: error: time not strictly increasing"), std::string::npos) << no_rate.output;
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("verdict"), std::string::npos) << r.out;
+  const CliRun no_rate = run_hstmon("gap --fit " + spider8_path() + " --check " + spider8_path() + " --map '#1=t'");
+  EXPECT_EQ(no_rate.exit_code, 2) << no_rate.out;
+  EXPECT_NE(no_rate.out.find(":4:1: error: time not strictly increasing"), std::string::npos) << no_rate.out;
 }
 
 // A bad option value: exit 1 and one message style, `hstmon COMMAND: error: --option …`.
@@ -131,28 +117,28 @@ TEST(CliLogOptions, BadOptionValuesInOneStyle) {
       {"gap", "gap --fit " + log + " --check " + log},
   };
   for (const auto& [name, cmd] : commands) {
-    const CliRun map = run(cmd + " --map nonsense");
-    EXPECT_EQ(map.exit_code, 1) << name << ": " << map.output;
-    EXPECT_NE(map.output.find("hstmon " + name + ": error: --map takes COLUMN=SIGNAL or '#N=SIGNAL'"), std::string::npos)
-        << name << ": " << map.output;
-    const CliRun sep = run(cmd + " --separator '|'");
-    EXPECT_EQ(sep.exit_code, 1) << name << ": " << sep.output;
-    EXPECT_NE(sep.output.find("hstmon " + name + ": error: --separator must be"), std::string::npos) << sep.output;
-    const CliRun rate = run(cmd + " --rate -5");
-    EXPECT_EQ(rate.exit_code, 1) << name << ": " << rate.output;
-    EXPECT_EQ(rate.output.rfind("hstmon: error: --rate", 0), 0u) << name << ": " << rate.output;
-    EXPECT_LT(longest_line(rate.output), 120u) << name << ": " << rate.output;
+    const CliRun map = run_hstmon(cmd + " --map nonsense");
+    EXPECT_EQ(map.exit_code, 1) << name << ": " << map.out;
+    EXPECT_NE(map.out.find("hstmon " + name + ": error: --map takes COLUMN=SIGNAL or '#N=SIGNAL'"), std::string::npos)
+        << name << ": " << map.out;
+    const CliRun sep = run_hstmon(cmd + " --separator '|'");
+    EXPECT_EQ(sep.exit_code, 1) << name << ": " << sep.out;
+    EXPECT_NE(sep.out.find("hstmon " + name + ": error: --separator must be"), std::string::npos) << sep.out;
+    const CliRun rate = run_hstmon(cmd + " --rate -5");
+    EXPECT_EQ(rate.exit_code, 1) << name << ": " << rate.out;
+    EXPECT_EQ(rate.out.rfind("hstmon: error: --rate", 0), 0u) << name << ": " << rate.out;
+    EXPECT_LT(longest_line(rate.out), 120u) << name << ": " << rate.out;
   }
 }
 
 // A HYDAC HMG-style export (metadata block above the header) replays with --map.
 TEST(CliLogOptions, ReplayReadsAnHmgExport) {
   const std::string log = write_file("hmg.csv", hstmon_test::hmg_export(500));
-  const CliRun r = run("replay " + log + " --map Time=t --map P1=p_mi --map P2=p_mo --map P3=p_pp --map n=w_m");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find(log + ":1:1: note: lines 1-6 above the column names taken as metadata"), std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("500 rows"), std::string::npos) << r.output;
+  const CliRun r = run_hstmon("replay " + log + " --map Time=t --map P1=p_mi --map P2=p_mo --map P3=p_pp --map n=w_m");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find(log + ":1:1: note: lines 1-6 above the column names taken as metadata"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("500 rows"), std::string::npos) << r.out;
 }
 
 // No message fills a screen: a 5000-column export with a bad row prints a handful of
@@ -164,19 +150,19 @@ TEST(CliLogOptions, MessagesStayShortOnAWideExport) {
     row += ";1";
   }
   const std::string log = write_file("wide.csv", header + "\n" + row + "\n" + std::string(80000, '7') + "x\n");
-  const CliRun r = run("replay " + log);
-  EXPECT_EQ(r.exit_code, 2) << r.output.substr(0, 2000);
-  EXPECT_LT(std::count(r.output.begin(), r.output.end(), '\n'), 15) << r.output.substr(0, 2000);
-  EXPECT_LT(longest_line(r.output), 400u) << r.output.substr(0, 2000);
+  const CliRun r = run_hstmon("replay " + log);
+  EXPECT_EQ(r.exit_code, 2) << r.out.substr(0, 2000);
+  EXPECT_LT(std::count(r.out.begin(), r.out.end(), '\n'), 15) << r.out.substr(0, 2000);
+  EXPECT_LT(longest_line(r.out), 400u) << r.out.substr(0, 2000);
 }
 
 // The matcher's scores are printed in [0, 1]: a negative cosine (residuals pointing away
 // from a fault's direction) is shown as 0, never as a negative score.
 TEST(CliLogOptions, ScoresAreNeverNegative) {
   for (const char* log : {HSTMON_EXAMPLE_LOG, HSTMON_EXAMPLE_DAS_LOG}) {
-    const CliRun r = run(std::string("replay --json ") + log);
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("\"score\":"), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("\"score\":-"), std::string::npos) << r.output;
+    const CliRun r = run_hstmon(std::string("replay --json ") + log);
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"score\":"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("\"score\":-"), std::string::npos) << r.out;
   }
 }

@@ -6,7 +6,6 @@
 // replay draws its own sensors, a lenient replay's report says where reading stopped; and
 // the helpers behind them (ranges, quoting, HTML escaping, base64).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -18,6 +17,8 @@
 
 #include "hstmon_plot/gnuplot.hpp"
 #include "hstmon_plot/html_report.hpp"
+
+#include "../support/cli_run.hpp"
 
 namespace {
 
@@ -36,15 +37,12 @@ fs::path dir() {
 }
 
 CliRun run(const std::string& args) {
-  CliRun r;
   const fs::path err = dir() / "stderr.txt";
-  const std::string cmd = std::string("'") + HSTMON_CLI + "' " + args + " 2>'" + err.string() + "'";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  const hstmon_test::CliRun c =
+      hstmon_test::run_command(std::string("'") + HSTMON_CLI + "' " + args + " 2>'" + err.string() + "'");
+  CliRun r;
+  r.exit_code = c.exit_code;
+  r.out = c.out;
   std::ifstream in(err);
   r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return r;

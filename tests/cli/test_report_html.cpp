@@ -3,7 +3,6 @@
 // decodes and is not blank, nothing is fetched from outside the file, and a screenshot of
 // the page is not blank. Exit 77 (CTest: skipped) only when chromium is not installed.
 #include <png.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -14,6 +13,8 @@
 #include <regex>
 #include <string>
 #include <vector>
+
+#include "../support/cli_run.hpp"
 
 namespace {
 
@@ -31,14 +32,9 @@ void check(bool ok, const std::string& what) {
 // Runs a shell command; returns its exit status and stdout (stderr is discarded: chromium
 // chatters about D-Bus).
 int run(const std::string& cmd, std::string* out = nullptr) {
-  FILE* p = popen((cmd + " 2>/dev/null").c_str(), "r");
-  if (p == nullptr) return -1;
-  char buf[4096];
-  std::string text;
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) text.append(buf, n);
-  const int st = pclose(p);
-  if (out != nullptr) *out = text;
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  const hstmon_test::CliRun r = hstmon_test::run_command(cmd + " 2>/dev/null");
+  if (out != nullptr) *out = r.out;
+  return r.exit_code;
 }
 
 std::string read(const fs::path& p) {

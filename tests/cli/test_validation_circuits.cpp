@@ -9,7 +9,6 @@
 // event `isolated` with a class member first, or `ambiguous` within the class. And their
 // gap cases through `hstmon gap --circuit`.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +22,7 @@
 #include <vector>
 
 #include "../support/cli_events.hpp"
+#include "../support/cli_run.hpp"
 
 namespace {
 
@@ -140,13 +140,9 @@ TEST_P(ValidationCircuitsGap, NamesTheEffectAndItsSize) {
                           (dir / g.at("circuit").get<std::string>()).string() + "' --fit '" +
                           log(g.at("fit").get<std::string>()) + "' --check '" + log(g.at("check").get<std::string>()) +
                           "' --json 2>/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string out;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int st = pclose(p);
-  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << out;
+  const hstmon_test::CliRun run = hstmon_test::run_command(cmd);
+  const std::string& out = run.out;
+  ASSERT_EQ(run.exit_code, 0) << out;
   const std::size_t brace = out.find('{');
   ASSERT_NE(brace, std::string::npos) << out;
   Json j;

@@ -2,10 +2,10 @@
 // fw_circuit_monitor.cpp): the same source, generated headers and embedded log, float,
 // -ffp-contract=off — so its output must equal the Cortex-M4F image's byte for byte
 // (test firmware.circuit_monitor_bitexact).
-#include <cstdio>
+#include <cstdint>
 
 #include "fw_circuit_monitor.hpp"
-#include "hstmon_fw_log_data.hpp"
+#include "fw_host.hpp"
 
 namespace {
 hstmon::fw::CircuitFwMonitor monitor;
@@ -13,9 +13,8 @@ hstmon::fw::CircuitFwMonitor monitor;
 
 int main() {
   namespace d = hstmon::fw::log_data;
-  const hstmon::fw::LogView log{d::kName, d::kRows, d::kCols, d::kSignal, d::kScale, &d::kData[0][0]};
   const hstmon::fw::LogColumns columns{d::kColumn, d::kUnit};
-  return hstmon::fw::circuit_monitor_replay(monitor, log, columns, [](const char* s) { std::fputs(s, stdout); }) == ~0u
-             ? 1
-             : 0;
+  const std::uint32_t health =
+      hstmon::fw::circuit_monitor_replay(monitor, hstmon_fw_host::embedded_log(), columns, hstmon_fw_host::print);
+  return health == ~0u ? 1 : 0;
 }

@@ -5,11 +5,10 @@
 #include <cstdio>
 #include <cstring>
 
+#include "fw_host.hpp"
 #include "fw_replay.hpp"
-#include "hstmon_fw_log_data.hpp"
 
 int main(int argc, char** argv) {
-  namespace d = hstmon::fw::log_data;
   hstmon::fw::ReplayOptions opt;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--trace") == 0) {
@@ -19,7 +18,6 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  const hstmon::fw::LogView log{d::kName, d::kRows, d::kCols, d::kSignal, d::kScale, &d::kData[0][0]};
-  (void)hstmon::fw::replay_json(log, [](const char* s) { std::fputs(s, stdout); }, opt);
+  (void)hstmon::fw::replay_json(hstmon_fw_host::embedded_log(), hstmon_fw_host::print, opt);
   return 0;
 }

@@ -1,7 +1,6 @@
 // `hstmon gap` on bad input: never a crash, exit status 2 and a message naming
 // file:line:column; on good logs, --json prints one object with the equations.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -11,26 +10,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../support/cli_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
+using hstmon_test::CliRun;
 
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string("'") + HSTMON_CLI + "' gap " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+CliRun run(const std::string& args) { return hstmon_test::run_hstmon("gap " + args); }
 
 fs::path write(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / ("hstmon_gap_cli_" + std::to_string(::getpid()));
@@ -56,23 +44,23 @@ TEST(GapCli, BadNumberNamesFileLineColumn) {
   bad.replace(bad.find("33.1"), 4, "3x.1");
   const fs::path badf = write("bad.csv", bad);
   const CliRun r = run("--fit '" + badf.string() + "' --check '" + good.string() + "'");
-  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("bad.csv:2:"), std::string::npos) << r.out;
 }
 
 TEST(GapCli, MissingFileAndTooShortLogExitTwo) {
   const fs::path good = write("good.csv", log_text(40, 4.41e-8));
-  EXPECT_EQ(run("--fit /nonexistent/x.csv --check '" + good.string() + "'").status, 2);
+  EXPECT_EQ(run("--fit /nonexistent/x.csv --check '" + good.string() + "'").exit_code, 2);
   const fs::path tiny = write("tiny.csv", log_text(3, 4.41e-8));
   const CliRun r = run("--fit '" + tiny.string() + "' --check '" + good.string() + "'");
-  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.exit_code, 2) << r.out;
 }
 
 TEST(GapCli, JsonHasEquationsForEveryPressureNodeAndTheShaft) {
   const fs::path a = write("a.csv", log_text(400, 3e-8));
   const fs::path b = write("b.csv", log_text(300, 6e-8));
   const CliRun r = run("--fit '" + a.string() + "' --check '" + b.string() + "' --json");
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')), nullptr, false);
   ASSERT_TRUE(j.is_object()) << r.out;
   std::string names;
@@ -91,7 +79,7 @@ TEST(GapCli, ReportPlotsRedrawFromInsideTheFolder) {
   const fs::path dir = log.parent_path() / "report";
   fs::remove_all(dir);
   const CliRun r = run("--fit '" + log.string() + "' --check '" + log.string() + "' --report '" + dir.string() + "'");
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
   ASSERT_TRUE(fs::exists(dir / "plots.gp"));
   fs::remove(dir / "residual_time.png");
   EXPECT_EQ(std::system(("cd '" + dir.string() + "' && gnuplot plots.gp 2>/dev/null").c_str()), 0);

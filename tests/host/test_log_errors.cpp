@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/mem_log.hpp"
 #include "hstmon_host/log_reader.hpp"
 
 namespace hh = hstmon::host;
@@ -13,9 +14,7 @@ using hh::Signal;
 
 namespace {
 
-hh::LogData read(std::string_view text, const hh::ReadOptions& opt = {}) {
-  return hh::read_log_from_memory(text, "mem.csv", opt);
-}
+using hstmon_test::read;
 
 // read() with lenient = true: the valid part of a bad log is kept.
 hh::LogData read_lenient(std::string_view text) {

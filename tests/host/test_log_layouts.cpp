@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../support/instrument_exports.hpp"
+#include "../support/mem_log.hpp"
 #include "hstmon_host/log_options.hpp"
 #include "hstmon_host/log_reader.hpp"
 
@@ -18,11 +19,8 @@ using hh::Signal;
 
 namespace {
 
-constexpr double kRpm = 2.0 * 3.14159265358979323846 / 60.0;
-
-hh::LogData read(std::string_view text, const hh::ReadOptions& opt = {}) {
-  return hh::read_log_from_memory(text, "mem.csv", opt);
-}
+using hstmon_test::kRpm;
+using hstmon_test::read;
 
 hh::ReadOptions spider8_options() {
   hh::ReadOptions o;

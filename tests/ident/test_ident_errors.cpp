@@ -1,10 +1,8 @@
 // Bad data gives a clear message (naming the file where there is one) and a non-zero exit,
 // through the API and through `hstmon identify`.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -17,26 +15,15 @@
 #include "hstmon_ident/thesis_fit.hpp"
 #include "synthetic_logs.hpp"
 
+#include "../support/cli_run.hpp"
+
 namespace hstmon::ident {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out;
-};
-
-CliRun run_cli(const std::string& args) {
-  CliRun r;
-  FILE* p = popen((std::string(HSTMON_CLI) + " " + args + " 2>&1").c_str(), "r");
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using hstmon_test::CliRun;
+using hstmon_test::run_hstmon;
 
 fs::path temp_dir_path() { return fs::temp_directory_path() / ("hstmon-ident-test-" + std::to_string(::getpid())); }
 
@@ -83,8 +70,8 @@ TEST(IdentErrors, TooFewOperatingPoints) {
 
   const fs::path d = temp_dir();
   const std::string file = write_log(d / "two_loads.csv", log);
-  const CliRun run = run_cli("identify " + file + " --out " + (d / "p.json").string());
-  EXPECT_EQ(run.code, 2) << run.out;
+  const CliRun run = run_hstmon("identify " + file + " --out " + (d / "p.json").string());
+  EXPECT_EQ(run.exit_code, 2) << run.out;
   EXPECT_NE(run.out.find("two_loads.csv"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("too few operating points"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(d / "p.json"));
@@ -98,8 +85,8 @@ TEST(IdentErrors, NoSteadyWindow) {
     f << "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
     for (int i = 0; i < 200; ++i) f << i * 0.01 << ',' << 30 + 0.5 * i << ',' << 2 + 0.1 * i << ',' << 100 + i << ',' << 10 * i << '\n';
   }
-  const CliRun run = run_cli("identify " + file.string() + " --out " + (d / "p.json").string());
-  EXPECT_EQ(run.code, 2) << run.out;
+  const CliRun run = run_hstmon("identify " + file.string() + " --out " + (d / "p.json").string());
+  EXPECT_EQ(run.exit_code, 2) << run.out;
   EXPECT_NE(run.out.find("ramp.csv: error: no steady window"), std::string::npos) << run.out;
 }
 
@@ -170,19 +157,19 @@ TEST(IdentErrors, NaNs) {
     std::ofstream f(file);
     f << "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n0,30,2,150,1600\n4,nan,2,150,1600\n";
   }
-  const CliRun run = run_cli("identify " + file.string() + " --out " + (d / "p.json").string());
-  EXPECT_EQ(run.code, 2) << run.out;
+  const CliRun run = run_hstmon("identify " + file.string() + " --out " + (d / "p.json").string());
+  EXPECT_EQ(run.exit_code, 2) << run.out;
   EXPECT_NE(run.out.find("nan.csv:3"), std::string::npos) << run.out;
 }
 
 TEST(IdentErrors, UsageAndGoodRun) {
-  EXPECT_EQ(run_cli("identify").code, 1);
+  EXPECT_EQ(run_hstmon("identify").exit_code, 1);
   const fs::path d = temp_dir();
   const std::string file = write_log(d / "good.csv", testing::steady_staircase_log(4));
-  EXPECT_EQ(run_cli("identify " + file).code, 1);  // --out missing
-  const CliRun run = run_cli("identify " + file + " --out " + (d / "good.json").string() + " --header " +
+  EXPECT_EQ(run_hstmon("identify " + file).exit_code, 1);  // --out missing
+  const CliRun run = run_hstmon("identify " + file + " --out " + (d / "good.json").string() + " --header " +
                           (d / "good.hpp").string());
-  EXPECT_EQ(run.code, 0) << run.out;
+  EXPECT_EQ(run.exit_code, 0) << run.out;
   EXPECT_NE(run.out.find("NOT IDENTIFIABLE"), std::string::npos);
   EXPECT_NE(run.out.find("RMS Error"), std::string::npos);
   const auto pf = host::read_params_file((d / "good.json").string());

@@ -3,31 +3,26 @@
 /// Runs an hstmon command line through the shell and keeps what the validation tests judge:
 /// its exit status and the `"type":"event"` objects of its JSON-lines standard output.
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
+
 namespace hstmon_test {
 
 struct CliEvents {
-  int status = -1;                      ///< exit status (-1: did not run or did not exit)
+  int status = -1;                      ///< exit status (as CliRun::exit_code)
   std::vector<nlohmann::json> events;   ///< detected, isolated, ambiguous, unexplained, cleared, …
 };
 
 /// @param cmd a shell command whose standard output is `hstmon … --json`
 inline CliEvents run_cli_events(const std::string& cmd) {
+  const CliRun run = run_command(cmd);
+  const std::string& out = run.out;
   CliEvents r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  std::string out;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.status = run.exit_code;
   std::size_t a = 0;
   while (a < out.size()) {
     std::size_t b = out.find('\n', a);

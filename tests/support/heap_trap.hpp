@@ -74,4 +74,12 @@ struct Armed {
   ~Armed() { g_armed = false; }
 };
 
+/// The trap's own check: one malloc/free while armed, the count it gives (1 when it works).
+inline long allocations_of_one_malloc() {
+  Armed a;
+  void* p = std::malloc(16);
+  std::free(p);
+  return g_allocs;
+}
+
 }  // namespace

@@ -17,13 +17,6 @@ using CKind = circuit::ElementKind;
 using circuit::Ref;
 using circuit::RefKind;
 
-/// Name of the circuit parameter or input behind r, or "" (none, or a literal number).
-std::string named_ref(const host::CircuitFile& f, Ref r) {
-  if (r.kind == RefKind::kInput && r.index < f.inputs.size()) return f.inputs[r.index].name;
-  if (r.kind == RefKind::kParam && r.index < f.params.size() && !f.params[r.index].literal) return f.params[r.index].name;
-  return "";
-}
-
 /// The first of refs given (kind ≠ none), or a none Ref.
 Ref first_given(std::initializer_list<Ref> refs) {
   for (Ref r : refs) {
@@ -396,6 +389,12 @@ int CircuitBondGraph::element_index(std::string_view name) const {
 }
 
 std::string graph_parameter_name(const std::string& owner, const char* field) { return owner + "." + field; }
+
+std::string named_ref(const host::CircuitFile& f, Ref r) {
+  if (r.kind == RefKind::kInput && r.index < f.inputs.size()) return f.inputs[r.index].name;
+  if (r.kind == RefKind::kParam && r.index < f.params.size() && !f.params[r.index].literal) return f.params[r.index].name;
+  return "";
+}
 
 std::optional<std::string> circuit_bond_graph(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel& at,
                                               const std::vector<double>& z, CircuitBondGraph& out) {

@@ -21,12 +21,6 @@ using CKind = circuit::ElementKind;
 using circuit::Ref;
 using circuit::RefKind;
 
-std::string named_ref(const host::CircuitFile& f, Ref r) {
-  if (r.kind == RefKind::kInput && r.index < f.inputs.size()) return f.inputs[r.index].name;
-  if (r.kind == RefKind::kParam && r.index < f.params.size() && !f.params[r.index].literal) return f.params[r.index].name;
-  return "";
-}
-
 /// The model with the number r scaled by factor (other elements sharing r change too;
 /// callers read one element's law only).
 Model scaled(const Model& m, Ref r, double factor) {

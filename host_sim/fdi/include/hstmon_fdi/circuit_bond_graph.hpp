@@ -66,4 +66,7 @@ std::optional<std::string> circuit_bond_graph(const circuit_tools::LoadedCircuit
 /// CircuitElementSource::ref.
 std::string graph_parameter_name(const std::string& owner, const char* field);
 
+/// Name of the circuit parameter or input behind r, or "" (none, or a literal number).
+std::string named_ref(const host::CircuitFile& f, circuit::Ref r);
+
 }  // namespace hstmon::fdi
