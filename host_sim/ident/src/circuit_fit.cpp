@@ -113,8 +113,13 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     for (double v : p.mean) m += std::isfinite(v) ? 1 : 0;
   }
   if (m < idx.size()) {
+    char rule[160];
+    std::snprintf(rule, sizeof rule,
+                  " (a point is a stretch of held inputs, steady after the settle, of at least %g s and %zu rows: "
+                  "--min-duration, --min-samples)",
+                  o.assume_steady ? 0.0 : o.min_duration, o.assume_steady ? std::size_t{1} : std::max<std::size_t>(1, o.min_samples));
     r.error = std::to_string(r.points.size()) + " operating point(s), " + std::to_string(m) +
-              " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit";
+              " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit" + rule;
     return r;
   }
   // Residuals (mean − model)/σ at every point and measured channel for the fitted
