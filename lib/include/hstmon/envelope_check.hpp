@@ -112,8 +112,10 @@ class EnvelopeCheck {
     judge();
   }
 
-  /// The monitor detected a fault at t [s]: a stretch that had not begun by then would
-  /// judge the fault, not the machine, so the check is given up.
+  /// The monitor detected a fault at t [s]. After the machine ran quiet (see start()), a
+  /// stretch that had not begun by then would judge the fault, not the machine, so the
+  /// check is given up; before that, the machine was never seen to match the model, and the
+  /// check goes on (finish() then says unverified if nothing was judged).
   void detected(T t) noexcept {
     if (verdict_ != EnvelopeVerdict::kPending || t_detected_ >= T(0)) return;
     t_detected_ = t;
