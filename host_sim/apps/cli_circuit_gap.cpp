@@ -49,15 +49,10 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   }
   gap::CircuitGapOptions o;
   o.effects = a.effects;
-  std::string unknown;
-  (void)gap::chosen_effects(c, o.effects, unknown);
-  if (!unknown.empty()) {
-    std::string names, none;
-    for (const gap::CircuitEffect& e : gap::chosen_effects(c, {}, none)) names += (names.empty() ? "" : ", ") + e.name;
-    fmt::print(stderr,
-               "hstmon gap: error: --effects: '{}' is none of {}'s candidates ({}) nor a kind of them (leak, friction, "
-               "torque_loss, offset, parameter)\n",
-               unknown, a.circuit, names);
+  std::string effects_error;
+  (void)gap::chosen_effects(c, o.effects, effects_error);
+  if (!effects_error.empty()) {  // a usage error: said before the logs are read
+    fmt::print(stderr, "hstmon gap: error: {}\n", effects_error);
     return kExitUsage;
   }
   circuit_tools::CircuitLog logs[2];

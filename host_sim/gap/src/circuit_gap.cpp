@@ -298,26 +298,26 @@ void decide(CircuitGapResult& r) {
 }  // namespace
 
 std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c, const std::vector<std::string>& effects,
-                                          std::string& unknown) {
+                                          std::string& error) {
   std::vector<CircuitEffect> all = circuit_effects(c);
   for (const auto& e : parameter_effects(c)) all.push_back(e);
-  unknown.clear();
+  error.clear();
   if (effects.empty()) return all;
-  // A kind is the name's part before its parenthesis: "leak(p_b)" is a leak.
-  auto kind_of = [](const CircuitEffect& e) { return e.name.substr(0, e.name.find('(')); };
-  std::vector<CircuitEffect> out;
+  // A name is a candidate's own ("leak(p_b)") or its kind, the part before the parenthesis.
+  auto named = [](const CircuitEffect& e, const std::string& want) {
+    return e.name == want || e.name.compare(0, e.name.find('('), want) == 0;
+  };
   for (const std::string& want : effects) {
-    const bool any = std::any_of(all.begin(), all.end(), [&](const CircuitEffect& e) {
-      return e.name == want || kind_of(e) == want;
-    });
-    if (!any) {
-      unknown = want;
-      return {};
-    }
+    if (std::any_of(all.begin(), all.end(), [&](const CircuitEffect& e) { return named(e, want); })) continue;
+    std::string names;
+    for (const CircuitEffect& e : all) names += (names.empty() ? "" : ", ") + e.name;
+    error = "--effects: '" + want + "' is none of circuit " + c.file.name + "'s candidates (" + names +
+            ") nor a kind of them (leak, friction, torque_loss, offset, parameter)";
+    return {};
   }
+  std::vector<CircuitEffect> out;
   for (const CircuitEffect& e : all) {
-    if (std::any_of(effects.begin(), effects.end(),
-                    [&](const std::string& want) { return e.name == want || kind_of(e) == want; })) {
+    if (std::any_of(effects.begin(), effects.end(), [&](const std::string& want) { return named(e, want); })) {
       out.push_back(e);
     }
   }
@@ -327,13 +327,10 @@ std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c,
 CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& fit,
                              const circuit_tools::CircuitLog& check, const CircuitGapOptions& o) {
   CircuitGapResult r;
-  std::string unknown;
-  const std::vector<CircuitEffect> candidates = chosen_effects(c, o.effects, unknown);
-  if (!unknown.empty()) {
-    std::string names, none;
-    for (const CircuitEffect& e : chosen_effects(c, {}, none)) names += (names.empty() ? "" : ", ") + e.name;
-    r.error = "--effects: '" + unknown + "' is none of this circuit's candidates (" + names +
-              ") nor a kind of them (leak, friction, torque_loss, offset, parameter)";
+  std::string effects_error;
+  const std::vector<CircuitEffect> candidates = chosen_effects(c, o.effects, effects_error);
+  if (!effects_error.empty()) {
+    r.error = effects_error;
     return r;
   }
   const detail::PointSet F = detail::circuit_point_set(c, fit), C = detail::circuit_point_set(c, check);

@@ -83,9 +83,10 @@ struct CircuitGapOptions {
 };
 
 /// The candidates of c that `effects` names (CircuitGapOptions::effects), in c's order.
-/// @param unknown  out: the first name that matches no candidate, else empty
+/// @param error  out: for a name that matches no candidate, a sentence naming it and listing
+///               c's candidates and kinds (nothing is chosen then); else empty
 std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c, const std::vector<std::string>& effects,
-                                          std::string& unknown);
+                                          std::string& error);
 
 /// Fits every candidate (or those `o` names) on `fit`, judges it on `check`. A name in
 /// `o.effects` that matches no candidate sets `error`.
