@@ -242,8 +242,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   envelope.start(res.t_first + res.startup_hold);
   const std::vector<host::EnvelopeChannel> envelope_names = envelope_channels(c);
   auto envelope_now = [&] {
-    return host::envelope_result(host::envelope_figures(envelope, EnvelopeCheck<Model>::Config{}.window), envelope_names,
-                                 kEnvelopeRemedy);
+    return host::envelope_result(host::envelope_figures(envelope), envelope_names, kEnvelopeRemedy);
   };
   bool out_of_envelope = false;
   // The trace's bound leads, recomputed where the monitor's bound changed (an input change).

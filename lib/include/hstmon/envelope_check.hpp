@@ -131,6 +131,7 @@ class EnvelopeCheck {
   }
 
   EnvelopeVerdict verdict() const noexcept { return verdict_; }
+  const Config& config() const noexcept { return cfg_; }
   /// The first detection [s]; < 0 before one.
   T detected_at() const noexcept { return t_detected_; }
   /// Whether that detection came before the machine was seen to match the model.

@@ -117,9 +117,8 @@ struct ChunkedReplay::State {
   EnvelopeCheck<MonSpecialised::Model>& envelope(MonSpecialised&) { return envelope_specialised; }
   template <class Mon>
   EnvelopeResult envelope_now(Mon& mon) {
-    const auto& check = envelope(mon);
-    return envelope_result(envelope_figures(check, typename std::decay_t<decltype(check)>::Config{}.window),
-                           thesis_envelope_channels(), "Run `hstmon identify` on healthy steady data, or `hstmon gap`");
+    return envelope_result(envelope_figures(envelope(mon)), thesis_envelope_channels(),
+                           "Run `hstmon identify` on healthy steady data, or `hstmon gap`");
   }
 
   template <class Mon>

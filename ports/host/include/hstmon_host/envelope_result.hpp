@@ -41,13 +41,13 @@ struct EnvelopeFigures {
 
 /// The figures of a check of any model.
 template <class Model>
-EnvelopeFigures envelope_figures(const EnvelopeCheck<Model>& check, double window) {
+EnvelopeFigures envelope_figures(const EnvelopeCheck<Model>& check) {
   EnvelopeFigures f;
   f.verdict = check.verdict();
   f.t0 = static_cast<double>(check.t0());
   f.t1 = static_cast<double>(check.t1());
   f.t_detected = static_cast<double>(check.detected_at());
-  f.window = window;
+  f.window = static_cast<double>(check.config().window);
   for (int ch = 0; ch < EnvelopeCheck<Model>::kChannels; ++ch) {
     f.judged.push_back(check.judged(ch));
     f.mean.push_back(static_cast<double>(check.mean(ch)));
