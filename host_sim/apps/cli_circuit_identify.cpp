@@ -49,12 +49,15 @@ void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitRe
 }
 
 
-// --noise-pressure / --noise-speed: the weights' σ for every sensor of that quantity.
-void override_noise(const CircuitIdentifyArgs& a, circuit_tools::LoadedCircuit& c) {
-  for (host::CircuitSensor& s : c.file.sensors) {
+// --noise-pressure / --noise-speed: c with the weights' σ for every sensor of that quantity
+// (the fit weighs with it; the header keeps the circuit file's sensors).
+circuit_tools::LoadedCircuit with_noise(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c) {
+  circuit_tools::LoadedCircuit out = c;
+  for (host::CircuitSensor& s : out.file.sensors) {
     if (s.quantity == host::CircuitQuantity::kPressure && a.noise_pressure > 0.0) s.noise = a.noise_pressure;
     if (s.quantity == host::CircuitQuantity::kSpeed && a.noise_speed > 0.0) s.noise = a.noise_speed;
   }
+  return out;
 }
 
 // The header's namespace: its file stem as a C++ identifier ("my-stand.hpp" → my_stand).
@@ -68,24 +71,9 @@ std::string header_namespace(const std::string& path) {
 }
 
 // --header: the circuit at the fitted values (and their uncertainty), as
-// hstmon-circuit-header writes it, through the parameter file the fit makes.
+// hstmon-circuit-header writes it.
 std::string write_header(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c,
                          const ident::CircuitFitResult& r) {
-  namespace fs = std::filesystem;
-  const std::string params = a.out.empty() ? (fs::temp_directory_path() / "hstmon_identify_header.params.json").string()
-                                           : a.out;
-  if (a.out.empty()) {
-    std::ofstream f(params);
-    f << ident::fitted_values_json(c, r);
-    if (!f) return "cannot write " + params;
-  }
-  circuit_tools::LoadedCircuit fitted;
-  const auto load_error = circuit_tools::load_circuit(a.circuit, params, fitted);
-  if (a.out.empty()) {
-    std::error_code ec;
-    fs::remove(params, ec);
-  }
-  if (load_error) return load_error->to_string();
   circuit_tools::CircuitHeaderOptions o;
   o.name = header_namespace(a.header);
   std::string fitted_names;
@@ -93,7 +81,7 @@ std::string write_header(const CircuitIdentifyArgs& a, const circuit_tools::Load
   o.source_note = "hstmon identify --circuit " + a.circuit + " --fit " + fitted_names + " (" +
                   std::to_string(r.points.size()) + " operating points)";
   std::string error;
-  const std::string text = circuit_tools::circuit_header(fitted, o, error);
+  const std::string text = circuit_tools::circuit_header(ident::fitted_circuit(c, r), o, error);
   if (text.empty()) return error;
   std::ofstream f(a.header);
   f << text;
@@ -112,7 +100,6 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
     fmt::print(stderr, "{}\n", err->to_string());
     return kExitBadInput;
   }
-  override_noise(a, c);
   std::vector<circuit_tools::CircuitLog> logs;
   for (const std::string& path : a.logs) {
     circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, a.read);
@@ -129,7 +116,7 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   o.min_samples = a.min_samples;
   o.assume_steady = a.assume_steady;
   o.min_settings = a.min_settings;
-  const ident::CircuitFitResult r = ident::fit_circuit(c, logs, o);
+  const ident::CircuitFitResult r = ident::fit_circuit(with_noise(a, c), logs, o);
   if (r.error) {
     fmt::print(stderr, "hstmon identify --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;

@@ -181,6 +181,18 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
   return r;
 }
 
+circuit_tools::LoadedCircuit fitted_circuit(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  circuit_tools::LoadedCircuit out = c;
+  out.values.uncertainty.resize(c.file.params.size());
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    const int k = c.file.param_index(r.names[j]);
+    if (k < 0) continue;
+    out.values.params.v[k] = r.value[j];
+    if (j < r.uncertainty.size()) out.values.uncertainty[static_cast<std::size_t>(k)] = r.uncertainty[j];
+  }
+  return out;
+}
+
 std::string fitted_values_json(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
   nlohmann::ordered_json params = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < c.file.params.size(); ++k) {

@@ -112,6 +112,10 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
 /// file where the oil temperature varies.
 inline constexpr double kLeastUncertainty = 0.001;
 
+/// c at the fitted values, with the fitted parameters' `uncertainty` as stated ones: the
+/// circuit the parameter file of fitted_values_json() loads to.
+circuit_tools::LoadedCircuit fitted_circuit(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r);
+
 /// A parameter file for c (docs/circuits.md's format) with the values of c overridden
 /// by the fitted ones, every number in SI, and an "uncertainty" section: the fitted
 /// parameters' `uncertainty` (commissioning: the monitor's bound follows what the healthy
