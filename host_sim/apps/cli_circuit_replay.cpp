@@ -45,6 +45,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
   head["undetectable"] = r.undetectable;
   head["states"] = r.states;
   head["stiff_nodes"] = r.stiff_nodes;
+  head["implicit_ticks"] = r.implicit_ticks;
   fmt::print("{}\n", head.dump());
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     const auto& s = r.channels[ch];
@@ -123,7 +124,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
     fmt::print("\n  envelope: {}\n", r.envelope.text);
     print_events(r.events, r.final_status);
   }
-  print_observer_health(r.health, r.unhealthy_rows, r.max_substeps);
+  print_observer_health(r.health, r.unhealthy_rows, r.max_substeps, r.implicit_ticks);
 }
 
 // Measured, model, residual and the matcher's bound on it per row in each sensor's unit

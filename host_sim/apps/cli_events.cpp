@@ -88,9 +88,13 @@ void print_json_diagnosis(const host::EnvelopeResult& envelope, const std::vecto
   fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", final_status}, {"events", events.size()}}.dump());
 }
 
-void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps) {
+void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps,
+                           std::uint64_t implicit_ticks) {
   const auto names = host::health_names(health);
-  if (names.empty()) {
+  if (names.empty() && implicit_ticks > 0) {
+    fmt::print("\n  observer health: ok (max {} steps per tick; {} stiff ticks by Rosenbrock steps)\n", max_substeps,
+               implicit_ticks);
+  } else if (names.empty()) {
     fmt::print("\n  observer health: ok (max {} RK4 substeps per tick)\n", max_substeps);
   } else {
     std::string joined;

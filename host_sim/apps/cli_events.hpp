@@ -57,8 +57,10 @@ void print_json_diagnosis(const host::EnvelopeResult& envelope, const std::vecto
 /// The human diagnosis block: every event in time order, then the final status.
 void print_events(const std::vector<host::ReplayEvent>& events, const std::string& final_status);
 
-/// The human report's observer health line: "ok (max N RK4 substeps per tick)", or the
-/// HealthFlag names raised and on how many rows.
-void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps);
+/// The human report's observer health line: "ok (max N RK4 substeps per tick)" — with
+/// implicit_ticks > 0, "ok (max N steps per tick; K stiff ticks by Rosenbrock steps)" — or
+/// the HealthFlag names raised and on how many rows.
+void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps,
+                           std::uint64_t implicit_ticks = 0);
 
 }  // namespace hstmon::cli

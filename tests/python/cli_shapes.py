@@ -30,6 +30,7 @@ def json_lines(result) -> List[Dict[str, Any]]:
             "startup_hold_s": raw["startup_hold"], "fault_table_rows": raw["table_rows"],
             "undetectable": raw["undetectable"], "states": raw["states"], "stiff_nodes": raw["stiff_nodes"],
             "health": raw["health"], "unhealthy_rows": raw["unhealthy_rows"], "max_substeps": raw["max_substeps"],
+            "implicit_ticks": raw["implicit_ticks"],
             "notes": raw["notes"]}
     lines = [head]
     for ch in raw["channels"]:

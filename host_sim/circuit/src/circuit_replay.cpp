@@ -336,6 +336,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     diag->finish(res.t_last, res.events);
     res.final_status = diag->status();
   }
+  res.implicit_ticks = obs.implicit_ticks();
   for (std::size_t ch = 0; ch < channels; ++ch) {
     if (res.clipped[ch] > 0) {
       res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +

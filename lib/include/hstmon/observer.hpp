@@ -9,7 +9,12 @@
 ///   3. x_n += L·r_n (skipped when L = 0);
 ///   4. x_{n+1} = RK4 over the tick in n_sub substeps, n_sub = ⌈ρ·h / (λh)_max⌉, with ρ the
 ///      spectral radius of ∂f/∂x at x_n (so a stiff operating point — start from rest,
-///      a restricted PRV — gets more substeps instead of a silent false fixed point).
+///      a restricted PRV — gets more substeps instead of a silent false fixed point);
+///      where n_sub would exceed Config::implicit_above and the model offers its Jacobian
+///      (`void jacobian(const State&, StateMatrix&) const`), one linearly implicit
+///      Rosenbrock step over the tick instead (rosenbrock.hpp: a mode much faster than the
+///      tick, such as a line on an open check valve, is damped in one step at the cost of
+///      about one RK4 substep and an n×n factorisation).
 /// All state lives in the object (a few hundred bytes); step() never allocates, never
 /// throws, and is O(n_sub).
 ///
@@ -48,6 +53,7 @@
 #include "hstmon/initial_state.hpp"
 #include "hstmon/model_concept.hpp"
 #include "hstmon/rk4.hpp"
+#include "hstmon/rosenbrock.hpp"
 #include "hstmon/status.hpp"
 
 /// The general tick: out of line where the usual tick is in front of it (hosts: the usual
@@ -100,6 +106,55 @@ struct UsualTickState {
 };
 template <typename M>
 struct UsualTickState<M, false> {};
+
+/// True when M offers `void jacobian(const State&, StateMatrix&) const` (∂f/∂x): its stiff
+/// ticks can take the linearly implicit step.
+template <typename M, typename = void>
+struct HasJacobian : std::false_type {};
+template <typename M>
+struct HasJacobian<M, std::void_t<decltype(std::declval<const M&>().jacobian(
+                          std::declval<const typename M::State&>(), std::declval<typename M::StateMatrix&>()))>>
+    : std::true_type {};
+
+/// The linearly implicit ticks' settings (Observer::Config's), and nothing for a model
+/// without a Jacobian (an empty base: no bytes).
+template <typename T, bool>
+struct ImplicitConfig {
+  /// A tick that would need more RK4 substeps than this is integrated by Rosenbrock steps
+  /// instead (rosenbrock_tick) [-]; 0: RK4 substeps always.
+  std::uint16_t implicit_above = 4;
+  /// Finest Rosenbrock step: tick/2^implicit_max_level [-], 0 … 15.
+  std::uint8_t implicit_max_level = 8;
+  /// Error accepted per Rosenbrock step, relative to each state's running peak |x| [-].
+  T implicit_rtol = T(1e-3);
+};
+template <typename T>
+struct ImplicitConfig<T, false> {};
+
+/// The linearly implicit ticks' state (an empty base without a Jacobian: no bytes).
+template <typename M, bool>
+struct ImplicitState {
+  typename M::State implicit_peak = M::State::Zero();  ///< running peak |x| since reset: the steps' error scale
+  std::uint64_t implicit_count = 0;  ///< ticks since the last reset that were implicit
+  int implicit_level = 0;            ///< the last implicit tick's step level (step tick/2^level)
+  bool implicit_last = false;        ///< the last tick was implicit
+};
+template <typename M>
+struct ImplicitState<M, false> {};
+
+/// True when M offers `int n_states() const`: the states in use, when its State is padded
+/// to a larger capacity (the circuit interpreter).
+template <typename M, typename = void>
+struct HasStateCount : std::false_type {};
+template <typename M>
+struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
+
+/// True when M offers `State state_envelope() const`: each state's largest plausible
+/// magnitude [state units].
+template <typename M, typename = void>
+struct HasStateEnvelope : std::false_type {};
+template <typename M>
+struct HasStateEnvelope<M, std::void_t<decltype(std::declval<const M&>().state_envelope())>> : std::true_type {};
 }  // namespace observer_detail
 
 /// One sample of a model's measured channels, for Observer::step.
@@ -112,7 +167,7 @@ struct ChannelSample {
 /// @tparam UsualTick  take the model's usual tick (see the file comment); by default
 ///   wherever the model has one
 template <typename Model, bool UsualTick = observer_detail::HasUsualTick<Model>::value>
-class Observer {
+class Observer : private observer_detail::ImplicitState<Model, observer_detail::HasJacobian<Model>::value> {
  public:
   using T = typename Model::Scalar;
   using State = typename Model::State;
@@ -122,6 +177,8 @@ class Observer {
   static constexpr int kOutputs = Model::kOutputs;
   /// True when the model offers a fused usual tick (see the file comment).
   static constexpr bool kUsualTick = UsualTick;
+  /// True when the model offers its Jacobian, so stiff ticks can be linearly implicit.
+  static constexpr bool kImplicit = observer_detail::HasJacobian<Model>::value;
   static_assert(ObserverModelParts<Model>::kTypes,
                 "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
   static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
@@ -134,8 +191,9 @@ class Observer {
   /// Output-injection gain L [state unit per channel unit], applied once per tick.
   using Gain = Eigen::Matrix<T, kStates, kOutputs>;
 
-  /// Observer configuration; validated by configure().
-  struct Config {
+  /// Observer configuration; validated by configure(). With a model that has a Jacobian,
+  /// also implicit_above, implicit_max_level, implicit_rtol (observer_detail::ImplicitConfig).
+  struct Config : observer_detail::ImplicitConfig<T, kImplicit> {
     T tick = T(1e-3);                   ///< tick h [s], > 0
     T lambda_h_max = T(0.8);            ///< largest |λ|·h_sub per RK4 substep [-], in (0, 2.5]
     std::uint16_t max_substeps = 256;   ///< substep cap per tick [-], ≥ 1
@@ -204,6 +262,17 @@ class Observer {
       if (observer_detail::UsualTickCentred<Model>::value) inputs_changed();
     }
     substeps_ = 0;
+    if constexpr (kImplicit) {
+      this->implicit_count = 0;
+      this->implicit_level = 0;
+      this->implicit_last = false;
+      this->implicit_peak = x0.cwiseAbs();
+      if constexpr (observer_detail::HasStateEnvelope<Model>::value) {
+        // A state that starts at 0 (a shaft at rest) is judged against a small part of its
+        // envelope, not against its own vanishing magnitude.
+        this->implicit_peak = this->implicit_peak.cwiseMax(kImplicitFloor * model_.state_envelope());
+      }
+    }
     health_ = 0;
     last_health_ = 0;
   }
@@ -296,8 +365,24 @@ class Observer {
       return 0;
     }
   }
-  /// RK4 substeps used by the last tick.
+  /// Steps the last tick took: RK4 substeps, or Rosenbrock steps tried on an implicit tick.
   std::uint16_t substeps() const noexcept { return substeps_; }
+  /// True when the last tick was linearly implicit.
+  bool implicit() const noexcept {
+    if constexpr (kImplicit) {
+      return this->implicit_last;
+    } else {
+      return false;
+    }
+  }
+  /// Ticks since the last reset that were linearly implicit (0 without a Jacobian).
+  std::uint64_t implicit_ticks() const noexcept {
+    if constexpr (kImplicit) {
+      return this->implicit_count;
+    } else {
+      return 0;
+    }
+  }
   /// HealthFlag bits of the last tick.
   std::uint32_t last_health() const noexcept { return last_health_; }
   /// HealthFlag bits OR-ed over all ticks since reset (latched).
@@ -321,7 +406,7 @@ class Observer {
         usual_.recentre_at = ticks_ + kRecentreTicks;
         refresh_usual();
       }
-      if (n > 0) {
+      if (n > 0 && !takes_implicit(n)) {
         if (n != usual_.n) {
           usual_.cn = usual_coeffs(cfg_.tick / static_cast<T>(n), std::numeric_limits<T>::infinity());
           usual_.n = n;
@@ -379,8 +464,10 @@ class Observer {
     // also gets one substep (the state check below flags it).
     int n = 1;
     Rk4Step<T> h = one_step_;
+    if constexpr (kImplicit) this->implicit_last = false;
     if (rho > T(0)) {
       n = substep_count(rho);
+      if (takes_implicit(n) && implicit_step(k1, flags)) return finish_implicit(x_before, flags);
       if (n == 0) {
         n = cfg_.max_substeps;
         flags |= kHealthSubstepsClipped;
@@ -441,6 +528,47 @@ class Observer {
     return flags;
   }
 
+  /// True when a tick that needs n RK4 substeps (0: beyond max_substeps) is taken
+  /// linearly implicit instead.
+  bool takes_implicit(int n) const noexcept {
+    if constexpr (kImplicit) {
+      return cfg_.implicit_above > 0 && (n == 0 || n > static_cast<int>(cfg_.implicit_above));
+    } else {
+      static_cast<void>(n);
+      return false;
+    }
+  }
+
+  /// The tick from s_.x by error-controlled Rosenbrock steps (rosenbrock_tick), with
+  /// f(s_.x) = k1; adds kHealthSubstepsClipped to flags where the finest step missed the
+  /// tolerance.
+  /// @return false (state untouched) if the tick could not be taken that way
+  bool implicit_step(const State& k1, std::uint32_t& flags) noexcept {
+    if constexpr (kImplicit) {
+      int used = kStates;
+      if constexpr (observer_detail::HasStateCount<Model>::value) used = model_.n_states();
+      const RosenbrockTick r = rosenbrock_tick(model_, s_, cfg_.tick, k1, this->implicit_peak, cfg_.implicit_rtol,
+                                               static_cast<int>(cfg_.implicit_max_level), this->implicit_level, used);
+      if (!r.ok) return false;
+      if (r.clipped) flags |= kHealthSubstepsClipped;
+      substeps_ = static_cast<std::uint16_t>(r.steps);
+      this->implicit_peak = this->implicit_peak.cwiseMax(s_.x.cwiseAbs());
+      this->implicit_last = true;
+      ++this->implicit_count;
+      return true;
+    } else {
+      static_cast<void>(k1);
+      static_cast<void>(flags);
+      return false;
+    }
+  }
+
+  /// Ends a linearly implicit tick: the state check.
+  std::uint32_t finish_implicit(const State& x_before, std::uint32_t flags) noexcept {
+    if (!model_.state_plausible(s_.x)) flags |= check_state(x_before);
+    return finish(flags);
+  }
+
   /// Substeps for spectral radius rho [1/s] > 0: ⌈ρ·h/λh_max⌉, or 0 beyond max_substeps.
   int substep_count(T rho) const noexcept {
     const T want = rho * cfg_.tick / cfg_.lambda_h_max;
@@ -453,6 +581,7 @@ class Observer {
   std::uint32_t finish_usual(const Measurement& m, const State& x_before, int n, const C& c) noexcept {
     std::uint32_t flags = take_residuals(m);
     substeps_ = static_cast<std::uint16_t>(n);
+    if constexpr (kImplicit) this->implicit_last = false;
     ++usual_.ticks;
     if (!Model::usual_plausible(c, s_.x)) flags |= check_state(x_before);
     return finish(flags);
@@ -468,7 +597,7 @@ class Observer {
 
   static bool config_ok(const Config& cfg) noexcept {
     return std::isfinite(cfg.tick) && cfg.tick > T(0) && std::isfinite(cfg.lambda_h_max) && cfg.lambda_h_max > T(0) &&
-           cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite();
+           cfg.lambda_h_max <= T(2.5) && cfg.max_substeps >= 1 && cfg.gain.allFinite() && implicit_config_ok(cfg);
   }
 
   /// Brings what depends on the model's inputs up to date: the usual tick's coefficients —
@@ -503,6 +632,15 @@ class Observer {
       return model_.usual_tick_coeffs(h, rho_max, s_.x);
     } else {
       return model_.usual_tick_coeffs(h, rho_max);
+    }
+  }
+
+  static bool implicit_config_ok(const Config& cfg) noexcept {
+    if constexpr (kImplicit) {
+      return std::isfinite(cfg.implicit_rtol) && cfg.implicit_rtol > T(0) && cfg.implicit_max_level <= 15;
+    } else {
+      static_cast<void>(cfg);
+      return true;
     }
   }
 
@@ -572,10 +710,13 @@ class Observer {
   std::uint64_t ticks_ = 0;
   std::uint32_t health_ = 0;
   std::uint32_t last_health_ = 0;
+  /// Least error scale of a state, as a fraction of its envelope (model's state_envelope) [-].
+  static constexpr T kImplicitFloor = T(1e-2);
   std::uint16_t substeps_ = 0;
   std::uint8_t r_valid_ = 0;
   bool has_gain_ = false;
   observer_detail::UsualTickState<Model, UsualTick> usual_{};
+
 };
 
 }  // namespace hstmon

@@ -98,6 +98,7 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   d["health"] = host::health_names(r.health);
   d["unhealthy_rows"] = r.unhealthy_rows;
   d["max_substeps"] = r.max_substeps;
+  d["implicit_ticks"] = r.implicit_ticks;
   d["table_rows"] = r.table_rows;
   d["undetectable"] = r.undetectable;
   // As the CLI: a replay without a fault table has no diagnosis to report.

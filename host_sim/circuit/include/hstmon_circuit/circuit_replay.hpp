@@ -73,7 +73,8 @@ struct CircuitReplayResult {
   std::vector<std::size_t> clipped;           ///< per channel: rows not compared (reading at a range end)
   std::uint32_t health = 0;                   ///< HealthFlag bits OR-ed over all ticks
   std::size_t unhealthy_rows = 0;
-  std::uint32_t max_substeps = 0;
+  std::uint32_t max_substeps = 0;             ///< most steps a tick took (RK4 substeps, or Rosenbrock steps)
+  std::uint64_t implicit_ticks = 0;           ///< ticks integrated by Rosenbrock steps (stiff ticks)
   InitialState start = InitialState::kRest;
   double startup_hold = 0.0;                  ///< start-up hold-off: no detection before t_first + this [s]
   std::vector<host::ReplayEvent> events;      ///< matcher events in time order (if diagnose)

@@ -347,6 +347,14 @@ class CircuitModel {
     return -1;
   }
 
+  /// Each state's envelope: the pressure envelope for a node, the speed envelope for a
+  /// shaft [Pa, rad/s]; 0 beyond n_states().
+  State state_envelope() const noexcept {
+    State e = State::Zero();
+    for (int s = 0; s < n_states_; ++s) e[s] = z_of_state_[s] < kNodes ? p_env_ : w_env_;
+    return e;
+  }
+
   /// True when every state is finite and within twice the envelope (pressures ±2·
   /// pressure_max, speeds ±2·speed_max).
   bool state_plausible(const State& x) const noexcept {

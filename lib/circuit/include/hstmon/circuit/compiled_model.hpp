@@ -106,6 +106,15 @@ class CompiledModel {
   int n_stiff() const noexcept { return engine_.n_stiff(); }
   int n_outputs() const noexcept { return engine_.n_outputs(); }
   int state_channel(int s) const noexcept { return engine_.state_channel(s); }
+  /// CircuitModel::state_envelope [Pa, rad/s].
+  State state_envelope() const noexcept {
+    State e = State::Zero();
+    for (int s = 0; s < Kernel::kN; ++s) {
+      e[s] = Kernel::kStateZ[s] < Cap::kNodes ? engine_.pressure_envelope() : engine_.speed_envelope();
+    }
+    return e;
+  }
+
   /// CircuitModel::state_plausible with the kernel's states known at compile time (the
   /// observer asks every tick): each state within twice its envelope (false for NaN and
   /// ±Inf), any capacity beyond the kernel's states finite.
