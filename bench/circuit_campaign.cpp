@@ -267,58 +267,72 @@ struct Job {
   std::uint64_t seed;
 };
 
-}  // namespace
+// Tallies of fault runs (per fault, per condition, all) or of nominal segments.
+struct Tally {
+  int runs = 0, detected = 0, in_set = 0, best = 0, early = 0, errors = 0;
+  int isolated = 0;            // the truth or its class isolated at the end (of detected)
+  int sized = 0, size_ok = 0;  // isolated parameter/input faults with a fitted size; within 20 % of the fault's
+  double delay_sum = 0.0;
+  std::vector<double> isolation_delays;  // [s]
+  double median_isolation() const {
+    if (isolation_delays.empty()) return NAN;
+    std::vector<double> d = isolation_delays;
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+  }
+};
 
-int main(int argc, char** argv) {
-  CLI::App app{"Fault campaign for a circuit file: simulated faults and nominal hours through hstmon replay --circuit's monitor"};
+struct Tallies {
+  std::map<std::string, Tally> by_fault;
+  // Per truth: how often each other fault shared the reported set (detected runs).
+  std::map<std::string, std::map<std::string, int>> confused;
+  std::vector<Tally> by_cond = std::vector<Tally>(kConditions.size());
+  Tally all, nominal;
+  double nominal_s = 0.0;  ///< nominal replay without a simulation error [s]
+};
+
+struct Settings {
   std::string circuit, params;
   double hours = 1.0, magnitude = 0.3;
   int seeds = 2;
   std::uint64_t seed_base = 0;
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   bool json = false, verbose = false;
-  app.add_option("--circuit", circuit, "circuit file")->required();
-  app.add_option("--params", params, "its parameter file (default: <stem>.params.json beside it)");
-  app.add_option("--hours", hours, "nominal replay in all [h]")->check(CLI::NonNegativeNumber);
-  app.add_option("--seeds", seeds, "fault runs per fault and condition")->check(CLI::PositiveNumber);
-  app.add_option("--magnitude", magnitude, "parameter / input fault size M: factor 1 ± M")->check(CLI::Range(0.01, 0.9));
-  app.add_option("--jobs", jobs, "threads")->check(CLI::PositiveNumber);
-  app.add_option("--seed-base", seed_base,
+};
+
+void add_options(CLI::App& app, Settings& o) {
+  app.add_option("--circuit", o.circuit, "circuit file")->required();
+  app.add_option("--params", o.params, "its parameter file (default: <stem>.params.json beside it)");
+  app.add_option("--hours", o.hours, "nominal replay in all [h]")->check(CLI::NonNegativeNumber);
+  app.add_option("--seeds", o.seeds, "fault runs per fault and condition")->check(CLI::PositiveNumber);
+  app.add_option("--magnitude", o.magnitude, "parameter / input fault size M: factor 1 ± M")->check(CLI::Range(0.01, 0.9));
+  app.add_option("--jobs", o.jobs, "threads")->check(CLI::PositiveNumber);
+  app.add_option("--seed-base", o.seed_base,
                  "added to every run's seed (machine, load steps, noise): 0 = the recorded figures' runs; "
                  "another value draws other runs, to check a figure is not these seeds'");
-  app.add_flag("--json", json, "one JSON object with the figures");
+  app.add_flag("--json", o.json, "one JSON object with the figures");
   app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
-  app.add_flag("--verbose", verbose, "print every fault run whose truth is not in the reported set");
+  app.add_flag("--verbose", o.verbose, "print every fault run whose truth is not in the reported set");
   app.add_flag("--matcher-only", g_matcher_only,
                "the matcher's verdict alone, as the firmware runs it (replay --circuit --matcher-only)");
-  CLI11_PARSE(app, argc, argv);
+}
 
-  LoadedCircuit c;
-  if (const auto err = hstmon::circuit_tools::load_circuit(circuit, params, c)) {
-    fmt::print(stderr, "{}\n", err->to_string());
-    return 2;
-  }
-  std::vector<std::string> undetectable, fault_notes;
-  std::vector<Fault> faults;
-  try {
-    g_table = hstmon::fdi::circuit_signature_table(c);
-    faults = table_faults(c, g_table, magnitude, undetectable, fault_notes);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "{}: {}\n", circuit, e.what());
-    return 2;
-  }
-
-  g_timing = timing(c);
+// Fault runs (seeds per fault and condition), then nominal segments over the conditions in turn.
+std::vector<Job> make_jobs(std::size_t n_faults, const Settings& o) {
   std::vector<Job> work;
   const int n_cond = static_cast<int>(kConditions.size());
   for (int ci = 0; ci < n_cond; ++ci) {
-    for (int fi = 0; fi < static_cast<int>(faults.size()); ++fi) {
-      for (int s = 0; s < seeds; ++s) work.push_back({ci, fi, 1000003ull * static_cast<std::uint64_t>(ci * 7919 + fi) + static_cast<std::uint64_t>(s) + 1 + seed_base});
+    for (int fi = 0; fi < static_cast<int>(n_faults); ++fi) {
+      for (int s = 0; s < o.seeds; ++s) work.push_back({ci, fi, 1000003ull * static_cast<std::uint64_t>(ci * 7919 + fi) + static_cast<std::uint64_t>(s) + 1 + o.seed_base});
     }
   }
-  const int segments = static_cast<int>(std::ceil(hours * 3600.0 / kSegment));
-  for (int k = 0; k < segments; ++k) work.push_back({k % n_cond, -1, 900000001ull + static_cast<std::uint64_t>(k) + seed_base});
+  const int segments = static_cast<int>(std::ceil(o.hours * 3600.0 / kSegment));
+  for (int k = 0; k < segments; ++k) work.push_back({k % n_cond, -1, 900000001ull + static_cast<std::uint64_t>(k) + o.seed_base});
+  return work;
+}
 
+std::vector<RunResult> run_all(const LoadedCircuit& c, const std::vector<Job>& work, const std::vector<Fault>& faults,
+                               unsigned jobs) {
   std::vector<RunResult> results(work.size());
   std::atomic<std::size_t> next{0};
   std::vector<std::thread> pool;
@@ -333,61 +347,47 @@ int main(int argc, char** argv) {
     });
   }
   for (auto& t : pool) t.join();
+  return results;
+}
 
-  // Per fault and per condition tallies.
-  struct Tally {
-    int runs = 0, detected = 0, in_set = 0, best = 0, early = 0, errors = 0;
-    int isolated = 0;            // the truth or its class isolated at the end (of detected)
-    int sized = 0, size_ok = 0;  // isolated parameter/input faults with a fitted size; within 20 % of the fault's
-    double delay_sum = 0.0;
-    std::vector<double> isolation_delays;  // [s]
-    double median_isolation() const {
-      if (isolation_delays.empty()) return NAN;
-      std::vector<double> d = isolation_delays;
-      std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-      return d[d.size() / 2];
-    }
-  };
-  std::map<std::string, Tally> by_fault;
-  // Per truth: how often each other fault shared the reported set (detected runs).
-  std::map<std::string, std::map<std::string, int>> confused;
-  std::vector<Tally> by_cond(kConditions.size());
-  Tally all, nominal;
-  double nominal_s = 0.0;
+// Per fault and per condition tallies; with verbose, the runs that failed or missed on stderr.
+Tallies tally(const std::vector<Job>& work, const std::vector<RunResult>& results, const std::vector<Fault>& faults,
+              bool verbose) {
+  Tallies t;
   for (std::size_t i = 0; i < work.size(); ++i) {
     const Job& w = work[i];
     const RunResult& r = results[i];
     if (w.fault < 0) {
-      ++nominal.runs;
-      nominal.early += r.alarms;
-      nominal.errors += r.error.empty() ? 0 : 1;
-      if (r.error.empty()) nominal_s += kSegment;
+      ++t.nominal.runs;
+      t.nominal.early += r.alarms;
+      t.nominal.errors += r.error.empty() ? 0 : 1;
+      if (r.error.empty()) t.nominal_s += kSegment;
       if (verbose && (r.alarms > 0 || !r.error.empty()))
         fmt::print(stderr, "nominal seed {} ({}): {} alarms {}\n", w.seed, kConditions[static_cast<std::size_t>(w.condition)].name, r.alarms, r.error);
       continue;
     }
     const Fault& f = faults[static_cast<std::size_t>(w.fault)];
-    for (Tally* t : {&by_fault[f.name], &by_cond[static_cast<std::size_t>(w.condition)], &all}) {
-      ++t->runs;
-      t->errors += r.error.empty() ? 0 : 1;
-      t->early += r.early() ? 1 : 0;
-      t->detected += r.s.detected ? 1 : 0;
-      t->in_set += r.s.detected && r.s.in_last ? 1 : 0;
-      t->best += r.s.detected && r.s.best_in_last ? 1 : 0;
-      if (r.s.detected) t->delay_sum += r.s.delay;
+    for (Tally* ta : {&t.by_fault[f.name], &t.by_cond[static_cast<std::size_t>(w.condition)], &t.all}) {
+      ++ta->runs;
+      ta->errors += r.error.empty() ? 0 : 1;
+      ta->early += r.early() ? 1 : 0;
+      ta->detected += r.s.detected ? 1 : 0;
+      ta->in_set += r.s.detected && r.s.in_last ? 1 : 0;
+      ta->best += r.s.detected && r.s.best_in_last ? 1 : 0;
+      if (r.s.detected) ta->delay_sum += r.s.delay;
       if (r.s.detected && r.s.isolated_class) {
-        ++t->isolated;
-        t->isolation_delays.push_back(r.s.isolation_delay);
+        ++ta->isolated;
+        ta->isolation_delays.push_back(r.s.isolation_delay);
         // The size as the fault's relative change: −30 % fitted within −24 … −36 %.
         if (f.channel < 0 && std::isfinite(r.s.size)) {
-          ++t->sized;
-          t->size_ok += std::fabs((r.s.size - 1.0) - (f.factor - 1.0)) <= 0.2 * std::fabs(f.factor - 1.0) ? 1 : 0;
+          ++ta->sized;
+          ta->size_ok += std::fabs((r.s.size - 1.0) - (f.factor - 1.0)) <= 0.2 * std::fabs(f.factor - 1.0) ? 1 : 0;
         }
       }
     }
     if (r.s.detected) {
       for (const std::string& other : r.s.last_set) {
-        if (other != f.name) ++confused[f.name][other];
+        if (other != f.name) ++t.confused[f.name][other];
       }
     }
     if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
@@ -395,28 +395,21 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
                  kConditions[static_cast<std::size_t>(w.condition)].name, r.s.detected, r.early(), r.s.last.empty() ? "no decision" : r.s.last);
   }
-  const auto pct = [](int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; };
-  if (json) {
-    fmt::print(
-        "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":{:.2f},"
-        "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
-        c.file.name, faults.size(), all.runs, pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected),
-        pct(all.isolated, all.detected), all.median_isolation(), pct(all.size_ok, all.sized), all.early, nominal_s / 3600.0, nominal.early, all.errors + nominal.errors);
-    return 0;
-  }
-  fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, circuit,
-             faults.size(), 100.0 * magnitude, seeds, kConditions.size());
-  fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
-             g_timing.t_fault, g_timing.run, g_timing.load_period);
-  if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
-  for (const std::string& n : fault_notes) fmt::print("{}\n", n);
-  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>9} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best",
-             "isolated", "delay ms", "to iso s", "early");
-  for (const auto& [name, t] : by_fault) {
-    fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>8.0f}% {:>9.0f} {:>9.2f} {:>6}\n", name, t.runs, pct(t.detected, t.runs),
-               pct(t.in_set, t.detected), pct(t.best, t.detected), pct(t.isolated, t.detected),
-               t.detected > 0 ? 1e3 * t.delay_sum / t.detected : NAN, t.median_isolation(), t.early);
-  }
+  return t;
+}
+
+double percent(int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; }
+
+void print_json(const LoadedCircuit& c, std::size_t n_faults, const Tallies& t) {
+  fmt::print(
+      "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":{:.2f},"
+      "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
+      c.file.name, n_faults, t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected), percent(t.all.best, t.all.detected),
+      percent(t.all.isolated, t.all.detected), t.all.median_isolation(), percent(t.all.size_ok, t.all.sized), t.all.early, t.nominal_s / 3600.0, t.nominal.early, t.all.errors + t.nominal.errors);
+}
+
+// Which faults shared another's reported set, against what the matcher's table predicts.
+void print_confusions(Tallies& t) {
   // The predicted relation is read off the table the matcher ran, slopes and orders too
   // (hstmon-fdi isolability --circuit, docs/isolability.md).
   const hstmon::circuit_tools::Isolability predicted = hstmon::circuit_tools::circuit_isolability(g_table);
@@ -433,26 +426,78 @@ int main(int argc, char** argv) {
   };
   fmt::print("\nconfusions (a fault in the reported set of another's detected runs, in ≥ 25 % of them; predicted from the\n"
              "matcher's table: x in one class, ~ weakly isolable, ! isolable — not predicted):\n");
-  for (const auto& [truth, others] : confused) {
+  for (const auto& [truth, others] : t.confused) {
     std::vector<std::string> shown;
-    const int n = by_fault[truth].detected;
+    const int n = t.by_fault[truth].detected;
     for (const auto& [other, k] : others) {
-      if (4 * k >= n) shown.push_back(fmt::format("{} {:.0f} % {}", other, pct(k, n), mark(truth, other)));
+      if (4 * k >= n) shown.push_back(fmt::format("{} {:.0f} % {}", other, percent(k, n), mark(truth, other)));
     }
     if (!shown.empty()) fmt::print("  {:<20} with {}\n", truth, fmt::join(shown, ", "));
   }
+}
+
+void print_report(const Settings& o, const LoadedCircuit& c, std::size_t n_faults, const std::vector<std::string>& undetectable,
+                  const std::vector<std::string>& fault_notes, Tallies& t) {
+  fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, o.circuit,
+             n_faults, 100.0 * o.magnitude, o.seeds, kConditions.size());
+  fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
+             g_timing.t_fault, g_timing.run, g_timing.load_period);
+  if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
+  for (const std::string& n : fault_notes) fmt::print("{}\n", n);
+  fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>9} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best",
+             "isolated", "delay ms", "to iso s", "early");
+  for (const auto& [name, ft] : t.by_fault) {
+    fmt::print("{:<22} {:>5} {:>8.0f}% {:>7.0f}% {:>6.0f}% {:>8.0f}% {:>9.0f} {:>9.2f} {:>6}\n", name, ft.runs, percent(ft.detected, ft.runs),
+               percent(ft.in_set, ft.detected), percent(ft.best, ft.detected), percent(ft.isolated, ft.detected),
+               ft.detected > 0 ? 1e3 * ft.delay_sum / ft.detected : NAN, ft.median_isolation(), ft.early);
+  }
+  print_confusions(t);
   fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>9} {:>7}\n", "condition", "runs", "detected", "in set", "isolated", "early");
   for (std::size_t i = 0; i < kConditions.size(); ++i) {
-    const Tally& t = by_cond[i];
-    fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>8.1f}% {:>6}\n", kConditions[i].name, t.runs, pct(t.detected, t.runs),
-               pct(t.in_set, t.detected), pct(t.isolated, t.detected), t.early);
+    const Tally& ct = t.by_cond[i];
+    fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>8.1f}% {:>6}\n", kConditions[i].name, ct.runs, percent(ct.detected, ct.runs),
+               percent(ct.in_set, ct.detected), percent(ct.isolated, ct.detected), ct.early);
   }
-  fmt::print("\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections {}\n", all.runs,
-             pct(all.detected, all.runs), pct(all.in_set, all.detected), pct(all.best, all.detected), all.early);
+  fmt::print("\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections {}\n", t.all.runs,
+             percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected), percent(t.all.best, t.all.detected), t.all.early);
   fmt::print("isolated on the truth or its class: {:.1f} % of detected, median {:.2f} s after the fault; size within 20 % "
              "in {:.1f} % of {} isolated parameter and input faults\n",
-             pct(all.isolated, all.detected), all.median_isolation(), pct(all.size_ok, all.sized), all.sized);
-  fmt::print("nominal: {:.2f} h in {} segments of {:.0f} s: {} false alarms\n", nominal_s / 3600.0, nominal.runs, kSegment, nominal.early);
-  if (all.errors + nominal.errors > 0) fmt::print("simulation errors: {} (runs not scored)\n", all.errors + nominal.errors);
+             percent(t.all.isolated, t.all.detected), t.all.median_isolation(), percent(t.all.size_ok, t.all.sized), t.all.sized);
+  fmt::print("nominal: {:.2f} h in {} segments of {:.0f} s: {} false alarms\n", t.nominal_s / 3600.0, t.nominal.runs, kSegment, t.nominal.early);
+  if (t.all.errors + t.nominal.errors > 0) fmt::print("simulation errors: {} (runs not scored)\n", t.all.errors + t.nominal.errors);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Fault campaign for a circuit file: simulated faults and nominal hours through hstmon replay --circuit's monitor"};
+  Settings o;
+  add_options(app, o);
+  CLI11_PARSE(app, argc, argv);
+
+  LoadedCircuit c;
+  if (const auto err = hstmon::circuit_tools::load_circuit(o.circuit, o.params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return 2;
+  }
+  std::vector<std::string> undetectable, fault_notes;
+  std::vector<Fault> faults;
+  try {
+    g_table = hstmon::fdi::circuit_signature_table(c);
+    faults = table_faults(c, g_table, o.magnitude, undetectable, fault_notes);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: {}\n", o.circuit, e.what());
+    return 2;
+  }
+
+  g_timing = timing(c);
+  const std::vector<Job> work = make_jobs(faults.size(), o);
+  const std::vector<RunResult> results = run_all(c, work, faults, o.jobs);
+  Tallies t = tally(work, results, faults, o.verbose);
+  if (o.json) {
+    print_json(c, faults.size(), t);
+  } else {
+    print_report(o, c, faults.size(), undetectable, fault_notes, t);
+  }
   return 0;
 }

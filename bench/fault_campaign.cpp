@@ -181,32 +181,18 @@ std::string f1(double v, const char* fmt = "%.1f") {
 std::string jnum(double v, const char* fmt = "%.1f") { return std::isnan(v) ? "null" : f1(v, fmt); }
 
 const char* kGroups[] = {"kp- 50%", "param", "loop break", "stuck", "bias 2%FS", "bias 5%FS"};
+constexpr double kLevels[] = {1.6, 1.0, 0.65};  // initial PRV setting: light, nominal, heavy
 
-}  // namespace
+// Nominal segment length in condition c [s]: 100 s, 1000 s at a slow sample rate.
+double nominal_segment(const Condition& c) { return 100.0 * (time_scale(c) > 1.0 ? 10.0 : 1.0); }
 
-int main(int argc, char** argv) {
-  Options o;
-  if (!parse(argc, argv, o)) return 1;
-  const auto t_start = std::chrono::steady_clock::now();
-  std::vector<Condition> conds;
-  for (const Condition& c : campaign_conditions()) {
-    if (o.only.empty() || c.name.find(o.only) != std::string::npos) conds.push_back(c);
-  }
-  if (conds.empty()) {
-    std::fprintf(stderr, "no condition matches %s\n", o.only.c_str());
-    return 1;
-  }
-  const double tie = hstmon::Monitor<double>::Config{}.matcher.tie_margin;
-  const std::vector<FaultCase> pfaults = parameter_faults();
-  std::vector<std::vector<FaultCase>> sfaults;
-  for (const Condition& c : conds) sfaults.push_back(sensor_faults(sensors_of(c)));
-  constexpr double kLevels[] = {1.6, 1.0, 0.65};  // initial PRV setting: light, nominal, heavy
-
-  // Jobs: nominal segments first (the long ones), then the fault runs.
+// Jobs: nominal segments first (the long ones), then the fault runs.
+std::vector<Job> make_jobs(const std::vector<Condition>& conds, const std::vector<FaultCase>& pfaults,
+                           const std::vector<std::vector<FaultCase>>& sfaults, const Options& o) {
   const double hours_per_cond = o.hours / static_cast<double>(conds.size());
   std::vector<Job> jobs;
   for (int ci = 0; ci < static_cast<int>(conds.size()); ++ci) {
-    const double seg = 100.0 * (time_scale(conds[static_cast<std::size_t>(ci)]) > 1.0 ? 10.0 : 1.0);
+    const double seg = nominal_segment(conds[static_cast<std::size_t>(ci)]);
     const int n_seg = static_cast<int>(std::ceil(hours_per_cond * 3600.0 / seg - 1e-9));
     for (int s = 0; s < n_seg; ++s) jobs.push_back({ci, Kind::kNominal, nullptr, s});
   }
@@ -219,63 +205,74 @@ int main(int argc, char** argv) {
       for (int s = 0; s < o.sensor_seeds; ++s) jobs.push_back({ci, Kind::kFault, &f, s});
     }
   }
+  return jobs;
+}
 
-  std::vector<Outcome> out(jobs.size());
-  parallel_for(static_cast<int>(jobs.size()), o.jobs, [&](int i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const Job& j = jobs[static_cast<std::size_t>(i)];
-    const Condition& c = conds[static_cast<std::size_t>(j.cond)];
-    const sim::SensorConfig sensors = sensors_of(c);
-    const double k = time_scale(c);
-    const auto seed = static_cast<std::uint64_t>(j.seed);
-    const double level = kLevels[j.seed % 3];
-    Outcome& r = out[static_cast<std::size_t>(i)];
-    if (j.kind == Kind::kNominal) {
-      const double seg = 100.0 * (k > 1.0 ? 10.0 : 1.0);
-      const sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, seg, level, 50000 + seed, true));
-      const Params machine = sim::perturbed_params(90000 + seed, c.spread);
-      r.n = score_nominal(replay_log(sim::measure(sc, sensors, 300000 + seed, machine), sensors, c.declare_ranges));
+// One job in condition c: a nominal segment scored for false alarms, or a fault run scored
+// against its row (tie: the matcher's tie margin); with --verbose, a miss's events.
+Outcome run_job(const Job& j, const Condition& c, const Options& o, double tie) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const sim::SensorConfig sensors = sensors_of(c);
+  const double k = time_scale(c);
+  const auto seed = static_cast<std::uint64_t>(j.seed);
+  const double level = kLevels[j.seed % 3];
+  Outcome r;
+  if (j.kind == Kind::kNominal) {
+    const double seg = nominal_segment(c);
+    const sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, seg, level, 50000 + seed, true));
+    const Params machine = sim::perturbed_params(90000 + seed, c.spread);
+    r.n = score_nominal(replay_log(sim::measure(sc, sensors, 300000 + seed, machine), sensors, c.declare_ranges));
+  } else {
+    const FaultCase& f = *j.fault;
+    const double t_f = o.t_fault * k;
+    sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, t_f + o.after * k, level, 1000 + seed, false));
+    const Params machine = sim::perturbed_params(2000 + seed, c.spread);
+    const std::uint64_t noise = 7000000 + 1000 * seed + std::hash<std::string>{}(f.label) % 1000;
+    sim::ThesisMeasurements log;
+    if (f.target == Target::kInput) {
+      log = sim::measure(sim::with_input_fault(sc, f.input, f.factor, t_f), sensors, noise, machine);
+    } else if (f.target == Target::kParam) {
+      Params faulty = machine;
+      faulty.*(f.param) *= f.factor;
+      log = sim::measure_with_fault(sc, sensors, noise, machine, t_f, faulty);
     } else {
-      const FaultCase& f = *j.fault;
-      const double t_f = o.t_fault * k;
-      sim::ThesisScenario sc = sim::thesis_rig_run(run_of(c, t_f + o.after * k, level, 1000 + seed, false));
-      const Params machine = sim::perturbed_params(2000 + seed, c.spread);
-      const std::uint64_t noise = 7000000 + 1000 * seed + std::hash<std::string>{}(f.label) % 1000;
-      sim::ThesisMeasurements log;
-      if (f.target == Target::kInput) {
-        log = sim::measure(sim::with_input_fault(sc, f.input, f.factor, t_f), sensors, noise, machine);
-      } else if (f.target == Target::kParam) {
-        Params faulty = machine;
-        faulty.*(f.param) *= f.factor;
-        log = sim::measure_with_fault(sc, sensors, noise, machine, t_f, faulty);
-      } else {
-        log = sim::measure(sc, sensors, noise, machine);
-        sim::SensorFault sf = f.sensor;
-        sf.t_start = t_f;
-        sim::inject_sensor_fault(log, sensors, sf);
-      }
-      const hstmon::host::ReplayResult res = replay_log(log, sensors, c.declare_ranges);
-      r.s = score(res.events, f.row, t_f, tie);
-      if (o.verbose && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
-        char b[160];
-        std::snprintf(b, sizeof b, "%s | %s seed %d (t_f %.1f s):", c.name.c_str(), f.label.c_str(), j.seed, t_f);
-        r.trace = b;
-        for (const auto& e : res.events) {
-          std::snprintf(b, sizeof b, " %s@%.3f", e.event.c_str(), e.t);
-          r.trace += b;
-          if (!e.candidates.empty()) r.trace += "[" + e.candidates[0].fault + "]";
-        }
+      log = sim::measure(sc, sensors, noise, machine);
+      sim::SensorFault sf = f.sensor;
+      sf.t_start = t_f;
+      sim::inject_sensor_fault(log, sensors, sf);
+    }
+    const hstmon::host::ReplayResult res = replay_log(log, sensors, c.declare_ranges);
+    r.s = score(res.events, f.row, t_f, tie);
+    if (o.verbose && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s | %s seed %d (t_f %.1f s):", c.name.c_str(), f.label.c_str(), j.seed, t_f);
+      r.trace = b;
+      for (const auto& e : res.events) {
+        std::snprintf(b, sizeof b, " %s@%.3f", e.event.c_str(), e.t);
+        r.trace += b;
+        if (!e.candidates.empty()) r.trace += "[" + e.candidates[0].fault + "]";
       }
     }
-    r.cpu_s = seconds_since(t0);
-  });
-  const double total_s = seconds_since(t_start);
+  }
+  r.cpu_s = seconds_since(t0);
+  return r;
+}
 
-  // Aggregate.
-  std::vector<std::map<std::string, Agg>> agg(conds.size());
-  std::vector<Agg> all_faults(conds.size());
-  std::vector<NomAgg> nom(conds.size());
-  std::vector<double> cpu(conds.size(), 0.0);
+// The outcomes summed per condition: per fault group, all faults, nominal replay, CPU time.
+struct Totals {
+  std::vector<std::map<std::string, Agg>> agg;
+  std::vector<Agg> all_faults;
+  std::vector<NomAgg> nom;
+  std::vector<double> cpu;
+};
+
+Totals aggregate(const std::vector<Job>& jobs, const std::vector<Outcome>& out, std::size_t n_conds, bool verbose) {
+  Totals tot{std::vector<std::map<std::string, Agg>>(n_conds), std::vector<Agg>(n_conds), std::vector<NomAgg>(n_conds),
+             std::vector<double>(n_conds, 0.0)};
+  auto& agg = tot.agg;
+  auto& all_faults = tot.all_faults;
+  auto& nom = tot.nom;
+  auto& cpu = tot.cpu;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const auto ci = static_cast<std::size_t>(jobs[i].cond);
     cpu[ci] += out[i].cpu_s;
@@ -293,44 +290,45 @@ int main(int argc, char** argv) {
     } else {
       agg[ci][jobs[i].fault->group].add(out[i].s);
       all_faults[ci].add(out[i].s);
-      if (o.verbose && !out[i].trace.empty()) std::fprintf(stderr, "%s\n", out[i].trace.c_str());
+      if (verbose && !out[i].trace.empty()) std::fprintf(stderr, "%s\n", out[i].trace.c_str());
     }
   }
+  return tot;
+}
 
-  if (o.json) {
-    std::printf("{\"type\":\"fault_campaign\",\"hours\":%g,\"seeds\":%d,\"param_seeds\":%d,\"sensor_seeds\":%d,"
-                "\"jobs\":%d,\"runtime_s\":%.1f,\"conditions\":[\n",
-                o.hours, o.seeds, o.param_seeds, o.sensor_seeds, o.jobs, total_s);
-    for (std::size_t ci = 0; ci < conds.size(); ++ci) {
-      const NomAgg& n = nom[ci];
-      std::printf("{\"condition\":\"%s\",\"factor\":\"%s\",\"cpu_s\":%.1f,\"nominal\":{\"hours\":%.3f,\"false_alarms\":%ld,"
-                  "\"nonfinite\":%ld,\"health\":%u},\"groups\":[",
-                  conds[ci].name.c_str(), conds[ci].factor.c_str(), cpu[ci], n.seconds / 3600.0, n.detections,
-                  n.nonfinite, n.health);
-      bool first = true;
-      for (const char* g : kGroups) {
-        const Agg& a = agg[ci][g];
-        std::printf("%s{\"group\":\"%s\",\"runs\":%d,\"detected\":%d,\"median_delay_ms\":%s,\"worst_delay_ms\":%s,"
-                    "\"truth_in_set\":%d,\"truth_in_last_event\":%d,\"isolated_as_truth\":%d,"
-                    "\"within_50ms_isolated\":%d,\"called_sensor\":%d,\"mean_set_size\":%s,\"false_before_fault\":%d}",
-                    first ? "" : ",", g, a.runs, a.detected, jnum(a.median_ms()).c_str(), jnum(a.worst_ms()).c_str(),
-                    a.in_set, a.in_last, a.iso_truth, a.within_50ms_and_iso, a.called_sensor,
-                    jnum(a.mean_set(), "%.2f").c_str(), a.false_events);
-        first = false;
-      }
-      std::printf("]}%s\n", ci + 1 == conds.size() ? "" : ",");
+void print_json(const Options& o, const std::vector<Condition>& conds, Totals& t, double total_s) {
+  auto& agg = t.agg;
+  const auto& nom = t.nom;
+  const auto& cpu = t.cpu;
+  std::printf("{\"type\":\"fault_campaign\",\"hours\":%g,\"seeds\":%d,\"param_seeds\":%d,\"sensor_seeds\":%d,"
+              "\"jobs\":%d,\"runtime_s\":%.1f,\"conditions\":[\n",
+              o.hours, o.seeds, o.param_seeds, o.sensor_seeds, o.jobs, total_s);
+  for (std::size_t ci = 0; ci < conds.size(); ++ci) {
+    const NomAgg& n = nom[ci];
+    std::printf("{\"condition\":\"%s\",\"factor\":\"%s\",\"cpu_s\":%.1f,\"nominal\":{\"hours\":%.3f,\"false_alarms\":%ld,"
+                "\"nonfinite\":%ld,\"health\":%u},\"groups\":[",
+                conds[ci].name.c_str(), conds[ci].factor.c_str(), cpu[ci], n.seconds / 3600.0, n.detections,
+                n.nonfinite, n.health);
+    bool first = true;
+    for (const char* g : kGroups) {
+      const Agg& a = agg[ci][g];
+      std::printf("%s{\"group\":\"%s\",\"runs\":%d,\"detected\":%d,\"median_delay_ms\":%s,\"worst_delay_ms\":%s,"
+                  "\"truth_in_set\":%d,\"truth_in_last_event\":%d,\"isolated_as_truth\":%d,"
+                  "\"within_50ms_isolated\":%d,\"called_sensor\":%d,\"mean_set_size\":%s,\"false_before_fault\":%d}",
+                  first ? "" : ",", g, a.runs, a.detected, jnum(a.median_ms()).c_str(), jnum(a.worst_ms()).c_str(),
+                  a.in_set, a.in_last, a.iso_truth, a.within_50ms_and_iso, a.called_sensor,
+                  jnum(a.mean_set(), "%.2f").c_str(), a.false_events);
+      first = false;
     }
-    std::printf("]}\n");
-    return 0;
+    std::printf("]}%s\n", ci + 1 == conds.size() ? "" : ",");
   }
+  std::printf("]}\n");
+}
 
-  std::printf("hstmon fault campaign over rig conditions (each log replayed as `hstmon replay` does, default\n"
-              "options: init auto, the replay's default transmitter ranges). Baseline: rig_fast sensors at 1 kHz (no lag, σ 0.04 bar / 0.5 rpm,\n"
-              "ADC 0.01 bar, Ppp 0–400 bar), machine ±2 %%, start from rest (supply on at the first sample), PRV steps every 2 s\n"
-              "in [0.65, 1.6]·kp0. Each other condition changes one factor. Fault at t = %.0f s (×20 at 0.25 Hz),\n"
-              "%.0f s after; nominal: %.2f h per condition in 100 s segments (1000 s at 0.25 Hz), each a start-up\n"
-              "from rest, a stop at 60 %% and a restart at 70 %% of the segment, a new machine and seeds.\n\n",
-              o.t_fault, o.after, hours_per_cond);
+// A: nominal replay and the 50 % PRV blockage per condition.
+void print_nominal_and_blockage(const std::vector<Condition>& conds, Totals& t) {
+  auto& agg = t.agg;
+  const auto& nom = t.nom;
   std::printf("A. Nominal replay and the 50 %% PRV blockage (kp-) per condition\n");
   std::printf("%-20s %7s %6s %5s | %5s %6s %6s %6s %7s %7s %7s\n", "condition", "nom [h]", "false", "NaN", "runs",
               "det%", "med", "worst", "≤50ms&", "iso kp-", "sensor");
@@ -344,6 +342,12 @@ int main(int argc, char** argv) {
                 f1(b.worst_ms(), "%.0f").c_str(), f1(Agg::pct(b.within_50ms_and_iso, b.runs)).c_str(),
                 f1(Agg::pct(b.iso_truth, b.runs)).c_str(), f1(Agg::pct(b.called_sensor, b.runs)).c_str());
   }
+}
+
+// B: every fault group per condition.
+void print_groups(const std::vector<Condition>& conds, Totals& t) {
+  auto& agg = t.agg;
+  const auto& all_faults = t.all_faults;
   std::printf("\nB. Fault groups per condition: detection rate, delay, truth in the reported set (last decision's\n"
               "   candidates within the tie margin), truth among the last event's candidates (score_monitor.py's\n"
               "   rule), mean set size; best candidate when the truth is not in the set\n");
@@ -360,6 +364,11 @@ int main(int argc, char** argv) {
     for (const char* g : kGroups) row(g, agg[ci][g]);
     row("all", all_faults[ci]);
   }
+}
+
+// C: what the false alarms on nominal replay named.
+void print_false_alarms(const std::vector<Condition>& conds, const Totals& t) {
+  const auto& nom = t.nom;
   std::printf("\nC. False alarms on nominal replay: what the first decision after each named\n");
   for (std::size_t ci = 0; ci < conds.size(); ++ci) {
     if (nom[ci].calls.empty()) continue;
@@ -370,8 +379,13 @@ int main(int argc, char** argv) {
       std::printf(" seg %d t=%.3f s", nom[ci].first_times[q].first, nom[ci].first_times[q].second);
     std::printf(")\n");
   }
+}
 
-  // Targets.
+// The campaign's targets, met or missed.
+void print_targets(const std::vector<Condition>& conds, Totals& t) {
+  auto& agg = t.agg;
+  const auto& all_faults = t.all_faults;
+  const auto& nom = t.nom;
   double nom_h = 0;
   long nom_fa = 0, nom_nan = 0;
   int fault_false = 0, det = 0, in_set = 0;
@@ -408,8 +422,59 @@ int main(int argc, char** argv) {
     std::printf("    %-10s %s %% detected (%d of %d), truth in set %s %%\n", g, f1(Agg::pct(d, r)).c_str(), d, r,
                 f1(Agg::pct(s, d)).c_str());
   }
+}
+
+void print_report(const Options& o, const std::vector<Condition>& conds, Totals& t, double total_s) {
+  const double hours_per_cond = o.hours / static_cast<double>(conds.size());
+  std::printf("hstmon fault campaign over rig conditions (each log replayed as `hstmon replay` does, default\n"
+              "options: init auto, the replay's default transmitter ranges). Baseline: rig_fast sensors at 1 kHz (no lag, σ 0.04 bar / 0.5 rpm,\n"
+              "ADC 0.01 bar, Ppp 0–400 bar), machine ±2 %%, start from rest (supply on at the first sample), PRV steps every 2 s\n"
+              "in [0.65, 1.6]·kp0. Each other condition changes one factor. Fault at t = %.0f s (×20 at 0.25 Hz),\n"
+              "%.0f s after; nominal: %.2f h per condition in 100 s segments (1000 s at 0.25 Hz), each a start-up\n"
+              "from rest, a stop at 60 %% and a restart at 70 %% of the segment, a new machine and seeds.\n\n",
+              o.t_fault, o.after, hours_per_cond);
+  print_nominal_and_blockage(conds, t);
+  print_groups(conds, t);
+  print_false_alarms(conds, t);
+  print_targets(conds, t);
+  const auto& cpu = t.cpu;
   std::printf("\nRuntime: %.1f s wall on %d thread(s); per condition (CPU s):", total_s, o.jobs);
   for (std::size_t ci = 0; ci < conds.size(); ++ci) std::printf(" %s %.1f;", conds[ci].name.c_str(), cpu[ci]);
   std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parse(argc, argv, o)) return 1;
+  const auto t_start = std::chrono::steady_clock::now();
+  std::vector<Condition> conds;
+  for (const Condition& c : campaign_conditions()) {
+    if (o.only.empty() || c.name.find(o.only) != std::string::npos) conds.push_back(c);
+  }
+  if (conds.empty()) {
+    std::fprintf(stderr, "no condition matches %s\n", o.only.c_str());
+    return 1;
+  }
+  const double tie = hstmon::Monitor<double>::Config{}.matcher.tie_margin;
+  const std::vector<FaultCase> pfaults = parameter_faults();
+  std::vector<std::vector<FaultCase>> sfaults;
+  for (const Condition& c : conds) sfaults.push_back(sensor_faults(sensors_of(c)));
+  const std::vector<Job> jobs = make_jobs(conds, pfaults, sfaults, o);
+
+  std::vector<Outcome> out(jobs.size());
+  parallel_for(static_cast<int>(jobs.size()), o.jobs, [&](int i) {
+    const Job& j = jobs[static_cast<std::size_t>(i)];
+    out[static_cast<std::size_t>(i)] = run_job(j, conds[static_cast<std::size_t>(j.cond)], o, tie);
+  });
+  const double total_s = seconds_since(t_start);
+
+  Totals t = aggregate(jobs, out, conds.size(), o.verbose);
+  if (o.json) {
+    print_json(o, conds, t, total_s);
+  } else {
+    print_report(o, conds, t, total_s);
+  }
   return 0;
 }

@@ -82,13 +82,13 @@ void plot_or_warn(Report& rep, const std::string& file, const std::string& capti
   }
 }
 
-int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
-  host::ParamsFileResult pf;
-  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "identify");
-  if (!ro) return kExitUsage;
-  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
-  const ThesisParams<double> prior = pf.params.value_or(ThesisParams<double>{});
-  const ThesisInputs<double> defaults = pf.inputs.value_or(ThesisInputs<double>{});
+const char* const kThesisChannel[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
+
+// The steady windows of every log (reported, and listed in js["windows"]) as operating points.
+// kExitOk, or the exit code after the error is printed.
+int read_operating_points(const IdentifyArgs& a, const host::ReadOptions& ro, const ThesisInputs<double>& defaults,
+                          Report& rep, nlohmann::json& js, std::vector<id::OperatingPoint>& points,
+                          std::vector<std::string>& settings) {
   id::SteadyWindowOptions wo;
   wo.min_duration = a.min_duration;
   wo.min_samples = a.min_samples;
@@ -96,12 +96,9 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   id::OperatingPointOptions po;
   po.defaults = defaults;
   po.setting_per_window = a.setting_per_window;
-  std::vector<id::OperatingPoint> points;
-  std::vector<std::string> settings;
   nlohmann::json jwin = nlohmann::json::array();
-  rep("hstmon identify — steady-state regression of the thesis model (seed 000 §2.3)\n\n");
   for (const std::string& path : a.logs) {
-    const host::LogData log = read_log_reporting(path, *ro);
+    const host::LogData log = read_log_reporting(path, ro);
     if (log.error) return kExitBadInput;
     const id::SteadyWindowResult w = id::find_steady_windows(log, wo);
     if (w.error) {
@@ -132,27 +129,17 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
     id::append_operating_points(log, w, po, points, settings);
   }
   js["windows"] = jwin;
+  return kExitOk;
+}
 
-  id::ThesisFitOptions fo;
-  fo.prior = prior;
-  fo.min_settings = a.min_settings;
-  if (a.noise_pressure > 0.0) fo.noise[0] = fo.noise[1] = fo.noise[2] = a.noise_pressure;
-  if (a.noise_speed > 0.0) fo.noise[3] = a.noise_speed;
-  const id::ThesisFitResult fit = id::fit_thesis_steady(points, settings, fo);
-  if (!fit.ok()) {
-    // One log named: the fit is over all of them, and a list of many would fill the screen.
-    const std::string files =
-        a.logs.size() == 1 ? a.logs[0] : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
-    fmt::print(stderr, "{}\n", capped(fmt::format("{}: error: {}", files, *fit.error)));
-    return kExitBadInput;
-  }
-
-  static const char* const kCh[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
+// The fit's settings, noise, sizes and estimates; the estimates as JSON.
+nlohmann::json report_parameters(const id::ThesisFitResult& fit, const std::vector<std::string>& settings,
+                                 Report& rep) {
   rep("\nPRV settings (each gets its own kp):\n");
   for (std::size_t s = 0; s < settings.size(); ++s) rep("  [{}] {}\n", s + 1, settings[s]);
   rep("\nnoise per channel (weights):\n");
   for (std::size_t c = 0; c < 4; ++c) {
-    rep("  {:<4} {:>10.4g} {:<6} ({})\n", kCh[c], c == 3 ? fit.noise[c] * 30.0 / M_PI : fit.noise[c] * 1e-5,
+    rep("  {:<4} {:>10.4g} {:<6} ({})\n", kThesisChannel[c], c == 3 ? fit.noise[c] * 30.0 / M_PI : fit.noise[c] * 1e-5,
         c == 3 ? "rpm" : "bar", fit.noise_source[c]);
   }
   rep("\nfit: {} operating points, {} scalar samples, {} unknowns, dof {:g}; s² = {:.4g} (≈ 1 when the noise "
@@ -185,7 +172,11 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   rep("  Rf and Rbl act only as their sum (Rf + Rbl)·ωm in eq. 2.8: one parameter; written split in the prior's "
       "ratio (Rf = {:.6g}, Rbl = {:.6g}).\n",
       fit.fitted_params.Rf, fit.fitted_params.Rbl);
+  return jp;
+}
 
+// The correlation of the estimates (ln-parameters), as a table and as JSON rows.
+nlohmann::json report_correlation(const id::ThesisFitResult& fit, Report& rep) {
   rep("\ncorrelation of the estimates (ln-parameters):\n  {:>8}", "");
   for (const auto& n : fit.fitted) rep(" {:>7}", n);
   rep("\n");
@@ -200,7 +191,11 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
     jc.push_back(row);
     rep("\n");
   }
+  return jc;
+}
 
+// The Table 2.3 validation, as a table and as JSON.
+nlohmann::json report_validation(const id::ThesisFitResult& fit, Report& rep) {
   rep("\nvalidation (Table 2.3 form; error = (model − data)/data, negative: model below data):\n");
   rep("  {:<8} {:>8} {:>14} {:>12}\n", "Variable", "points", "Average Error", "RMS Error");
   nlohmann::json jv = nlohmann::json::array();
@@ -209,6 +204,58 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
     jv.push_back({{"signal", v.signal}, {"points", v.points}, {"avg_error_pct", num(v.avg_error_pct)},
                   {"rms_error_pct", num(v.rms_error_pct)}});
   }
+  return jv;
+}
+
+// Figs. 2.5–2.7 form into the report directory: each pressure against speed, measured and model.
+void plot_validation(const std::string& report_dir, const id::ThesisFitResult& fit, Report& rep) {
+  for (std::size_t c = 0; c < 3; ++c) {
+    id::PlotSeries meas{"measured (window means)", {}, {}, true}, model{"model, fitted parameters", {}, {}, true};
+    for (std::size_t w = 0; w < fit.points.size(); ++w) {
+      const auto& p = fit.points[w];
+      if (!std::isfinite(p.y[c]) || !std::isfinite(p.y[3])) continue;
+      meas.x.push_back(p.y[3] * 30.0 / M_PI);
+      meas.y.push_back(p.y[c] * 1e-5);
+      model.x.push_back(fit.predicted[w][3] * 30.0 / M_PI);
+      model.y.push_back(fit.predicted[w][c] * 1e-5);
+    }
+    if (meas.x.empty()) continue;
+    const std::string file = report_dir + "/validation_" + std::string(kThesisChannel[c]) + ".svg";
+    const std::string title = fmt::format("{}: experiment and model at steady state", kThesisChannel[c]);
+    plot_or_warn(rep, file, title,
+                 id::plot_xy(file, title, "speed [rpm]", fmt::format("{} [bar]", kThesisChannel[c]), {meas, model}));
+  }
+}
+
+int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+  host::ParamsFileResult pf;
+  const std::optional<host::ReadOptions> ro = to_read_options(a.io, "identify");
+  if (!ro) return kExitUsage;
+  if (!read_params_option(a.io.params, pf)) return kExitBadInput;
+  const ThesisParams<double> prior = pf.params.value_or(ThesisParams<double>{});
+  const ThesisInputs<double> defaults = pf.inputs.value_or(ThesisInputs<double>{});
+  std::vector<id::OperatingPoint> points;
+  std::vector<std::string> settings;
+  rep("hstmon identify — steady-state regression of the thesis model (seed 000 §2.3)\n\n");
+  if (const int code = read_operating_points(a, *ro, defaults, rep, js, points, settings); code != kExitOk) return code;
+
+  id::ThesisFitOptions fo;
+  fo.prior = prior;
+  fo.min_settings = a.min_settings;
+  if (a.noise_pressure > 0.0) fo.noise[0] = fo.noise[1] = fo.noise[2] = a.noise_pressure;
+  if (a.noise_speed > 0.0) fo.noise[3] = a.noise_speed;
+  const id::ThesisFitResult fit = id::fit_thesis_steady(points, settings, fo);
+  if (!fit.ok()) {
+    // One log named: the fit is over all of them, and a list of many would fill the screen.
+    const std::string files =
+        a.logs.size() == 1 ? a.logs[0] : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
+    fmt::print(stderr, "{}\n", capped(fmt::format("{}: error: {}", files, *fit.error)));
+    return kExitBadInput;
+  }
+
+  const nlohmann::json jp = report_parameters(fit, settings, rep);
+  const nlohmann::json jc = report_correlation(fit, rep);
+  const nlohmann::json jv = report_validation(fit, rep);
   for (const auto& n : fit.notes) rep("note: {}\n", n);
   js["thesis"] = {{"parameters", jp},
                   {"fitted", fit.fitted},
@@ -236,24 +283,7 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
     }
     rep("wrote generated header {}\n", a.header);
   }
-  if (!a.report.empty()) {
-    // Figs. 2.5–2.7 form: each pressure against speed, measured and model.
-    for (std::size_t c = 0; c < 3; ++c) {
-      id::PlotSeries meas{"measured (window means)", {}, {}, true}, model{"model, fitted parameters", {}, {}, true};
-      for (std::size_t w = 0; w < fit.points.size(); ++w) {
-        const auto& p = fit.points[w];
-        if (!std::isfinite(p.y[c]) || !std::isfinite(p.y[3])) continue;
-        meas.x.push_back(p.y[3] * 30.0 / M_PI);
-        meas.y.push_back(p.y[c] * 1e-5);
-        model.x.push_back(fit.predicted[w][3] * 30.0 / M_PI);
-        model.y.push_back(fit.predicted[w][c] * 1e-5);
-      }
-      if (meas.x.empty()) continue;
-      const std::string file = a.report + "/validation_" + std::string(kCh[c]) + ".svg";
-      const std::string title = fmt::format("{}: experiment and model at steady state", kCh[c]);
-      plot_or_warn(rep, file, title, id::plot_xy(file, title, "speed [rpm]", fmt::format("{} [bar]", kCh[c]), {meas, model}));
-    }
-  }
+  if (!a.report.empty()) plot_validation(a.report, fit, rep);
   return kExitOk;
 }
 

@@ -187,75 +187,107 @@ void emit_schur(Line& line, std::vector<std::vector<bool>> nz, const std::vector
   line("  }");
 }
 
-}  // namespace
 
-std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error) {
-  error.clear();
-  const host::CircuitFile& f = c.file;
-  const host::HostCircuit d = header_description(c, o.tick);
-  const host::HostCircuitModel check(d, c.values.params, c.values.inputs);
-  if (check.error() != circuit::CircuitError::kOk || !check.valid()) {
-    error = "circuit " + f.name + ": its values do not make a physical circuit";
-    return "";
+// Writes the Kernel of one circuit, section by section in the header's order. The sections
+// share what the circuit's structure fixes (unknown numbering, states, stiff nodes, which
+// entries are fixed) and two things that grow as they are written: the structural nonzeros
+// of G (nz) and the values fold() computes (folded, fold_body).
+class KernelWriter {
+ public:
+  KernelWriter(const host::CircuitFile& f, const CircuitHeaderOptions& o, const host::HostCircuit& d,
+               const host::HostCircuitModel& check)
+      : f_(f), o_(o), d_(d), nn_(d.n_nodes), kz_(d.n_nodes + d.n_shafts), n_(check.n_states()), m_(check.n_stiff()),
+        zt_("T (&z)[" + s(kz_) + "]"), czt_("const T (&z)[" + s(kz_) + "]") {
+    number_unknowns();
+    list_states_and_stiff_nodes(check);
+    mark_jacobian_structure();
   }
-  const int nn = d.n_nodes;
-  const int kz = nn + d.n_shafts;
+
+  /// The whole header text.
+  std::string write() {
+    write_preamble();
+    write_fill();
+    for (int j = 0; j < m_; ++j) write_balance(stiff_z_[static_cast<std::size_t>(j)]);
+    write_solve_stiff();
+    write_fold();
+    write_rates();
+    write_outputs();
+    write_unknowns_jacobian();
+    auto put = [this](const std::string& t) { line(t); };
+    emit_schur(put, nz_, stiff_u_, state_u_);
+    write_epilogue();
+    return h_;
+  }
+
+ private:
   // Unknowns (volume nodes, then free shafts) as CircuitModel::bind numbers them.
-  std::vector<int> unknown_of_z(static_cast<std::size_t>(kz), -1);
-  int nu = 0;
-  for (int i = 0; i < nn; ++i) {
-    if (d.nodes[i].kind == NodeKind::kVolume) unknown_of_z[static_cast<std::size_t>(i)] = nu++;
+  void number_unknowns() {
+    unknown_of_z_.assign(static_cast<std::size_t>(kz_), -1);
+    for (int i = 0; i < nn_; ++i) {
+      if (d_.nodes[i].kind == NodeKind::kVolume) unknown_of_z_[static_cast<std::size_t>(i)] = nu_++;
+    }
+    for (int sh = 0; sh < d_.n_shafts; ++sh) {
+      if (!d_.shafts[sh].driven) unknown_of_z_[static_cast<std::size_t>(nn_ + sh)] = nu_++;
+    }
   }
-  for (int sh = 0; sh < d.n_shafts; ++sh) {
-    if (!d.shafts[sh].driven) unknown_of_z[static_cast<std::size_t>(nn + sh)] = nu++;
-  }
-  auto uz = [&](int z) { return unknown_of_z[static_cast<std::size_t>(z)]; };
-  std::vector<int> state_z, state_u, stiff_z, stiff_u;
-  for (int st = 0; st < check.n_states(); ++st) {
-    // The host model numbers shafts after its capacity's nodes; the header's, after n_nodes.
-    const int hz = check.state_z(st);
-    const int z = hz < host::CircuitCap::kNodes ? hz : nn + (hz - host::CircuitCap::kNodes);
-    state_z.push_back(z);
-    state_u.push_back(uz(z));
-  }
-  for (int j = 0; j < check.n_stiff(); ++j) {
-    stiff_z.push_back(check.stiff_node(j));
-    stiff_u.push_back(uz(check.stiff_node(j)));
-  }
-  auto is_stiff = [&](int i) { return i < nn && ((d.stiff_mask >> i) & 1u) != 0; };
-  ZRef zr{std::vector<bool>(static_cast<std::size_t>(kz), true)};
-  for (const int z : state_z) zr.fixed[static_cast<std::size_t>(z)] = false;
-  for (const int z : stiff_z) zr.fixed[static_cast<std::size_t>(z)] = false;
-  bool coupled = false;
-  for (int e = 0; e < d.n_elements; ++e) {
-    const circuit::Element& el = d.elements[e];
-    if (circuit::has_ports(el.kind) && is_stiff(el.a) && is_stiff(el.b)) coupled = true;
-  }
-  auto z_name = [&](int z) {
-    return z < nn ? f.nodes[static_cast<std::size_t>(z)] : f.shafts[static_cast<std::size_t>(z - nn)];
-  };
-  auto el_name = [&](int e) { return f.elements[static_cast<std::size_t>(e)]; };
-  const int n = check.n_states(), m = check.n_stiff();
-  const std::string zt = "T (&z)[" + s(kz) + "]", czt = "const T (&z)[" + s(kz) + "]";
 
-  std::string h;
-  auto line = [&h](const std::string& t) { h += t + "\n"; };
+  void list_states_and_stiff_nodes(const host::HostCircuitModel& check) {
+    for (int st = 0; st < n_; ++st) {
+      // The host model numbers shafts after its capacity's nodes; the header's, after n_nodes.
+      const int hz = check.state_z(st);
+      const int z = hz < host::CircuitCap::kNodes ? hz : nn_ + (hz - host::CircuitCap::kNodes);
+      state_z_.push_back(z);
+      state_u_.push_back(uz(z));
+    }
+    for (int j = 0; j < m_; ++j) {
+      stiff_z_.push_back(check.stiff_node(j));
+      stiff_u_.push_back(uz(check.stiff_node(j)));
+    }
+    zr_.fixed.assign(static_cast<std::size_t>(kz_), true);
+    for (const int z : state_z_) zr_.fixed[static_cast<std::size_t>(z)] = false;
+    for (const int z : stiff_z_) zr_.fixed[static_cast<std::size_t>(z)] = false;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (circuit::has_ports(el.kind) && is_stiff(el.a) && is_stiff(el.b)) coupled_ = true;
+    }
+  }
+
   // Structural nonzeros of the unknowns' Jacobian G, element by element as
   // unknowns_jacobian writes them: the rows the balances and rates capture, and the
   // reduction's structure.
-  std::vector<std::vector<bool>> nz(static_cast<std::size_t>(nu), std::vector<bool>(static_cast<std::size_t>(nu), false));
-  auto G = [&](int r, int col) {
-    nz[static_cast<std::size_t>(r)][static_cast<std::size_t>(col)] = true;
+  void mark_jacobian_structure() {
+    nz_.assign(static_cast<std::size_t>(nu_), std::vector<bool>(static_cast<std::size_t>(nu_), false));
+    for (int e = 0; e < d_.n_elements; ++e) {
+      Sums none;
+      for (int r = 0; r < nu_; ++r) (void)row_lines(r, d_.elements[e], "", none);
+    }
+  }
+
+  int uz(int z) const { return unknown_of_z_[static_cast<std::size_t>(z)]; }
+  bool is_stiff(int i) const { return i < nn_ && ((d_.stiff_mask >> i) & 1u) != 0; }
+  /// Whether element el has a port on node i.
+  static bool on_node(const circuit::Element& el, int i) {
+    return circuit::has_ports(el.kind) && (el.a == i || el.b == i);
+  }
+  const std::string& z_name(int z) const {
+    return z < nn_ ? f_.nodes[static_cast<std::size_t>(z)] : f_.shafts[static_cast<std::size_t>(z - nn_)];
+  }
+  const std::string& el_name(int e) const { return f_.elements[static_cast<std::size_t>(e)]; }
+  void line(const std::string& t) { h_ += t + "\n"; }
+
+  std::string G(int r, int col) {
+    nz_[static_cast<std::size_t>(r)][static_cast<std::size_t>(col)] = true;
     return "G[" + s(r) + "][" + s(col) + "]";
-  };
+  }
+
   // The G entries of row r from element e's law values, named as in unknowns_jacobian
   // (Flow f; torque slopes da, db, dw), in unknowns_jacobian's order for that row.
   // sums: the captured row's entries so far (the row's first term into an entry assigns it).
-  auto row_lines = [&](int r, const circuit::Element& el, const std::string& indent, Sums& sums) {
+  std::vector<std::string> row_lines(int r, const circuit::Element& el, const std::string& indent, Sums& sums) {
     std::vector<std::string> out;
     const bool ports = circuit::has_ports(el.kind);
     const int ua = ports ? uz(el.a) : -1, ub = ports ? uz(el.b) : -1;
-    const int us = el.shaft >= 0 ? uz(nn + el.shaft) : -1;
+    const int us = el.shaft >= 0 ? uz(nn_ + el.shaft) : -1;
     if (ports && r >= 0 && r == ua) {
       out.push_back(indent + sums.add(G(ua, ua), '-', "f.dpa"));
       if (ub >= 0) out.push_back(indent + sums.add(G(ua, ub), '-', "f.dpb"));
@@ -270,69 +302,79 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
       out.push_back(indent + sums.add(G(us, us), '+', "dw"));
     }
     return out;
-  };
-  for (int e = 0; e < d.n_elements; ++e) {
-    Sums none;
-    for (int r = 0; r < nu; ++r) (void)row_lines(r, d.elements[e], "", none);
   }
+
   // A captured row starts from zero on each evaluation (a solve evaluates a balance
   // several times; the last evaluation's row is the one kept).
-  auto zero_row = [&](int r, const std::string& indent) {
-    for (int col = 0; col < nu; ++col) {
-      if (nz[static_cast<std::size_t>(r)][static_cast<std::size_t>(col)]) line(indent + G(r, col) + " = T(0);");
+  void zero_row(int r, const std::string& indent) {
+    for (int col = 0; col < nu_; ++col) {
+      if (nz_[static_cast<std::size_t>(r)][static_cast<std::size_t>(col)]) line(indent + G(r, col) + " = T(0);");
     }
-  };
-  line("#pragma once");
-  line("/// @file " + o.name + "_compiled.hpp");
-  line("/// GENERATED by hstmon-circuit-header --compiled — do not edit; regenerate (docs/circuits.md).");
-  char tick[32];
-  std::snprintf(tick, sizeof tick, "%g", o.tick);
-  line("/// Circuit \"" + f.name + "\" (" + o.source_note + ") compiled for a " + s(n) + "-state observer at a " +
-       tick + " s tick: the");
-  line("/// topology of " + o.name + ".hpp as straight-line code (circuit::CompiledModel's Kernel), the");
-  line("/// values resolved at run time as the interpreting CircuitModel resolves them.");
-  line("");
-  line("#include <cstddef>");
-  line("#include <cstdint>");
-  line("");
-  line("#include \"hstmon/circuit/compiled_model.hpp\"");
-  line("#include \"hstmon/generated/" + o.name + ".hpp\"");
-  line("");
-  line("namespace hstmon::generated::" + o.name + " {");
-  line("");
-  line("/// The hot path of kCircuit, straight-line; m is the CircuitModel<T, Cap> holding the values.");
-  line("struct Kernel {");
-  line("  using Cap = " + o.name + "::Cap;");
-  line("  static constexpr const circuit::Circuit<Cap>& description() noexcept { return kCircuit; }");
-  line("  static constexpr int kZ = " + s(kz) + ";  ///< full vector: nodes, then shafts");
-  line("  static constexpr int kN = " + s(n) + ";  ///< states");
-  line("  static constexpr int kM = " + s(m) + ";  ///< stiff nodes, quasi-steady");
-  line("  static constexpr int kU = " + s(nu) + ";  ///< unknowns: volume nodes, then free shafts");
-  line("  static constexpr std::uint8_t kStateZ[" + s(n < 1 ? 1 : n) + "] = " + list(state_z) + ";");
-  line("  static constexpr std::uint8_t kStateU[" + s(n < 1 ? 1 : n) + "] = " + list(state_u) + ";");
-  line("  static constexpr std::uint8_t kStiffZ[" + s(m < 1 ? 1 : m) + "] = " + list(stiff_z) + ";");
-  line("  static constexpr std::uint8_t kStiffU[" + s(m < 1 ? 1 : m) + "] = " + list(stiff_u) + ";");
-  line("");
+  }
+
+  // An input-constant subexpression of solve_stiff: fold() computes it; solve_stiff reads it.
+  std::string fold_at(const std::string& expr) {
+    folded_.push_back(expr);
+    return "fold.at(" + s(last_folded()) + ", " + expr + ")";
+  }
+  int last_folded() const { return static_cast<int>(folded_.size()) - 1; }
+
+  void write_preamble() {
+    line("#pragma once");
+    line("/// @file " + o_.name + "_compiled.hpp");
+    line("/// GENERATED by hstmon-circuit-header --compiled — do not edit; regenerate (docs/circuits.md).");
+    char tick[32];
+    std::snprintf(tick, sizeof tick, "%g", o_.tick);
+    line("/// Circuit \"" + f_.name + "\" (" + o_.source_note + ") compiled for a " + s(n_) + "-state observer at a " +
+         tick + " s tick: the");
+    line("/// topology of " + o_.name + ".hpp as straight-line code (circuit::CompiledModel's Kernel), the");
+    line("/// values resolved at run time as the interpreting CircuitModel resolves them.");
+    line("");
+    line("#include <cstddef>");
+    line("#include <cstdint>");
+    line("");
+    line("#include \"hstmon/circuit/compiled_model.hpp\"");
+    line("#include \"hstmon/generated/" + o_.name + ".hpp\"");
+    line("");
+    line("namespace hstmon::generated::" + o_.name + " {");
+    line("");
+    line("/// The hot path of kCircuit, straight-line; m is the CircuitModel<T, Cap> holding the values.");
+    line("struct Kernel {");
+    line("  using Cap = " + o_.name + "::Cap;");
+    line("  static constexpr const circuit::Circuit<Cap>& description() noexcept { return kCircuit; }");
+    line("  static constexpr int kZ = " + s(kz_) + ";  ///< full vector: nodes, then shafts");
+    line("  static constexpr int kN = " + s(n_) + ";  ///< states");
+    line("  static constexpr int kM = " + s(m_) + ";  ///< stiff nodes, quasi-steady");
+    line("  static constexpr int kU = " + s(nu_) + ";  ///< unknowns: volume nodes, then free shafts");
+    line("  static constexpr std::uint8_t kStateZ[" + s(n_ < 1 ? 1 : n_) + "] = " + list(state_z_) + ";");
+    line("  static constexpr std::uint8_t kStateU[" + s(n_ < 1 ? 1 : n_) + "] = " + list(state_u_) + ";");
+    line("  static constexpr std::uint8_t kStiffZ[" + s(m_ < 1 ? 1 : m_) + "] = " + list(stiff_z_) + ";");
+    line("  static constexpr std::uint8_t kStiffU[" + s(m_ < 1 ? 1 : m_) + "] = " + list(stiff_u_) + ";");
+    line("");
+  }
+
   // fill: the states only. The fixed entries are read from the engine where used (ZRef),
   // and solve_stiff, which every caller of fill runs next, writes the stiff nodes first.
-  line("  /// The states into the full vector at x (fixed entries: m.fixed_value; stiff nodes:");
-  line("  /// solve_stiff, which every caller of fill runs next).");
-  line("  template <class M, class X, typename T>");
-  line("  HSTMON_CIRCUIT_INLINE static void fill(const M& m, const X& x, " + zt + ") noexcept {");
-  line("    (void)m;");
-  for (int i = 0; i < n; ++i) {
-    const int k = state_z[static_cast<std::size_t>(i)];
-    line("    z[" + s(k) + "] = x[" + s(i) + "];  // " + z_name(k));
+  void write_fill() {
+    line("  /// The states into the full vector at x (fixed entries: m.fixed_value; stiff nodes:");
+    line("  /// solve_stiff, which every caller of fill runs next).");
+    line("  template <class M, class X, typename T>");
+    line("  HSTMON_CIRCUIT_INLINE static void fill(const M& m, const X& x, " + zt_ + ") noexcept {");
+    line("    (void)m;");
+    for (int i = 0; i < n_; ++i) {
+      const int k = state_z_[static_cast<std::size_t>(i)];
+      line("    z[" + s(k) + "] = x[" + s(i) + "];  // " + z_name(k));
+    }
+    line("  }");
+    line("");
   }
-  line("  }");
-  line("");
-  // Node balances of the stiff nodes (CircuitModel::node_balance, incidence in element order).
-  for (int j = 0; j < m; ++j) {
-    const int i = stiff_z[static_cast<std::size_t>(j)];
+
+  // Node balance of stiff node i (CircuitModel::node_balance, incidence in element order).
+  void write_balance(int i) {
     line("  /// Net inflow into " + z_name(i) + " [m³/s]; dF its slope by that pressure (≤ 0); with kRow,");
     line("  /// also its row of the unknowns' Jacobian into G (as unknowns_jacobian writes it).");
     line("  template <bool kRow, class M, typename T, class GM>");
-    line("  HSTMON_CIRCUIT_INLINE static T balance_" + s(i) + "(const M& m, " + czt + ", T& dF, GM& G) noexcept {");
+    line("  HSTMON_CIRCUIT_INLINE static T balance_" + s(i) + "(const M& m, " + czt_ + ", T& dF, GM& G) noexcept {");
     line("    T F = T(0);");
     line("    dF = T(0);");
     line("    if constexpr (kRow) {");
@@ -341,13 +383,13 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     line("      (void)G;");
     line("    }");
     Sums row;
-    for (int e = 0; e < d.n_elements; ++e) {
-      const circuit::Element& el = d.elements[e];
-      if (!circuit::has_ports(el.kind) || (el.a != i && el.b != i)) continue;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (!on_node(el, i)) continue;
       const bool out = el.a == i;
       line("    {  // " + el_name(e));
       line("      circuit::Flow<T> f;");
-      line("      " + flow_call(el, e, nn, zr) + ";");
+      line("      " + flow_call(el, e, nn_, zr_) + ";");
       line(out ? "      F -= f.q;" : "      F += f.q;");
       line(out ? "      dF -= f.dpa;" : "      dF += f.dpb;");
       line("      if constexpr (kRow) {");
@@ -359,187 +401,217 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     line("  }");
     line("");
   }
+
   // The Gauss–Seidel × Newton solve, nodes unrolled.
-  line("  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged;");
-  line("  /// with kRow, the stiff nodes' rows of the unknowns' Jacobian at the last evaluations into G.");
-  line("  /// fold: where the closed-form solves' input-constant subexpressions come from — computed");
-  line("  /// in place (circuit::Unfolded) or folded once per input change by fold() (circuit::Folded).");
-  line("  template <bool kRow, class M, typename T, std::size_t NG, class GM, class Fold = circuit::Unfolded>");
-  line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt +
-       ", T (&guess)[NG], GM& G, const Fold& fold = Fold{}) noexcept {");
-  // fold(): each closed-form node's laminar terms to fixed pressures, B, c0² and 4·B,
-  // written as solve_stiff computes them (the same expressions, so the same values).
-  std::vector<std::string> folded;
-  const auto fold_at = [&](const std::string& expr) {
-    folded.push_back(expr);
-    return "fold.at(" + s(static_cast<int>(folded.size()) - 1) + ", " + expr + ")";
-  };
-  std::vector<std::string> fold_body;
-  line("    (void)fold;");
-  if (m == 0) {
-    line("    (void)m;");
-    line("    (void)z;");
-    line("    (void)guess;");
-    line("    (void)G;");
-    line("    return true;");
-  } else {
-    for (int j = 0; j < m; ++j) line("    z[" + s(stiff_z[static_cast<std::size_t>(j)]) + "] = guess[" + s(j) + "];");
-    line("    const T p_env = m.pressure_envelope();");
-    line(std::string("    const bool conv = circuit::gauss_seidel(p_env, ") + (coupled ? "true" : "false") +
-         ", [&](circuit::Sweep<T>& w) HSTMON_CIRCUIT_LAMBDA_INLINE {");
-    for (int j = 0; j < m; ++j) {
-      const int iz = stiff_z[static_cast<std::size_t>(j)];
-      const std::string i = s(iz);
-      line("      w.node(z[" + i + "], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {");
-      // CircuitModel::solve_node's closed form where the node's elements allow it: one
-      // orifice, the rest linear in the pressure; the same terms in the same order.
-      int orifice = -1;
-      bool linear = true;
-      for (int e = 0; e < d.n_elements; ++e) {
-        const circuit::Element& el = d.elements[e];
-        if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
-        if (el.kind == ElementKind::kOrifice) {
-          linear = linear && orifice < 0;
-          orifice = e;
-        } else if (el.kind != ElementKind::kLaminar && el.kind != ElementKind::kMachine &&
-                   el.kind != ElementKind::kFlowSource) {
-          linear = false;
-        }
-      }
-      if (linear && orifice >= 0) {
-        line("        // One orifice (" + el_name(orifice) + ") and flows linear in the pressure: closed form.");
-        line("        T lin = T(0), B = T(0);");
-        Sums sums;
-        std::vector<std::string> b_terms;
-        fold_body.push_back("    {  // " + z_name(iz));
-        for (int e = 0; e < d.n_elements; ++e) {
-          const circuit::Element& el = d.elements[e];
-          if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
-          const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
-          const char sign = el.a == iz ? '-' : '+';
-          switch (el.kind) {
-            case ElementKind::kLaminar: {
-              const int other = el.a == iz ? el.b : el.a;
-              const std::string term = c0 + " * " + zr(other);
-              std::string use = term;
-              if (zr.fixed[static_cast<std::size_t>(other)]) {  // a laminar term to a fixed pressure
-                use = fold_at(term);
-                fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = " + term + ";");
-              }
-              line("        " + sums.add("lin", '+', use) + "  // " + el_name(e));
-              const std::string b = sums.add("B", '+', c0);
-              b_terms.push_back(b);
-              line("        " + b);
-              break;
-            }
-            case ElementKind::kMachine:
-              line("        " + sums.add("lin", sign, c0 + " * " + zr(nn + el.shaft)) + "  // " + el_name(e));
-              break;
-            case ElementKind::kFlowSource:
-              line("        " + sums.add("lin", sign, c0) + "  // " + el_name(e));
-              break;
-            default: break;
-          }
-        }
-        const circuit::Element& oe = d.elements[orifice];
-        const std::string oc0 = "m.coeffs(" + s(orifice) + ").c[0]";
-        line("        B = " + fold_at("B") + ";");
-        const std::string c0sq = fold_at(oc0 + " * " + oc0);
-        const std::string fourB = fold_at("T(4) * B");
-        fold_body.push_back("      T B = T(0);");
-        for (const std::string& b : b_terms) fold_body.push_back("      " + b);
-        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 3) + "] = B;");
-        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 2) + "] = " + oc0 + " * " + oc0 + ";");
-        fold_body.push_back("      v[" + s(static_cast<int>(folded.size()) - 1) + "] = T(4) * B;");
-        fold_body.push_back("    }");
-        line("        T root;");
-        line("        if (circuit::solve_node_orifice(z[" + i + "], " + zr(oe.a == iz ? oe.b : oe.a) + ", " + oc0 + ", " +
-             c0sq + ", m.coeffs(" + s(orifice) + ").c[1], lin, B, " + fourB + ", root)) {");
-        // The node's row from the closed form's own numbers: each law's slopes at the
-        // solution (the orifice's c0/(2·root), turbulent there), in unknowns_jacobian's order.
-        line("          if constexpr (kRow) {");
-        zero_row(uz(iz), "            ");
-        Sums row;
-        for (int e = 0; e < d.n_elements; ++e) {
-          const circuit::Element& el = d.elements[e];
-          if (!circuit::has_ports(el.kind) || (el.a != iz && el.b != iz)) continue;
-          const std::vector<std::string> rows = row_lines(uz(iz), el, "              ", row);
-          if (rows.empty()) continue;
-          const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
-          line("            {  // " + el_name(e));
-          line("              circuit::Flow<T> f;");
-          if (el.kind == ElementKind::kOrifice) {
-            line("              f.dpa = " + c0 + " * (T(0.5) / root);");
-            line("              f.dpb = -f.dpa;");
-          } else if (el.kind == ElementKind::kLaminar) {
-            line("              f.dpa = " + c0 + ";");
-            line("              f.dpb = -" + c0 + ";");
-          } else if (el.kind == ElementKind::kMachine) {
-            line("              f.dw = " + c0 + ";");
-          }
-          for (const std::string& t : rows) line(t);
-          line("            }");
-        }
-        line("          } else {");
-        line("            (void)root;");
-        line("          }");
-        line("          return true;");
-        line("        }");
-      }
-      line("        return circuit::solve_node_newton(z[" + i + "], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {");
-      line("          z[" + i + "] = p;");
-      line("          return balance_" + i + "<kRow>(m, z, dF, G);");
-      line("        });");
-      line("      });");
+  void write_solve_stiff() {
+    line("  /// The quasi-steady solve (quasi_steady.hpp) from guess, which it updates when converged;");
+    line("  /// with kRow, the stiff nodes' rows of the unknowns' Jacobian at the last evaluations into G.");
+    line("  /// fold: where the closed-form solves' input-constant subexpressions come from — computed");
+    line("  /// in place (circuit::Unfolded) or folded once per input change by fold() (circuit::Folded).");
+    line("  template <bool kRow, class M, typename T, std::size_t NG, class GM, class Fold = circuit::Unfolded>");
+    line("  HSTMON_CIRCUIT_INLINE static bool solve_stiff(const M& m, " + zt_ +
+         ", T (&guess)[NG], GM& G, const Fold& fold = Fold{}) noexcept {");
+    line("    (void)fold;");
+    if (m_ == 0) {
+      line("    (void)m;");
+      line("    (void)z;");
+      line("    (void)guess;");
+      line("    (void)G;");
+      line("    return true;");
+    } else {
+      for (int j = 0; j < m_; ++j) line("    z[" + s(stiff_z_[static_cast<std::size_t>(j)]) + "] = guess[" + s(j) + "];");
+      line("    const T p_env = m.pressure_envelope();");
+      line(std::string("    const bool conv = circuit::gauss_seidel(p_env, ") + (coupled_ ? "true" : "false") +
+           ", [&](circuit::Sweep<T>& w) HSTMON_CIRCUIT_LAMBDA_INLINE {");
+      for (int j = 0; j < m_; ++j) write_node_solve(stiff_z_[static_cast<std::size_t>(j)]);
+      line("    });");
+      line("    if (conv) {");
+      for (int j = 0; j < m_; ++j) line("      guess[" + s(j) + "] = z[" + s(stiff_z_[static_cast<std::size_t>(j)]) + "];");
+      line("    }");
+      line("    return conv;");
     }
-    line("    });");
-    line("    if (conv) {");
-    for (int j = 0; j < m; ++j) line("      guess[" + s(j) + "] = z[" + s(stiff_z[static_cast<std::size_t>(j)]) + "];");
-    line("    }");
-    line("    return conv;");
+    line("  }");
+    line("");
   }
-  line("  }");
-  line("");
-  line("  /// Number of values fold() writes (at least 1: an array's extent).");
-  line("  static constexpr int kFolded = " + s(folded.empty() ? 1 : static_cast<int>(folded.size())) + ";");
-  line("  /// solve_stiff's input-constant subexpressions under m's current values, computed as");
-  line("  /// solve_stiff computes them (the same expressions: the same values), for circuit::Folded.");
-  line("  template <class M, typename T>");
-  line("  static void fold(const M& m, T (&v)[kFolded]) noexcept {");
-  line("    (void)m;");
-  if (folded.empty()) line("    v[0] = T(0);");
-  for (const std::string& t : fold_body) line(t);
-  line("  }");
-  line("");
+
+  // One stiff node's step of the sweep: the closed form where it applies, else Newton on its balance.
+  void write_node_solve(int iz) {
+    const std::string i = s(iz);
+    line("      w.node(z[" + i + "], [&]() HSTMON_CIRCUIT_LAMBDA_INLINE {");
+    const int orifice = closed_form_orifice(iz);
+    if (orifice >= 0) write_closed_form(iz, orifice);
+    line("        return circuit::solve_node_newton(z[" + i + "], p_env, [&](T p, T& dF) HSTMON_CIRCUIT_LAMBDA_INLINE {");
+    line("          z[" + i + "] = p;");
+    line("          return balance_" + i + "<kRow>(m, z, dF, G);");
+    line("        });");
+    line("      });");
+  }
+
+  // CircuitModel::solve_node's closed form applies where the node's elements allow it: one
+  // orifice, the rest linear in the pressure. The orifice's element number, or -1.
+  int closed_form_orifice(int iz) const {
+    int orifice = -1;
+    bool linear = true;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (!on_node(el, iz)) continue;
+      if (el.kind == ElementKind::kOrifice) {
+        linear = linear && orifice < 0;
+        orifice = e;
+      } else if (el.kind != ElementKind::kLaminar && el.kind != ElementKind::kMachine &&
+                 el.kind != ElementKind::kFlowSource) {
+        linear = false;
+      }
+    }
+    return linear ? orifice : -1;
+  }
+
+  // The closed form: the same terms in the same order as solve_node; fold(): the node's laminar
+  // terms to fixed pressures, B, c0² and 4·B, written as solve_stiff computes them (the same
+  // expressions, so the same values).
+  void write_closed_form(int iz, int orifice) {
+    line("        // One orifice (" + el_name(orifice) + ") and flows linear in the pressure: closed form.");
+    line("        T lin = T(0), B = T(0);");
+    fold_body_.push_back("    {  // " + z_name(iz));
+    const std::vector<std::string> b_terms = write_linear_terms(iz);
+    const circuit::Element& oe = d_.elements[orifice];
+    const std::string oc0 = "m.coeffs(" + s(orifice) + ").c[0]";
+    line("        B = " + fold_at("B") + ";");
+    const std::string c0sq = fold_at(oc0 + " * " + oc0);
+    const std::string fourB = fold_at("T(4) * B");
+    fold_body_.push_back("      T B = T(0);");
+    for (const std::string& b : b_terms) fold_body_.push_back("      " + b);
+    fold_body_.push_back("      v[" + s(last_folded() - 2) + "] = B;");
+    fold_body_.push_back("      v[" + s(last_folded() - 1) + "] = " + oc0 + " * " + oc0 + ";");
+    fold_body_.push_back("      v[" + s(last_folded()) + "] = T(4) * B;");
+    fold_body_.push_back("    }");
+    line("        T root;");
+    line("        if (circuit::solve_node_orifice(z[" + s(iz) + "], " + zr_(oe.a == iz ? oe.b : oe.a) + ", " + oc0 +
+         ", " + c0sq + ", m.coeffs(" + s(orifice) + ").c[1], lin, B, " + fourB + ", root)) {");
+    write_closed_form_row(iz);
+    line("          return true;");
+    line("        }");
+  }
+
+  // The sums lin (flows linear in the pressure, without it) and B (their slopes) of node iz;
+  // returns B's statements, which fold() repeats.
+  std::vector<std::string> write_linear_terms(int iz) {
+    Sums sums;
+    std::vector<std::string> b_terms;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (!on_node(el, iz)) continue;
+      const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
+      const char sign = el.a == iz ? '-' : '+';
+      switch (el.kind) {
+        case ElementKind::kLaminar: {
+          const int other = el.a == iz ? el.b : el.a;
+          const std::string term = c0 + " * " + zr_(other);
+          std::string use = term;
+          if (zr_.fixed[static_cast<std::size_t>(other)]) {  // a laminar term to a fixed pressure
+            use = fold_at(term);
+            fold_body_.push_back("      v[" + s(last_folded()) + "] = " + term + ";");
+          }
+          line("        " + sums.add("lin", '+', use) + "  // " + el_name(e));
+          const std::string b = sums.add("B", '+', c0);
+          b_terms.push_back(b);
+          line("        " + b);
+          break;
+        }
+        case ElementKind::kMachine:
+          line("        " + sums.add("lin", sign, c0 + " * " + zr_(nn_ + el.shaft)) + "  // " + el_name(e));
+          break;
+        case ElementKind::kFlowSource:
+          line("        " + sums.add("lin", sign, c0) + "  // " + el_name(e));
+          break;
+        default: break;
+      }
+    }
+    return b_terms;
+  }
+
+  // The node's row from the closed form's own numbers: each law's slopes at the
+  // solution (the orifice's c0/(2·root), turbulent there), in unknowns_jacobian's order.
+  void write_closed_form_row(int iz) {
+    line("          if constexpr (kRow) {");
+    zero_row(uz(iz), "            ");
+    Sums row;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (!on_node(el, iz)) continue;
+      const std::vector<std::string> rows = row_lines(uz(iz), el, "              ", row);
+      if (rows.empty()) continue;
+      const std::string c0 = "m.coeffs(" + s(e) + ").c[0]";
+      line("            {  // " + el_name(e));
+      line("              circuit::Flow<T> f;");
+      if (el.kind == ElementKind::kOrifice) {
+        line("              f.dpa = " + c0 + " * (T(0.5) / root);");
+        line("              f.dpb = -f.dpa;");
+      } else if (el.kind == ElementKind::kLaminar) {
+        line("              f.dpa = " + c0 + ";");
+        line("              f.dpb = -" + c0 + ";");
+      } else if (el.kind == ElementKind::kMachine) {
+        line("              f.dw = " + c0 + ";");
+      }
+      for (const std::string& t : rows) line(t);
+      line("            }");
+    }
+    line("          } else {");
+    line("            (void)root;");
+    line("          }");
+  }
+
+  // After write_solve_stiff, which collects what fold() computes.
+  void write_fold() {
+    line("  /// Number of values fold() writes (at least 1: an array's extent).");
+    line("  static constexpr int kFolded = " + s(folded_.empty() ? 1 : static_cast<int>(folded_.size())) + ";");
+    line("  /// solve_stiff's input-constant subexpressions under m's current values, computed as");
+    line("  /// solve_stiff computes them (the same expressions: the same values), for circuit::Folded.");
+    line("  template <class M, typename T>");
+    line("  static void fold(const M& m, T (&v)[kFolded]) noexcept {");
+    line("    (void)m;");
+    if (folded_.empty()) line("    v[0] = T(0);");
+    for (const std::string& t : fold_body_) line(t);
+    line("  }");
+    line("");
+  }
+
   // Rates (CircuitModel::rates).
-  line("  /// The states' rates [Pa/s, rad/s²] into d; with kRow, the states' rows of the unknowns'");
-  line("  /// Jacobian into G (as unknowns_jacobian writes them).");
-  line("  template <bool kRow, class M, class D, typename T, class GM>");
-  line("  HSTMON_CIRCUIT_INLINE static void rates(const M& m, " + czt + ", D& d, GM& G) noexcept {");
-  line("    if constexpr (kRow) {");
-  for (int st = 0; st < n; ++st) zero_row(state_u[static_cast<std::size_t>(st)], "      ");
-  line("    } else {");
-  line("      (void)G;");
-  line("    }");
-  for (int st = 0; st < n; ++st) {
-    const int zs = state_z[static_cast<std::size_t>(st)];
-    const int r = state_u[static_cast<std::size_t>(st)];
+  void write_rates() {
+    line("  /// The states' rates [Pa/s, rad/s²] into d; with kRow, the states' rows of the unknowns'");
+    line("  /// Jacobian into G (as unknowns_jacobian writes them).");
+    line("  template <bool kRow, class M, class D, typename T, class GM>");
+    line("  HSTMON_CIRCUIT_INLINE static void rates(const M& m, " + czt_ + ", D& d, GM& G) noexcept {");
+    line("    if constexpr (kRow) {");
+    for (int st = 0; st < n_; ++st) zero_row(state_u_[static_cast<std::size_t>(st)], "      ");
+    line("    } else {");
+    line("      (void)G;");
+    line("    }");
+    for (int st = 0; st < n_; ++st) write_state_rate(st);
+    line("  }");
+    line("");
+  }
+
+  // State st's rate: the net flow into its node or the net torque on its shaft, times its stiffness.
+  void write_state_rate(int st) {
+    const int zs = state_z_[static_cast<std::size_t>(st)];
+    const int r = state_u_[static_cast<std::size_t>(st)];
     line("    {  // " + z_name(zs));
     line("      T g = T(0);");
     Sums sums;  // g, and the state's row of G
-    for (int e = 0; e < d.n_elements; ++e) {
-      const circuit::Element& el = d.elements[e];
-      if (zs < nn) {
-        if (!circuit::has_ports(el.kind) || (el.a != zs && el.b != zs)) continue;
+    for (int e = 0; e < d_.n_elements; ++e) {
+      const circuit::Element& el = d_.elements[e];
+      if (zs < nn_) {
+        if (!on_node(el, zs)) continue;
         line("      {  // " + el_name(e));
         line("        circuit::Flow<T> f;");
-        line("        " + flow_call(el, e, nn, zr) + ";");
+        line("        " + flow_call(el, e, nn_, zr_) + ";");
         line("        " + sums.add("g", el.a == zs ? '-' : '+', "f.q"));
       } else {
-        if (!circuit::has_shaft(el.kind) || el.shaft != zs - nn) continue;
+        if (!circuit::has_shaft(el.kind) || el.shaft != zs - nn_) continue;
         line("      {  // " + el_name(e));
         line("        T da, db, dw;");
-        line("        " + sums.add("g", '+', torque_call(el, e, nn, zr)));
+        line("        " + sums.add("g", '+', torque_call(el, e, nn_, zr_)));
       }
       const std::vector<std::string> rows = row_lines(r, el, "          ", sums);
       if (!rows.empty()) {
@@ -552,48 +624,58 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     line("      d[" + s(st) + "] = m.node_stiffness(" + s(zs) + ") * g;");
     line("    }");
   }
-  line("  }");
-  line("");
+
   // Outputs (CircuitModel::outputs_at).
-  line("  /// What each channel measures [SI] into y.");
-  line("  template <class M, class Y, typename T>");
-  line("  HSTMON_CIRCUIT_INLINE static void outputs(const M& m, " + czt + ", Y& y) noexcept {");
-  bool uses_m = false;
-  for (int ch = 0; ch < d.n_channels; ++ch) {
-    const circuit::Channel& k = d.channels[ch];
-    const std::string note = "  // " + f.sensors[static_cast<std::size_t>(ch)].name;
-    if (k.kind == circuit::ChannelKind::kPressure || k.kind == circuit::ChannelKind::kSpeed) {
-      const int z = k.kind == circuit::ChannelKind::kPressure ? k.index : nn + k.index;
-      line("    y[" + s(ch) + "] = " + zr(z) + ";" + note);
-      uses_m = uses_m || zr.fixed[static_cast<std::size_t>(z)];
-    } else {
-      line("    {" + note);
-      line("      circuit::Flow<T> f;");
-      line("      " + flow_call(d.elements[k.index], k.index, nn, zr) + ";");
-      line("      y[" + s(ch) + "] = f.q;");
-      line("    }");
-      uses_m = true;
+  void write_outputs() {
+    line("  /// What each channel measures [SI] into y.");
+    line("  template <class M, class Y, typename T>");
+    line("  HSTMON_CIRCUIT_INLINE static void outputs(const M& m, " + czt_ + ", Y& y) noexcept {");
+    bool uses_m = false;
+    for (int ch = 0; ch < d_.n_channels; ++ch) {
+      const circuit::Channel& k = d_.channels[ch];
+      const std::string note = "  // " + f_.sensors[static_cast<std::size_t>(ch)].name;
+      if (k.kind == circuit::ChannelKind::kPressure || k.kind == circuit::ChannelKind::kSpeed) {
+        const int z = k.kind == circuit::ChannelKind::kPressure ? k.index : nn_ + k.index;
+        line("    y[" + s(ch) + "] = " + zr_(z) + ";" + note);
+        uses_m = uses_m || zr_.fixed[static_cast<std::size_t>(z)];
+      } else {
+        line("    {" + note);
+        line("      circuit::Flow<T> f;");
+        line("      " + flow_call(d_.elements[k.index], k.index, nn_, zr_) + ";");
+        line("      y[" + s(ch) + "] = f.q;");
+        line("    }");
+        uses_m = true;
+      }
     }
+    if (!uses_m) line("    (void)m;");
+    line("  }");
+    line("");
   }
-  if (!uses_m) line("    (void)m;");
-  line("  }");
-  line("");
+
   // The unknowns' Jacobian (CircuitModel::unknowns_jacobian), nonzeros in element order.
-  line("  /// ∂(net of unknown r)/∂(unknown c) at z onto a zeroed G (CircuitModel::unknowns_jacobian).");
-  line("  template <class M, typename T, std::size_t U>");
-  line("  HSTMON_CIRCUIT_INLINE static void unknowns_jacobian(const M& m, " + czt + ", T (&G)[U][U]) noexcept {");
-  for (int e = 0; e < d.n_elements; ++e) {
-    const circuit::Element& el = d.elements[e];
+  void write_unknowns_jacobian() {
+    line("  /// ∂(net of unknown r)/∂(unknown c) at z onto a zeroed G (CircuitModel::unknowns_jacobian).");
+    line("  template <class M, typename T, std::size_t U>");
+    line("  HSTMON_CIRCUIT_INLINE static void unknowns_jacobian(const M& m, " + czt_ + ", T (&G)[U][U]) noexcept {");
+    for (int e = 0; e < d_.n_elements; ++e) write_element_jacobian(e);
+    line("  }");
+    line("");
+  }
+
+  // Element e's terms of the unknowns' Jacobian: its flow's slopes into its ports' rows, its
+  // torque's into its shaft's row.
+  void write_element_jacobian(int e) {
+    const circuit::Element& el = d_.elements[e];
     const bool ports = circuit::has_ports(el.kind);
     const int ua = ports ? uz(el.a) : -1, ub = ports ? uz(el.b) : -1;
-    const int us = el.shaft >= 0 ? uz(nn + el.shaft) : -1;
+    const int us = el.shaft >= 0 ? uz(nn_ + el.shaft) : -1;
     const bool flow_rows = ports && (ua >= 0 || ub >= 0);
     const bool torque_row = circuit::has_shaft(el.kind) && us >= 0;
-    if (!flow_rows && !torque_row) continue;
+    if (!flow_rows && !torque_row) return;
     line("    {  // " + el_name(e));
     if (flow_rows) {
       line("      circuit::Flow<T> f;");
-      line("      " + flow_call(el, e, nn, zr) + ";");
+      line("      " + flow_call(el, e, nn_, zr_) + ";");
       if (ua >= 0) {
         line("      " + G(ua, ua) + " -= f.dpa;");
         if (ub >= 0) line("      " + G(ua, ub) + " -= f.dpb;");
@@ -609,7 +691,7 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     }
     if (torque_row) {
       line("      T da, db, dw;");
-      line("      (void)" + torque_call(el, e, nn, zr) + ";");
+      line("      (void)" + torque_call(el, e, nn_, zr_) + ";");
       if (ports) {
         if (ua >= 0) line("      " + G(us, ua) + " += da;");
         if (ub >= 0) line("      " + G(us, ub) + " += db;");
@@ -618,17 +700,46 @@ std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderO
     }
     line("    }");
   }
-  line("  }");
-  line("");
-  emit_schur(line, nz, stiff_u, state_u);
-  line("};");
-  line("");
-  line("/// The Observer's model of this circuit, compiled (float in firmware, double on the host).");
-  line("template <typename T>");
-  line("using CompiledModel = circuit::CompiledModel<T, Kernel>;");
-  line("");
-  line("}  // namespace hstmon::generated::" + o.name);
-  return h;
+
+  void write_epilogue() {
+    line("};");
+    line("");
+    line("/// The Observer's model of this circuit, compiled (float in firmware, double on the host).");
+    line("template <typename T>");
+    line("using CompiledModel = circuit::CompiledModel<T, Kernel>;");
+    line("");
+    line("}  // namespace hstmon::generated::" + o_.name);
+  }
+
+  const host::CircuitFile& f_;
+  const CircuitHeaderOptions& o_;
+  const host::HostCircuit& d_;
+  const int nn_;   ///< nodes
+  const int kz_;   ///< full vector: nodes, then shafts
+  const int n_;    ///< states
+  const int m_;    ///< stiff nodes
+  const std::string zt_, czt_;  ///< the parameter z, writable and read-only
+  int nu_ = 0;     ///< unknowns
+  std::vector<int> unknown_of_z_, state_z_, state_u_, stiff_z_, stiff_u_;
+  ZRef zr_;
+  bool coupled_ = false;  ///< two stiff nodes share an element: the sweep iterates
+  std::vector<std::vector<bool>> nz_;
+  std::vector<std::string> folded_;     ///< fold()'s values, in order
+  std::vector<std::string> fold_body_;  ///< fold()'s statements
+  std::string h_;
+};
+
+}  // namespace
+
+std::string circuit_compiled_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error) {
+  error.clear();
+  const host::HostCircuit d = header_description(c, o.tick);
+  const host::HostCircuitModel check(d, c.values.params, c.values.inputs);
+  if (check.error() != circuit::CircuitError::kOk || !check.valid()) {
+    error = "circuit " + c.file.name + ": its values do not make a physical circuit";
+    return "";
+  }
+  return KernelWriter(c.file, o, d, check).write();
 }
 
 }  // namespace hstmon::circuit_tools

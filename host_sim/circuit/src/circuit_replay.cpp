@@ -53,89 +53,86 @@ std::string number(double v) {
   return b;
 }
 
-}  // namespace
+// The observer tick [s]: the option's, else the log's median sampling interval (to the ns), at most 10 ms.
+double replay_tick(double option, const std::vector<double>& t) {
+  if (option > 0.0) return option;
+  const double dt = median_interval(t);
+  return dt > 0.0 ? std::min(std::round(dt * 1e9) * 1e-9, 10e-3) : 1e-3;
+}
 
-CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o) {
-  CircuitReplayResult res;
-  const std::size_t channels = c.file.sensors.size();
-  res.measured.assign(channels, false);
-  res.clipped.assign(channels, 0);
-  res.channels.assign(channels, host::ChannelStats{});
-  res.rows = log.rows();
-  if (res.rows == 0) return res;
-  const std::vector<double>& t = log.t;
-  res.t_first = t.front();
-  res.t_last = t.back();
+// Where the circuit's inputs and sensors are in the log (nullptr: not there) and which channels are measured.
+struct LogColumns {
+  std::vector<const double*> inputs;   ///< per input of the circuit file
+  std::vector<const double*> sensors;  ///< per channel
+  std::uint8_t mask = 0;               ///< channels in the log
 
-  double tick = o.tick;
-  if (!(tick > 0.0)) {
-    const double dt = median_interval(t);
-    tick = dt > 0.0 ? std::min(std::round(dt * 1e9) * 1e-9, 10e-3) : 1e-3;
+  /// Row `row`'s inputs: the log's where it has them, else `held` (the circuit file's values).
+  Model::Inputs inputs_at(const Model::Inputs& held, std::size_t row) const {
+    Model::Inputs u = held;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      if (inputs[i] != nullptr) u.v[i] = inputs[i][row];
+    }
+    return u;
   }
-  res.tick = tick;
+};
 
+// The log's columns for c; notes the inputs held and marks the channels measured in res.
+LogColumns log_columns(const LoadedCircuit& c, const CircuitLog& log, CircuitReplayResult& res) {
+  LogColumns cols;
   const std::size_t n_inputs = c.file.inputs.size();
-  std::vector<const double*> in_col(n_inputs, nullptr);
+  cols.inputs.assign(n_inputs, nullptr);
   for (std::size_t i = 0; i < n_inputs; ++i) {
     if (i < log.inputs.size() && log.inputs[i].size() == res.rows) {
-      in_col[i] = log.inputs[i].data();
+      cols.inputs[i] = log.inputs[i].data();
     } else {
       res.notes.push_back("input " + c.file.inputs[i].name + " (column " + c.file.inputs[i].column +
                           ") not in log: held at " + number(c.values.inputs.v[i]) + " " +
                           host::circuit_si_unit(c.file.inputs[i].quantity));
     }
   }
-  std::vector<const double*> meas(channels, nullptr);
-  std::uint8_t mask = 0;
+  const std::size_t channels = c.file.sensors.size();
+  cols.sensors.assign(channels, nullptr);
   for (std::size_t ch = 0; ch < channels; ++ch) {
     if (ch < log.sensors.size() && log.sensors[ch].size() == res.rows) {
-      meas[ch] = log.sensors[ch].data();
+      cols.sensors[ch] = log.sensors[ch].data();
       res.measured[ch] = true;
-      mask = static_cast<std::uint8_t>(mask | (1u << ch));
+      cols.mask = static_cast<std::uint8_t>(cols.mask | (1u << ch));
     }
   }
-  if (mask == 0) res.notes.push_back("no sensor column of circuit " + c.file.name + " in the log: nothing compared");
-  auto inputs_at = [&](std::size_t row) {
-    Model::Inputs u = c.values.inputs;
-    for (std::size_t i = 0; i < n_inputs; ++i) {
-      if (in_col[i] != nullptr) u.v[i] = in_col[i][row];
-    }
-    return u;
-  };
+  if (cols.mask == 0) res.notes.push_back("no sensor column of circuit " + c.file.name + " in the log: nothing compared");
+  return cols;
+}
 
-  // The description outlives the model and the observer (both refer to it by pointer).
-  host::HostCircuit desc = c.file.circuit;
-  desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, tick);
-  Model model(desc, c.values.params, c.values.inputs);
-  if (model.error() != circuit::CircuitError::kOk || !model.valid()) {
-    res.notes.push_back("the circuit's values do not make a physical circuit: nothing replayed");
-    return res;
-  }
-  res.states = model.n_states();
-  res.stiff_nodes = model.n_stiff();
-
-  CircuitFaultTable built;
+// The matcher's fault table: the caller's, or built into `built`; nullptr when it cannot be built
+// (residuals only). Sets res.table_rows (at most the monitor's 127) and res.undetectable.
+const CircuitFaultTable* matcher_table(const LoadedCircuit& c, const CircuitReplayOptions& o, CircuitFaultTable& built,
+                                       CircuitReplayResult& res) {
   const CircuitFaultTable* table = nullptr;
-  if (o.diagnose) {
-    try {
-      if (o.table != nullptr) {
-        table = o.table;
-      } else {
-        built = o.fault_table != nullptr ? o.fault_table(c) : circuit_fault_table(c);
-        table = &built;
-      }
-      res.table_rows = table->rows.size();
-      res.undetectable = table->undetectable;
-      for (const auto& n : table->notes) res.notes.push_back("fault table: " + n);
-      if (table->rows.size() > 127) {
-        res.notes.push_back("fault table: " + std::to_string(table->rows.size()) + " rows, the first 127 used");
-        res.table_rows = 127;
-      }
-    } catch (const std::exception& e) {
-      res.notes.push_back(std::string(e.what()) + ": residuals only");
+  try {
+    if (o.table != nullptr) {
+      table = o.table;
+    } else {
+      built = o.fault_table != nullptr ? o.fault_table(c) : circuit_fault_table(c);
+      table = &built;
     }
+    res.table_rows = table->rows.size();
+    res.undetectable = table->undetectable;
+    for (const auto& n : table->notes) res.notes.push_back("fault table: " + n);
+    if (table->rows.size() > 127) {
+      res.notes.push_back("fault table: " + std::to_string(table->rows.size()) + " rows, the first 127 used");
+      res.table_rows = 127;
+    }
+  } catch (const std::exception& e) {
+    res.notes.push_back(std::string(e.what()) + ": residuals only");
   }
-  auto mon = std::make_unique<Mon>();
+  return table;
+}
+
+// The monitor's configuration for c at this tick: sensor noise and ranges from the circuit file,
+// the circuit allowances, and matcher windows that follow the slowest time constant at u0.
+Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double tick, const Model::Inputs& u0,
+                           std::vector<std::string>& notes) {
+  const std::size_t channels = c.file.sensors.size();
   Mon::Config cfg;
   cfg.observer.tick = tick;
   for (int i = 0; i < Model::kOutputs; ++i) {
@@ -145,8 +142,8 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       const host::CircuitSensor& s = c.file.sensors[ch];
       sigma = sensor_sigma(s);
       if (!(s.noise > 0.0)) {
-        res.notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " + number(sigma) +
-                            " " + host::circuit_si_unit(s.quantity));
+        notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " + number(sigma) +
+                        " " + host::circuit_si_unit(s.quantity));
       }
       lo = s.lo;
       hi = s.hi;
@@ -162,45 +159,47 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
   circuit::set_circuit_allowances(cfg);
   // The matcher's magnitudes and direction are steady-state ones: its windows follow the
   // slowest time constant (circuit::widen_matcher_windows, shared with the firmware).
-  {
-    Model scratch = model;
-    const double rate = circuit::widen_matcher_windows(scratch, inputs_at(0), cfg.matcher);
-    if (rate > 0.0) {
-      res.notes.push_back("slowest time constant at the first row's inputs " + number(1.0 / rate) +
-                          " s: the matcher settles for " + number(cfg.matcher.settle_time) + " s and averages " +
-                          number(cfg.matcher.average_time) + " s");
-    }
+  Model scratch = model;
+  const double rate = circuit::widen_matcher_windows(scratch, u0, cfg.matcher);
+  if (rate > 0.0) {
+    notes.push_back("slowest time constant at the first row's inputs " + number(1.0 / rate) +
+                    " s: the matcher settles for " + number(cfg.matcher.settle_time) + " s and averages " +
+                    number(cfg.matcher.average_time) + " s");
   }
-  if (mon->configure(model, cfg, table == nullptr || table->rows.empty() ? nullptr : table->rows.data(),
-                     static_cast<int>(res.table_rows)) != Status::kOk) {
-    res.notes.push_back("invalid monitor configuration: nothing replayed");
-    return res;
-  }
-  const Obs& obs = mon->observer();
+  return cfg;
+}
 
-  const Model::Inputs u0 = inputs_at(0);
+// One row's readings as the monitor takes them. A reading at or beyond an end of its
+// transmitter's range says only that the signal is there or beyond: the monitor's sensor
+// checks judge it, the statistics leave it out (counted in clipped; `compared` has the others).
+struct Readings {
   Obs::Measurement m;
-  // A reading at or beyond an end of its transmitter's range says only that the signal is
-  // there or beyond: the monitor's sensor checks judge it, the statistics leave it out
-  // (counted in res.clipped; `compared` has the others).
   std::uint8_t compared = 0;
-  auto measurement_at = [&](std::size_t row) {
-    m.valid = mask;
-    compared = mask;
-    for (std::size_t ch = 0; ch < channels; ++ch) {
-      const double y = meas[ch] ? meas[ch][row] : 0.0;
+
+  void read(std::size_t row, const LogColumns& cols, const std::vector<host::CircuitSensor>& sensors,
+            std::vector<std::size_t>& clipped) {
+    m.valid = cols.mask;
+    compared = cols.mask;
+    for (std::size_t ch = 0; ch < sensors.size(); ++ch) {
+      const double* col = cols.sensors[ch];
+      const double y = col ? col[row] : 0.0;
       m.y[static_cast<int>(ch)] = y;
-      const host::CircuitSensor& s = c.file.sensors[ch];
-      if (meas[ch] != nullptr && (y <= s.lo || y >= s.hi)) {
+      if (col != nullptr && (y <= sensors[ch].lo || y >= sensors[ch].hi)) {
         compared = static_cast<std::uint8_t>(compared & ~(1u << ch));
-        ++res.clipped[ch];
+        ++clipped[ch];
       }
     }
-  };
-  measurement_at(0);
+  }
+};
+
+// Starts the monitor at u0 as o.init asks (auto: at the first row's readings, or at the steady
+// state when they are within noise of it), at rest when that fails; sets res.start and the hold-off.
+void start_monitor(Mon& mon, const Model& model, const LoadedCircuit& c, host::InitMode init, const Model::Inputs& u0,
+                   const Obs::Measurement& m, CircuitReplayResult& res) {
+  const std::size_t channels = c.file.sensors.size();
   Status started = Status::kInvalidInputs;
-  if (o.init == host::InitMode::kAuto) {
-    started = mon->reset_measured(u0, m, &res.start);
+  if (init == host::InitMode::kAuto) {
+    started = mon.reset_measured(u0, m, &res.start);
     double noise[Model::kOutputs] = {};
     for (std::size_t ch = 0; ch < channels && ch < static_cast<std::size_t>(Model::kOutputs); ++ch) {
       noise[ch] = c.file.sensors[ch].noise;
@@ -210,20 +209,112 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
         circuit::at_steady_within_noise(scratch, u0, m.y, m.valid, noise, static_cast<int>(channels))) {
       // The readings' noise would otherwise be the initial error of a parallel model,
       // which a lightly damped circuit (a closed-loop HST) rings with for seconds.
-      started = mon->reset_steady(u0);
+      started = mon.reset_steady(u0);
       res.start = InitialState::kSteady;
       res.notes.push_back("first row within 3 sigma of the steady state on every channel: started there");
     }
-  } else if (o.init == host::InitMode::kSteady) {
-    started = mon->reset_steady(u0);
+  } else if (init == host::InitMode::kSteady) {
+    started = mon.reset_steady(u0);
     res.start = InitialState::kSteady;
     if (started != Status::kOk) res.notes.push_back("no steady state for the first row's inputs: started at rest");
   }
   if (started != Status::kOk) {
-    (void)mon->reset_rest(u0);
+    (void)mon.reset_rest(u0);
     res.start = InitialState::kRest;
   }
-  res.startup_hold = mon->startup_hold();
+  res.startup_hold = mon.startup_hold();
+}
+
+// Row k's measured, model, residual (rv: the channels compared) and bound per channel; leads filled by the caller.
+CircuitTraceRow trace_row(const Mon& mon, const LogColumns& cols, std::size_t k, double t, std::uint32_t health,
+                          unsigned rv) {
+  const Obs& obs = mon.observer();
+  CircuitTraceRow tr;
+  tr.t = t;
+  tr.health = health;
+  for (std::size_t ch = 0; ch < cols.sensors.size(); ++ch) {
+    const int i = static_cast<int>(ch);
+    tr.y.push_back(cols.sensors[ch] != nullptr ? cols.sensors[ch][k] : std::nan(""));
+    tr.y_hat.push_back(obs.estimate()[i]);
+    tr.r.push_back((rv & (1u << ch)) != 0 ? obs.residual()[i] : std::nan(""));
+    tr.bound.push_back(mon.evaluator().bound(i));
+  }
+  return tr;
+}
+
+// The fit's view of the row just stepped.
+FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings& r) {
+  const Obs& obs = mon.observer();
+  FaultFitDiagnosis::Row row;
+  row.t = t;
+  row.y = r.m.y.data();
+  row.valid = r.compared;
+  row.r = obs.residual().data();
+  row.y_hat = obs.estimate().data();
+  row.r_valid = obs.residual_valid();
+  row.bound = mon.model_bound();
+  row.matcher_quiet = mon.matcher().status() == MatchStatus::kNominal;
+  return row;
+}
+
+// Notes the rows left out of each channel's statistics because its reading was at a range end.
+void note_clipped(const LoadedCircuit& c, CircuitReplayResult& res) {
+  for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+    if (res.clipped[ch] > 0) {
+      res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +
+                          " row(s) at an end of the sensor's range (" + number(c.file.sensors[ch].lo) + " .. " +
+                          number(c.file.sensors[ch].hi) + " " + host::circuit_si_unit(c.file.sensors[ch].quantity) +
+                          ") not compared");
+    }
+  }
+}
+
+}  // namespace
+
+CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o) {
+  CircuitReplayResult res;
+  const std::size_t channels = c.file.sensors.size();
+  res.measured.assign(channels, false);
+  res.clipped.assign(channels, 0);
+  res.channels.assign(channels, host::ChannelStats{});
+  res.rows = log.rows();
+  if (res.rows == 0) return res;
+  const std::vector<double>& t = log.t;
+  res.t_first = t.front();
+  res.t_last = t.back();
+  const double tick = replay_tick(o.tick, t);
+  res.tick = tick;
+  const LogColumns cols = log_columns(c, log, res);
+  const std::uint8_t mask = cols.mask;
+  auto inputs_at = [&](std::size_t row) { return cols.inputs_at(c.values.inputs, row); };
+
+  // The description outlives the model and the observer (both refer to it by pointer).
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, tick);
+  Model model(desc, c.values.params, c.values.inputs);
+  if (model.error() != circuit::CircuitError::kOk || !model.valid()) {
+    res.notes.push_back("the circuit's values do not make a physical circuit: nothing replayed");
+    return res;
+  }
+  res.states = model.n_states();
+  res.stiff_nodes = model.n_stiff();
+
+  CircuitFaultTable built;
+  const CircuitFaultTable* table = o.diagnose ? matcher_table(c, o, built, res) : nullptr;
+  auto mon = std::make_unique<Mon>();
+  const Mon::Config cfg = monitor_config(c, model, tick, inputs_at(0), res.notes);
+  if (mon->configure(model, cfg, table == nullptr || table->rows.empty() ? nullptr : table->rows.data(),
+                     static_cast<int>(res.table_rows)) != Status::kOk) {
+    res.notes.push_back("invalid monitor configuration: nothing replayed");
+    return res;
+  }
+  const Obs& obs = mon->observer();
+
+  const Model::Inputs u0 = inputs_at(0);
+  Readings readings;
+  const Obs::Measurement& m = readings.m;
+  readings.read(0, cols, c.file.sensors, res.clipped);
+  start_monitor(*mon, model, c, o.init, u0, m, res);
 
   res.clipped.assign(channels, 0);  // the first row is counted again below
   Model::Inputs u_prev = u0;
@@ -267,7 +358,8 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     }
     const Model::Inputs u = inputs_at(k);
-    measurement_at(k);
+    readings.read(k, cols, c.file.sensors, res.clipped);
+    const std::uint8_t compared = readings.compared;
     mon->step(t[k], u, m);
     drain_events(t[k], u);
     if (!res.events.empty()) envelope.detected(res.events.front().t);
@@ -278,18 +370,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       out_of_envelope = true;
       res.events.assign(1, host::envelope_event(t[k], envelope_now(), res.events));
     }
-    if (diag && !out_of_envelope) {
-      FaultFitDiagnosis::Row row;
-      row.t = t[k];
-      row.y = m.y.data();
-      row.valid = compared;
-      row.r = obs.residual().data();
-      row.y_hat = obs.estimate().data();
-      row.r_valid = obs.residual_valid();
-      row.bound = mon->model_bound();
-      row.matcher_quiet = mon->matcher().status() == MatchStatus::kNominal;
-      diag->on_row(row, u, res.events);
-    }
+    if (diag && !out_of_envelope) diag->on_row(fit_row(*mon, t[k], readings), u, res.events);
     const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;
@@ -300,16 +381,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs.residual()[static_cast<int>(ch)], t[k], k);
     }
     if (o.keep_trace) {
-      CircuitTraceRow tr;
-      tr.t = t[k];
-      tr.health = flags;
-      for (std::size_t ch = 0; ch < channels; ++ch) {
-        const int i = static_cast<int>(ch);
-        tr.y.push_back(meas[ch] != nullptr ? meas[ch][k] : std::nan(""));
-        tr.y_hat.push_back(obs.estimate()[i]);
-        tr.r.push_back((rv & (1u << ch)) != 0 ? obs.residual()[i] : std::nan(""));
-        tr.bound.push_back(mon->evaluator().bound(i));
-      }
+      CircuitTraceRow tr = trace_row(*mon, cols, k, t[k], flags, rv);
       const double* mb = mon->model_bound();
       if (lead_bound.empty() || !std::equal(lead_bound.begin(), lead_bound.end(), mb)) {
         lead_bound.assign(mb, mb + channels);
@@ -337,14 +409,7 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     res.final_status = diag->status();
   }
   res.implicit_ticks = obs.implicit_ticks();
-  for (std::size_t ch = 0; ch < channels; ++ch) {
-    if (res.clipped[ch] > 0) {
-      res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +
-                          " row(s) at an end of the sensor's range (" + number(c.file.sensors[ch].lo) + " .. " +
-                          number(c.file.sensors[ch].hi) + " " + host::circuit_si_unit(c.file.sensors[ch].quantity) +
-                          ") not compared");
-    }
-  }
+  note_clipped(c, res);
   return res;
 }
 

@@ -87,6 +87,140 @@ std::optional<std::vector<bool>> onset_holds(const circuit_tools::LoadedCircuit&
   return holds;
 }
 
+// The engine at each point of default_circuit_cases, one point at a time: fault name → one
+// reading per point; `points` the number of points checked (0 when a check fails, noted).
+std::map<std::string, std::vector<EngineReading>> engine_readings(const circuit_tools::LoadedCircuit& c,
+                                                                  std::vector<std::string>& notes, std::size_t& points) {
+  std::map<std::string, std::vector<EngineReading>> engine;
+  points = 0;
+  for (const CircuitCase& cs : default_circuit_cases(c)) {
+    CircuitCrosscheckOptions o;
+    o.cases = {cs};
+    o.max_order = kCircuitTableMaxOrder;
+    try {
+      const CircuitCrosscheck x = run_circuit_crosscheck(c, o);
+      ++points;
+      for (const CircuitCrosscheckRow& r : x.rows) {
+        EngineReading e;
+        for (const CircuitChannelCheck& ch : r.channel) {
+          e.slope.push_back(ch.slope0);
+          e.order.push_back(ch.order0);
+        }
+        engine[r.fault].push_back(std::move(e));
+      }
+    } catch (const std::exception& e) {
+      notes.push_back("engine check at " + cs.name + " failed (" + e.what() + "): slopes left ?");
+      points = 0;
+      break;
+    }
+  }
+  return engine;
+}
+
+// How long the fault transients are simulated [s]: 3 slowest time constants at op (0.2 … 10 s).
+double transient_duration(const CircuitOperatingPoint& op) {
+  double z0[circuit::kExtent<host::HostCircuitModel::kZ>] = {};
+  for (std::size_t k = 0; k < op.z.size() && k < std::size(z0); ++k) z0[k] = op.z[k];
+  const double rate = op.model.slowest_rate(op.model.from_z(z0));
+  return rate > 0.0 ? std::min(std::max(3.0 / rate, 0.2), 10.0) : 1.0;
+}
+
+// The row's slopes and orders from the graph, each slope kept only where every engine reading
+// agrees and it is the steady change's sign; why collects the reasons. Whether the engine's
+// orders are the graph's everywhere.
+bool set_graph_slopes_and_orders(circuit_tools::CircuitFaultTable::Row& row, std::string& why, const CircuitTcg& g,
+                                 const std::vector<ParamStep>& steps, const std::vector<EngineReading>& readings,
+                                 int channels) {
+  const std::vector<ChannelPrediction> q = forward_qualitative_at(g.graph, steps, kCircuitTableMaxOrder, g.measured);
+  const std::vector<ChannelPrediction> w = forward_weighted_at(g.graph, steps, kCircuitTableMaxOrder, g.measured);
+  bool orders_hold = true;
+  for (int i = 0; i < channels; ++i) {
+    const auto ch = static_cast<std::size_t>(i);
+    ChannelSignature& s = row.channel[i];
+    // Opposite paths meeting: the operating-point gains decide, as in the thesis table.
+    const QualSign slope = q[ch].order < 0 ? kQualZero : (q[ch].slope == kQualAny ? w[ch].slope : q[ch].slope);
+    bool engine_agrees = true;
+    for (const EngineReading& e : readings) {
+      engine_agrees = engine_agrees && e.slope[ch] == slope;
+      orders_hold = orders_hold && e.order[ch] == q[ch].order;
+    }
+    if (!engine_agrees) append(why, g.measured[ch] + " slope: the engine's differs from the graph's");
+    // A slope promised only where it is the steady change's sign too: a channel the fault
+    // moves by less than 1 σ (or by a size-dependent sign) alarms, if at all, on some
+    // later part of a transient, whose sign at the threshold is not the 0+ one (the closed
+    // loop's Dp±, eps± on p_a, p_c: docs/fdi.md §10).
+    s.slope = static_cast<std::int8_t>(engine_agrees && slope == s.magnitude ? slope : kQualAny);
+    if (engine_agrees && (slope == kQualPlus || slope == kQualMinus) &&
+        (s.magnitude == kQualPlus || s.magnitude == kQualMinus) && slope != s.magnitude) {
+      append(why, g.measured[ch] + " slope opposite to the steady change");
+    }
+    s.order = static_cast<std::uint8_t>(q[ch].order < 0 ? 0 : q[ch].order);
+  }
+  return orders_hold;
+}
+
+// The matcher reads the sign at the alarm onset, which the 0+ derivative gives only if
+// no opposite excursion reaches a threshold first: the fault `base` (dir ±1) simulated at
+// 10 % and 30 % for `transient` s; a slope that does not hold becomes `?`.
+void check_onsets(circuit_tools::CircuitFaultTable::Row& row, std::string& why, const circuit_tools::LoadedCircuit& c,
+                  const std::string& base, int dir, double transient, const std::vector<std::string>& measured,
+                  int channels) {
+  std::vector<std::int8_t> sign(static_cast<std::size_t>(channels));
+  bool any = false;
+  for (int i = 0; i < channels; ++i) {
+    sign[static_cast<std::size_t>(i)] = row.channel[i].slope;
+    any = any || row.channel[i].slope == kQualPlus || row.channel[i].slope == kQualMinus;
+  }
+  int simulated = 0;
+  for (const double size : {0.1, 0.3}) {
+    if (!any) break;
+    const std::optional<std::vector<bool>> run = onset_holds(c, base, 1.0 + dir * size, sign, transient);
+    if (!run) continue;
+    ++simulated;
+    const std::vector<bool>& holds = *run;
+    for (int i = 0; i < channels; ++i) {
+      const auto ch = static_cast<std::size_t>(i);
+      if (sign[ch] != kQualPlus && sign[ch] != kQualMinus) continue;
+      if (holds.empty() || !holds[ch]) {
+        row.channel[i].slope = kQualAny;
+        sign[ch] = kQualAny;
+        append(why, measured[ch] + (holds.empty() ? " slope: the fault does not simulate" :
+                                    " slope: an opposite excursion crosses a threshold first at " +
+                                        std::to_string(static_cast<int>(size * 100.0 + 0.5)) + " %"));
+      }
+    }
+  }
+  if (any && simulated == 0) {
+    for (int i = 0; i < channels; ++i) row.channel[i].slope = kQualAny;
+    append(why, "slopes ?: no steady state after a 10 or 30 % fault to simulate towards");
+  }
+}
+
+// The matcher wants a channel of the row's smallest order among the first to alarm
+// (fault_matcher.hpp). That channel is first only if it is also the most visible one;
+// otherwise which alarms first depends on the fault's size and the thresholds (the
+// thesis's Rbl+ at 100 Hz: w_m is order 1, p_pp order 2 but twice the σ, and alarms first).
+// The most visible channel when it is not on the fastest path, else -1.
+int most_visible_off_fastest_path(const circuit_tools::CircuitFaultTable::Row& row, int channels) {
+  int fastest = -1;
+  for (int i = 0; i < channels; ++i) {
+    const ChannelSignature& s = row.channel[i];
+    const bool responds = s.magnitude != kQualZero || s.slope != kQualZero;
+    if (responds && (fastest < 0 || s.order < row.channel[fastest].order)) fastest = i;
+  }
+  float fastest_visible = 0.0f, most_visible = 0.0f;
+  int most = -1;
+  for (int i = 0; i < channels; ++i) {
+    const float d = std::fabs(row.direction[i]);
+    if (fastest >= 0 && row.channel[i].order == row.channel[fastest].order) fastest_visible = std::max(fastest_visible, d);
+    if (most < 0 || d > most_visible) {
+      most = i;
+      most_visible = d;
+    }
+  }
+  return fastest >= 0 && fastest_visible < most_visible ? most : -1;
+}
+
 }  // namespace
 
 circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c) {
@@ -106,37 +240,11 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
   }
   const std::vector<std::string> on_graph = circuit_graph_faults(g);
 
-  // The engine at each point, one point at a time: a point without a steady state checks
-  // nothing, and every row then keeps `?` (nothing confirms the graph there).
-  std::map<std::string, std::vector<EngineReading>> engine;  // fault name → one reading per point
+  // A point without a steady state checks nothing, and every row then keeps `?` (nothing
+  // confirms the graph there).
   std::size_t points = 0;
-  for (const CircuitCase& cs : default_circuit_cases(c)) {
-    CircuitCrosscheckOptions o;
-    o.cases = {cs};
-    o.max_order = kCircuitTableMaxOrder;
-    try {
-      const CircuitCrosscheck x = run_circuit_crosscheck(c, o);
-      ++points;
-      for (const CircuitCrosscheckRow& r : x.rows) {
-        EngineReading e;
-        for (const CircuitChannelCheck& ch : r.channel) {
-          e.slope.push_back(ch.slope0);
-          e.order.push_back(ch.order0);
-        }
-        engine[r.fault].push_back(std::move(e));
-      }
-    } catch (const std::exception& e) {
-      t.notes.push_back("engine check at " + cs.name + " failed (" + e.what() + "): slopes left ?");
-      points = 0;
-      break;
-    }
-  }
-
-  // The fault transients are simulated for 3 slowest time constants (at least 0.2 s).
-  double z0[circuit::kExtent<host::HostCircuitModel::kZ>] = {};
-  for (std::size_t k = 0; k < op.z.size() && k < std::size(z0); ++k) z0[k] = op.z[k];
-  const double rate = op.model.slowest_rate(op.model.from_z(z0));
-  const double transient = rate > 0.0 ? std::min(std::max(3.0 / rate, 0.2), 10.0) : 1.0;
+  const std::map<std::string, std::vector<EngineReading>> engine = engine_readings(c, t.notes, points);
+  const double transient = transient_duration(op);
   const int channels = static_cast<int>(c.file.sensors.size());
   t.remarks.assign(t.rows.size(), std::string());
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
@@ -153,90 +261,17 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
       continue;
     }
     const std::vector<ParamStep> steps = circuit_fault_steps(g, base, dir);
-    const std::vector<ChannelPrediction> q = forward_qualitative_at(g.graph, steps, kCircuitTableMaxOrder, g.measured);
-    const std::vector<ChannelPrediction> w = forward_weighted_at(g.graph, steps, kCircuitTableMaxOrder, g.measured);
     const auto it = engine.find(name);
     const bool checked = points > 0 && it != engine.end() && it->second.size() == points;
     if (!checked) {
       why = "no engine check at every point: slopes ?, orders 0";
       continue;
     }
-    bool orders_hold = true;
-    for (int i = 0; i < channels; ++i) {
-      const auto ch = static_cast<std::size_t>(i);
-      ChannelSignature& s = row.channel[i];
-      // Opposite paths meeting: the operating-point gains decide, as in the thesis table.
-      const QualSign slope = q[ch].order < 0 ? kQualZero : (q[ch].slope == kQualAny ? w[ch].slope : q[ch].slope);
-      bool engine_agrees = true;
-      for (const EngineReading& e : it->second) {
-        engine_agrees = engine_agrees && e.slope[ch] == slope;
-        orders_hold = orders_hold && e.order[ch] == q[ch].order;
-      }
-      if (!engine_agrees) append(why, g.measured[ch] + " slope: the engine's differs from the graph's");
-      // A slope promised only where it is the steady change's sign too: a channel the fault
-      // moves by less than 1 σ (or by a size-dependent sign) alarms, if at all, on some
-      // later part of a transient, whose sign at the threshold is not the 0+ one (the closed
-      // loop's Dp±, eps± on p_a, p_c: docs/fdi.md §10).
-      s.slope = static_cast<std::int8_t>(engine_agrees && slope == s.magnitude ? slope : kQualAny);
-      if (engine_agrees && (slope == kQualPlus || slope == kQualMinus) &&
-          (s.magnitude == kQualPlus || s.magnitude == kQualMinus) && slope != s.magnitude) {
-        append(why, g.measured[ch] + " slope opposite to the steady change");
-      }
-      s.order = static_cast<std::uint8_t>(q[ch].order < 0 ? 0 : q[ch].order);
-    }
-    // The matcher reads the sign at the alarm onset, which the 0+ derivative gives only if
-    // no opposite excursion reaches a threshold first: simulate the fault at 10 % and 30 %.
-    std::vector<std::int8_t> sign(static_cast<std::size_t>(channels));
-    bool any = false;
-    for (int i = 0; i < channels; ++i) {
-      sign[static_cast<std::size_t>(i)] = row.channel[i].slope;
-      any = any || row.channel[i].slope == kQualPlus || row.channel[i].slope == kQualMinus;
-    }
-    int simulated = 0;
-    for (const double size : {0.1, 0.3}) {
-      if (!any) break;
-      const std::optional<std::vector<bool>> run = onset_holds(c, base, 1.0 + dir * size, sign, transient);
-      if (!run) continue;
-      ++simulated;
-      const std::vector<bool>& holds = *run;
-      for (int i = 0; i < channels; ++i) {
-        const auto ch = static_cast<std::size_t>(i);
-        if (sign[ch] != kQualPlus && sign[ch] != kQualMinus) continue;
-        if (holds.empty() || !holds[ch]) {
-          row.channel[i].slope = kQualAny;
-          sign[ch] = kQualAny;
-          append(why, g.measured[ch] + (holds.empty() ? " slope: the fault does not simulate" :
-                                        " slope: an opposite excursion crosses a threshold first at " +
-                                            std::to_string(static_cast<int>(size * 100.0 + 0.5)) + " %"));
-        }
-      }
-    }
-    if (any && simulated == 0) {
-      for (int i = 0; i < channels; ++i) row.channel[i].slope = kQualAny;
-      append(why, "slopes ?: no steady state after a 10 or 30 % fault to simulate towards");
-    }
+    bool orders_hold = set_graph_slopes_and_orders(row, why, g, steps, it->second, channels);
+    check_onsets(row, why, c, base, dir, transient, g.measured, channels);
     if (!orders_hold) append(why, "orders 0: the engine's differ from the graph's");
-    // The matcher wants a channel of the row's smallest order among the first to alarm
-    // (fault_matcher.hpp). That channel is first only if it is also the most visible one;
-    // otherwise which alarms first depends on the fault's size and the thresholds (the
-    // thesis's Rbl+ at 100 Hz: w_m is order 1, p_pp order 2 but twice the σ, and alarms first).
-    int fastest = -1;
-    for (int i = 0; i < channels; ++i) {
-      const ChannelSignature& s = row.channel[i];
-      const bool responds = s.magnitude != kQualZero || s.slope != kQualZero;
-      if (responds && (fastest < 0 || s.order < row.channel[fastest].order)) fastest = i;
-    }
-    float fastest_visible = 0.0f, most_visible = 0.0f;
-    int most = -1;
-    for (int i = 0; i < channels; ++i) {
-      const float d = std::fabs(row.direction[i]);
-      if (fastest >= 0 && row.channel[i].order == row.channel[fastest].order) fastest_visible = std::max(fastest_visible, d);
-      if (most < 0 || d > most_visible) {
-        most = i;
-        most_visible = d;
-      }
-    }
-    if (orders_hold && fastest >= 0 && fastest_visible < most_visible) {
+    const int most = orders_hold ? most_visible_off_fastest_path(row, channels) : -1;
+    if (most >= 0) {
       orders_hold = false;
       append(why, "orders 0: " + g.measured[static_cast<std::size_t>(most)] + ", the most visible channel, is not on the fastest path");
     }

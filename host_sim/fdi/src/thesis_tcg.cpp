@@ -39,24 +39,42 @@ class Builder {
   CausalGraph& g_;
 };
 
-}  // namespace
+// The operating point's steady flows and the split of the valve friction, which the nodes'
+// values and the edges' injections are written with.
+struct SteadyValues {
+  double Pmi, Pmo, Ppp, w;    ///< states [Pa, Pa, Pa, rad/s]
+  double Rbl1, Rbl2;          ///< inlet and outlet valve friction [N·m·s/rad]
+  double q_in, q_out;         ///< DCV inlet and outlet flows [m³/s]
+  double q_prv, q_ipl;        ///< PRV and cross-port leakage flows [m³/s]
+};
 
-CausalGraph thesis_tcg(ValveModel valves, const OperatingPoint& op) {
-  const bool lin = valves == ValveModel::kLinearised;
+SteadyValues steady_values(const OperatingPoint& op) {
   const ThesisParams<double>& p = op.p;
   const ThesisInputs<double>& u = op.u;
-  const double Pmi = op.x.Pmi, Pmo = op.x.Pmo, Ppp = op.x.Ppp, w = op.x.w_m;
-  const double Rbl1 = 0.5 * p.Rbl, Rbl2 = 0.5 * p.Rbl;  // the thesis identifies only the sum
-  const double q_in = p.kf * signed_root(u.Psupl - Pmi, p.dp_t_dcv);
-  const double q_out = p.kf * signed_root(Pmo - u.Ps, p.dp_t_dcv);
-  const double q_prv = u.kp * signed_root(Ppp - u.Pbp, p.dp_t_prv);
-  const double q_ipl = (Pmi - Pmo) / p.Ripl;
-  // At a steady state no net flow enters a volume and no net torque acts on the shaft, so
-  // a change of K or J injects nothing: they only shape transients (docs/fdi.md).
-  constexpr double kNet = 0.0;
+  SteadyValues v{};
+  v.Pmi = op.x.Pmi;
+  v.Pmo = op.x.Pmo;
+  v.Ppp = op.x.Ppp;
+  v.w = op.x.w_m;
+  v.Rbl1 = 0.5 * p.Rbl;  // the thesis identifies only the sum
+  v.Rbl2 = 0.5 * p.Rbl;
+  v.q_in = p.kf * signed_root(u.Psupl - v.Pmi, p.dp_t_dcv);
+  v.q_out = p.kf * signed_root(v.Pmo - u.Ps, p.dp_t_dcv);
+  v.q_prv = u.kp * signed_root(v.Ppp - u.Pbp, p.dp_t_prv);
+  v.q_ipl = (v.Pmi - v.Pmo) / p.Ripl;
+  return v;
+}
 
-  CausalGraph g;
-  Builder b(g);
+// At a steady state no net flow enters a volume and no net torque acts on the shaft, so
+// a change of K or J injects nothing: they only shape transients (docs/fdi.md).
+constexpr double kNet = 0.0;
+
+// Every effort and flow of the bond graph, the sources and the measurements, valued at the operating point.
+void add_nodes(Builder& b, const OperatingPoint& op, const SteadyValues& v) {
+  const ThesisParams<double>& p = op.p;
+  const ThesisInputs<double>& u = op.u;
+  const double Pmi = v.Pmi, Pmo = v.Pmo, Ppp = v.Ppp, w = v.w;
+  const double Rbl1 = v.Rbl1, Rbl2 = v.Rbl2, q_in = v.q_in, q_out = v.q_out, q_prv = v.q_prv, q_ipl = v.q_ipl;
   b.node("Psupl", NodeKind::kSource, 1, u.Psupl, "supply pressure (Se1)");
   b.node("Ps", NodeKind::kSource, 14, u.Ps, "tank pressure (Se14)");
   b.node("Pbp", NodeKind::kSource, 28, u.Pbp, "booster pressure (Se35)");
@@ -123,7 +141,14 @@ CausalGraph thesis_tcg(ValveModel valves, const OperatingPoint& op) {
   b.node("p_mo", NodeKind::kMeasurement, 0, Pmo, "measured Pmo");
   b.node("p_pp", NodeKind::kMeasurement, 0, Ppp, "measured Ppp");
   b.node("w_m", NodeKind::kMeasurement, 0, w, "measured ωm");
+}
 
+// The hydraulic side: sources, the DCV, the motor's inlet and outlet volumes, its ports and the
+// cross-port leakage (lin: the valves linearised).
+void add_hydraulic_edges(Builder& b, const OperatingPoint& op, const SteadyValues& v, bool lin) {
+  const ThesisParams<double>& p = op.p;
+  const double Pmi = v.Pmi, Pmo = v.Pmo, w = v.w;
+  const double Rbl1 = v.Rbl1, Rbl2 = v.Rbl2, q_in = v.q_in, q_out = v.q_out, q_ipl = v.q_ipl;
   const EdgeType kI = EdgeType::kInstant, kDt = EdgeType::kIntegral;
   // Sources.
   b.link("e1", "Psupl", 1, "Se1", "e1 = Psupl");
@@ -185,6 +210,14 @@ CausalGraph thesis_tcg(ValveModel valves, const OperatingPoint& op) {
   b.link("f21", "f23", 1, "1_m2", "common speed");
   b.link("f22", "f23", 1, "1_m2", "common speed");
   b.param("e22", "f22", kI, "Rbl2", 1, Rbl2, Rbl2 * w, "R22", "e22 = Rbl2*f22");
+}
+
+// The shaft, the loading pump, the PRV and booster line, and the sensors (lin: the PRV linearised).
+void add_shaft_pump_and_sensor_edges(Builder& b, const OperatingPoint& op, const SteadyValues& v, bool lin) {
+  const ThesisParams<double>& p = op.p;
+  const ThesisInputs<double>& u = op.u;
+  const double Ppp = v.Ppp, w = v.w, q_prv = v.q_prv;
+  const EdgeType kI = EdgeType::kInstant, kDt = EdgeType::kIntegral;
   // Shaft: in-edges of e24 in the order of Table 2.4 row 15.
   b.link("e24", "e10", 1, "1_shaft", "e24 = e10 - e23 - e25 - e26 + e27");
   b.link("e24", "e23", -1, "1_shaft", "e24 = e10 - e23 - e25 - e26 + e27");
@@ -219,6 +252,18 @@ CausalGraph thesis_tcg(ValveModel valves, const OperatingPoint& op) {
   b.link("p_mo", "e18", 1, "De19", "p_mo = e18");
   b.link("p_pp", "e31", 1, "De30", "p_pp = e31");
   b.link("w_m", "f24", 1, "tacho", "w_m = f24");
+}
+
+}  // namespace
+
+CausalGraph thesis_tcg(ValveModel valves, const OperatingPoint& op) {
+  const bool lin = valves == ValveModel::kLinearised;
+  const SteadyValues v = steady_values(op);
+  CausalGraph g;
+  Builder b(g);
+  add_nodes(b, op, v);
+  add_hydraulic_edges(b, op, v, lin);
+  add_shaft_pump_and_sensor_edges(b, op, v, lin);
   return g;
 }
 

@@ -442,6 +442,168 @@ double estimate_step_lead(const Prepared& p, const ThesisParams<double>& params,
   return best;
 }
 
+// Why a log cannot be used (fewer than 10 rows, no measured channel), or "" for both usable.
+std::string unusable_log(const host::LogData& fit_log, const host::LogData& check_log) {
+  for (const auto* lg : {&fit_log, &check_log}) {
+    if (!lg->ok() || lg->rows() < 10) return lg->path + ": log unusable (needs at least 10 rows)";
+    if (!lg->has(host::Signal::kPMi) && !lg->has(host::Signal::kPMo) && !lg->has(host::Signal::kPPp) &&
+        !lg->has(host::Signal::kWm)) {
+      return lg->path + ": no measured channel (p_mi, p_mo, p_pp, w_m)";
+    }
+  }
+  return "";
+}
+
+// The effects the sampling can see: one whose time scale is far below the sample period dt [s]
+// only shows in transients the log does not resolve (listed in not_identifiable instead).
+std::vector<Effect> visible_effects(const std::vector<Effect>& effects, double dt,
+                                    std::vector<NotIdentifiable>& not_identifiable) {
+  std::vector<Effect> candidates;
+  for (Effect e : effects) {
+    const auto& info = effect_info(e);
+    if (info.transient_time_scale > 0 && dt > 20.0 * info.transient_time_scale) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "sample period %.3g s is far longer than the effect's time scale (~%.3g s): it only shows in "
+                    "transients the log does not resolve",
+                    dt, info.transient_time_scale);
+      not_identifiable.push_back({e, buf});
+      continue;
+    }
+    candidates.push_back(e);
+  }
+  return candidates;
+}
+
+// Where the single-effect fit of e starts: the library default, but a sensor offset on the
+// channel whose mean residual explains most of the fit log (closed form) and a supply flow
+// limit just above the largest flow the fit log shows.
+ActiveEffect single_start(Effect e, const Prepared& A, const Where& where_fit, const ThesisParams<double>& params) {
+  ActiveEffect a = default_effect(e);
+  if (e == Effect::kSensorOffset) {
+    double best = -1;
+    for (int c = 0; c < kChannels; ++c) {
+      const auto ci = static_cast<std::size_t>(c);
+      if (!A.present[ci]) continue;
+      const double gain = std::pow(where_fit.channels[ci].mean / A.noise[ci], 2);
+      if (gain > best) {
+        best = gain;
+        a.channel = c;
+        a.values[0] = where_fit.channels[ci].mean;
+      }
+    }
+  } else if (e == Effect::kSupplyFlowLimit) {
+    double qmax = 0;
+    for (const auto& y : A.y) qmax = std::max(qmax, params.Dm * std::fabs(y[3]));
+    if (!A.present[3]) qmax = 1.5e-3;
+    a.values[0] = 1.02 * qmax;
+  }
+  return a;
+}
+
+// Where the pair fits start. Pairs among the best few; the best with every other kept effect (a
+// second effect fitted alone bends its parameter to absorb the first's gap, so it can rank far
+// below what it does beside the first: PRV cracking beside Coulomb friction fits 2.4 of 5 bar
+// alone and ranks fifth); and the best with a sensor offset on each channel (an offset
+// ranked low alone, because the other effect hides it, would never be among the few).
+// Not each of the few with every effect of the library: on a 15 s log beyond the library
+// that is 1 400 simulations instead of 400, most in pair fits that find nothing.
+std::vector<std::vector<ActiveEffect>> pair_starts(const std::vector<EffectFit>& useful, bool offset_allowed,
+                                                   int pair_candidates, Analysis& an, const Prepared& A) {
+  std::vector<std::vector<ActiveEffect>> starts;
+  auto add_pair = [&starts](const EffectFit& a, const EffectFit& b) {
+    std::vector<ActiveEffect> st;
+    for (const auto* f : {&a, &b}) {
+      for (const auto& ae : f->model.effects) st.push_back(ae);
+    }
+    starts.push_back(std::move(st));
+  };
+  const std::size_t np = std::min<std::size_t>(useful.size(), static_cast<std::size_t>(std::max(0, pair_candidates)));
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = i + 1; j < np; ++j) add_pair(useful[i], useful[j]);
+  }
+  // The best with every other kept effect, from its single fit (offsets below).
+  for (std::size_t j = np; np > 0 && j < useful.size(); ++j) {
+    if (useful[j].effects.front() != Effect::kSensorOffset) add_pair(useful.front(), useful[j]);
+  }
+  if (offset_allowed && !useful.empty() && useful.front().effects.front() != Effect::kSensorOffset) {
+    bool ok = false;
+    const auto yf = an.sim(useful.front().model, A, ok);
+    // One pair per measured channel: the best effect, fitted alone, bends its parameter
+    // to absorb part of an offset, so its residual need not point at the right channel.
+    for (int c = 0; ok && c < kChannels; ++c) {
+      const auto ci = static_cast<std::size_t>(c);
+      if (!A.present[ci]) continue;
+      ActiveEffect off = default_effect(Effect::kSensorOffset, c);
+      double m = 0;
+      for (std::size_t k = 0; k < yf.size(); ++k) m += A.y[k][ci] - yf[k][ci];
+      off.values[0] = m / static_cast<double>(yf.size());
+      std::vector<ActiveEffect> st = useful.front().model.effects;
+      st.push_back(off);
+      const bool dup = std::any_of(starts.begin(), starts.end(), [&](const std::vector<ActiveEffect>& x) {
+        return std::any_of(x.begin(), x.end(),
+                           [&](const ActiveEffect& q) { return q.id == Effect::kSensorOffset && q.channel == c; }) &&
+               std::any_of(x.begin(), x.end(), [&](const ActiveEffect& q) { return q.id == st.front().id; });
+      });
+      if (!dup) starts.push_back(std::move(st));
+    }
+  }
+  return starts;
+}
+
+// Whether pair pf earns its place beside the best single effect bi: better on the fit log (BIC)
+// and on the check log — 0.05 more of the plain ratio 1 − a/b, or a third less of what the
+// best single leaves (near noise the latter cannot happen) — with each of its effects identified.
+bool pair_needed(const EffectFit& pf, const EffectFit& bi) {
+  const bool better_check = plain_shrink(pf.rms_w_before_check, pf.rms_w_after_check) >=
+                                plain_shrink(bi.rms_w_before_check, bi.rms_w_after_check) + 0.05 ||
+                            pf.rms_w_after_check <= 0.7 * bi.rms_w_after_check;
+  return better_check && pf.delta_bic_fit < bi.delta_bic_fit - 10.0 && each_effect_identified(pf);
+}
+
+// Another set (not containing the best's effects) doing as well: the data cannot tell them apart.
+void note_indistinguishable(GapResult& res) {
+  const EffectFit& best = res.ranking.front();
+  for (std::size_t i = 1; i < res.ranking.size(); ++i) {
+    const EffectFit& f = res.ranking[i];
+    const bool disjoint = std::none_of(f.effects.begin(), f.effects.end(), [&](Effect e) {
+      return std::find(best.effects.begin(), best.effects.end(), e) != best.effects.end();
+    });
+    const double lead = plain_shrink(best.rms_w_before_check, best.rms_w_after_check) -
+                        plain_shrink(f.rms_w_before_check, f.rms_w_after_check);
+    if (disjoint && lead < 0.02 && f.delta_bic_fit - best.delta_bic_fit < 10.0) {
+      if (res.cannot_tell_apart.empty()) res.cannot_tell_apart.push_back(best.name);
+      res.cannot_tell_apart.push_back(f.name);
+    }
+  }
+}
+
+// Beyond the library: the located equation eq's missing term from the balance equations of both
+// logs; for a state equation, the nominal model run with it on the check log B (rmsw_b: its RMS before).
+void discover_missing_term(GapResult& res, int eq, const ArrData& arr_a, const ArrData& arr_b,
+                           const ExtendedModel& nominal, Analysis& an, const Prepared& B, double rmsw_b) {
+  auto d = discover(arr_a, arr_b, eq);
+  if (!d) return;
+  // State equations: simulate the nominal model with the terms on the check log.
+  if (eq == kEqFlowPp || eq == kEqTorque) {
+    ExtendedModel m = nominal;
+    m.terms = d->model_terms;
+    bool ok = false;
+    const auto y = an.sim(m, B, ok);
+    if (ok) {
+      d->simulated = true;
+      d->model_shrink_check = shrink(rmsw_b, pooled_rms_w(B, y));
+      for (std::size_t c = 0; c < kChannels; ++c) {
+        double s2 = 0;
+        for (std::size_t k = 0; k < y.size(); ++k) s2 += std::pow(B.y[k][c] - y[k][c], 2);
+        d->channel_rms_w_after_check[c] =
+            B.present[c] ? std::sqrt(s2 / static_cast<double>(y.size())) / B.noise[c] : kNan;
+      }
+    }
+  }
+  res.discovered.push_back(std::move(*d));
+}
+
 }  // namespace
 
 InputSeries inputs_from_log(const host::LogData& log, const ThesisInputs<double>& d) {
@@ -478,17 +640,8 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
     res.stage_seconds.emplace_back(name, std::chrono::duration<double>(now - t_stage).count());
     t_stage = now;
   };
-  for (const auto* lg : {&fit_log, &check_log}) {
-    if (!lg->ok() || lg->rows() < 10) {
-      res.error = lg->path + ": log unusable (needs at least 10 rows)";
-      return res;
-    }
-    if (!lg->has(host::Signal::kPMi) && !lg->has(host::Signal::kPMo) && !lg->has(host::Signal::kPPp) &&
-        !lg->has(host::Signal::kWm)) {
-      res.error = lg->path + ": no measured channel (p_mi, p_mo, p_pp, w_m)";
-      return res;
-    }
-  }
+  res.error = unusable_log(fit_log, check_log);
+  if (!res.error.empty()) return res;
   Prepared A = prepare(fit_log, defaults, o.settle_time);
   Prepared B = prepare(check_log, defaults, o.settle_time);
   res.step_lead_fit = A.u.step_lead = estimate_step_lead(A, params, o.sim, res.simulations);
@@ -547,20 +700,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
 
   // Which effects can the sampling see?
   const double dt = std::max(A.dt, B.dt);
-  std::vector<Effect> candidates;
-  for (Effect e : o.effects) {
-    const auto& info = effect_info(e);
-    if (info.transient_time_scale > 0 && dt > 20.0 * info.transient_time_scale) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf,
-                    "sample period %.3g s is far longer than the effect's time scale (~%.3g s): it only shows in "
-                    "transients the log does not resolve",
-                    dt, info.transient_time_scale);
-      res.not_identifiable.push_back({e, buf});
-      continue;
-    }
-    candidates.push_back(e);
-  }
+  const std::vector<Effect> candidates = visible_effects(o.effects, dt, res.not_identifiable);
 
   if (!res.where_fit.significant && !res.where_check.significant) {
     decide_verdict(res);
@@ -587,27 +727,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   // Single effects.
   std::vector<EffectFit> singles;
   for (Effect e : candidates) {
-    ActiveEffect a = default_effect(e);
-    if (e == Effect::kSensorOffset) {
-      // Channel whose mean residual explains most of the fit log (closed form).
-      double best = -1;
-      for (int c = 0; c < kChannels; ++c) {
-        const auto ci = static_cast<std::size_t>(c);
-        if (!A.present[ci]) continue;
-        const double gain = std::pow(res.where_fit.channels[ci].mean / A.noise[ci], 2);
-        if (gain > best) {
-          best = gain;
-          a.channel = c;
-          a.values[0] = res.where_fit.channels[ci].mean;
-        }
-      }
-    } else if (e == Effect::kSupplyFlowLimit) {
-      double qmax = 0;
-      for (const auto& y : A.y) qmax = std::max(qmax, params.Dm * std::fabs(y[3]));
-      if (!A.present[3]) qmax = 1.5e-3;
-      a.values[0] = 1.02 * qmax;
-    }
-    singles.push_back(an.fit({a}, ssr0, rmsw_a, rmsw_b, yb));
+    singles.push_back(an.fit({single_start(e, A, res.where_fit, params)}, ssr0, rmsw_a, rmsw_b, yb));
   }
   std::vector<EffectFit> useful;
   for (auto& f : singles) {
@@ -620,69 +740,15 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   std::sort(useful.begin(), useful.end(), [](const EffectFit& x, const EffectFit& y) { return score(x) > score(y); });
 
   stage("single_effects");
-  // Pairs among the best few; the best with every other kept effect (a second effect
-  // fitted alone bends its parameter to absorb the first's gap, so it can rank far below
-  // what it does beside the first: PRV cracking beside Coulomb friction fits 2.4 of 5 bar
-  // alone and ranks fifth); and the best with a sensor offset on each channel (an offset
-  // ranked low alone, because the other effect hides it, would never be among the few).
-  // Not each of the few with every effect of the library: on a 15 s log beyond the library
-  // that is 1 400 simulations instead of 400, most in pair fits that find nothing.
-  std::vector<std::vector<ActiveEffect>> starts;
-  auto add_pair = [&starts](const EffectFit& a, const EffectFit& b) {
-    std::vector<ActiveEffect> st;
-    for (const auto* f : {&a, &b}) {
-      for (const auto& ae : f->model.effects) st.push_back(ae);
-    }
-    starts.push_back(std::move(st));
-  };
-  const std::size_t np = std::min<std::size_t>(useful.size(), static_cast<std::size_t>(std::max(0, o.pair_candidates)));
-  for (std::size_t i = 0; i < np; ++i) {
-    for (std::size_t j = i + 1; j < np; ++j) add_pair(useful[i], useful[j]);
-  }
-  // The best with every other kept effect, from its single fit (offsets below).
-  for (std::size_t j = np; np > 0 && j < useful.size(); ++j) {
-    if (useful[j].effects.front() != Effect::kSensorOffset) add_pair(useful.front(), useful[j]);
-  }
   const bool offset_allowed = std::find(candidates.begin(), candidates.end(), Effect::kSensorOffset) != candidates.end();
-  if (offset_allowed && !useful.empty() && useful.front().effects.front() != Effect::kSensorOffset) {
-    bool ok = false;
-    const auto yf = an.sim(useful.front().model, A, ok);
-    // One pair per measured channel: the best effect, fitted alone, bends its parameter
-    // to absorb part of an offset, so its residual need not point at the right channel.
-    for (int c = 0; ok && c < kChannels; ++c) {
-      const auto ci = static_cast<std::size_t>(c);
-      if (!A.present[ci]) continue;
-      ActiveEffect off = default_effect(Effect::kSensorOffset, c);
-      double m = 0;
-      for (std::size_t k = 0; k < yf.size(); ++k) m += A.y[k][ci] - yf[k][ci];
-      off.values[0] = m / static_cast<double>(yf.size());
-      std::vector<ActiveEffect> st = useful.front().model.effects;
-      st.push_back(off);
-      const bool dup = std::any_of(starts.begin(), starts.end(), [&](const std::vector<ActiveEffect>& x) {
-        return std::any_of(x.begin(), x.end(),
-                           [&](const ActiveEffect& q) { return q.id == Effect::kSensorOffset && q.channel == c; }) &&
-               std::any_of(x.begin(), x.end(), [&](const ActiveEffect& q) { return q.id == st.front().id; });
-      });
-      if (!dup) starts.push_back(std::move(st));
-    }
-  }
+  const std::vector<std::vector<ActiveEffect>> starts = pair_starts(useful, offset_allowed, o.pair_candidates, an, A);
   std::vector<EffectFit> pairs;
   for (const auto& st : starts) {
-    {
-      EffectFit pf = an.fit(st, ssr0, rmsw_a, rmsw_b, yb);
-      const EffectFit& bi = useful.front();  // best single effect overall
-      // Needed: better on the fit log (BIC) and on the check log — 0.05 more of the plain
-      // ratio 1 − a/b, or a third less of what the best single leaves (near noise the
-      // latter cannot happen).
-      const bool better_check = plain_shrink(pf.rms_w_before_check, pf.rms_w_after_check) >=
-                                    plain_shrink(bi.rms_w_before_check, bi.rms_w_after_check) + 0.05 ||
-                                pf.rms_w_after_check <= 0.7 * bi.rms_w_after_check;
-      const bool needed = better_check && pf.delta_bic_fit < bi.delta_bic_fit - 10.0 && each_effect_identified(pf);
-      if (needed) {
-        pairs.push_back(std::move(pf));
-      } else {
-        res.rejected.push_back(std::move(pf));
-      }
+    EffectFit pf = an.fit(st, ssr0, rmsw_a, rmsw_b, yb);
+    if (pair_needed(pf, useful.front())) {  // beside the best single effect overall
+      pairs.push_back(std::move(pf));
+    } else {
+      res.rejected.push_back(std::move(pf));
     }
   }
   std::sort(pairs.begin(), pairs.end(), [](const EffectFit& x, const EffectFit& y) { return score(x) > score(y); });
@@ -691,22 +757,9 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
 
   stage("pairs");
   if (!res.ranking.empty()) {
-    const EffectFit& best = res.ranking.front();
-    // Another set (not containing the best's effects) doing as well: the data cannot tell.
-    for (std::size_t i = 1; i < res.ranking.size(); ++i) {
-      const EffectFit& f = res.ranking[i];
-      const bool disjoint = std::none_of(f.effects.begin(), f.effects.end(), [&](Effect e) {
-        return std::find(best.effects.begin(), best.effects.end(), e) != best.effects.end();
-      });
-      const double lead = plain_shrink(best.rms_w_before_check, best.rms_w_after_check) -
-                          plain_shrink(f.rms_w_before_check, f.rms_w_after_check);
-      if (disjoint && lead < 0.02 && f.delta_bic_fit - best.delta_bic_fit < 10.0) {
-        if (res.cannot_tell_apart.empty()) res.cannot_tell_apart.push_back(best.name);
-        res.cannot_tell_apart.push_back(f.name);
-      }
-    }
+    note_indistinguishable(res);
     bool ok = false;
-    res.best_check = an.sim(best.model, B, ok);
+    res.best_check = an.sim(res.ranking.front().model, B, ok);
     if (!ok) res.best_check = yb;
   }
   decide_verdict(res);
@@ -714,28 +767,7 @@ GapResult run_gap(const host::LogData& fit_log, const host::LogData& check_log, 
   // located equation's missing term.
   if (res.verdict != "explained" && res.verdict != "explained_by_pair") {
     const int eq = res.where_fit.located >= 0 ? res.where_fit.located : res.where_check.located;
-    if (eq >= 0) {
-      if (auto d = discover(arr_a, arr_b, eq)) {
-        // State equations: simulate the nominal model with the terms on the check log.
-        if (eq == kEqFlowPp || eq == kEqTorque) {
-          ExtendedModel m = nominal;
-          m.terms = d->model_terms;
-          bool ok = false;
-          const auto y = an.sim(m, B, ok);
-          if (ok) {
-            d->simulated = true;
-            d->model_shrink_check = shrink(rmsw_b, pooled_rms_w(B, y));
-            for (std::size_t c = 0; c < kChannels; ++c) {
-              double s2 = 0;
-              for (std::size_t k = 0; k < y.size(); ++k) s2 += std::pow(B.y[k][c] - y[k][c], 2);
-              d->channel_rms_w_after_check[c] =
-                  B.present[c] ? std::sqrt(s2 / static_cast<double>(y.size())) / B.noise[c] : kNan;
-            }
-          }
-        }
-        res.discovered.push_back(std::move(*d));
-      }
-    }
+    if (eq >= 0) discover_missing_term(res, eq, arr_a, arr_b, nominal, an, B, rmsw_b);
     decide_verdict(res);
   }
   stage("verdict_and_discovery");

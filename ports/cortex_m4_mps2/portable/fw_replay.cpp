@@ -150,167 +150,188 @@ int format_hex_float(char* buf, float v) noexcept {
   return n;
 }
 
-std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt) noexcept {
-  Line line(out);
+namespace {
+
+// Where each signal is in the log (the first column carrying it; -1: not there).
+struct SignalColumns {
   int col[kSigCount];
-  for (int& c : col) c = -1;
-  for (int c = 0; c < log.cols; ++c) {
-    const int s = log.signal[c];
-    if (s >= 0 && s < kSigCount && col[s] < 0) col[s] = c;
+  std::uint8_t mask = 0;  ///< measured channels (p_mi, p_mo, p_pp, w_m) in the log
+
+  explicit SignalColumns(const LogView& log) noexcept {
+    for (int& c : col) c = -1;
+    for (int c = 0; c < log.cols; ++c) {
+      const int s = log.signal[c];
+      if (s >= 0 && s < kSigCount && col[s] < 0) col[s] = c;
+    }
+    for (int c = 0; c < 4; ++c) {
+      if (col[kSigPMi + c] >= 0) mask = static_cast<std::uint8_t>(mask | (1u << c));
+    }
   }
-  const auto cols = static_cast<std::size_t>(log.cols);
-  // Value of signal s at row k in SI (double, as the host reader stores it).
-  auto at = [&](std::size_t k, int s) noexcept {
-    return log.data[k * cols + static_cast<std::size_t>(col[s])] * log.scale[col[s]];
-  };
-  const ThesisInputs<float> defaults;
-  auto inputs_at = [&](std::size_t k) noexcept {
+};
+
+// The log read by signal, in SI (double, as the host reader stores it).
+struct SignalLog {
+  const LogView& log;
+  SignalColumns sc;
+
+  bool has(int s) const noexcept { return sc.col[s] >= 0; }
+  /// Value of signal s at row k.
+  double at(std::size_t k, int s) const noexcept {
+    return log.data[k * static_cast<std::size_t>(log.cols) + static_cast<std::size_t>(sc.col[s])] * log.scale[sc.col[s]];
+  }
+  /// Row k's inputs: the log's where it has them, else the thesis defaults.
+  hstmon_inputs inputs_at(std::size_t k) const noexcept {
+    const ThesisInputs<float> defaults;
     hstmon_inputs u{defaults.Psupl, defaults.Ps, defaults.Pbp, defaults.kp};
-    if (col[kSigPSup] >= 0) u.p_sup = static_cast<float>(at(k, kSigPSup));
-    if (col[kSigPS] >= 0) u.p_s = static_cast<float>(at(k, kSigPS));
-    if (col[kSigPBp] >= 0) u.p_bp = static_cast<float>(at(k, kSigPBp));
-    if (col[kSigKp] >= 0) u.kp = static_cast<float>(at(k, kSigKp));
+    if (has(kSigPSup)) u.p_sup = static_cast<float>(at(k, kSigPSup));
+    if (has(kSigPS)) u.p_s = static_cast<float>(at(k, kSigPS));
+    if (has(kSigPBp)) u.p_bp = static_cast<float>(at(k, kSigPBp));
+    if (has(kSigKp)) u.kp = static_cast<float>(at(k, kSigKp));
     return u;
-  };
-
-  std::uint8_t mask = 0;
-  for (int c = 0; c < 4; ++c) {
-    if (col[kSigPMi + c] >= 0) mask = static_cast<std::uint8_t>(mask | (1u << c));
   }
-  const std::size_t rows = col[kSigT] >= 0 ? log.rows : 0;
-  const double t_first = rows ? at(0, kSigT) : 0.0;
-  const double t_last = rows ? at(rows - 1, kSigT) : 0.0;
-  const double tick = rows ? log_tick(log, col[kSigT]) : 1e-3;
+  /// Row k's measurement (time, inputs, readings, valid channels).
+  hstmon_sample sample_at(std::size_t k) const noexcept {
+    hstmon_sample s{};
+    s.t_s = static_cast<float>(at(k, kSigT));
+    s.u = inputs_at(k);
+    for (int c = 0; c < 4; ++c) s.y[c] = has(kSigPMi + c) ? static_cast<float>(at(k, kSigPMi + c)) : 0.0f;
+    s.valid = sc.mask;
+    return s;
+  }
+};
 
-  // As ports/host/src/replay.cpp: default parameters and monitor settings, the log's tick.
-  hstmon_config cfg;
-  hstmon_default_config(&cfg);
-  cfg.tick_s = static_cast<float>(tick);
-  hstmon_monitor* mon = nullptr;
-  if (hstmon_create(&g_storage, sizeof g_storage, &cfg, &mon) != HSTMON_OK) return ~0u;
+// What the replay adds up over the rows.
+struct ReplayTotals {
   hstmon_report rep{};
   std::uint8_t start = HSTMON_START_REST;
   std::uint32_t health = 0, max_substeps = 0;
   std::uint64_t unhealthy = 0, digest = 0xcbf29ce484222325ull, n_events = 0, event_mismatch = 0;
   Stats st[4];
-  // One `hstmon replay --json` event line: keys in the host's (nlohmann's sorted) order;
-  // t is the row's time (the event's float t_s must be that row's, checked).
-  auto print_event = [&](const hstmon_event& e, double t_row) noexcept {
-    hstmon_candidate live[kPrintCandidates];
-    int shown = e.count;
-    const hstmon_candidate* cand = e.candidate;
-    bool same = e.t_s == static_cast<float>(t_row);
-    if (e.kind != HSTMON_EVENT_CLEARED) {
-      // The event stores the best HSTMON_EVENT_CANDIDATES; the rest is the live ranking,
-      // which is the event's when the queue is drained after every tick (all events of a
-      // tick are raised after its ranking). Checked on the stored part.
-      const int total = hstmon_candidates(mon, live, kPrintCandidates);
-      bool match = total == e.consistent;
-      for (int j = 0; match && j < e.count; ++j) {
-        match = live[j].name == e.candidate[j].name && std::memcmp(&live[j].score, &e.candidate[j].score, sizeof(float)) == 0;
-      }
-      if (match) {
-        shown = total < kPrintCandidates ? total : kPrintCandidates;
-        cand = live;
-      }
-      same = same && match;
-    }
-    if (!same) ++event_mismatch;
-    line.begin().key("candidates").raw("[");
-    for (int j = 0; j < shown; ++j) {
-      line.raw(j ? ",{" : "{");
-      line.first_key().str("fault", cand[j].name).num("score", static_cast<double>(cand[j].score)).raw("}");
-    }
-    line.raw("]").uint("consistent", e.consistent).str("event", hstmon_event_name(static_cast<hstmon_event_kind>(e.kind)))
-        .num("t", t_row).str("type", "event").end();
-    ++n_events;
-  };
+};
 
-  if (rows > 0) {
-    const hstmon_inputs u0 = inputs_at(0);
-    // As `hstmon replay --init auto`: from the first row's measurements.
-    hstmon_sample first{};
-    first.u = u0;
-    for (int c = 0; c < 4; ++c) first.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(0, kSigPMi + c)) : 0.0f;
-    first.valid = mask;
-    if (hstmon_reset_measured(mon, &first, &start) != HSTMON_OK) {
-      (void)hstmon_reset_rest(mon, &u0);
-      start = HSTMON_START_REST;
+// One `hstmon replay --json` event line: keys in the host's (nlohmann's sorted) order;
+// t is the row's time (the event's float t_s must be that row's, checked).
+void print_event(Line& line, hstmon_monitor* mon, const hstmon_event& e, double t_row, ReplayTotals& tot) noexcept {
+  hstmon_candidate live[kPrintCandidates];
+  int shown = e.count;
+  const hstmon_candidate* cand = e.candidate;
+  bool same = e.t_s == static_cast<float>(t_row);
+  if (e.kind != HSTMON_EVENT_CLEARED) {
+    // The event stores the best HSTMON_EVENT_CANDIDATES; the rest is the live ranking,
+    // which is the event's when the queue is drained after every tick (all events of a
+    // tick are raised after its ranking). Checked on the stored part.
+    const int total = hstmon_candidates(mon, live, kPrintCandidates);
+    bool match = total == e.consistent;
+    for (int j = 0; match && j < e.count; ++j) {
+      match = live[j].name == e.candidate[j].name && std::memcmp(&live[j].score, &e.candidate[j].score, sizeof(float)) == 0;
     }
-
-    hstmon_sample s{};
-    hstmon_sample none{};  // inputs held, nothing measured (valid = 0): the matcher does not run
-    none.u = u0;
-    hstmon_event ev;
-    hstmon_read(mon, &rep);
-    for (std::size_t k = 0; k < rows; ++k) {
-      const double t_row = at(k, kSigT) - t_first;
-      while (t_row - static_cast<double>(rep.ticks) * tick > 0.5 * tick) {
-        none.t_s = static_cast<float>(t_first + static_cast<double>(rep.ticks) * tick);
-        health |= hstmon_step(mon, &none);
-        hstmon_read(mon, &rep);
-        if (rep.substeps > max_substeps) max_substeps = rep.substeps;
-      }
-      s.t_s = static_cast<float>(at(k, kSigT));
-      s.u = inputs_at(k);
-      for (int c = 0; c < 4; ++c) s.y[c] = col[kSigPMi + c] >= 0 ? static_cast<float>(at(k, kSigPMi + c)) : 0.0f;
-      s.valid = mask;
-      const std::uint32_t flags = hstmon_step(mon, &s);
-      while (hstmon_pop_event(mon, &ev)) print_event(ev, at(k, kSigT));
-      health |= flags;
-      if (flags) ++unhealthy;
-      hstmon_read(mon, &rep);
-      if (rep.substeps > max_substeps) max_substeps = rep.substeps;
-      none.u = s.u;
-
-      const float* r = rep.residual;
-      const std::uint8_t rv = rep.residual_valid;
-      fnv1a(digest, r, sizeof(float) * 4);
-      fnv1a(digest, &flags, sizeof flags);
-      for (int c = 0; c < 4; ++c) {
-        if (!(rv & (1u << c))) continue;
-        st[c].add(static_cast<double>(r[c]), at(k, kSigT));
-      }
-      if (opt.trace) {
-        char b[40];
-        line.raw("trace ");
-        format_uint(b, k);
-        line.raw(b).raw(" ");
-        format_uint(b, flags);
-        line.raw(b);
-        for (int c = 0; c < 4; ++c) {
-          format_hex_float(b, r[c]);
-          line.raw(" ").raw(b);
-        }
-        line.raw("\n").flush();
-      }
+    if (match) {
+      shown = total < kPrintCandidates ? total : kPrintCandidates;
+      cand = live;
     }
+    same = same && match;
+  }
+  if (!same) ++tot.event_mismatch;
+  line.begin().key("candidates").raw("[");
+  for (int j = 0; j < shown; ++j) {
+    line.raw(j ? ",{" : "{");
+    line.first_key().str("fault", cand[j].name).num("score", static_cast<double>(cand[j].score)).raw("}");
+  }
+  line.raw("]").uint("consistent", e.consistent).str("event", hstmon_event_name(static_cast<hstmon_event_kind>(e.kind)))
+      .num("t", t_row).str("type", "event").end();
+  ++tot.n_events;
+}
+
+// Row k's trace line: health flags and each channel's residual as hex floats.
+void print_trace(Line& line, std::size_t k, std::uint32_t flags, const float* r) noexcept {
+  char b[40];
+  line.raw("trace ");
+  format_uint(b, k);
+  line.raw(b).raw(" ");
+  format_uint(b, flags);
+  line.raw(b);
+  for (int c = 0; c < 4; ++c) {
+    format_hex_float(b, r[c]);
+    line.raw(" ").raw(b);
+  }
+  line.raw("\n").flush();
+}
+
+// The rows through the monitor, started as `hstmon replay --init auto` (from the first row's
+// measurements), with the ticks between rows stepped on held inputs; rows > 0.
+void replay_rows(hstmon_monitor* mon, const SignalLog& lg, std::size_t rows, double tick, bool trace, Line& line,
+                 ReplayTotals& tot) noexcept {
+  const double t_first = lg.at(0, kSigT);
+  const hstmon_inputs u0 = lg.inputs_at(0);
+  const hstmon_sample first = lg.sample_at(0);
+  if (hstmon_reset_measured(mon, &first, &tot.start) != HSTMON_OK) {
+    (void)hstmon_reset_rest(mon, &u0);
+    tot.start = HSTMON_START_REST;
   }
 
-  // Header line: the fields of `hstmon replay --json`.
+  hstmon_sample none{};  // inputs held, nothing measured (valid = 0): the matcher does not run
+  none.u = u0;
+  hstmon_event ev;
+  hstmon_report& rep = tot.rep;
+  hstmon_read(mon, &rep);
+  for (std::size_t k = 0; k < rows; ++k) {
+    const double t_row = lg.at(k, kSigT) - t_first;
+    while (t_row - static_cast<double>(rep.ticks) * tick > 0.5 * tick) {
+      none.t_s = static_cast<float>(t_first + static_cast<double>(rep.ticks) * tick);
+      tot.health |= hstmon_step(mon, &none);
+      hstmon_read(mon, &rep);
+      if (rep.substeps > tot.max_substeps) tot.max_substeps = rep.substeps;
+    }
+    const hstmon_sample s = lg.sample_at(k);
+    const std::uint32_t flags = hstmon_step(mon, &s);
+    while (hstmon_pop_event(mon, &ev)) print_event(line, mon, ev, lg.at(k, kSigT), tot);
+    tot.health |= flags;
+    if (flags) ++tot.unhealthy;
+    hstmon_read(mon, &rep);
+    if (rep.substeps > tot.max_substeps) tot.max_substeps = rep.substeps;
+    none.u = s.u;
+
+    const float* r = rep.residual;
+    const std::uint8_t rv = rep.residual_valid;
+    fnv1a(tot.digest, r, sizeof(float) * 4);
+    fnv1a(tot.digest, &flags, sizeof flags);
+    for (int c = 0; c < 4; ++c) {
+      if (!(rv & (1u << c))) continue;
+      tot.st[c].add(static_cast<double>(r[c]), lg.at(k, kSigT));
+    }
+    if (trace) print_trace(line, k, flags, r);
+  }
+}
+
+// Header line: the fields of `hstmon replay --json`.
+void print_replay_line(Line& line, const LogView& log, const SignalColumns& sc, std::size_t rows, double t_first,
+                       double t_last, double tick, const ReplayTotals& tot) noexcept {
   line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
-      .num("t_last", t_last).num("tick_s", tick).uint("ticks", rep.ticks).str("start", start == HSTMON_START_MEASURED ? "measured" : (start == HSTMON_START_STEADY ? "steady" : "rest"));
+      .num("t_last", t_last).num("tick_s", tick).uint("ticks", tot.rep.ticks).str("start", tot.start == HSTMON_START_MEASURED ? "measured" : (tot.start == HSTMON_START_STEADY ? "steady" : "rest"));
   line.key("health").raw("[");
   bool first = true;
   for (int b = 0; b < kHealthNameCount; ++b) {
-    if (health & (1u << b)) {
+    if (tot.health & (1u << b)) {
       line.raw(first ? "\"" : ",\"").raw(kHealthNames[b]).raw("\"");
       first = false;
     }
   }
-  line.raw("]").uint("unhealthy_rows", unhealthy).uint("max_substeps", max_substeps);
+  line.raw("]").uint("unhealthy_rows", tot.unhealthy).uint("max_substeps", tot.max_substeps);
   line.key("notes").raw("[");
   first = true;
   for (int i = 0; i < 4; ++i) {
-    if (col[kSigPSup + i] < 0) {
+    if (sc.col[kSigPSup + i] < 0) {
       line.raw(first ? "\"" : ",\"").raw(kInputNote[i]).raw(" not in log: held at the parameter value\"");
       first = false;
     }
   }
   line.raw("]").end();
+}
 
+// One residual line per channel: its statistics over the rows compared.
+void print_residual_lines(Line& line, std::uint8_t mask, const ReplayTotals& tot) noexcept {
   for (int c = 0; c < 4; ++c) {
-    const Stats& s = st[c];
+    const Stats& s = tot.st[c];
     line.begin().str("type", "residual").str("channel", kChannelName[c]).str("unit", c == 3 ? "rad/s" : "Pa")
         .boolean("measured", (mask >> c) & 1u).uint("n", s.n);
     if (s.n > 0) {
@@ -319,17 +340,43 @@ std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt
     }
     line.end();
   }
+}
 
-  // The diagnosis line of `hstmon replay --json` (keys sorted, as there).
-  line.begin().uint("events", n_events).str("status", hstmon_match_name(hstmon_match_status(mon))).str("type", "diagnosis").end();
+// The diagnosis line of `hstmon replay --json` (keys sorted, as there) and the firmware's own line.
+void print_diagnosis_lines(Line& line, hstmon_monitor* mon, const ReplayTotals& tot) noexcept {
+  line.begin().uint("events", tot.n_events).str("status", hstmon_match_name(hstmon_match_status(mon))).str("type", "diagnosis").end();
 
   char hex[20];
-  for (int i = 0; i < 16; ++i) hex[i] = "0123456789abcdef"[(digest >> (60 - 4 * i)) & 0xfu];
+  for (int i = 0; i < 16; ++i) hex[i] = "0123456789abcdef"[(tot.digest >> (60 - 4 * i)) & 0xfu];
   hex[16] = '\0';
   line.begin().str("type", "firmware").str("scalar", "float").str("residual_digest", hex)
       .uint("events_dropped", hstmon_events_dropped(mon))
-      .uint("event_mismatches", event_mismatch).end();
-  return health;
+      .uint("event_mismatches", tot.event_mismatch).end();
+}
+
+}  // namespace
+
+std::uint32_t replay_json(const LogView& log, Sink out, const ReplayOptions& opt) noexcept {
+  Line line(out);
+  const SignalLog lg{log, SignalColumns(log)};
+  const std::size_t rows = lg.has(kSigT) ? log.rows : 0;
+  const double t_first = rows ? lg.at(0, kSigT) : 0.0;
+  const double t_last = rows ? lg.at(rows - 1, kSigT) : 0.0;
+  const double tick = rows ? log_tick(log, lg.sc.col[kSigT]) : 1e-3;
+
+  // As ports/host/src/replay.cpp: default parameters and monitor settings, the log's tick.
+  hstmon_config cfg;
+  hstmon_default_config(&cfg);
+  cfg.tick_s = static_cast<float>(tick);
+  hstmon_monitor* mon = nullptr;
+  if (hstmon_create(&g_storage, sizeof g_storage, &cfg, &mon) != HSTMON_OK) return ~0u;
+  ReplayTotals tot;
+  if (rows > 0) replay_rows(mon, lg, rows, tick, opt.trace, line, tot);
+
+  print_replay_line(line, log, lg.sc, rows, t_first, t_last, tick, tot);
+  print_residual_lines(line, lg.sc.mask, tot);
+  print_diagnosis_lines(line, mon, tot);
+  return tot.health;
 }
 
 }  // namespace hstmon::fw
