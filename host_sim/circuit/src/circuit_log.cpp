@@ -593,6 +593,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
       if (line_no == units_line) continue;                   // taken with the header
       if (!header_seen) {
         header_seen = true;
+        log.header_line = line_no;
         if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
         attach_columns(targets, log);
         reserve_rows(log, targets, host::detail::estimate_rows(text.data() + std::min(pos, text.size()), text_end));
@@ -737,6 +738,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
   auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
   std::vector<Target> targets;
   if (auto e = column_targets(names, c, o, log, targets)) return fail(e->line, e->column, e->message);
+  log.header_line = 1;  // as in a CSV file of these columns
   for (std::size_t k = 0; k < targets.size(); ++k) {
     const bool used = targets[k].kind == Target::kTime || targets[k].kind == Target::kInput ||
                       targets[k].kind == Target::kSensor;

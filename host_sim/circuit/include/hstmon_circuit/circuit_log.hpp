@@ -41,6 +41,7 @@ struct CircuitLog {
   std::vector<std::vector<double>> inputs;    ///< by input index; empty when not in the log
   std::vector<std::vector<double>> sensors;   ///< by channel index; empty when not in the log
   std::vector<std::string> notes;             ///< "file:line:col: note: ..." lines
+  std::size_t header_line = 0;                ///< 1-based line of the column names (0: none read)
   std::optional<host::SourceError> error;     ///< set when reading failed (then no rows)
 
   std::size_t rows() const noexcept { return t.size(); }
