@@ -148,7 +148,9 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     for (std::size_t i = 0; i < n_inputs; ++i) v.v[i] += tau * slope[i];
     return v;
   };
-  auto restart = [&](double t) {
+  // kink: the inputs meet the last segment's without a jump (a linear profile's row), so
+  // the integrator goes on at its last step rather than from the first trial step.
+  auto restart = [&](double t, bool kink = false) {
     if (params_changed) full.set_params(p);
     params_changed = false;
     full.set_inputs(u);
@@ -174,30 +176,33 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     sloped = std::any_of(slope.begin(), slope.end(), [](double v) { return v != 0.0; });
     seg_length = seg + 1 < prof.t.size() ? prof.t[seg + 1] - prof.t[seg] : 1.0;
     x[static_cast<std::size_t>(n)] = 0.0;
-    ref->restart(
-        t, x.data(),
-        [&](const double* xs, double* dx) {
-          if (sloped) full.set_inputs(ramped(xs[n]));
-          const Model::State d = full.derivative(to_state(xs));
-          for (int i = 0; i < n; ++i) dx[i] = d[i];
-          dx[n] = 1.0;
-        },
-        [&](const double* xs, double* jac) {
-          const Model::State xs_state = to_state(xs);
-          if (sloped) full.set_inputs(ramped(xs[n]));
-          Model::StateMatrix J;
-          full.jacobian(xs_state, J);
-          for (int r = 0; r < m; ++r) {
-            for (int k = 0; k < m; ++k) jac[r * m + k] = r < n && k < n ? J(r, k) : 0.0;
-          }
-          if (!sloped) return;
-          // d f / d tau = (d f / d u)·slope, by a forward difference along the ramp.
-          const double h = 1e-6 * seg_length;
-          const Model::State f0 = full.derivative(xs_state);
-          full.set_inputs(ramped(xs[n] + h));
-          const Model::State f1 = full.derivative(xs_state);
-          for (int r = 0; r < n; ++r) jac[r * m + n] = (f1[r] - f0[r]) / h;
-        });
+    auto rhs = [&](const double* xs, double* dx) {
+      if (sloped) full.set_inputs(ramped(xs[n]));
+      const Model::State d = full.derivative(to_state(xs));
+      for (int i = 0; i < n; ++i) dx[i] = d[i];
+      dx[n] = 1.0;
+    };
+    auto jacobian = [&](const double* xs, double* jac) {
+      const Model::State xs_state = to_state(xs);
+      if (sloped) full.set_inputs(ramped(xs[n]));
+      Model::StateMatrix J;
+      full.jacobian(xs_state, J);
+      for (int r = 0; r < m; ++r) {
+        for (int k = 0; k < m; ++k) jac[r * m + k] = r < n && k < n ? J(r, k) : 0.0;
+      }
+      if (!sloped) return;
+      // d f / d tau = (d f / d u)·slope, by a forward difference along the ramp.
+      const double h = 1e-6 * seg_length;
+      const Model::State f0 = full.derivative(xs_state);
+      full.set_inputs(ramped(xs[n] + h));
+      const Model::State f1 = full.derivative(xs_state);
+      for (int r = 0; r < n; ++r) jac[r * m + n] = (f1[r] - f0[r]) / h;
+    };
+    if (kink) {
+      ref->restart(t, x.data(), rhs, jacobian, ref->next_step());
+    } else {
+      ref->restart(t, x.data(), rhs, jacobian);
+    }
   };
   restart(o.start_time);
 
@@ -250,7 +255,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
       bool changed = false;
       for (std::size_t i = 0; i < n_inputs && !ramps && !changed; ++i) changed = u.v[i] != before.v[i];
       jump = jump || changed;
-      if (jump || (ramps && slopes_in(seg) != slope_before)) restart(t_now);
+      if (jump || (ramps && slopes_in(seg) != slope_before)) restart(t_now, !jump);
       stepped_here = stepped_here || (jump && std::fabs(tb - ts) <= 1e-12);
     }
     if (ref && ts > ref->time()) ref->advance_to(ts);
