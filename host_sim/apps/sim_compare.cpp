@@ -43,7 +43,7 @@ std::string compare_text(const host::CircuitFile& c, const circuit_tools::Circui
       }
     }
     const double n = static_cast<double>(rows);
-    out += fmt::format("  {:<{}}  mean {:+.4g}  rms {:.4g}  max {:+.4g} at t = {:g} s\n", name, width, sum / n,
+    out += fmt::format("  {:<{}}  mean {:+.4g}  rms {:.4g}  max {:+.4g} at t = {} s\n", name, width, sum / n,
                        std::sqrt(sum2 / n), worst, t_worst);
   }
   return out;

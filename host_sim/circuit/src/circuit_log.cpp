@@ -109,6 +109,19 @@ std::string format_value(double v) {
   return b;
 }
 
+// A time: "%.9g" when that is within a nanosecond of it, else the shortest text that reads
+// back as the same number (a logger's Unix time, 1700000022.51, not 1.70000002e+09).
+std::string format_time(double t) {
+  std::string s = format_value(t);
+  if (std::fabs(std::strtod(s.c_str(), nullptr) - t) <= 1e-9) return s;
+  char b[40];
+  for (int digits = 10; digits <= 17; ++digits) {
+    std::snprintf(b, sizeof b, "%.*g", digits, t);
+    if (std::strtod(b, nullptr) == t) break;
+  }
+  return b;
+}
+
 bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
 /// Which lines hold the names and the units, and the separator.
@@ -650,7 +663,7 @@ std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log, 
   }
   os << '\n';
   for (std::size_t k = 0; k < log.t.size(); ++k) {
-    os << format_value(log.t[k]);
+    os << format_time(log.t[k]);
     for (const Col& col : cols) os << ',' << format_value(col.conv.from_si((*col.v)[k]));
     os << '\n';
   }

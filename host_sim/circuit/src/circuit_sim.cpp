@@ -150,7 +150,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   };
   // kink: the inputs meet the last segment's without a jump (a linear profile's row), so
   // the integrator goes on at its last step rather than from the first trial step.
-  auto restart = [&](double t, bool kink = false) {
+  auto restart = [&](double t, bool kink = false) {  // t: since the start [s]
     if (params_changed) full.set_params(p);
     params_changed = false;
     full.set_inputs(u);
@@ -204,7 +204,10 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
       ref->restart(t, x.data(), rhs, jacobian);
     }
   };
-  restart(o.start_time);
+  // The integrator's clock starts at 0: a log's clock may be far from it (a logger's Unix
+  // time, 1.7e9 s, resolves only 2e-7 s), the time since the start never is.
+  const double t0 = o.start_time;
+  restart(0.0);
 
   std::vector<sim::ChannelSpec> specs;
   for (const host::CircuitSensor& s : c.file.sensors) {
@@ -238,9 +241,9 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     // Steps and rows up to this sample, each met exactly by a hard stop.
     bool stepped_here = false;
     for (double tb = next_break(); tb <= ts + 1e-12; tb = next_break()) {
-      if (ref && tb > ref->time()) ref->advance_to(tb);
+      if (ref && tb - t0 > ref->time()) ref->advance_to(tb - t0);
       if (ref) x = ref->state();
-      const double t_now = ref ? ref->time() : tb;
+      const double t_now = ref ? ref->time() : tb - t0;
       bool jump = false;
       if (next < steps.size() && steps[next].t <= tb + 1e-12) {
         apply_steps_until(tb);
@@ -258,7 +261,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
       if (jump || (ramps && slopes_in(seg) != slope_before)) restart(t_now, !jump);
       stepped_here = stepped_here || (jump && std::fabs(tb - ts) <= 1e-12);
     }
-    if (ref && ts > ref->time()) ref->advance_to(ts);
+    if (ref && ts - t0 > ref->time()) ref->advance_to(ts - t0);
     if (ref) x = ref->state();
     u = inputs_at(ts, seg);
     full.set_inputs(u);

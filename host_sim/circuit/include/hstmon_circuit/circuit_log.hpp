@@ -81,7 +81,8 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
                                     const host::ReadOptions& o = {});
 
 /// The log as text: `t[s]`, the present input columns, then the present sensor columns,
-/// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g".
+/// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g" (a
+/// time that needs more digits to a nanosecond: as many as read back the same number).
 /// @param comments  lines written first as "# ..."
 std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log,
                              const std::vector<std::string>& comments = {});
