@@ -109,11 +109,12 @@ std::string format_value(double v) {
   return b;
 }
 
-// A time: "%.9g" when that is within a nanosecond of it, else the shortest text that reads
-// back as the same number (a logger's Unix time, 1700000022.51, not 1.70000002e+09).
+// A time: "%.9g" when that is within a nanosecond of it and no exponent (below 1e9 s), else
+// the shortest text that reads back as the same number (a logger's Unix time,
+// 1700000022.51, not 1.70000002e+09).
 std::string format_time(double t) {
   std::string s = format_value(t);
-  if (std::fabs(std::strtod(s.c_str(), nullptr) - t) <= 1e-9) return s;
+  if (std::fabs(t) < 1e9 && std::fabs(std::strtod(s.c_str(), nullptr) - t) <= 1e-9) return s;
   char b[40];
   for (int digits = 10; digits <= 17; ++digits) {
     std::snprintf(b, sizeof b, "%.*g", digits, t);
