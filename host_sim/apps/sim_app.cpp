@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
   app.add_option("--circuit", o.circuit,
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
-                 "(default steady), --no-noise, --params, --step, --fault");
+                 "(default steady), --no-noise, --params, --step, --fault, --inputs");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
