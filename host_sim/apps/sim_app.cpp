@@ -9,7 +9,8 @@
 ///              [--load constant|steps|ramp|sine] [--load-period S] [--load-range LO,HI]
 ///              [--load-seed N] [--blockage T]
 ///   any circuit file (docs/circuits.md; sim_circuit.hpp):
-///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--inputs LOG] [--start rest|steady]
+///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--start rest|steady]
+///              [--inputs LOG [--inputs-hold linear|step] [--compare]]
 ///              [--duration S] [--rate HZ] [--seed N] [--no-noise] [--out FILE.csv]
 
 #include <CLI/CLI.hpp>
@@ -61,6 +62,8 @@ struct Options {
   std::string circuit;
   std::string circuit_params;
   std::string circuit_inputs;  // --inputs LOG
+  std::string inputs_hold = "linear";
+  bool compare = false;
   std::vector<std::string> steps;
   std::vector<std::string> faults;
 };
@@ -221,7 +224,7 @@ int main(int argc, char** argv) {
   app.add_option("--circuit", o.circuit,
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
-                 "(default steady), --no-noise, --params, --step, --fault");
+                 "(default steady), --no-noise, --params, --step, --fault, --inputs");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
@@ -229,13 +232,32 @@ int main(int argc, char** argv) {
                  "with --circuit: parameter fault PARAM=FACTOR@T, the parameter times FACTOR from T on, e.g. "
                  "Rmlkg=0.5@3 (repeatable)");
   app.add_option("--inputs", o.circuit_inputs,
-                 "with --circuit: drive it with this log's input columns, each row's values held until the next "
-                 "(zero-order hold, as the monitor applies them); --duration and --rate default to the log's span and "
-                 "rate; --step and --fault add to it");
+                 "with --circuit: drive it with this log's input columns (a logged run re-simulated); inputs not in "
+                 "the log keep their parameter-file values. The run is on the log's clock: it starts at the first "
+                 "row's time (the steady state of its inputs, or --start rest), lasts to the last row (--duration "
+                 "overrides) and writes the log's own row times, so the re-run lines up row by row with the log "
+                 "(--rate R: rows t0 + k/R instead); --step/--fault times are on that clock and add to it");
+  app.add_option("--inputs-hold", o.inputs_hold,
+                 "with --inputs: the inputs between rows. linear (default): the straight line between the rows, "
+                 "as a sampled ramp was (holding each row lags a ramp by half a row); a step between two rows is "
+                 "spread over that one row. step: each row held until the next (zero-order hold, as the monitor "
+                 "applies a row's inputs over its tick). Every row is a hard stop of the integrator either way")
+      ->check(CLI::IsMember({"linear", "step"}));
+  app.add_flag("--compare", o.compare,
+               "with --inputs: print per sensor channel the mean, RMS and largest residual measured - simulated "
+               "over the log's rows, in the channel's unit (to stdout, or stderr when the log goes to stdout)");
   CLI11_PARSE(app, argc, argv);
   if (o.circuit.empty() && (app.count("--params") > 0 || app.count("--step") > 0 || app.count("--fault") > 0 ||
                             app.count("--inputs") > 0)) {
     std::cerr << "hstmon-sim: --params, --step, --fault and --inputs go with --circuit\n";
+    return 1;
+  }
+  if (o.circuit_inputs.empty() && (app.count("--inputs-hold") > 0 || o.compare)) {
+    std::cerr << "hstmon-sim: --inputs-hold and --compare go with --inputs\n";
+    return 1;
+  }
+  if (o.compare && app.count("--rate") > 0) {
+    std::cerr << "hstmon-sim: --compare compares row by row, on the log's own rows: it does not go with --rate\n";
     return 1;
   }
   if (!o.circuit.empty()) {
@@ -259,6 +281,8 @@ int main(int argc, char** argv) {
     c.steps = o.steps;
     c.faults = o.faults;
     c.inputs = o.circuit_inputs;
+    c.inputs_hold = o.inputs_hold;
+    c.compare = o.compare;
     return hstmon::sim_app::run_circuit_sim(c);
   }
   try {

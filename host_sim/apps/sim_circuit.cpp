@@ -4,11 +4,14 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_circuit/logged_run.hpp"
+#include "sim_compare.hpp"
 
 namespace hstmon::sim_app {
 
@@ -30,29 +33,39 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   }
   circuit_tools::CircuitSimOptions o;
   std::string profile_note;
-  if (!a.inputs.empty()) {
-    // A logged run's inputs: its span and median rate unless given.
-    const circuit_tools::CircuitLog in = circuit_tools::read_circuit_log(a.inputs, c.file);
-    for (const auto& n : in.notes) std::cerr << n << '\n';
-    if (in.error) {
-      std::cerr << in.error->to_string() << '\n';
-      return 2;
-    }
-    std::size_t columns = 0;
-    for (const auto& col : in.inputs) columns += col.size() == in.rows() ? 1 : 0;
-    if (in.rows() < 2 || columns == 0) {
-      std::cerr << a.inputs << ": error: --inputs needs at least 2 rows and one of the circuit's input columns\n";
-      return 2;
-    }
-    o.steps = circuit_tools::logged_input_steps(in);
-    const double span = in.t.back() - in.t.front();
-    o.rate = static_cast<double>(in.rows() - 1) / span;
-    o.duration = span + 1.0 / o.rate;
-    profile_note = "inputs from " + a.inputs + ": " + std::to_string(columns) + " column(s), " +
-                   std::to_string(in.rows()) + " rows, each held until the next (zero-order hold)";
+  circuit_tools::CircuitLog measured;
+  const std::optional<circuit_tools::InputHold> hold = circuit_tools::input_hold_from(a.inputs_hold);
+  if (!hold) {
+    std::cerr << "hstmon-sim: --inputs-hold takes linear or step, got '" << a.inputs_hold << "'\n";
+    return 1;
   }
-  if (a.duration > 0.0) o.duration = a.duration;
-  if (a.rate > 0.0) o.rate = a.rate;
+  if (!a.inputs.empty()) {
+    // A logged run's inputs, on its own clock and rows (logged_run.hpp).
+    measured = circuit_tools::read_circuit_log(a.inputs, c.file);
+    for (const auto& n : measured.notes) std::cerr << n << '\n';
+    if (measured.error) {
+      std::cerr << measured.error->to_string() << '\n';
+      return 2;
+    }
+    std::vector<std::string> notes;
+    if (auto err = circuit_tools::logged_run(measured, c, *hold, a.duration, a.rate, o, notes)) {
+      std::cerr << err->to_string() << '\n';
+      return 2;
+    }
+    for (const auto& n : notes) std::cerr << n << '\n';
+    std::string driven;
+    for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
+      if (o.profile.drives(i)) driven += (driven.empty() ? "" : ", ") + c.file.inputs[i].name;
+    }
+    profile_note = "inputs " + driven + " from " + a.inputs + " (" + std::to_string(measured.rows()) +
+                   " rows from t = " + shortest(o.start_time) + " s), " +
+                   (*hold == circuit_tools::InputHold::kLinear ? "linear between rows"
+                                                               : "each row held until the next (zero-order hold)") +
+                   "; " + (a.rate > 0.0 ? "rows at " + shortest(a.rate) + " Hz" : "the log's own row times");
+  } else {
+    if (a.duration > 0.0) o.duration = a.duration;
+    if (a.rate > 0.0) o.rate = a.rate;
+  }
   o.seed = a.seed;
   o.from_rest = a.start == "rest";
   o.noise = !a.no_noise;
@@ -79,10 +92,15 @@ int run_circuit_sim(const CircuitSimArgs& a) {
     std::cerr << "hstmon-sim: " << e.what() << '\n';
     return 2;
   }
+  if (a.compare && !a.inputs.empty()) {
+    (a.out == "-" ? std::cerr : std::cout) << compare_text(c.file, measured, log);
+  }
   std::vector<std::string> comments = {
       "hstmon-sim --circuit " + a.circuit + (c.params_path.empty() ? std::string() : " --params " + c.params_path),
       "circuit " + c.file.name + ": full equations (Rosenbrock-4), " + (o.from_rest ? "from rest" : "from steady state") +
-          ", " + shortest(o.duration) + " s at " + shortest(o.rate) + " Hz, seed " + std::to_string(o.seed) +
+          ", " + shortest(o.duration) + " s" +
+          (a.inputs.empty() || a.rate > 0.0 ? " at " + shortest(o.rate) + " Hz" : " on the log's rows") + ", seed " +
+          std::to_string(o.seed) +
           (o.noise ? "" : ", no noise")};
   if (!profile_note.empty()) comments.push_back(profile_note);
   for (const std::string& s : a.steps) comments.push_back("step " + s);

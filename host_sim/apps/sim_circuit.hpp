@@ -20,11 +20,14 @@ struct CircuitSimArgs {
   bool no_noise = false;
   std::vector<std::string> steps;   ///< "INPUT=VALUE@T"
   std::vector<std::string> faults;  ///< "PARAM=FACTOR@T"
-  std::string inputs;               ///< a log whose input columns drive the run ("" = none; circuit_schedule.hpp)
+  std::string inputs;               ///< a log whose input columns drive the run ("" = none; logged_run.hpp)
+  std::string inputs_hold = "linear";  ///< "linear" | "step": the logged inputs between rows (input_profile.hpp)
+  bool compare = false;             ///< with inputs: the residual measured − simulated per sensor channel
 };
 
-/// Runs it. @return 0, 1 on a bad option, 2 on a bad circuit/parameter file (message
-/// file:line:column on stderr) or a failed simulation
+/// Runs it. @return 0, 1 on a bad option, 2 on a bad circuit/parameter/input log (message
+/// file:line:column on stderr) or a failed simulation. The comparison (compare) goes to
+/// standard output, or to standard error when the log itself does.
 int run_circuit_sim(const CircuitSimArgs& a);
 
 }  // namespace hstmon::sim_app

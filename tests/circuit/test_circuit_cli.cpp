@@ -316,8 +316,8 @@ TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
 }
 
 // hstmon-sim --inputs re-runs a logged profile with ramps: the independent simulator's
-// paper-rig log (0.4 s ramps of both valve areas, from rest) drives paper.json, row for
-// row; the re-run agrees with that simulator's steady readings to 0.2 %, and its own
+// paper-rig log (0.4 s ramps of both valve areas, from rest) drives paper.json on its own
+// rows, linear between them; the re-run agrees with that simulator's steady readings to 0.2 %, and its own
 // monitor replays it at noise.
 TEST(CircuitCli, SimInputsReRunsALoggedProfileWithRamps) {
   const std::string logged = std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_paper/logs/nominal_C.csv.gz";
@@ -331,7 +331,7 @@ TEST(CircuitCli, SimInputsReRunsALoggedProfileWithRamps) {
   bool noted = false;
   while (std::getline(f, line)) {
     if (line.rfind('#', 0) == 0) {
-      noted = noted || line.find("zero-order hold") != std::string::npos;
+      noted = noted || line.find("linear between rows") != std::string::npos;
       continue;
     }
     if (head.empty()) {

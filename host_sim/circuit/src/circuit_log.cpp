@@ -109,6 +109,20 @@ std::string format_value(double v) {
   return b;
 }
 
+// A time: "%.9g" when that is within a nanosecond of it and no exponent (below 1e9 s), else
+// the shortest text that reads back as the same number (a logger's Unix time,
+// 1700000022.51, not 1.70000002e+09).
+std::string format_time(double t) {
+  std::string s = format_value(t);
+  if (std::fabs(t) < 1e9 && std::fabs(std::strtod(s.c_str(), nullptr) - t) <= 1e-9) return s;
+  char b[40];
+  for (int digits = 10; digits <= 17; ++digits) {
+    std::snprintf(b, sizeof b, "%.*g", digits, t);
+    if (std::strtod(b, nullptr) == t) break;
+  }
+  return b;
+}
+
 bool is_si(const std::string& unit) { return unit.empty() || unit == "-"; }
 
 /// Which lines hold the names and the units, and the separator.
@@ -593,6 +607,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
       if (line_no == units_line) continue;                   // taken with the header
       if (!header_seen) {
         header_seen = true;
+        log.header_line = line_no;
         if (auto e = read_header(line, line_no, lay, c, o, log, targets)) return fail(e->line, e->column, e->message);
         attach_columns(targets, log);
         reserve_rows(log, targets, host::detail::estimate_rows(text.data() + std::min(pos, text.size()), text_end));
@@ -649,7 +664,7 @@ std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log, 
   }
   os << '\n';
   for (std::size_t k = 0; k < log.t.size(); ++k) {
-    os << format_value(log.t[k]);
+    os << format_time(log.t[k]);
     for (const Col& col : cols) os << ',' << format_value(col.conv.from_si((*col.v)[k]));
     os << '\n';
   }
@@ -737,6 +752,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
   auto fail = [&](std::size_t line, std::size_t col, std::string msg) { return failed(log, line, col, std::move(msg)); };
   std::vector<Target> targets;
   if (auto e = column_targets(names, c, o, log, targets)) return fail(e->line, e->column, e->message);
+  log.header_line = 1;  // as in a CSV file of these columns
   for (std::size_t k = 0; k < targets.size(); ++k) {
     const bool used = targets[k].kind == Target::kTime || targets[k].kind == Target::kInput ||
                       targets[k].kind == Target::kSensor;

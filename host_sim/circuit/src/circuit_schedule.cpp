@@ -99,22 +99,4 @@ void sort_steps(std::vector<InputStep>& steps) {
   std::stable_sort(steps.begin(), steps.end(), [](const InputStep& a, const InputStep& b) { return a.t < b.t; });
 }
 
-std::vector<InputStep> logged_input_steps(const CircuitLog& log) {
-  std::vector<InputStep> steps;
-  if (log.rows() == 0) return steps;
-  const double t0 = log.t.front();
-  for (std::size_t k = 0; k < log.rows(); ++k) {
-    for (std::size_t i = 0; i < log.inputs.size(); ++i) {
-      const std::vector<double>& col = log.inputs[i];
-      if (col.size() != log.rows() || (k > 0 && col[k] == col[k - 1])) continue;
-      InputStep st;
-      st.t = log.t[k] - t0;
-      st.input = static_cast<int>(i);
-      st.value = col[k];
-      steps.push_back(st);
-    }
-  }
-  return steps;
-}
-
 }  // namespace hstmon::circuit_tools

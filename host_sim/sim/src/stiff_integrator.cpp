@@ -198,6 +198,17 @@ void StiffIntegrator::advance_to(double t_end, const std::vector<double>& sample
 
 double StiffIntegrator::time() const noexcept { return impl_->t; }
 
+double StiffIntegrator::next_step() const noexcept { return impl_->dt; }
+
+void StiffIntegrator::restart(double t, const double* x, Rhs rhs, Jacobian jac, double first_step) {
+  if (!(std::isfinite(first_step) && first_step > 0.0)) {
+    throw std::invalid_argument("StiffIntegrator::restart: first_step must be > 0");
+  }
+  restart(t, x, std::move(rhs), std::move(jac));
+  Impl& m = *impl_;
+  m.dt = m.max_step > 0.0 ? std::min(first_step, m.max_step) : first_step;
+}
+
 const std::vector<double>& StiffIntegrator::state() const noexcept {
   impl_->to_x(impl_->z, impl_->x_state);
   return impl_->x_state;

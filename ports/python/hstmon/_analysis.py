@@ -18,15 +18,19 @@ LogLike = Union[PathLike, pd.DataFrame]
 
 def simulate(circuit: CircuitLike = None, inputs: Optional[LogLike] = None, *, duration: Optional[float] = None,
              rate: Optional[float] = None, seed: int = 1, start: str = "steady", noise: bool = True,
-             steps: Sequence[str] = (), faults: Sequence[str] = (), params: Optional[PathLike] = None) -> pd.DataFrame:
+             steps: Sequence[str] = (), faults: Sequence[str] = (), params: Optional[PathLike] = None,
+             hold: str = "linear") -> pd.DataFrame:
     """Simulates a circuit as ``hstmon-sim --circuit`` does: the full equations (stiff
     Rosenbrock-4), the outputs through the sensor chain (noise and range from the circuit's
     sensors section).
 
     inputs: a DataFrame (or log path) of input columns over time (``t[s]`` and any of the
-        circuit's input columns, with units as in a log): each held until the next row
-        (zero-order hold); its span and rate are the run's unless given.
-    duration [s], rate [Hz]: the run (default 10 s at 100 Hz, or the inputs' span and rate).
+        circuit's input columns, with units as in a log) driving the run on its own clock:
+        from its first row's time to its last, rows at its own row times.
+    hold: how the inputs go between rows: "linear" (the line between them) or "step"
+        (each row held until the next, zero-order hold).
+    duration [s], rate [Hz]: the run (default 10 s at 100 Hz, or the inputs' span and rows;
+        a rate then writes rows t0 + k/rate).
     seed: the noise seed; start: "steady" (the steady state of the first inputs) or "rest";
     noise: False = no sensor noise (clipping kept).
     steps: input steps "INPUT=VALUE@T" ("n_e=1800 rpm@2.5"); faults: "PARAM=FACTOR@T" ("kp=0.5@80").
@@ -39,7 +43,7 @@ def simulate(circuit: CircuitLike = None, inputs: Optional[LogLike] = None, *, d
     if inputs is not None:
         data = _logs.read(c, inputs, "inputs")
     log = _core.simulate(c._core, data, duration=float(duration or 0.0), rate=float(rate or 0.0), seed=int(seed),
-                         start=start, noise=bool(noise), steps=list(steps), faults=list(faults))
+                         start=start, noise=bool(noise), steps=list(steps), faults=list(faults), hold=hold)
     return _logs.to_frame(c, log)
 
 

@@ -1,11 +1,12 @@
 // hstmon._core.simulate: a synthetic log of a circuit (circuit_sim.hpp), with the options
 // of `hstmon-sim --circuit` (--inputs, --duration, --rate, --seed, --start, --no-noise,
-// --step, --fault).
+// --step, --fault, --inputs-hold as hold).
 #include <pybind11/stl.h>
 
 #include "binding.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_circuit/logged_run.hpp"
 
 namespace hstmon::python {
 
@@ -13,25 +14,21 @@ namespace {
 
 std::shared_ptr<Log> simulate(const std::shared_ptr<Circuit>& c, const std::shared_ptr<Log>& inputs, double duration,
                               double rate, std::uint64_t seed, const std::string& start, bool noise,
-                              const std::vector<std::string>& steps, const std::vector<std::string>& faults) {
+                              const std::vector<std::string>& steps, const std::vector<std::string>& faults,
+                              const std::string& hold) {
   circuit_tools::CircuitSimOptions o;
+  const std::optional<circuit_tools::InputHold> how = circuit_tools::input_hold_from(hold);
+  if (!how) throw py::value_error("hold must be 'linear' or 'step'");
   if (inputs) {
-    // A logged run's inputs: its span and median rate unless given (as hstmon-sim --inputs).
-    const circuit_tools::CircuitLog& in = inputs->data;
-    std::size_t columns = 0;
-    for (const auto& col : in.inputs) {
-      if (col.size() == in.rows()) ++columns;
+    // A logged run's inputs, on its own clock and rows (as hstmon-sim --inputs; logged_run.hpp).
+    std::vector<std::string> notes;
+    if (auto err = circuit_tools::logged_run(inputs->data, c->loaded(), *how, duration, rate, o, notes)) {
+      throw py::value_error(err->to_string());
     }
-    if (in.rows() < 2 || columns == 0) {
-      throw py::value_error(in.path + ": inputs need at least 2 rows and one of the circuit's input columns");
-    }
-    o.steps = circuit_tools::logged_input_steps(in);
-    const double span = in.t.back() - in.t.front();
-    o.rate = static_cast<double>(in.rows() - 1) / span;
-    o.duration = span + 1.0 / o.rate;
+  } else {
+    if (duration > 0.0) o.duration = duration;
+    if (rate > 0.0) o.rate = rate;
   }
-  if (duration > 0.0) o.duration = duration;
-  if (rate > 0.0) o.rate = rate;
   if (!(o.duration > 0.0) || !(o.rate > 0.0)) throw py::value_error("duration [s] and rate [Hz] must be > 0");
   if (start != "steady" && start != "rest") throw py::value_error("start must be 'steady' or 'rest'");
   o.seed = seed;
@@ -63,6 +60,7 @@ void bind_simulate(py::module_& m) {
   m.def("simulate", &simulate, py::arg("circuit"), py::arg("inputs") = nullptr, py::arg("duration") = 0.0,
         py::arg("rate") = 0.0, py::arg("seed") = 1, py::arg("start") = "steady", py::arg("noise") = true,
         py::arg("steps") = std::vector<std::string>{}, py::arg("faults") = std::vector<std::string>{},
+        py::arg("hold") = "linear",
         "Simulates the circuit (full equations, Rosenbrock-4, sensor noise and ranges); a Log in SI units");
 }
 

@@ -41,6 +41,7 @@ struct CircuitLog {
   std::vector<std::vector<double>> inputs;    ///< by input index; empty when not in the log
   std::vector<std::vector<double>> sensors;   ///< by channel index; empty when not in the log
   std::vector<std::string> notes;             ///< "file:line:col: note: ..." lines
+  std::size_t header_line = 0;                ///< 1-based line of the column names (0: none read)
   std::optional<host::SourceError> error;     ///< set when reading failed (then no rows)
 
   std::size_t rows() const noexcept { return t.size(); }
@@ -80,7 +81,8 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
                                     const host::ReadOptions& o = {});
 
 /// The log as text: `t[s]`, the present input columns, then the present sensor columns,
-/// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g".
+/// each in the unit the circuit file gives it (bracketed; none for SI), values "%.9g" (a
+/// time that needs more digits to a nanosecond: as many as read back the same number).
 /// @param comments  lines written first as "# ..."
 std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log,
                              const std::vector<std::string>& comments = {});

@@ -37,10 +37,4 @@ std::optional<std::string> parse_param_fault(std::string_view text, const host::
 /// Sorts steps by time, keeping the given order among equal times.
 void sort_steps(std::vector<InputStep>& steps);
 
-/// A logged run's inputs as steps (hstmon-sim --inputs): each logged input column held
-/// from each row's time to the next row's (zero-order hold, as the monitor applies a row's
-/// inputs over its tick), times counted from the first row (t = 0); one step per change
-/// of a logged value. Inputs not in the log are not stepped (they stay at their nominal).
-std::vector<InputStep> logged_input_steps(const CircuitLog& log);
-
 }  // namespace hstmon::circuit_tools

@@ -7,6 +7,10 @@
 /// and range clipping from the circuit's sensors section, no lag, no ADC). A sample that
 /// falls on a step reads the volumes far faster than the sampling (those an observer at
 /// this period takes quasi-steady) settled: no transducer follows their microseconds.
+/// Logged inputs (input_profile.hpp) drive the run from a logged run's rows: each row a
+/// hard stop; a linear profile's inputs ramp within the integrator between them (the time
+/// since the row is one more state of the integration, so a ramp is met exactly, not as a
+/// staircase).
 
 #include <cstdint>
 #include <vector>
@@ -14,6 +18,7 @@
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
+#include "hstmon_circuit/input_profile.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -24,11 +29,17 @@ struct CircuitSimOptions {
   std::uint64_t seed = 1;          ///< noise seed
   bool from_rest = false;          ///< start at rest; false: at the steady state of the t = 0 inputs
   bool noise = true;               ///< false: sensor noise off (clipping kept)
-  std::vector<InputStep> steps;    ///< input steps on top of the nominal inputs
+  std::vector<InputStep> steps;    ///< input steps on top of the nominal inputs (and of the profile: a stepped
+                                   ///< input leaves the profile from its step on), times on the run's clock
+  double start_time = 0.0;         ///< the run's clock at its start [s]
+  std::vector<double> sample_times;  ///< the rows written [s], rising, >= start_time; empty: start_time + k/rate,
+                                     ///< k < duration·rate (rate then also sets which volumes read settled)
+  InputProfile profile;            ///< logged inputs driving the run (none: no input follows it)
 };
 
 /// Simulates c and returns the log: every input column and every sensor column, SI.
-/// @throws std::runtime_error for more than 1e7 samples, when the circuit's values are not physical, there is no
+/// @throws std::runtime_error for more than 1e7 samples, sample times not rising from start_time (or a profile's
+///         first row after it), when the circuit's values are not physical, there is no
 ///         steady state to start from, or the integration fails
 CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o);
 

@@ -62,6 +62,11 @@ class StiffIntegrator {
   /// its Jacobian jac. Resets the step controller (first step = initial_step).
   /// @throws std::invalid_argument if x is not finite or a function is empty
   void restart(double t, const double* x, Rhs rhs, Jacobian jac);
+  /// As restart(t, x, rhs, jac), the first trial step `first_step` [s] instead of
+  /// initial_step (bounded by max_step): for a segment whose right-hand side meets the
+  /// last one's without a jump (a kink in the inputs), where the last step still fits.
+  /// @throws std::invalid_argument as restart(), or if first_step is not > 0
+  void restart(double t, const double* x, Rhs rhs, Jacobian jac, double first_step);
 
   /// Integrates from time() to t_end [s] (≥ time()), ending exactly at t_end. Every
   /// sample time ts in `sample_times` (sorted ascending) with time() < ts ≤ t_end is
@@ -75,6 +80,8 @@ class StiffIntegrator {
 
   /// Current time [s].
   double time() const noexcept;
+  /// The next trial step [s]: the controller's suggestion after the last step.
+  double next_step() const noexcept;
   /// Current state [state units], size() entries.
   const std::vector<double>& state() const noexcept;
   /// Step statistics.
