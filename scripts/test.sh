@@ -23,9 +23,9 @@ jobs=$(nproc)
 bash scripts/install-deps.sh
 
 echo "== aarch64: core unit tests under qemu-aarch64"
-cmake -S . -B build/aarch64 --toolchain toolchains/aarch64-linux-gnu.cmake -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/aarch64 -j"$jobs" >/dev/null
-ctest --test-dir build/aarch64 -j"$jobs" --output-on-failure | tail -n 3
+cmake --preset aarch64 >/dev/null
+cmake --build --preset aarch64 -j"$jobs" >/dev/null
+ctest --preset aarch64 -j"$jobs" | tail -n 3
 
 echo "== Cortex-M4F: footprint and cost budgets"
 bash scripts/footprint.sh
