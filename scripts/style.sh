@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The style check (scripts/test.sh runs it; run it locally before a push):
-#   1. format: clang-format --dry-run --Werror (.clang-format) on the C and C++ files the
-#      last commit changed (git diff BASE HEAD, BASE = HEAD~1 by default; deleted files
-#      skipped). The tree as a whole is not reformatted: only what a commit touches.
+#   1. format: clang-format --dry-run --Werror (.clang-format) on the lines the last commit
+#      added or changed in C and C++ files (git diff BASE HEAD, BASE = HEAD~1 by default;
+#      deleted files skipped). The tree as a whole is not reformatted: only what a commit
+#      touches, so editing a line does not oblige reformatting its whole file.
 #   2. tidy: clang-tidy (.clang-tidy, warnings are errors) on the translation units that
 #      reach lib/ and ports/: lib's header check, the C APIs, the host port and the
 #      firmware's portable part, from a compile_commands.json of a configure-only build
@@ -37,10 +38,19 @@ if [ "$do_format" = 1 ]; then
     done < <(git diff --name-only --diff-filter=d "$base" HEAD -- '*.c' '*.h' '*.cc' '*.cpp' '*.hh' '*.hpp')
   fi
   echo "== format: ${#files[@]} C/C++ file(s) changed since ${base:-(no parent commit)}"
-  if [ ${#files[@]} -gt 0 ] && ! clang-format --dry-run --Werror "${files[@]}"; then
-    echo "style.sh: format: run clang-format -i on the files above" >&2
-    status=1
-  fi
+  for f in "${files[@]}"; do
+    # The lines the commit added or changed (hunks of `git diff -U0`: +start,count).
+    lines=()
+    while IFS= read -r range; do lines+=("--lines=$range"); done < <(
+      git diff -U0 "$base" HEAD -- "$f" |
+        sed -n 's/^@@ -[0-9,]* +\([0-9]*\)\(,\([0-9]*\)\)\{0,1\} @@.*/\1 \3/p' |
+        awk '{ n = ($2 == "") ? 1 : $2; if (n > 0) print $1 ":" $1 + n - 1 }')
+    [ ${#lines[@]} -gt 0 ] || continue
+    if ! clang-format --dry-run --Werror "${lines[@]}" "$f"; then
+      echo "style.sh: format: $f (fix the changed lines: git clang-format $base)" >&2
+      status=1
+    fi
+  done
 fi
 
 if [ "$do_tidy" = 1 ]; then
