@@ -44,8 +44,9 @@ for tool in arm-none-eabi-g++ qemu-system-arm cmake; do
 done
 
 if [ "$do_build" = 1 ]; then
-  cfg=(-S "$root" -B "$build" --toolchain "$root/toolchains/arm-none-eabi.cmake"
-       -DCMAKE_BUILD_TYPE=Release -DHSTMON_WERROR=ON)
+  # Preset firmware-arm (CMakePresets.json): the arm-none-eabi toolchain, Release, warnings
+  # are errors; -B overrides its build dir.
+  cfg=(-S "$root" --preset firmware-arm -B "$build")
   [ -n "$log" ] && cfg+=("-DHSTMON_FW_LOG=$log")
   [ -n "$monitor_log" ] && cfg+=("-DHSTMON_FW_MONITOR_LOG=$monitor_log")
   cmake "${cfg[@]}" >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 2; }

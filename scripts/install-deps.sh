@@ -24,6 +24,7 @@ packages=(
   qemu-system-arm             # runs the firmware (mps2-an386) in tests/firmware and footprint.sh
   g++-aarch64-linux-gnu qemu-user googletest  # aarch64 cross build; lib tests under qemu-aarch64
   clang libclang-rt-14-dev    # libFuzzer + ASan/UBSan runtimes for scripts/fuzz.sh
+  clang-format clang-tidy     # the style check (scripts/style.sh)
   parallel                    # GNU parallel: the fleet recipe of docs/fleet.md and its test (tests/fleet)
   python3-dev pybind11-dev python3-pybind11  # the Python module (ports/python, docs/python.md)
   python3-numpy python3-pandas python3-matplotlib  # its arrays, DataFrames and plots

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs dependencies, then runs every test:
+#   0. the style check (scripts/style.sh): clang-format on the files the last commit
+#      changed, clang-tidy on the translation units reaching lib/ and ports/;
 #   1. aarch64 cross build of the core's unit tests, run under qemu user mode;
 #   2. the firmware footprint and cost budgets on Cortex-M4F under qemu (fails on a
 #      budget overrun as on a build or run failure), and the host observer tick's
@@ -22,10 +24,13 @@ cd "$root"
 jobs=$(nproc)
 bash scripts/install-deps.sh
 
+echo "== style: clang-format on the last commit's files, clang-tidy on lib/ and ports/"
+bash scripts/style.sh
+
 echo "== aarch64: core unit tests under qemu-aarch64"
-cmake -S . -B build/aarch64 --toolchain toolchains/aarch64-linux-gnu.cmake -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/aarch64 -j"$jobs" >/dev/null
-ctest --test-dir build/aarch64 -j"$jobs" --output-on-failure | tail -n 3
+cmake --preset aarch64 >/dev/null
+cmake --build --preset aarch64 -j"$jobs" >/dev/null
+ctest --preset aarch64 -j"$jobs" | tail -n 3
 
 echo "== Cortex-M4F: footprint and cost budgets"
 bash scripts/footprint.sh

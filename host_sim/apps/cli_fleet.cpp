@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -85,7 +86,7 @@ double mean_ratio(const std::vector<const LogSummary*>& logs, std::size_t b, std
       ++n;
     }
   }
-  return n ? sum / static_cast<double>(n) : NAN;
+  return n ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 int run_fleet(const FleetArgs& a) {
@@ -118,7 +119,7 @@ int run_fleet(const FleetArgs& a) {
     double worst_growth = 0.0, worst_first = NAN, worst_last = NAN;
     for (const std::string& c : names) {
       const double first = mean_ratio(ok, 0, b, c);
-      const double last = m ? mean_ratio(ok, ok.size() - m, ok.size(), c) : NAN;
+      const double last = m ? mean_ratio(ok, ok.size() - m, ok.size(), c) : std::numeric_limits<double>::quiet_NaN();
       if (!std::isfinite(first) || !std::isfinite(last)) continue;
       const bool drifts = ok.size() > a.baseline && last > a.k * first;
       channels[c] = {{"first", first}, {"last", last}, {"drifts", drifts}};

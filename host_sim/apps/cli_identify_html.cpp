@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "hstmon_plot/html_report.hpp"
 
@@ -30,7 +31,8 @@ void thesis_verdict(sim::HtmlReport& page, const nlohmann::json& t) {
   double worst = 0.0;
   std::string worst_signal;
   for (const auto& v : t["validation"]) {
-    const double e = v["rms_error_pct"].is_number() ? std::fabs(v["rms_error_pct"].get<double>()) : NAN;
+    const double e = v["rms_error_pct"].is_number() ? std::fabs(v["rms_error_pct"].get<double>())
+                                                    : std::numeric_limits<double>::quiet_NaN();
     if (!(e <= worst)) {
       worst = e;
       worst_signal = v.value("signal", std::string("?"));

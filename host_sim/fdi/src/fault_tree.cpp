@@ -30,7 +30,7 @@ class TreeBuilder {
   }
 
   FaultTreeNode expand(int n, QualSign s, int depth, std::vector<int>& path) {
-    const Node& node = g_.nodes()[n];
+    const Node& node = g_.nodes()[static_cast<std::size_t>(n)];
     FaultTreeNode t{node.name, s, TreeLeaf::kNone, depth, {}};
     if (node.kind == NodeKind::kSource) {
       t.leaf = TreeLeaf::kSource;
@@ -48,7 +48,7 @@ class TreeBuilder {
     }
     path.push_back(n);
     for (int ei : g_.in_edges(n)) {
-      const Edge& e = g_.edges()[ei];
+      const Edge& e = g_.edges()[static_cast<std::size_t>(ei)];
       if (!e.param.empty()) {
         t.children.push_back(FaultTreeNode{e.param, qual_mul(e.param_sign, s), TreeLeaf::kParameter, depth + 1, {}});
       }

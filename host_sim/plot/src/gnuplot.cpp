@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace hstmon::sim {
 
@@ -102,8 +103,11 @@ std::string run_gnuplot(const std::string& script) {
   const int status = pclose(gp);
   std::string err;
   {
+    // Through a stringstream: GCC 12's -Wnull-dereference misfires on istreambuf_iterator.
     std::ifstream in(err_file);
-    err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    std::ostringstream text;
+    text << in.rdbuf();
+    err = text.str();
   }
   std::error_code ec;
   fs::remove(err_file, ec);

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <fstream>
-#include <iterator>
+#include <sstream>
 #include <utility>
 
 namespace hstmon::sim {
@@ -112,8 +112,11 @@ void HtmlReport::table(const std::vector<std::string>& header, const std::vector
 std::string HtmlReport::image(const std::string& file, const std::string& caption) {
   std::string bytes;
   {
+    // Through a stringstream: GCC 12's -Wnull-dereference misfires on istreambuf_iterator.
     std::ifstream in(file, std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    std::ostringstream data;
+    data << in.rdbuf();
+    bytes = data.str();
   }
   const char* type = ends_with(file, ".svg") ? "image/svg+xml" : ends_with(file, ".png") ? "image/png" : nullptr;
   std::string err;

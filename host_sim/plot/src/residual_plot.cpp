@@ -68,7 +68,7 @@ std::string plot_replay(const PlotTrace& trace, const std::string& title, const 
         const double s = trace.channels[c].scale;
         const double v[3] = {y[c] * s, y_hat[c] * s, r[c] * s};
         out.print(" {:.9g} {:.9g} {:.9g}", v[0], v[1], v[2]);
-        for (int k = 0; k < 3; ++k) cols[c][k].push_back(v[k]);
+        for (std::size_t k = 0; k < 3; ++k) cols[c][k].push_back(v[k]);
       }
       out.print("\n");
     }

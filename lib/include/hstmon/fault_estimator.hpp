@@ -114,6 +114,7 @@ T settle_time(Model& m, const typename Model::Inputs& u, T taus, T lo, T hi) noe
 /// Whether every input of b lies within `rel` of a's value (exactly, where a's is 0).
 template <class Inputs, typename T>
 bool inputs_within(const Inputs& a, const Inputs& b, T rel) noexcept {
+  // NOLINTNEXTLINE(bugprone-sizeof-expression): a.v is an array (element count), not a pointer
   for (int i = 0; i < static_cast<int>(sizeof(a.v) / sizeof(a.v[0])); ++i) {
     const T d = std::fabs(b.v[i] - a.v[i]);
     if (!(d <= rel * std::fabs(a.v[i]) + T(1e-12) * (T(1) + std::fabs(a.v[i])))) return false;

@@ -128,7 +128,7 @@ class ThesisReducedModel {
     const T y_m = dcv_drops(x[1], dp_in, dp_out);
     const T dPpp = x[0] - u_.Pbp;
     y = output_vector(x, dp_in, dp_out);
-    const State d = rates(x, dp_in + dp_out, dPpp, signed_root(dPpp, p_.dp_t_prv));
+    State d = rates(x, dp_in + dp_out, dPpp, signed_root(dPpp, p_.dp_t_prv));  // not const: returned (moved)
     const T ay = std::fabs(y_m);
     const T adp = std::fabs(dPpp);
     if (ay >= fast_y_min_ && ay <= dcv_.one_refinement_y && adp >= p_.dp_t_prv) {

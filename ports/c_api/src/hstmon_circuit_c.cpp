@@ -77,7 +77,7 @@ Obs::Measurement to_core(const hstmon_circuit_sample& s) noexcept {
   return m;
 }
 
-hstmon_status start(hstmon_circuit_monitor& m, const hstmon_circuit_sample& s, uint8_t* how_out) noexcept {
+hstmon_status start_from(hstmon_circuit_monitor& m, const hstmon_circuit_sample& s, uint8_t* how_out) noexcept {
   const Model::Inputs u0 = to_core(s.u);
   hstmon::Status st = hstmon::circuit::configure_from_generated(m.mon, m.scratch, kValues, u0, sig::kSignatures,
                                                                 sig::kSignatureCount);
@@ -119,13 +119,12 @@ void hstmon_circuit_nominal_inputs(float* u) {
   for (int i = 0; i < gen::kCircuit.n_inputs; ++i) u[i] = static_cast<float>(gen::kInputs[i]);
 }
 
-hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_circuit_monitor** out,
-                                    uint8_t* how) {
+hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_circuit_monitor** out, uint8_t* start) {
   if (out != nullptr) *out = nullptr;
   if (first == nullptr || out == nullptr) return HSTMON_INVALID_CONFIG;
   for (hstmon_circuit_monitor& m : g_pool) {
     if (m.used) continue;
-    const hstmon_status s = start(m, *first, how);
+    const hstmon_status s = start_from(m, *first, start);
     if (s != HSTMON_OK) return s;  // the slot stays free
     m.used = true;
     *out = &m;
@@ -145,9 +144,9 @@ void hstmon_circuit_release(hstmon_circuit_monitor* m) {
   if (m != nullptr) m->used = false;
 }
 
-hstmon_status hstmon_circuit_restart(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s, uint8_t* how) {
+hstmon_status hstmon_circuit_restart(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s, uint8_t* start) {
   if (m == nullptr || s == nullptr || !m->used) return HSTMON_INVALID_CONFIG;
-  return start(*m, *s, how);
+  return start_from(*m, *s, start);
 }
 
 uint32_t hstmon_circuit_step(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s) {

@@ -90,6 +90,7 @@ int format_double(char* buf, double v) noexcept {
   while (a >= 10.0) { a *= 0.1; ++e; }
   while (a < 1e-16) { a *= 1e16; e -= 16; }
   while (a < 1.0) { a *= 10.0; --e; }
+  // NOLINTNEXTLINE(bugprone-incorrect-roundings): a is in [1, 10) here, so adding 0.5 rounds correctly
   auto d = static_cast<std::uint64_t>(a * 1e11 + 0.5);
   if (d >= 1000000000000ull) { d /= 10u; ++e; }
   char digits[24];
@@ -134,7 +135,7 @@ int format_hex_float(char* buf, float v) noexcept {
   } else {
     e = exp_field - 127;
   }
-  std::memcpy(buf + n, "0x1", 3);
+  std::memcpy(buf + n, "0x1", 3);  // NOLINT(bugprone-not-null-terminated-result): length-counted text (n)
   n += 3;
   std::uint32_t f = frac << 1;  // 24 bits = 6 hex digits
   if (f != 0) {
@@ -223,6 +224,7 @@ void print_event(Line& line, hstmon_monitor* mon, const hstmon_event& e, double 
     const int total = hstmon_candidates(mon, live, kPrintCandidates);
     bool match = total == e.consistent;
     for (int j = 0; match && j < e.count; ++j) {
+      // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison): bit-identical scores wanted, not equal values
       match = live[j].name == e.candidate[j].name && std::memcmp(&live[j].score, &e.candidate[j].score, sizeof(float)) == 0;
     }
     if (match) {

@@ -125,9 +125,13 @@ class Reader {
   }
 
   /// Fails at the value at JSON pointer ptr (or its nearest recorded ancestor).
-  [[noreturn]] void fail_value(std::string ptr, std::string message) { fail(position(loc_.value, ptr), std::move(message)); }
-  [[noreturn]] void fail_key(std::string ptr, std::string message) { fail(position(loc_.key, ptr), std::move(message)); }
-  [[noreturn]] void fail_at(std::string ptr, std::string message) { fail_value(std::move(ptr), std::move(message)); }
+  [[noreturn]] void fail_value(const std::string& ptr, std::string message) {
+    fail(position(loc_.value, ptr), std::move(message));
+  }
+  [[noreturn]] void fail_key(const std::string& ptr, std::string message) {
+    fail(position(loc_.key, ptr), std::move(message));
+  }
+  [[noreturn]] void fail_at(const std::string& ptr, std::string message) { fail_value(ptr, std::move(message)); }
 
   /// Line and column of the value at ptr, kept for the value checks after the values are bound.
   void at(const std::string& ptr, std::size_t& line, std::size_t& column) const {

@@ -39,6 +39,7 @@ bool drives(ElementKind k) noexcept {
 /// Boundaries and driven shafts hold their values: sources too.
 std::vector<bool> held(const HostCircuit& c) {
   std::vector<bool> s;
+  s.reserve(static_cast<std::size_t>(c.n_nodes + c.n_shafts));
   for (int i = 0; i < c.n_nodes; ++i) s.push_back(c.nodes[i].kind == circuit::NodeKind::kBoundary);
   for (int i = 0; i < c.n_shafts; ++i) s.push_back(c.shafts[i].driven);
   return s;

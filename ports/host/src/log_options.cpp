@@ -25,8 +25,8 @@ bool column_name_matches(std::string_view key, std::string_view name) noexcept {
 }
 
 std::string add_column_map(ReadOptions& options, std::string_view entry) {
-  const std::string usage = "takes COLUMN=SIGNAL or '#N=SIGNAL' (e.g. Druck_A=p_mi, '#8=p_pp'), got '" +
-                            std::string(entry.substr(0, 60)) + (entry.size() > 60 ? "...'" : "'");
+  std::string usage = "takes COLUMN=SIGNAL or '#N=SIGNAL' (e.g. Druck_A=p_mi, '#8=p_pp'), got '" +
+                      std::string(entry.substr(0, 60)) + (entry.size() > 60 ? "...'" : "'");
   // The last '=': a Spider8 name such as "p CH=8" holds one itself.
   const std::size_t eq = entry.rfind('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == entry.size()) return usage;

@@ -259,6 +259,7 @@ class Parser {
     }
     if (!found) return rewind();
     std::vector<std::string_view> texts;
+    texts.reserve(block.size());
     for (const Line& l : block) texts.push_back(text_of(l));
     const std::optional<PreambleLayout> layout = detect_preamble_layout(texts, text_of(data), opt_.separator);
     if (!layout) return rewind();

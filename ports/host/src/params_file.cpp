@@ -168,7 +168,7 @@ class Reader {
     if (col != std::string::npos) {
       const std::size_t colon = what.find(": ", col);
       if (colon != std::string::npos) start = colon + 2;
-    } else if (what.size() > 0 && what[0] == '[') {
+    } else if (!what.empty() && what[0] == '[') {
       const std::size_t close = what.find("] ");
       if (close != std::string::npos) start = close + 2;
     }
