@@ -55,6 +55,7 @@ fi
 
 if [ "$do_tidy" = 1 ]; then
   build="$root/build/style"
+  mkdir -p "$root/build"  # a fresh clone has none; the configure log sits beside the tree
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
     -DHSTMON_BUILD_BENCH=OFF -DHSTMON_BUILD_PYTHON=OFF >"$build.configure.log" 2>&1 || {
     cat "$build.configure.log" >&2; exit 2; }
