@@ -75,6 +75,12 @@
 #define HSTMON_TICK_PART inline
 #endif
 
+/// 1 (the default): observers of models with a Jacobian take linearly implicit steps on
+/// stiff ticks; 0: RK4 substeps always (see Observer::kImplicit).
+#ifndef HSTMON_IMPLICIT_TICKS
+#define HSTMON_IMPLICIT_TICKS 1
+#endif
+
 namespace hstmon {
 
 namespace observer_detail {
@@ -167,7 +173,8 @@ struct ChannelSample {
 /// @tparam UsualTick  take the model's usual tick (see the file comment); by default
 ///   wherever the model has one
 template <typename Model, bool UsualTick = observer_detail::HasUsualTick<Model>::value>
-class Observer : private observer_detail::ImplicitState<Model, observer_detail::HasJacobian<Model>::value> {
+class Observer
+    : private observer_detail::ImplicitState<Model, HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value> {
  public:
   using T = typename Model::Scalar;
   using State = typename Model::State;
@@ -177,8 +184,10 @@ class Observer : private observer_detail::ImplicitState<Model, observer_detail::
   static constexpr int kOutputs = Model::kOutputs;
   /// True when the model offers a fused usual tick (see the file comment).
   static constexpr bool kUsualTick = UsualTick;
-  /// True when the model offers its Jacobian, so stiff ticks can be linearly implicit.
-  static constexpr bool kImplicit = observer_detail::HasJacobian<Model>::value;
+  /// True when the model offers its Jacobian, so stiff ticks can be linearly implicit, and
+  /// the build has not compiled that out (HSTMON_IMPLICIT_TICKS=0: about 0.8 KiB of flash on
+  /// a Cortex-M4F, for a circuit whose stiff ticks are start-ups that RK4 substeps cover).
+  static constexpr bool kImplicit = HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value;
   static_assert(ObserverModelParts<Model>::kTypes,
                 "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
   static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
@@ -716,7 +725,6 @@ class Observer : private observer_detail::ImplicitState<Model, observer_detail::
   std::uint8_t r_valid_ = 0;
   bool has_gain_ = false;
   observer_detail::UsualTickState<Model, UsualTick> usual_{};
-
 };
 
 }  // namespace hstmon
