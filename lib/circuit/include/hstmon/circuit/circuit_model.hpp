@@ -267,7 +267,8 @@ class CircuitModel {
     T z[kExtent<kZ>];
     fill(x, z);
     (void)solve_stiff(z);
-    T jr[kExtent<kStates>][kExtent<kStates>];
+    // Zeroed: GCC at -O1 cannot see that reduced_jacobian writes every used entry.
+    T jr[kExtent<kStates>][kExtent<kStates>] = {};
     T q;
     reduced_jacobian(z, jr, q);
     J.setZero();

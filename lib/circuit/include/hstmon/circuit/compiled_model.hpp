@@ -317,7 +317,8 @@ class CompiledModel {
     T z[kExtent<Kernel::kZ>];
     Kernel::fill(engine_, x, z);
     (void)solve(z);
-    T jr[kExtent<kStates>][kExtent<kStates>];
+    // Zeroed: GCC at -O1 cannot see that reduced_jacobian writes every used entry.
+    T jr[kExtent<kStates>][kExtent<kStates>] = {};
     T q;
     reduced_jacobian(z, jr, q);
     J.setZero();
