@@ -11,10 +11,10 @@
 ///      spectral radius of ∂f/∂x at x_n (so a stiff operating point — start from rest,
 ///      a restricted PRV — gets more substeps instead of a silent false fixed point);
 ///      where n_sub would exceed Config::implicit_above and the model offers its Jacobian
-///      (`void jacobian(const State&, StateMatrix&) const`), one linearly implicit
-///      Rosenbrock step over the tick instead (rosenbrock.hpp: a mode much faster than the
-///      tick, such as a line on an open check valve, is damped in one step at the cost of
-///      about one RK4 substep and an n×n factorisation).
+///      (`void jacobian(const State&, StateMatrix&) const`), error-controlled linearly
+///      implicit Rosenbrock steps over the tick instead (rosenbrock_tick: a mode much faster
+///      than the tick, such as a line on an open check valve, is damped in one step at the
+///      cost of about one RK4 substep and an n×n factorisation; usually one step a tick).
 /// All state lives in the object (a few hundred bytes); step() never allocates, never
 /// throws, and is O(n_sub).
 ///
