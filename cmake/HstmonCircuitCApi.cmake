@@ -1,10 +1,13 @@
-# hstmon_add_circuit_c_api(<target> CIRCUIT <header> SIGNATURES <table> [INCLUDE_DIR <dir>] [MONITORS <n>])
+# hstmon_add_circuit_c_api(<target> CIRCUIT <header> SIGNATURES <table> [COMPILED] [INCLUDE_DIR <dir>]
+#                          [MONITORS <n>])
 #
 # The C API of ONE circuit's monitor (hstmon_circuit_c.h): a static library built from the
 # generated circuit header hstmon/generated/<header>.hpp and fault table
 # hstmon/generated/<table>.hpp (written by `hstmon-circuit-header` and `hstmon-fdi table`;
 # found on the engine's include path or under INCLUDE_DIR), with a static pool of MONITORS
-# monitors (default 1). The same code-generation flags as hstmon::c_api (no exceptions, no
+# monitors (default 1). COMPILED runs the circuit's compiled model instead of the
+# interpreter: hstmon/generated/<header>_compiled.hpp (`hstmon-circuit-header --compiled`),
+# the same numbers from straight-line code at a fraction of the instructions per step. The same code-generation flags as hstmon::c_api (no exceptions, no
 # RTTI, no fused multiply-add: the host float build and the firmware compute the same bits).
 #
 # Defined both in a source build (ports/c_api) and by the installed package's
@@ -12,7 +15,7 @@
 # (docs/packaging.md). Whoever includes this file first names the library's one source
 # file in the global property HSTMON_CIRCUIT_C_API_SOURCE.
 function(hstmon_add_circuit_c_api target)
-  cmake_parse_arguments(A "" "CIRCUIT;SIGNATURES;INCLUDE_DIR;MONITORS" "" ${ARGN})
+  cmake_parse_arguments(A "COMPILED" "CIRCUIT;SIGNATURES;INCLUDE_DIR;MONITORS" "" ${ARGN})
   if(NOT A_CIRCUIT OR NOT A_SIGNATURES)
     message(FATAL_ERROR "hstmon_add_circuit_c_api(${target}): CIRCUIT and SIGNATURES are required")
   endif()
@@ -31,7 +34,7 @@ function(hstmon_add_circuit_c_api target)
   # in a bare-metal package, the CPU flags it was built with).
   target_link_libraries(${target} PUBLIC hstmon::c_api PRIVATE hstmon::circuit)
   target_compile_definitions(${target} PRIVATE HSTMON_C_CIRCUIT=${A_CIRCUIT} HSTMON_C_SIGNATURES=${A_SIGNATURES}
-    HSTMON_CIRCUIT_MONITORS=${A_MONITORS})
+    HSTMON_CIRCUIT_MONITORS=${A_MONITORS} HSTMON_C_COMPILED=$<BOOL:${A_COMPILED}>)
   target_compile_options(${target} PRIVATE -fno-exceptions -fno-rtti -ffp-contract=off)
   set_target_properties(${target} PROPERTIES CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON)
   if(COMMAND hstmon_warnings)  # the project's own warnings in a source build

@@ -15,7 +15,9 @@
 #        (a circuit's whole monitor on its generated circuit header and fault table over
 #        --monitor-log: the JSON lines of `hstmon replay --circuit --json` and one %a
 #        residual line per row), circuit_c_api (the paper's monitor through the circuit
-#        C API from a C main: cost, stack and a detected episode, -icount as footprint).
+#        C API from a C main: cost, stack and a detected episode, -icount as footprint),
+#        monitor_cost_paper, monitor_cost_closed_loop_hst (a circuit's whole monitor on its
+#        compiled model at 1 ms: the usual tick and the ticks after an input change).
 # Defaults: build dir build/firmware-arm, log examples/prv_blockage.csv, monitor log
 # examples/circuits/paper_dm_fault.csv, timeout 300 s.
 # Exit status: the image's; 124 on timeout; 2 on a bad command line or build failure.
@@ -34,8 +36,8 @@ while [ $# -gt 0 ]; do
     --log) log="$(realpath "$2")"; shift 2 ;;
     --monitor-log) monitor_log="$(realpath "$2")"; shift 2 ;;
     --timeout) timeout_s="$2"; shift 2 ;;
-    replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace|circuit_monitor|circuit_c_api) image="$1"; shift ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    replay|replay_trace|footprint|footprint_empty|heap_probe|circuit_footprint|circuit_footprint_empty|circuit_replay_trace|circuit_monitor|circuit_c_api|monitor_cost_paper|monitor_cost_closed_loop_hst) image="$1"; shift ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "firmware.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -64,7 +66,8 @@ if [ "$do_build" = 1 ]; then
   fi
   cmake --build "$build" -j2 --target hstmon_fw_replay hstmon_fw_replay_trace hstmon_fw_footprint \
     hstmon_fw_footprint_empty hstmon_fw_circuit_footprint hstmon_fw_circuit_footprint_empty \
-    hstmon_fw_circuit_replay_trace hstmon_fw_circuit_monitor hstmon_fw_circuit_c_api >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
+    hstmon_fw_circuit_replay_trace hstmon_fw_circuit_monitor hstmon_fw_circuit_c_api \
+    hstmon_fw_monitor_cost_paper hstmon_fw_monitor_cost_closed_loop_hst >"$build.build.log" 2>&1 || { cat "$build.build.log" >&2; exit 2; }
 fi
 
 elf="$build/bin/hstmon_fw_$image.elf"
@@ -76,7 +79,7 @@ trap 'rm -f "$tmp"' EXIT
 qemu=(qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none
       -chardev "file,id=semihost,path=$tmp"
       -semihosting-config enable=on,target=native,chardev=semihost -kernel "$elf")
-case "$image" in footprint*|circuit_footprint*|circuit_monitor|circuit_c_api) qemu+=(-icount shift=0) ;; esac
+case "$image" in footprint*|circuit_footprint*|circuit_monitor|circuit_c_api|monitor_cost_*) qemu+=(-icount shift=0) ;; esac
 rc=0
 timeout "$timeout_s" "${qemu[@]}" </dev/null || rc=$?
 cat "$tmp"

@@ -18,7 +18,9 @@
 # Then the circuit engine on the generated circuit header (issue 14; main_circuit_footprint.cpp):
 # flash, RAM, setup and step stack, instructions per tick and heap, all gated.
 # Then a circuit's whole monitor (issue 15; main_circuit_monitor.cpp): flash, RAM, stack reported, heap gated;
-# and the same monitor through the circuit C API from C (main_circuit_c_api.c): reported, heap gated.
+# and the same monitor through the circuit C API from C (main_circuit_c_api.c): reported, heap gated;
+# and the whole monitor on the compiled paper.json and closed_loop_hst.json at 1 ms
+# (main_circuit_monitor_cost.cpp): usual tick and the ticks after an input change, reported.
 #   scripts/footprint.sh [--build-dir DIR] [--no-build]
 # Exit status: 0 all budgets met; 1 a budget exceeded; 2 build or run failure.
 set -euo pipefail
@@ -29,7 +31,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) build="$2"; shift 2 ;;
     --no-build) no_build=(--no-build); shift ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "footprint.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -126,7 +128,7 @@ stack_reserve=$(( 16#$(sym __stack_top__) - 16#$(sym __stack_limit__) ))
 m_flash=$(( (t1 + d1) - (t0 + d0) - $(mfield log_bytes) ))
 m_ram=$(( d1 + b1 - stack_reserve ))
 m_heap=$(arm-none-eabi-nm "$melf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
-echo "circuit monitor: CircuitMonitor<float> + generated fault table, replaying the embedded log, Cortex-M4F, -O2 (reported)"
+echo "circuit monitor: CompiledCircuitMonitor<float> + generated fault table, replaying the embedded log, Cortex-M4F, -O2 (reported)"
 printf "  %-44s %8s %-6s\n" "flash (image − empty − embedded log)" "$m_flash" "B"
 printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$m_ram" "B"
 printf "  %-44s %8s %-6s\n" "  of which the monitor object (static)" "$(mfield monitor_bytes)" "B"
@@ -165,4 +167,39 @@ printf "  %-44s %8s %-6s\n" "instructions per 5 ms step (qemu icount)" \
   "$(awk -v s="$(afield counts_step_loop)" -v e="$(afield counts_empty_loop)" -v ci="$(afield calib_instructions)" \
     -v cc="$(afield calib_counts)" -v n="$(afield ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')" "instr"
 row "heap: malloc/_sbrk/new symbols in image" "$a_heap" "" 0
+# A circuit's whole monitor on its compiled model at 1 ms (main_circuit_monitor_cost.cpp):
+# the usual tick at the steady state, and the ticks after an input change (the first
+# recomputes the model bound), for paper.json and closed_loop_hst.json. Flash: the image
+# minus the circuit empty image; RAM: data + bss minus the stack reserve. Reported against
+# the engine issue's budgets (2 000 instructions per usual tick, 32 KiB flash, 2 KiB RAM,
+# 1 KiB stack), gated on the heap only.
+for c in paper closed_loop_hst; do
+  cost_json="$(fw "monitor_cost_$c" --no-build)" || { echo "footprint.sh: monitor cost image ($c) failed" >&2; exit 2; }
+  kfield() { echo "$cost_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+  kelf="$build/bin/hstmon_fw_monitor_cost_$c.elf"
+  read -r t1 d1 b1 _ < <(arm-none-eabi-size "$kelf" | awk 'NR==2{print $1,$2,$3}')
+  read -r t0 d0 _ _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
+  ksym() { arm-none-eabi-nm "$kelf" | awk -v n="$1" '$3==n{print $1}'; }
+  k_instr() {  # counts [per n ticks] → instructions
+    awk -v c="$1" -v n="${2:-1}" -v ci="$(kfield calib_instructions)" -v cc="$(kfield calib_counts)" \
+      'BEGIN { printf "%.0f", c * ci / cc / n }'
+  }
+  k_heap=$(arm-none-eabi-nm "$kelf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+  echo "circuit monitor cost: $c.json at 1 ms, compiled model ($(kfield states) states, $(kfield channels) channels), Cortex-M4F, -O2 (reported)"
+  printf "  %-44s %8s %-6s %8s\n" "flash (image − circuit empty image)" "$(( (t1 + d1) - (t0 + d0) ))" "B" "(32768)"
+  printf "  %-44s %8s %-6s %8s\n" "RAM (data+bss − stack reserve)" \
+    "$(( d1 + b1 - (16#$(ksym __stack_top__) - 16#$(ksym __stack_limit__)) ))" "B" "(2048)"
+  printf "  %-44s %8s %-6s\n" "  of which the monitor object" "$(kfield monitor_bytes)" "B"
+  printf "  %-44s %8s %-6s %8s\n" "stack, configure, reset, first ticks (painting)" "$(kfield stack_setup_bytes)" "B" "(1024)"
+  printf "  %-44s %8s %-6s %8s\n" "stack, usual steps (painting)" "$(kfield stack_usual_bytes)" "B" "(1024)"
+  printf "  %-44s %8s %-6s %8s\n" "stack, steps after an input change (painting)" "$(kfield stack_change_bytes)" "B" "(1024)"
+  printf "  %-44s %8s %-6s %8s\n" "instructions per usual tick (qemu icount)" \
+    "$(k_instr "$(( $(kfield counts_usual_loop) - $(kfield counts_empty_loop) ))" "$(kfield ticks)")" "instr" "(2000)"
+  printf "  %-44s %8s %-6s\n" "  RK4 substeps of the usual ticks" "$(kfield max_substeps)" ""
+  printf "  %-44s %8s %-6s\n" "first tick after an input change (bound)" "$(k_instr "$(kfield counts_change_first)")" "instr"
+  printf "  %-44s %8s %-6s\n" "costliest tick after it (of $(kfield after_ticks))" "$(k_instr "$(kfield counts_change_worst)")" "instr"
+  printf "  %-44s %8s %-6s\n" "mean tick after it, the bound's tick included" \
+    "$(k_instr "$(kfield counts_change_total)" "$(kfield after_ticks)")" "instr"
+  row "heap: malloc/_sbrk/new symbols in image" "$k_heap" "" 0
+done
 exit $fail

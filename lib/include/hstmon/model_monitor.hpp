@@ -47,6 +47,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "hstmon/fault_matcher.hpp"
 #include "hstmon/fault_signature.hpp"
@@ -75,6 +76,18 @@ struct BoundReportsTau {
 template <class B>
 struct BoundReportsTau<B, decltype(void(B::kSlowestTau))> {
   static constexpr bool value = B::kSlowestTau;
+};
+
+/// True when ModelBound B can run on the model itself and put it back
+/// (B::compute_in_place(Model&, …): circuit_bound.hpp's), so the monitor's bound copies no
+/// model onto the stack.
+template <class B, class = void>
+struct BoundInPlace {
+  static constexpr bool value = false;
+};
+template <class B>
+struct BoundInPlace<B, std::void_t<decltype(&B::compute_in_place)>> {
+  static constexpr bool value = true;
 };
 
 namespace model_monitor_detail {
@@ -568,6 +581,20 @@ class ModelMonitor
     return matcher_.update(t, ev_, sensor_mask, saturated, t >= settled_from_);
   }
 
+  // The model bound at the observer's inputs: in place where the bound can put the model
+  // back, else on a copy. tau: the slowest time constant, where the bound reports one.
+  Status compute_bound(T (&m)[kN_], T* tau) noexcept {
+    using B = ModelBound<Model>;
+    if constexpr (BoundInPlace<B>::value) {
+      return B::compute_in_place(obs_.borrow_model(), uncertainty_, m, tau);
+    } else if constexpr (kCanCarry) {
+      return B::compute(obs_.model(), uncertainty_, m, tau);
+    } else {
+      (void)tau;
+      return B::compute(obs_.model(), uncertainty_, m);
+    }
+  }
+
   // Keeps the last good bound when the changed operating point has no steady state, and
   // the last steady outputs for the model transient's envelope likewise.
   void update_bound() noexcept {
@@ -581,7 +608,7 @@ class ModelMonitor
     }
     if (model_transient_ > T(0)) refresh_steady_outputs();
     T m[kN_];
-    if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m) == Status::kOk) {
+    if (compute_bound(m, nullptr) == Status::kOk) {
       for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
       (void)ev_.set_model_bound(bound_);
     }
@@ -617,7 +644,7 @@ class ModelMonitor
     if (this->carry_hold_) set_steady_outputs(xs);
     T m[kN_];
     T tau_new = T(0);
-    if (ModelBound<Model>::compute(obs_.model(), uncertainty_, m, &tau_new) != Status::kOk) return;  // all stay
+    if (compute_bound(m, &tau_new) != Status::kOk) return;  // all stay
     for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
     (void)ev_.set_model_bound(bound_);
     const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;

@@ -398,6 +398,10 @@ class Observer
   std::uint32_t health() const noexcept { return health_; }
   const Config& config() const noexcept { return cfg_; }
   const Model& model() const noexcept { return model_; }
+  /// The model, writable: only for a caller that changes it and puts it back bit for bit
+  /// before the next step (the monitor's in-place model bound); anything else goes through
+  /// configure and the inputs of step.
+  Model& borrow_model() noexcept { return model_; }
 
  private:
   /// The usual tick in n ≥ 2 substeps (a PLC scan, a stiffer point): n from the general

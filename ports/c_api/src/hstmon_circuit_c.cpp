@@ -1,6 +1,7 @@
 // C API over one circuit's float monitor (ports/c_api/include/hstmon_circuit_c.h). The
 // circuit and its fault table are generated headers chosen at compile time
-// (HSTMON_C_CIRCUIT, HSTMON_C_SIGNATURES: names under hstmon/generated/); the monitor's
+// (HSTMON_C_CIRCUIT, HSTMON_C_SIGNATURES: names under hstmon/generated/; with
+// HSTMON_C_COMPILED the circuit's compiled model, <HSTMON_C_CIRCUIT>_compiled.hpp); the monitor's
 // setup is the firmware's (circuit/generated_setup.hpp). A thin layer: copies between
 // plain C structs and the core's types; all numerics stay in lib/.
 #include "hstmon_circuit_c.h"
@@ -23,9 +24,21 @@
 #ifndef HSTMON_CIRCUIT_MONITORS
 #define HSTMON_CIRCUIT_MONITORS 1
 #endif
+#ifndef HSTMON_C_COMPILED
+#define HSTMON_C_COMPILED 0
+#endif
 #define HSTMON_C_STR2(x) #x
 #define HSTMON_C_STR(x) HSTMON_C_STR2(x)
+#define HSTMON_C_CAT2(a, b) a##b
+#define HSTMON_C_CAT(a, b) HSTMON_C_CAT2(a, b)
+#if HSTMON_C_COMPILED
+// A path, not an expression: clang-format would space its slashes.
+// clang-format off
+#include HSTMON_C_STR(hstmon/generated/HSTMON_C_CAT(HSTMON_C_CIRCUIT, _compiled).hpp)
+// clang-format on
+#else
 #include HSTMON_C_STR(hstmon/generated/HSTMON_C_CIRCUIT.hpp)
+#endif
 #include HSTMON_C_STR(hstmon/generated/HSTMON_C_SIGNATURES.hpp)
 
 namespace {
@@ -33,9 +46,13 @@ namespace {
 namespace gen = ::hstmon::generated::HSTMON_C_CIRCUIT;
 namespace sig = ::hstmon::generated::HSTMON_C_SIGNATURES;
 
-// The firmware's monitor (fw_circuit_monitor.hpp): the circuit's tight capacity, exactly
-// the table's rows, 4 queued events, 8 candidates per event.
+// The firmware's monitor (fw_circuit_monitor.hpp): the circuit's compiled model or its
+// tight capacity's interpreter, exactly the table's rows, 4 queued events, 8 candidates per event.
+#if HSTMON_C_COMPILED
+using Mon = hstmon::circuit::CompiledCircuitMonitor<float, gen::Kernel, sig::kSignatureCount, 4, 8>;
+#else
 using Mon = hstmon::circuit::CircuitMonitor<float, gen::Cap, sig::kSignatureCount, 4, 8>;
+#endif
 using Model = Mon::Model;
 using Obs = Mon::Obs;
 constexpr int kCh = gen::Cap::kChannels;

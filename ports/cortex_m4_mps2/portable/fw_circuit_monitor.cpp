@@ -224,6 +224,11 @@ void write_diagnosis_lines(Line& line, const CircuitFwMonitor& mon, const Replay
 
 }  // namespace
 
+Status configure_circuit_monitor(CircuitFwMonitor& mon, const Inputs& u0) noexcept {
+  return circuit::configure_from_generated(mon, g_model, generated_values(), u0, sig::kSignatures,
+                                           sig::kSignatureCount);
+}
+
 std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, const LogColumns& columns,
                                      Sink out) noexcept {
   Line line(out);
@@ -259,8 +264,7 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
   // Configuration and start: as replay_circuit (`--init auto`), from the generated values.
   const circuit::GeneratedValues<gen::Cap> values = generated_values();
   const Inputs u0 = inputs_at(0);
-  const Status configured = circuit::configure_from_generated(mon, g_model, values, u0, sig::kSignatures,
-                                                              sig::kSignatureCount);
+  const Status configured = configure_circuit_monitor(mon, u0);
   if (configured == Status::kInvalidParams) {
     error_line(line, "the generated circuit's values do not make a physical circuit", nullptr, nullptr);
     return ~0u;

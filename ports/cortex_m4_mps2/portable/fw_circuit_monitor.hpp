@@ -13,6 +13,7 @@
 
 #include "fw_circuit.hpp"
 #include "hstmon/circuit/circuit_monitor.hpp"
+#include "hstmon/model_monitor.hpp"
 
 #ifndef HSTMON_FW_SIGNATURES
 #error "HSTMON_FW_SIGNATURES must name the generated fault table (e.g. paper_signatures)"
@@ -26,9 +27,19 @@ namespace sig = ::hstmon::generated::HSTMON_FW_SIGNATURES;
 static_assert(sig::kChannels == gen::Cap::kChannels,
               "the fault table and the circuit header must be generated from the same circuit");
 
-/// The monitor: float, the circuit's tight capacity, exactly the table's rows, 4 queued
-/// events and 8 candidates per event (the host replay's, so events print the same).
-using CircuitFwMonitor = circuit::CircuitMonitor<float, gen::Cap, sig::kSignatureCount, 4, 8>;
+/// The monitor: float, on the circuit's firmware model (fw_circuit.hpp: compiled with
+/// HSTMON_FW_COMPILED, else interpreted, at the circuit's tight capacity), exactly the
+/// table's rows, 4 queued events and 8 candidates per event (the host replay's, so events
+/// print the same).
+using CircuitFwMonitor = ModelMonitor<CircuitFwModel, sig::kSignatureCount, 4, 8>;
+
+/// Configures `mon` from the generated header's values for the first inputs u0, as the
+/// replay below does (circuit::configure_from_generated, with a static scratch model: no
+/// model on the stack).
+/// @param u0  inputs of the first sample [SI]
+/// @return kOk; kInvalidParams when the generated values make no physical circuit;
+///         otherwise the monitor's configure() status
+Status configure_circuit_monitor(CircuitFwMonitor& mon, const CircuitFwModel::Inputs& u0) noexcept;
 
 /// Log column names and units beside a LogView (csv_to_header.cmake: kColumn, kUnit).
 struct LogColumns {

@@ -69,6 +69,7 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
     return e;
   }
 
+  /// The bound on a copy of model (hosts; firmware perturbs in place: compute_in_place).
   /// @param model  the observer's model (description, parameters and inputs set)
   /// @param eps    relative uncertainties, each finite, ≥ 0 and < 0.5
   /// @param m      out: bound per channel [channel unit] (unused channels 0; a partial sum after an error)
@@ -81,6 +82,48 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
   /// @return       kOk; kInvalidParams (eps out of range); kNoSteadyState
   static Status compute(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>],
                         T* slowest_tau = nullptr, circuit::BoundLead<T, kN>* lead = nullptr) noexcept {
+    typename Model::Output y0;
+    const Status s = unperturbed(model, eps, m, slowest_tau, lead, y0);
+    if (s != Status::kOk) return s;
+    Model p = model;
+    return perturbed(p, model.params(), y0, eps, m, slowest_tau, lead);
+  }
+
+  /// compute() on model itself: its parameters are perturbed one at a time and, before
+  /// this returns, put back, with the warm start its unperturbed solves left: the model
+  /// compute() leaves, bit for bit. No model copy on the stack (a firmware monitor's
+  /// deepest frame).
+  static Status compute_in_place(Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>],
+                                 T* slowest_tau = nullptr, circuit::BoundLead<T, kN>* lead = nullptr) noexcept {
+    typename Model::Output y0;
+    const Status s = unperturbed(model, eps, m, slowest_tau, lead, y0);
+    if (s != Status::kOk) return s;
+    const Restore restore(model);
+    return perturbed(model, restore.params, y0, eps, m, slowest_tau, lead);
+  }
+
+ private:
+  // Puts a model perturbed in place back: parameters (set_params re-resolves the same
+  // coefficients from the same values) and the stiff nodes' warm start.
+  struct Restore {
+    explicit Restore(Model& m) noexcept : model(m), params(m.params()) {
+      for (int j = 0; j < Cap::kNodes; ++j) guess[j] = j < m.n_stiff() ? m.warm_start(j) : T(0);
+    }
+    Restore(const Restore&) = delete;
+    Restore& operator=(const Restore&) = delete;
+    ~Restore() {
+      model.set_params(params);
+      for (int j = 0; j < model.n_stiff(); ++j) model.set_warm_start(j, guess[j]);
+    }
+    Model& model;
+    const typename Model::Params params;
+    T guess[circuit::kExtent<Cap::kNodes>]{};
+  };
+
+  // Clears the outputs, checks eps, and solves the unperturbed model: its steady outputs
+  // y0 and (into slowest_tau) its slowest time constant.
+  static Status unperturbed(const Model& model, const Uncertainty& eps, T (&m)[circuit::kExtent<kN>], T* slowest_tau,
+                            circuit::BoundLead<T, kN>* lead, typename Model::Output& y0) noexcept {
     for (int i = 0; i < kN; ++i) m[i] = T(0);
     if (lead != nullptr) {
       for (int i = 0; i < kN; ++i) {
@@ -92,20 +135,31 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
       const T e = eps.rel[k];
       if (!(std::isfinite(e) && e >= T(0) && e < T(0.5))) return Status::kInvalidParams;
     }
-    typename Model::Output y0, y;
     typename Model::State xs;
     if (!model.steady_state(xs)) return Status::kNoSteadyState;
     y0 = model.outputs(xs);
-    const auto note_tau = [slowest_tau](const Model& mod, const typename Model::State& x) noexcept {
-      if (slowest_tau == nullptr) return;
-      const T rate = mod.slowest_rate(x);
-      if (rate > T(0) && T(1) > rate * *slowest_tau) *slowest_tau = T(1) / rate;
-    };
-    if (slowest_tau != nullptr) *slowest_tau = T(0);
-    note_tau(model, xs);
-    const int n = model.description() != nullptr ? model.description()->n_params : 0;
-    Model p = model;  // perturbed one parameter at a time
-    typename Model::Params v = model.params();
+    if (slowest_tau != nullptr) {
+      *slowest_tau = T(0);
+      note_tau(model, xs, *slowest_tau);
+    }
+    return Status::kOk;
+  }
+
+  // tau = 1/(the slowest decay rate of mod at x) [s] when that is slower than tau.
+  static void note_tau(const Model& mod, const typename Model::State& x, T& tau) noexcept {
+    const T rate = mod.slowest_rate(x);
+    if (rate > T(0) && T(1) > rate * tau) tau = T(1) / rate;
+  }
+
+  // The rest of the bound after unperturbed(), perturbing p, whose values p0 have the
+  // steady outputs y0.
+  static Status perturbed(Model& p, const typename Model::Params& p0, const typename Model::Output& y0,
+                          const Uncertainty& eps, T (&m)[circuit::kExtent<kN>], T* slowest_tau,
+                          circuit::BoundLead<T, kN>* lead) noexcept {
+    typename Model::Output y;
+    typename Model::State xs;
+    const int n = p.description() != nullptr ? p.description()->n_params : 0;
+    typename Model::Params v = p0;  // perturbed one parameter at a time
     // Bit k of up[i]: parameter k at +ε_k moved channel i up at least as far as −ε_k did.
     constexpr int kWords = (Cap::kParams + 31) / 32;
     std::uint32_t up[circuit::kExtent<kN>][circuit::kExtent<kWords>] = {};
@@ -120,7 +174,7 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
         p.set_params(v);
         if (!p.valid() || !p.steady_state(xs)) return Status::kNoSteadyState;
         y = p.outputs(xs);
-        note_tau(p, xs);
+        if (slowest_tau != nullptr) note_tau(p, xs, *slowest_tau);
         for (int i = 0; i < kN; ++i) {
           d[i] = std::fmax(d[i], std::fabs(y[i] - y0[i]));
           if (side > T(1)) {
@@ -146,12 +200,12 @@ struct ModelBound<circuit::CircuitModel<T, Cap>> {
         for (int k = 0; k < n; ++k) {
           const T e = eps.rel[k];
           const bool plus = ((up[i][k / 32] >> (k % 32)) & 1u) != 0;
-          v.v[k] = model.params().v[k] * (plus == high ? T(1) + e : T(1) - e);
+          v.v[k] = p0.v[k] * (plus == high ? T(1) + e : T(1) - e);
         }
         p.set_params(v);
         if (!p.valid() || !p.steady_state(xs)) continue;
         y = p.outputs(xs);
-        note_tau(p, xs);
+        if (slowest_tau != nullptr) note_tau(p, xs, *slowest_tau);
         m[i] = std::fmax(m[i], std::fabs(y[i] - y0[i]));
       }
     }

@@ -206,6 +206,9 @@ class CircuitModel {
   T fixed_value(int k) const noexcept { return fixed_z_[k]; }
   /// Pressure of the j-th stiff node the next quasi-steady solve starts from [Pa].
   T warm_start(int j) const noexcept { return guess_[j]; }
+  /// Sets the j-th stiff node's warm start [Pa]: for a caller that perturbs the model in
+  /// place and puts it back as it was (the model bound, circuit_bound.hpp).
+  void set_warm_start(int j, T p) noexcept { guess_[j] = p; }
 
   /// Full vector z at state x: node pressures (boundaries, states, stiff nodes solved)
   /// then shaft speeds (states, driven).

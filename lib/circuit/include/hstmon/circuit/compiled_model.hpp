@@ -101,6 +101,10 @@ class CompiledModel {
   const Inputs& inputs() const noexcept { return engine_.inputs(); }
   /// The interpreter inside (resolved coefficients, envelope, bounds).
   const Engine& engine() const noexcept { return engine_; }
+  /// The interpreter inside, writable: only for a caller that changes its values and puts
+  /// them back bit for bit before the next evaluation (the in-place model bound,
+  /// compiled_bound.hpp); anything else goes through set_params and set_inputs.
+  Engine& borrow_engine() noexcept { return engine_; }
   bool valid() const noexcept { return engine_.valid(); }
   int n_states() const noexcept { return engine_.n_states(); }
   int n_stiff() const noexcept { return engine_.n_stiff(); }
@@ -129,6 +133,8 @@ class CompiledModel {
     return true;
   }
   State rest_state() const noexcept { return engine_.rest_state(); }
+  /// CircuitModel::slowest_rate [1/s] (off the hot path: the monitor's start-up and bound).
+  T slowest_rate(const State& x) const noexcept { return engine_.slowest_rate(x); }
 
   /// CircuitModel::steady_state; the quasi-steady solve then starts from it.
   bool steady_state(State& x) const noexcept {
