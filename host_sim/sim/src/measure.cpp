@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "hstmon_sim/paper_reference.hpp"
-#include "fine_grid.hpp"
+#include "fine_sampling.hpp"
 #include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
@@ -24,51 +24,20 @@ std::vector<Measurement<Inputs>> run(Reference& ref, const Scenario<Inputs>& sc,
                                      std::uint64_t seed) {
   using State = typename Reference::State;
   const detail::FineGrid grid(cfg, sc.duration, "measure");
-  const std::size_t m = grid.m;
-
-  SensorChain chain(cfg.channels, seed);
-  std::vector<Measurement<Inputs>> out;
-  out.reserve(grid.last / m + 1);
   double x[4];
   state_to_array(ref.state(), x);
-  chain.reset(x);
-  Measurement<Inputs> row;
-  row.t = 0.0;
-  row.u = logged_inputs_at(sc, 0.0);
-  chain.measure(row.y.data());
-  out.push_back(row);
-
-  std::size_t i = 0;  // index of the last fine point fed
-  double t_last = 0.0;
-  auto on_sample = [&](double t, const State& xs) {
-    ++i;
+  detail::FineSampling<Inputs> sampling(cfg, seed, sc, grid, x);
+  auto on_sample = [&sampling](double t, const State& xs) {
     double v[4];
     state_to_array(xs, v);
-    chain.advance(v, t - t_last);
-    t_last = t;
-    if (i % m == 0) {
-      Measurement<Inputs> r;
-      r.t = t;
-      r.u = logged_inputs_at(sc, t);
-      chain.measure(r.y.data());
-      out.push_back(r);
-    }
+    sampling.feed(t, v);
   };
-  std::vector<double> batch;
-  batch.reserve(detail::kBatch);
   for (std::size_t k = 0; k < sc.schedule.size(); ++k) {
-    const double seg_end = segment_end(sc, k);
-    for (;;) {
-      batch.clear();
-      for (std::size_t j = i + 1; j <= grid.last && batch.size() < detail::kBatch && grid.at(j) <= seg_end; ++j) {
-        batch.push_back(grid.at(j));
-      }
-      const bool last_batch = batch.size() < detail::kBatch;
-      ref.advance_to(last_batch ? seg_end : batch.back(), sc.schedule[k].u, batch, on_sample);
-      if (last_batch) break;
-    }
+    sampling.through(segment_end(sc, k), [&](double t_end, const std::vector<double>& points) {
+      ref.advance_to(t_end, sc.schedule[k].u, points, on_sample);
+    });
   }
-  return out;
+  return sampling.take();
 }
 
 }  // namespace

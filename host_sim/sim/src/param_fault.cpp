@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "hstmon/circuit/thesis_circuit_model.hpp"
-#include "fine_grid.hpp"
+#include "fine_sampling.hpp"
 #include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
@@ -20,7 +20,6 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
     throw std::invalid_argument("measure_with_fault: invalid faulty parameters");
   }
   const detail::FineGrid grid(cfg, sc.duration, "measure_with_fault");
-  const std::size_t m = grid.m;
 
   // Segments: the schedule's, split at the fault time.
   struct Segment {
@@ -44,36 +43,14 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
                                                thesis_initial_state(sc, p), 0.0, tol);
   bool ref_faulty = segs.front().faulty;
 
-  SensorChain chain(cfg.channels, seed);
-  ThesisMeasurements out;
-  out.reserve(grid.last / m + 1);
   double x[4];
   to_array(ref->state(), x);
-  chain.reset(x);
-  Measurement<ThesisInputs<double>> row;
-  row.t = 0.0;
-  row.u = logged_inputs_at(sc, 0.0);
-  chain.measure(row.y.data());
-  out.push_back(row);
-
-  std::size_t i = 0;
-  double t_last = 0.0;
-  auto on_sample = [&](double t, const ThesisState<double>& xs) {
-    ++i;
+  detail::FineSampling<ThesisInputs<double>> sampling(cfg, seed, sc, grid, x);
+  auto on_sample = [&sampling](double t, const ThesisState<double>& xs) {
     double v[4];
     to_array(xs, v);
-    chain.advance(v, t - t_last);
-    t_last = t;
-    if (i % m == 0) {
-      Measurement<ThesisInputs<double>> r;
-      r.t = t;
-      r.u = logged_inputs_at(sc, t);
-      chain.measure(r.y.data());
-      out.push_back(r);
-    }
+    sampling.feed(t, v);
   };
-  std::vector<double> batch;
-  batch.reserve(detail::kBatch);
   for (const Segment& s : segs) {
     if (s.faulty && !ref_faulty) {
       const ThesisState<double> x0 = ref->state();
@@ -81,17 +58,11 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
       ref = std::make_unique<ThesisReference>(faulty, x0, t0, tol);
       ref_faulty = true;
     }
-    for (;;) {
-      batch.clear();
-      for (std::size_t j = i + 1; j <= grid.last && batch.size() < detail::kBatch && grid.at(j) <= s.end; ++j) {
-        batch.push_back(grid.at(j));
-      }
-      const bool last_batch = batch.size() < detail::kBatch;
-      ref->advance_to(last_batch ? s.end : batch.back(), s.u, batch, on_sample);
-      if (last_batch) break;
-    }
+    sampling.through(s.end, [&](double t_end, const std::vector<double>& points) {
+      ref->advance_to(t_end, s.u, points, on_sample);
+    });
   }
-  return out;
+  return sampling.take();
 }
 
 ThesisScenario with_input_fault(const ThesisScenario& sc, double ThesisInputs<double>::*field, double factor,
