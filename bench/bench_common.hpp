@@ -23,6 +23,7 @@
 #include <cstring>
 
 #include "hstmon/hstmon.hpp"
+#include "perturbed_measurements.hpp"
 
 namespace hstmon_bench {
 
@@ -31,34 +32,9 @@ using Reduced = hstmon::ThesisReducedModel<T>;
 template <typename T>
 using Obs = hstmon::Observer<Reduced<T>>;
 
-/// Measurements fed to every variant: the steady-state outputs with a small deterministic
-/// perturbation (a few hundred Pa / 0.05 rad/s), all four channels valid. A power-of-two
-/// ring so the index is a mask.
+/// Measurements fed to every variant (perturbed_measurements.hpp).
 template <typename T>
-struct MeasurementTable {
-  static constexpr std::size_t kSize = 1024;
-  std::array<typename Obs<T>::Measurement, kSize> m{};
-
-  explicit MeasurementTable(const typename Obs<T>::Output& y0) noexcept {
-    std::uint32_t lcg = 12345u;
-    for (auto& e : m) {
-      typename Obs<T>::Output d;
-      for (int i = 0; i < 4; ++i) {
-        lcg = lcg * 1664525u + 1013904223u;
-        d[i] = static_cast<T>(static_cast<double>(lcg >> 8) / 16777216.0 - 0.5);  // [-0.5, 0.5)
-      }
-      e.y = y0;
-      e.y[0] += T(400) * d[0];
-      e.y[1] += T(400) * d[1];
-      e.y[2] += T(400) * d[2];
-      e.y[3] += T(0.05) * d[3];
-      e.valid = 0x0F;
-    }
-  }
-  const typename Obs<T>::Measurement& operator[](std::uint64_t i) const noexcept {
-    return m[static_cast<std::size_t>(i) & (kSize - 1)];
-  }
-};
+using MeasurementTable = PerturbedMeasurements<Obs<T>>;
 
 /// Compiler barrier: the pointee is assumed read and written (same as
 /// benchmark::DoNotOptimize + ClobberMemory, usable without Google Benchmark).

@@ -17,6 +17,7 @@
 #include "hstmon/generated/thesis_circuit_compiled.hpp"
 #include "hstmon/observer.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
+#include "perturbed_measurements.hpp"
 
 namespace hstmon_bench {
 
@@ -134,28 +135,9 @@ Obs make_compiled_observer(T tick) {
   return o;
 }
 
-/// Measurements: the steady outputs with a small deterministic perturbation (as
-/// MeasurementTable), all four channels valid.
+/// Measurements fed to every variant (perturbed_measurements.hpp).
 template <typename T>
-struct EngineMeasurements {
-  static constexpr std::size_t kSize = 1024;
-  std::array<typename EngineObs<T>::Measurement, kSize> m{};
-  explicit EngineMeasurements(const typename EngineObs<T>::Output& y0) noexcept {
-    std::uint32_t lcg = 12345u;
-    for (auto& e : m) {
-      e.y = y0;
-      for (int i = 0; i < 4; ++i) {
-        lcg = lcg * 1664525u + 1013904223u;
-        const T d = static_cast<T>(static_cast<double>(lcg >> 8) / 16777216.0 - 0.5);
-        e.y[i] += (i == 3 ? T(0.05) : T(400)) * d;
-      }
-      e.valid = 0x0F;
-    }
-  }
-  const typename EngineObs<T>::Measurement& operator[](std::uint64_t i) const noexcept {
-    return m[static_cast<std::size_t>(i) & (kSize - 1)];
-  }
-};
+using EngineMeasurements = PerturbedMeasurements<EngineObs<T>>;
 
 /// Boost.Odeint's runge_kutta4 as the observer, one step per tick, on the same engine
 /// model (outputs, residuals, one RK4 step of derivative(); no health checks).

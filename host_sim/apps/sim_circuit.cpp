@@ -1,6 +1,5 @@
 #include "sim_circuit.hpp"
 
-#include <cstdio>
 #include <exception>
 #include <fstream>
 #include <iostream>
@@ -11,19 +10,10 @@
 #include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_circuit/logged_run.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "sim_compare.hpp"
 
 namespace hstmon::sim_app {
-
-namespace {
-
-std::string shortest(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
-}  // namespace
 
 int run_circuit_sim(const CircuitSimArgs& a) {
   circuit_tools::LoadedCircuit c;
@@ -58,10 +48,10 @@ int run_circuit_sim(const CircuitSimArgs& a) {
       if (o.profile.drives(i)) driven += (driven.empty() ? "" : ", ") + c.file.inputs[i].name;
     }
     profile_note = "inputs " + driven + " from " + a.inputs + " (" + std::to_string(measured.rows()) +
-                   " rows from t = " + shortest(o.start_time) + " s), " +
+                   " rows from t = " + host::number_text(o.start_time) + " s), " +
                    (*hold == circuit_tools::InputHold::kLinear ? "linear between rows"
                                                                : "each row held until the next (zero-order hold)") +
-                   "; " + (a.rate > 0.0 ? "rows at " + shortest(a.rate) + " Hz" : "the log's own row times");
+                   "; " + (a.rate > 0.0 ? "rows at " + host::number_text(a.rate) + " Hz" : "the log's own row times");
   } else {
     if (a.duration > 0.0) o.duration = a.duration;
     if (a.rate > 0.0) o.rate = a.rate;
@@ -97,11 +87,10 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   }
   std::vector<std::string> comments = {
       "hstmon-sim --circuit " + a.circuit + (c.params_path.empty() ? std::string() : " --params " + c.params_path),
-      "circuit " + c.file.name + ": full equations (Rosenbrock-4), " + (o.from_rest ? "from rest" : "from steady state") +
-          ", " + shortest(o.duration) + " s" +
-          (a.inputs.empty() || a.rate > 0.0 ? " at " + shortest(o.rate) + " Hz" : " on the log's rows") + ", seed " +
-          std::to_string(o.seed) +
-          (o.noise ? "" : ", no noise")};
+      "circuit " + c.file.name + ": full equations (Rosenbrock-4), " +
+          (o.from_rest ? "from rest" : "from steady state") + ", " + host::number_text(o.duration) + " s" +
+          (a.inputs.empty() || a.rate > 0.0 ? " at " + host::number_text(o.rate) + " Hz" : " on the log's rows") +
+          ", seed " + std::to_string(o.seed) + (o.noise ? "" : ", no noise")};
   if (!profile_note.empty()) comments.push_back(profile_note);
   for (const std::string& s : a.steps) comments.push_back("step " + s);
   for (const std::string& s : a.faults) comments.push_back("fault " + s);

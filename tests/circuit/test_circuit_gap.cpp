@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../support/loaded_circuit.hpp"
+#include "../support/sim_options.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
@@ -23,13 +25,6 @@ namespace ct = hstmon::circuit_tools;
 namespace fs = std::filesystem;
 
 const std::string kDir = std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/";
-
-ct::LoadedCircuit load(const std::string& circuit, const std::string& params) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(circuit, params, c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-  return c;
-}
 
 // paper.json plus `component` (named `name`) with parameter `param` = value, as files.
 ct::LoadedCircuit machine_with(const std::string& name, const nlohmann::ordered_json& component, const std::string& param,
@@ -44,14 +39,11 @@ ct::LoadedCircuit machine_with(const std::string& name, const nlohmann::ordered_
   const std::string pf = (dir / ("hstmon_gap_" + name + ".params.json")).string();
   std::ofstream(cf) << c.dump(1);
   std::ofstream(pf) << p.dump(1);
-  return load(cf, pf);
+  return hstmon_test::load_circuit_file(cf, pf);
 }
 
 ct::CircuitLog run(const ct::LoadedCircuit& m, const std::vector<std::string>& steps, double duration, std::uint64_t seed) {
-  ct::CircuitSimOptions o;
-  o.duration = duration;
-  o.rate = 200.0;
-  o.seed = seed;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(duration, 200.0, seed);
   for (const auto& s : steps) {
     ct::InputStep st;
     EXPECT_FALSE(ct::parse_input_step(s, m.file, st).has_value()) << s;
@@ -63,7 +55,7 @@ ct::CircuitLog run(const ct::LoadedCircuit& m, const std::vector<std::string>& s
 hstmon::gap::CircuitGapResult gap_of(const ct::LoadedCircuit& machine) {
   // The tool knows only the shipped circuit; it reads the machine's logs by column name,
   // as a file.
-  const ct::LoadedCircuit model = load(kDir + "paper.json", "");
+  const ct::LoadedCircuit model = hstmon_test::load_example("paper");
   auto as_file = [&](const ct::CircuitLog& log) {
     const ct::CircuitLog back = ct::parse_circuit_log(ct::circuit_log_text(machine.file, log), "machine.csv", model.file);
     EXPECT_TRUE(back.ok()) << back.error->to_string();
@@ -95,7 +87,7 @@ TEST(CircuitGap, NamesUnmodelledShaftFriction) {
 }
 
 TEST(CircuitGap, NoGapOnTheModelledMachine) {
-  const auto r = gap_of(load(kDir + "paper.json", ""));
+  const auto r = gap_of(hstmon_test::load_example("paper"));
   ASSERT_FALSE(r.error.has_value()) << *r.error;
   EXPECT_EQ(r.verdict, "none");
 }

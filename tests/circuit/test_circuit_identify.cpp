@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
+#include "../support/sim_options.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_host/circuit_values.hpp"
@@ -19,13 +21,6 @@ namespace {
 namespace ct = hstmon::circuit_tools;
 namespace id = hstmon::ident;
 
-ct::LoadedCircuit load(const std::string& name) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + name + ".json", "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-  return c;
-}
-
 // A log of the machine c with parameters scaled as given, inputs stepped as given.
 ct::CircuitLog machine_log(const ct::LoadedCircuit& c, const std::vector<std::pair<std::string, double>>& scale,
                            const std::vector<std::string>& steps, double duration) {
@@ -33,10 +28,7 @@ ct::CircuitLog machine_log(const ct::LoadedCircuit& c, const std::vector<std::pa
   m.file = c.file;
   m.values = c.values;
   for (const auto& [name, f] : scale) m.values.params.v[c.file.param_index(name)] *= f;
-  ct::CircuitSimOptions o;
-  o.duration = duration;
-  o.rate = 200.0;
-  o.seed = 3;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(duration, 200.0, 3);
   for (const auto& s : steps) {
     ct::InputStep st;
     const auto err = ct::parse_input_step(s, c.file, st);
@@ -47,7 +39,7 @@ ct::CircuitLog machine_log(const ct::LoadedCircuit& c, const std::vector<std::pa
 }
 
 TEST(CircuitIdentify, RecoversChangedParametersOfThePaperRig) {
-  const ct::LoadedCircuit c = load("paper");
+  const ct::LoadedCircuit c = hstmon_test::load_example("paper");
   const auto log = machine_log(c, {{"Rmlkg", 0.8}, {"Rfric", 1.25}},
                                {"A_prv=2.5 mm2@4", "A_prv=3 mm2@8", "A_prv=4.5 mm2@12", "A_dcv=4 mm2@16"}, 20.0);
   id::CircuitFitOptions o;
@@ -72,7 +64,7 @@ TEST(CircuitIdentify, RecoversChangedParametersOfThePaperRig) {
 
 TEST(CircuitIdentify, SaysWhenThePointsCannotTellParametersApart) {
   // Paper rig: both orifices' coefficient is Cd·A·√(2/ρ), so Cd and ρ enter only as Cd/√ρ.
-  const ct::LoadedCircuit c = load("paper");
+  const ct::LoadedCircuit c = hstmon_test::load_example("paper");
   const auto log = machine_log(c, {{"Cd", 0.95}}, {"A_prv=2.5 mm2@4", "A_prv=4 mm2@8"}, 12.0);
   id::CircuitFitOptions o;
   o.fit = {"Cd", "rho"};
@@ -88,7 +80,7 @@ TEST(CircuitIdentify, SaysWhenThePointsCannotTellParametersApart) {
 }
 
 TEST(CircuitIdentify, RefusesUnknownOrLiteralNames) {
-  const ct::LoadedCircuit c = load("paper");
+  const ct::LoadedCircuit c = hstmon_test::load_example("paper");
   id::CircuitFitOptions o;
   o.fit = {"Rnope"};
   const id::CircuitFitResult r = id::fit_circuit(c, {}, o);
@@ -106,11 +98,8 @@ namespace {
 // throttle's coefficient halves. The held stretch is split there, each side is its own
 // operating point, and nothing is averaged across the switch.
 TEST(CircuitIdentify, AnUnloggedEventSplitsTheHeldStretch) {
-  const ct::LoadedCircuit c = load("test_stand");
-  ct::CircuitSimOptions o;
-  o.duration = 6.0;
-  o.rate = 1000.0;
-  o.seed = 9;
+  const ct::LoadedCircuit c = hstmon_test::load_example("test_stand");
+  ct::CircuitSimOptions o = hstmon_test::sim_options(6.0, 1000.0, 9);
   ct::InputStep shut;
   ASSERT_FALSE(ct::parse_param_fault("k_throttle=0.7@3", c.file, shut).has_value());
   o.steps.push_back(shut);
@@ -129,10 +118,8 @@ TEST(CircuitIdentify, AnUnloggedEventSplitsTheHeldStretch) {
 // A drive speed logged with its sensor's scatter (0.5 %, over the old fixed 0.5 %
 // tolerance) still holds: the tolerance follows the input's own noise.
 TEST(CircuitIdentify, AMeasuredInputsScatterStillHolds) {
-  const ct::LoadedCircuit c = load("test_stand");
-  ct::CircuitSimOptions o;
-  o.duration = 4.0;
-  o.rate = 1000.0;
+  const ct::LoadedCircuit c = hstmon_test::load_example("test_stand");
+  ct::CircuitSimOptions o = hstmon_test::sim_options(4.0, 1000.0);
   ct::CircuitLog log = ct::simulate_circuit(c, o);
   const int n = c.file.input_index("n_drive");
   ASSERT_GE(n, 0);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
@@ -15,13 +16,7 @@ namespace {
 
 namespace ct = hstmon::circuit_tools;
 
-ct::LoadedCircuit test_stand() {
-  ct::LoadedCircuit c;
-  const auto err =
-      ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/test_stand.json", "", c);
-  EXPECT_FALSE(err.has_value());
-  return c;
-}
+ct::LoadedCircuit test_stand() { return hstmon_test::load_example("test_stand"); }
 
 std::string error_of(const std::string& text) {
   const ct::LoadedCircuit c = test_stand();

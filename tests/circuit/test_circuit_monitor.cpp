@@ -25,6 +25,8 @@
 #include <utility>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
+#include "../support/sim_options.hpp"
 #include "hstmon/circuit/circuit_bound.hpp"
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
@@ -45,12 +47,7 @@ namespace ct = hstmon::circuit_tools;
 
 std::string example(const std::string& file) { return std::string(HSTMON_SOURCE_DIR) + "/examples/" + file; }
 
-ct::LoadedCircuit load(const std::string& name) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(example("circuits/" + name + ".json"), "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-  return c;
-}
+ct::LoadedCircuit load(const std::string& name) { return hstmon_test::load_example(name); }
 
 // The CLI's replay options: its table, built once per circuit and test process.
 ct::CircuitReplayOptions cli_options(const ct::LoadedCircuit& c) {
@@ -107,9 +104,7 @@ TEST(CircuitMonitor, StartsAndInputStepsRaiseNoEvent) {
   };
   for (const Nominal& k : cases) {
     const ct::LoadedCircuit c = load(k.name);
-    ct::CircuitSimOptions o;
-    o.duration = 10.0;
-    o.rate = k.rate;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(10.0, k.rate);
     o.from_rest = k.from_rest;
     o.seed = 21 + static_cast<std::uint64_t>(&k - cases);
     for (const auto& s : k.steps) o.steps.push_back(step(c, s, false));
@@ -132,10 +127,7 @@ TEST(CircuitMonitor, ParameterFaultDetectedAfterItAndTruthInTheSet) {
   };
   for (const Fault& k : cases) {
     const ct::LoadedCircuit c = load(k.name);
-    ct::CircuitSimOptions o;
-    o.duration = 14.0;
-    o.rate = 200.0;
-    o.seed = 5 + static_cast<std::uint64_t>(&k - cases);
+    ct::CircuitSimOptions o = hstmon_test::sim_options(14.0, 200.0, 5 + static_cast<std::uint64_t>(&k - cases));
     o.steps.push_back(step(c, k.fault, true));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
     ASSERT_FALSE(r.events.empty()) << k.name << " " << k.fault << ": not detected";
@@ -157,10 +149,7 @@ TEST(CircuitMonitor, ParameterFaultDetectedAfterItAndTruthInTheSet) {
 // final status, and the clean verdict's candidates (the truth among them) still listed.
 TEST(CircuitMonitor, MeasuredDriveSpeedGivesTheCleanLogsDiagnosis) {
   const ct::LoadedCircuit c = load("test_stand");
-  ct::CircuitSimOptions o;
-  o.duration = 14.0;
-  o.rate = 200.0;
-  o.seed = 8;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(14.0, 200.0, 8);
   o.steps.push_back(step(c, "R_leak=0.2@5", true));
   const ct::CircuitLog log = ct::simulate_circuit(c, o);
   ct::CircuitLog measured = ct::parse_circuit_log(ct::circuit_log_text(c.file, log), "sim.csv", c.file);
@@ -251,10 +240,7 @@ TEST(CircuitMonitor, MachineWithShutReliefValveAtCrackingRaisesNoEventButLeakIsF
   }
   m.values.inputs.v[c.file.input_index("n_drive")] *= 1600.0 / 1500.0;
   for (const bool leak : {false, true}) {
-    ct::CircuitSimOptions o;
-    o.duration = 8.0;
-    o.rate = 1000.0;
-    o.seed = 81;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(8.0, 1000.0, 81);
     o.steps.push_back(step(c, "n_drive=1780 rpm@2", false));
     if (leak) o.steps.push_back(step(c, "R_leak=0.2@5", true));
     const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
@@ -296,10 +282,7 @@ TEST(CircuitMonitor, MachineWhoseCheckValveLeadsTheModelsRaisesNoEventButPumpLos
   m.values.inputs.v[c.file.input_index("eps")] = 0.561629545;
   m.values.inputs.v[c.file.input_index("T_L")] *= 182.224125 / 150.0;  // the file's 150 N·m
   for (const bool loss : {false, true}) {
-    ct::CircuitSimOptions o;
-    o.duration = 6.0;
-    o.rate = 1000.0;
-    o.seed = 254;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(6.0, 1000.0, 254);
     o.steps.push_back(step(c, "eps=0.403959747@3.5004", false));  // after the start-up hold-off
     if (loss) o.steps.push_back(step(c, "Dp=0.8@4.5", true));
     const ct::CircuitLog log = ct::simulate_circuit(m, o);  // the machine's log, the model's monitor
@@ -410,10 +393,7 @@ TEST(CircuitMonitor, FaultFittedAcrossOperatingPointsWithItsSize) {
   };
   for (const Case& k : cases) {
     const ct::LoadedCircuit c = load(k.name);
-    ct::CircuitSimOptions o;
-    o.duration = 14.0;
-    o.rate = 200.0;
-    o.seed = 11;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(14.0, 200.0, 11);
     o.steps.push_back(step(c, k.fault, true));
     o.steps.push_back(step(c, k.later, false));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
@@ -438,10 +418,7 @@ TEST(CircuitMonitor, FaultFittedAcrossOperatingPointsWithItsSize) {
 TEST(CircuitMonitor, FaultInsideTheBoundFoundAsAStepAtHeldInputs) {
   const ct::LoadedCircuit c = load("paper");
   for (const bool fault : {false, true}) {
-    ct::CircuitSimOptions o;
-    o.duration = 12.0;
-    o.rate = 1000.0;
-    o.seed = 23;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(12.0, 1000.0, 23);
     o.steps.push_back(step(c, "A_prv=2.8 mm2@1", false));
     if (fault) o.steps.push_back(step(c, "Dm=0.92@6", true));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
@@ -471,10 +448,7 @@ TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
   const ct::LoadedCircuit c = load("thesis");
   ct::LoadedCircuit m = c;
   m.values.params.v[c.file.param_index("Dm")] *= 0.98;
-  ct::CircuitSimOptions o;
-  o.duration = 5.0;
-  o.rate = 1000.0;
-  o.seed = 4;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(5.0, 1000.0, 4);
   o.steps.push_back(step(c, "Rf=1.3@2.5", true));
   o.steps.push_back(step(c, "kp=4.46e-8@3", false));
   const ct::CircuitLog log = ct::simulate_circuit(m, o);
@@ -510,10 +484,7 @@ TEST(CircuitMonitor, FaultSilentUntilALaterLoadIsIsolatedByTiming) {
     double factor;
   };
   for (const Case& k : {Case{"p_hp_crack=0.75@2", "p_hp_crack-", 14.0, 0.75}, Case{"Dp=0.9@10", "Dp-", 10.0, 0.9}}) {
-    ct::CircuitSimOptions o;
-    o.duration = 22.0;
-    o.rate = 200.0;
-    o.seed = 3;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(22.0, 200.0, 3);
     for (const char* s : {"T_L=200 N*m@1", "T_L=150 N*m@6", "T_L=280 N*m@14", "eps=0.7@18"}) o.steps.push_back(step(c, s, false));
     o.steps.push_back(step(c, k.fault, true));
     const ct::CircuitReplayResult r = simulate_and_replay(c, o, cli_options(c));
@@ -562,10 +533,7 @@ TEST(CircuitMonitor, MachineOutsideTheEnvelopeIsSaidSoAndNoFaultIsNamed) {
   for (const bool other : {false, true}) {
     ct::LoadedCircuit m = c;
     if (other) m.values.params.v[c.file.param_index("D")] *= 0.5;
-    ct::CircuitSimOptions o;
-    o.duration = 6.0;
-    o.rate = 1000.0;
-    o.seed = 5;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(6.0, 1000.0, 5);
     o.steps.push_back(step(c, "throttle=0.8@3", false));
     const ct::CircuitLog log = ct::simulate_circuit(m, o);
     const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
@@ -593,10 +561,7 @@ TEST(CircuitMonitor, MachineOutsideTheEnvelopeIsSaidSoAndNoFaultIsNamed) {
 TEST(CircuitMonitor, DetectionBeforeTheMachineWasSeenToMatchIsUnverifiedOnAShortLog) {
   const ct::LoadedCircuit c = load("test_stand");
   for (const double duration : {0.6, 6.0}) {
-    ct::CircuitSimOptions o;
-    o.duration = duration;
-    o.rate = 4800.0;
-    o.seed = 3;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(duration, 4800.0, 3);
     const double at = duration < 1.0 ? 0.08 : 3.0;
     o.steps.push_back(step(c, "k_throttle=0.5@" + std::to_string(at), true));
     const ct::CircuitReplayResult r = ct::replay_circuit(c, ct::simulate_circuit(c, o), cli_options(c));

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
+#include "../support/sim_options.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
@@ -20,9 +22,7 @@ namespace ct = hstmon::circuit_tools;
 std::string example(const std::string& file) { return std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + file; }
 
 ct::LoadedCircuit load(const std::string& name) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(example(name + ".json"), "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
+  ct::LoadedCircuit c = hstmon_test::load_example(name);
   EXPECT_EQ(c.params_path, example(name + ".params.json"));
   return c;
 }
@@ -54,10 +54,7 @@ TEST(CircuitReplay, SimulatedThenReplayedAtNoiseLevel) {
                         {"test_stand", {"throttle=0.7@1"}}};
   for (const Case& k : cases) {
     const ct::LoadedCircuit c = load(k.name);
-    ct::CircuitSimOptions o;
-    o.duration = 2.0;
-    o.rate = 200.0;
-    o.seed = 7 + static_cast<std::uint64_t>(&k - cases);
+    ct::CircuitSimOptions o = hstmon_test::sim_options(2.0, 200.0, 7 + static_cast<std::uint64_t>(&k - cases));
     for (const std::string& s : k.steps) {
       ct::InputStep st;
       const auto err = ct::parse_input_step(s, c.file, st);
@@ -83,9 +80,7 @@ TEST(CircuitReplay, SimulatedThenReplayedAtNoiseLevel) {
 TEST(CircuitReplay, SampleOnAStepShowsTheFastVolumesSettled) {
   ct::LoadedCircuit c;
   ASSERT_FALSE(ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/bench/circuits/thesis_q_dcv.json", "", c).has_value());
-  ct::CircuitSimOptions o;
-  o.duration = 1.0;
-  o.rate = 1000.0;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(1.0, 1000.0);
   o.noise = false;
   ct::InputStep st;
   ASSERT_FALSE(ct::parse_input_step("Psupl=30 bar@0.5", c.file, st).has_value());
@@ -107,10 +102,7 @@ TEST(CircuitReplay, FromRestAtNoiseLevel) {
   // cavitation in the model) where its transmitters clip at 0: those rows are not compared.
   for (const char* name : {"closed_loop_hst", "test_stand"}) {
     const ct::LoadedCircuit c = load(name);
-    ct::CircuitSimOptions o;
-    o.duration = 2.0;
-    o.rate = 200.0;
-    o.seed = 11;
+    ct::CircuitSimOptions o = hstmon_test::sim_options(2.0, 200.0, 11);
     o.from_rest = true;
     const ct::CircuitReplayResult r = ct::replay_circuit(c, ct::simulate_circuit(c, o), {});
     EXPECT_NE(r.start, hstmon::InitialState::kSteady) << name << ": a start from rest is no steady state";

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
+#include "../support/sim_options.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
@@ -27,12 +29,7 @@ namespace ct = hstmon::circuit_tools;
 namespace id = hstmon::ident;
 
 const ct::LoadedCircuit& data_sheet() {
-  static const ct::LoadedCircuit c = [] {
-    ct::LoadedCircuit out;
-    const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/test_stand.json", "", out);
-    EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-    return out;
-  }();
+  static const ct::LoadedCircuit c = hstmon_test::load_example("test_stand");
   return c;
 }
 
@@ -50,10 +47,7 @@ ct::LoadedCircuit machine() {
 /// 24 s at 200 Hz: five operating points below the relief's cracking pressure (118 to
 /// 184 bar, 1200 to 1500 rpm), `extra` steps (faults) added.
 ct::CircuitLog run(const ct::LoadedCircuit& m, std::uint64_t seed, const std::vector<std::string>& faults = {}) {
-  ct::CircuitSimOptions o;
-  o.duration = 24.0;
-  o.rate = 200.0;
-  o.seed = seed;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(24.0, 200.0, seed);
   for (const char* s : {"throttle=0.92@4", "n_drive=1200 rpm@8", "throttle=0.8@12", "throttle=0.9@16",
                         "n_drive=1300 rpm@20"}) {
     ct::InputStep st;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_host/log_layout.hpp"
@@ -31,12 +32,7 @@ namespace hh = hstmon::host;
 using hh::Signal;
 
 const ct::LoadedCircuit& thesis_circuit() {
-  static const ct::LoadedCircuit c = [] {
-    ct::LoadedCircuit out;
-    const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/thesis.json", "", out);
-    EXPECT_FALSE(err.has_value());
-    return out;
-  }();
+  static const ct::LoadedCircuit c = hstmon_test::load_example("thesis");
   return c;
 }
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../support/cli_run.hpp"
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 
@@ -40,11 +41,7 @@ void write(const std::string& path, const std::string& text) {
   f << text;
 }
 
-LoadedCircuit load(const std::string& name) {
-  LoadedCircuit c;
-  EXPECT_FALSE(hstmon::circuit_tools::load_circuit(kDir + name, "", c).has_value());
-  return c;
-}
+LoadedCircuit load(const std::string& name) { return hstmon_test::load_circuit_file(kDir + name); }
 
 CircuitLog read(const std::string& path, const LoadedCircuit& c) {
   CircuitLog log = hstmon::circuit_tools::read_circuit_log(path, c.file);

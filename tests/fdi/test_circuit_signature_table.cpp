@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "../support/loaded_circuit.hpp"
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
@@ -22,13 +23,7 @@
 namespace hstmon::fdi {
 namespace {
 
-circuit_tools::LoadedCircuit load(const char* name) {
-  circuit_tools::LoadedCircuit c;
-  const auto err =
-      circuit_tools::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + name + ".json", "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : "");
-  return c;
-}
+circuit_tools::LoadedCircuit load(const char* name) { return hstmon_test::load_example(name); }
 
 const circuit_tools::CircuitFaultTable::Row* find_row(const circuit_tools::CircuitFaultTable& t, const std::string& n) {
   for (const auto& r : t.rows) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/circuit_crosscheck.hpp"
@@ -25,10 +26,7 @@ namespace hstmon::fdi {
 namespace {
 
 circuit_tools::LoadedCircuit load(const char* name) {
-  circuit_tools::LoadedCircuit c;
-  const auto err = circuit_tools::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/" + name, "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : "");
-  return c;
+  return hstmon_test::load_circuit_file(hstmon_test::example_circuit(name));
 }
 
 /// The circuit's TCG at its nominal values.

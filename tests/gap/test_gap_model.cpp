@@ -16,6 +16,21 @@ namespace {
 using namespace hstmon;
 using Model = ThesisReducedModel<double>;
 
+// Table 2.2's inputs (supply 35 bar, booster 10 bar) on rows k = 0..last at `dt` [s]
+// apart, the PRV's kp [m3/(s*Pa^0.5)] of each row from kp(k).
+template <class Kp>
+gap::InputSeries table_2_2_inputs(int last, double dt, Kp kp) {
+  gap::InputSeries u;
+  for (int k = 0; k <= last; ++k) {
+    u.t.push_back(dt * k);
+    u.Psupl.push_back(35e5);
+    u.Ps.push_back(0.0);
+    u.Pbp.push_back(10e5);
+    u.kp.push_back(kp(k));
+  }
+  return u;
+}
+
 TEST(GapModel, NominalRatesAreLibsToRounding) {
   gap::ExtendedModel nominal;
   for (double kf_factor : {1.0, 0.8}) {
@@ -51,14 +66,7 @@ TEST(GapModel, NominalRatesAreLibsToRounding) {
 
 TEST(GapModel, OpenLoopRunSettlesOnLibsSteadyState) {
   gap::ExtendedModel nominal;
-  gap::InputSeries u;
-  for (int k = 0; k <= 200; ++k) {
-    u.t.push_back(0.005 * k);
-    u.Psupl.push_back(35e5);
-    u.Ps.push_back(0.0);
-    u.Pbp.push_back(10e5);
-    u.kp.push_back(4.41e-8);
-  }
+  gap::InputSeries u = table_2_2_inputs(200, 0.005, [](int) { return 4.41e-8; });
   u.start = gap::StartRule::kRest;
   const gap::SimResult s = gap::simulate(nominal, u);
   ASSERT_TRUE(s.ok) << s.error;
@@ -72,14 +80,7 @@ TEST(GapModel, OpenLoopRunSettlesOnLibsSteadyState) {
 
 TEST(GapModel, StartsFromTheFirstSampleByLibsRule) {
   gap::ExtendedModel nominal;
-  gap::InputSeries u;
-  for (int k = 0; k < 3; ++k) {
-    u.t.push_back(0.001 * k);
-    u.Psupl.push_back(35e5);
-    u.Ps.push_back(0.0);
-    u.Pbp.push_back(10e5);
-    u.kp.push_back(4.41e-8);
-  }
+  gap::InputSeries u = table_2_2_inputs(2, 0.001, [](int) { return 4.41e-8; });
   u.y0 = {0.0, 0.0, 10e5, 0.0};  // at rest: supply just switched on
   u.y0_valid = 0xF;
   gap::SimResult s = gap::simulate(nominal, u);
@@ -96,14 +97,7 @@ TEST(GapModel, EngineAndSpecialisationRunAlike) {
   gap::ExtendedModel m;
   m.effects = {gap::default_effect(gap::Effect::kCoulombFriction), gap::default_effect(gap::Effect::kSupplyFlowLimit),
                gap::default_effect(gap::Effect::kPrvCracking), gap::default_effect(gap::Effect::kMotorLeakage)};
-  gap::InputSeries u;
-  for (int k = 0; k <= 400; ++k) {
-    u.t.push_back(0.005 * k);
-    u.Psupl.push_back(35e5);
-    u.Ps.push_back(0.0);
-    u.Pbp.push_back(10e5);
-    u.kp.push_back(k < 200 ? 4.41e-8 : 2.2e-8);
-  }
+  gap::InputSeries u = table_2_2_inputs(400, 0.005, [](int k) { return k < 200 ? 4.41e-8 : 2.2e-8; });
   u.start = gap::StartRule::kRest;
   gap::SimOptions on_engine;
   on_engine.thesis = gap::ThesisImpl::kEngine;

@@ -7,6 +7,7 @@
 #include "hstmon/circuit/stiffness.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/number_text.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -17,9 +18,7 @@ using circuit::RefKind;
 // 17 significant digits: the double read back is the one written.
 std::string num(double v) {
   if (std::isinf(v)) return v > 0 ? "kInf" : "-kInf";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  std::string s = b;
+  std::string s = host::number_text(v, 17);
   // A literal that reads as a double, not an int.
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   return s;

@@ -13,6 +13,7 @@
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_host/text_encoding.hpp"
 #include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
@@ -103,17 +104,11 @@ bool parse_number(std::string_view f, bool decimal_comma, double& v) {
   return r.ec == std::errc() && r.ptr == end;
 }
 
-std::string format_value(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
-
 // A time: "%.9g" when that is within a nanosecond of it and no exponent (below 1e9 s), else
 // the shortest text that reads back as the same number (a logger's Unix time,
 // 1700000022.51, not 1.70000002e+09).
 std::string format_time(double t) {
-  std::string s = format_value(t);
+  std::string s = host::number_text(t, 9);
   if (std::fabs(t) < 1e9 && std::fabs(std::strtod(s.c_str(), nullptr) - t) <= 1e-9) return s;
   char b[40];
   for (int digits = 10; digits <= 17; ++digits) {
@@ -332,7 +327,7 @@ enum class RowTime { kKeep, kSkip, kFail };
 // row_time's rare case, out of the row loop: the time does not rise (t_col: its column).
 RowTime time_not_rising(const host::ReadOptions& o, CircuitLog& log, double t, std::size_t line_no, std::size_t t_col,
                         std::size_t& skipped, std::string& msg) {
-  msg = "time not strictly increasing: " + format_value(t) + " s after " + format_value(log.t.back()) +
+  msg = "time not strictly increasing: " + host::number_text(t, 9) + " s after " + host::number_text(log.t.back(), 9) +
         " s (a logger that rounds its time: give the sample rate, --rate HZ)";
   if (!o.lenient) return RowTime::kFail;
   ++skipped;
@@ -665,7 +660,7 @@ std::string circuit_log_text(const host::CircuitFile& c, const CircuitLog& log, 
   os << '\n';
   for (std::size_t k = 0; k < log.t.size(); ++k) {
     os << format_time(log.t[k]);
-    for (const Col& col : cols) os << ',' << format_value(col.conv.from_si((*col.v)[k]));
+    for (const Col& col : cols) os << ',' << host::number_text(col.conv.from_si((*col.v)[k]), 9);
     os << '\n';
   }
   return os.str();

@@ -51,7 +51,7 @@ inline double adc_step(const std::vector<double>& d) {
     if (std::fabs(m - std::round(m)) < 0.02) ++on_grid;
   }
   // Continuous data puts only ~4 % of m within 0.02 of a whole number.
-  return nonzero >= 5 && on_grid >= 0.9 * static_cast<double>(nonzero) ? q : 0.0;
+  return nonzero >= 5 && static_cast<double>(on_grid) >= 0.9 * static_cast<double>(nonzero) ? q : 0.0;
 }
 
 /// The noise of y over its steady stretches [a, b) (row ranges), sample period dt [s].

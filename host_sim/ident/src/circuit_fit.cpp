@@ -110,7 +110,7 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
   const std::size_t channels = c.file.sensors.size();
   std::size_t m = 0;
   for (const auto& p : r.points) {
-    for (double v : p.mean) m += std::isfinite(v) ? 1 : 0;
+    for (double v : p.mean) m += std::isfinite(v) ? 1u : 0u;
   }
   if (m < idx.size()) {
     char rule[160];

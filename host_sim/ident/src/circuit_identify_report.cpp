@@ -52,7 +52,8 @@ sim::ReportTable point_table(const CircuitIdentifyRun& a, const circuit_tools::L
                                     inputs_text(c, p)};
     for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
       const bool has = ch < p.before.size() && std::isfinite(p.before[ch]);
-      row.push_back(has ? fmt::format("{:+.3g} → {:+.3g}", p.before[ch], ch < p.after.size() ? p.after[ch] : NAN)
+      row.push_back(has ? fmt::format("{:+.3g} → {:+.3g}", p.before[ch],
+                                      ch < p.after.size() ? p.after[ch] : static_cast<double>(NAN))
                         : "not logged");
     }
     t.rows.push_back(std::move(row));
@@ -69,8 +70,8 @@ std::vector<sim::ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c
     for (std::size_t k = 0; k < r.points.size(); ++k) {
       const auto& pt = r.points[k];
       p.x.push_back(static_cast<double>(k + 1));
-      before.y.push_back(ch < pt.before.size() ? pt.before[ch] : NAN);
-      after.y.push_back(ch < pt.after.size() ? pt.after[ch] : NAN);
+      before.y.push_back(ch < pt.before.size() ? pt.before[ch] : static_cast<double>(NAN));
+      after.y.push_back(ch < pt.after.size() ? pt.after[ch] : static_cast<double>(NAN));
       any = any || std::isfinite(before.y.back());
     }
     if (!any) continue;  // a channel the logs do not have: nothing to draw

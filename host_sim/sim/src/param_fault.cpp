@@ -6,33 +6,11 @@
 #include <stdexcept>
 
 #include "hstmon/circuit/thesis_circuit_model.hpp"
+#include "fine_sampling.hpp"
 #include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/thesis_reference.hpp"
 
 namespace hstmon::sim {
-
-namespace {
-
-// Fine steps per sample period (as measure.cpp: lags fed at ≤ lag_step).
-std::size_t substeps(const SensorConfig& cfg) {
-  if (!(std::isfinite(cfg.sample_period) && cfg.sample_period > 0.0)) {
-    throw std::invalid_argument("measure_with_fault: sample_period must be > 0");
-  }
-  if (cfg.channels.size() != 4) throw std::invalid_argument("measure_with_fault: need 4 channels");
-  bool any_lag = false;
-  for (const ChannelSpec& c : cfg.channels) any_lag = any_lag || c.tau > 0.0;
-  if (!any_lag) return 1;
-  if (!(std::isfinite(cfg.lag_step) && cfg.lag_step > 0.0)) {
-    throw std::invalid_argument("measure_with_fault: lag_step must be > 0");
-  }
-  const double m = std::ceil(cfg.sample_period / cfg.lag_step * (1.0 - 1e-12));
-  if (m > 1e9) throw std::invalid_argument("measure_with_fault: lag_step too small for the sample period");
-  return static_cast<std::size_t>(std::fmax(1.0, m));
-}
-
-constexpr std::size_t kBatch = 1u << 16;
-
-}  // namespace
 
 ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConfig& cfg, std::uint64_t seed,
                                       const ThesisParams<double>& p, double fault_time,
@@ -41,14 +19,7 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
   if (!ThesisCircuitModel<double>::params_valid(faulty)) {
     throw std::invalid_argument("measure_with_fault: invalid faulty parameters");
   }
-  const std::size_t m = substeps(cfg);
-  const double period = cfg.sample_period;
-  const double h = period / static_cast<double>(m);
-  const double t_max = sc.duration * (1.0 + 1e-12);
-  auto t_raw = [&](std::size_t i) { return static_cast<double>(i / m) * period + static_cast<double>(i % m) * h; };
-  std::size_t n_last = static_cast<std::size_t>(sc.duration / h) + 2;
-  while (n_last > 0 && t_raw(n_last) > t_max) --n_last;
-  auto t_fine = [&](std::size_t i) { return std::fmin(t_raw(i), sc.duration); };
+  const detail::FineGrid grid(cfg, sc.duration, "measure_with_fault");
 
   // Segments: the schedule's, split at the fault time.
   struct Segment {
@@ -72,36 +43,14 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
                                                thesis_initial_state(sc, p), 0.0, tol);
   bool ref_faulty = segs.front().faulty;
 
-  SensorChain chain(cfg.channels, seed);
-  ThesisMeasurements out;
-  out.reserve(n_last / m + 1);
   double x[4];
   to_array(ref->state(), x);
-  chain.reset(x);
-  Measurement<ThesisInputs<double>> row;
-  row.t = 0.0;
-  row.u = logged_inputs_at(sc, 0.0);
-  chain.measure(row.y.data());
-  out.push_back(row);
-
-  std::size_t i = 0;
-  double t_last = 0.0;
-  auto on_sample = [&](double t, const ThesisState<double>& xs) {
-    ++i;
+  detail::FineSampling<ThesisInputs<double>> sampling(cfg, seed, sc, grid, x);
+  auto on_sample = [&sampling](double t, const ThesisState<double>& xs) {
     double v[4];
     to_array(xs, v);
-    chain.advance(v, t - t_last);
-    t_last = t;
-    if (i % m == 0) {
-      Measurement<ThesisInputs<double>> r;
-      r.t = t;
-      r.u = logged_inputs_at(sc, t);
-      chain.measure(r.y.data());
-      out.push_back(r);
-    }
+    sampling.feed(t, v);
   };
-  std::vector<double> batch;
-  batch.reserve(kBatch);
   for (const Segment& s : segs) {
     if (s.faulty && !ref_faulty) {
       const ThesisState<double> x0 = ref->state();
@@ -109,17 +58,11 @@ ThesisMeasurements measure_with_fault(const ThesisScenario& sc, const SensorConf
       ref = std::make_unique<ThesisReference>(faulty, x0, t0, tol);
       ref_faulty = true;
     }
-    for (;;) {
-      batch.clear();
-      for (std::size_t j = i + 1; j <= n_last && batch.size() < kBatch && t_fine(j) <= s.end; ++j) {
-        batch.push_back(t_fine(j));
-      }
-      const bool last_batch = batch.size() < kBatch;
-      ref->advance_to(last_batch ? s.end : batch.back(), s.u, batch, on_sample);
-      if (last_batch) break;
-    }
+    sampling.through(s.end, [&](double t_end, const std::vector<double>& points) {
+      ref->advance_to(t_end, s.u, points, on_sample);
+    });
   }
-  return out;
+  return sampling.take();
 }
 
 ThesisScenario with_input_fault(const ThesisScenario& sc, double ThesisInputs<double>::*field, double factor,

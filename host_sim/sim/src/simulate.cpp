@@ -37,26 +37,31 @@ void check_sample_times(const std::vector<double>& times, double duration) {
   }
 }
 
-ThesisTrajectory simulate(const ThesisScenario& sc, const std::vector<double>& times, const ThesisParams<double>& p,
-                          const ReferenceTolerances& tol, IntegratorStats* stats) {
+namespace {
+
+/// A scenario through Reference from initial_state(sc, p), sampled at `times`.
+template <class Reference, class Traj, class Scen, class Params, class InitialState>
+Traj simulate_on(const Scen& sc, const std::vector<double>& times, const Params& p, InitialState initial_state,
+                 const ReferenceTolerances& tol, IntegratorStats* stats) {
   validate(sc);
   check_sample_times(times, sc.duration);
-  ThesisReference ref(p, thesis_initial_state(sc, p), 0.0, tol);
-  ThesisTrajectory out;
+  Reference ref(p, initial_state(sc, p), 0.0, tol);
+  Traj out;
   run_segments(ref, sc, times, out);
   if (stats != nullptr) *stats = ref.stats();
   return out;
 }
 
+}  // namespace
+
+ThesisTrajectory simulate(const ThesisScenario& sc, const std::vector<double>& times, const ThesisParams<double>& p,
+                          const ReferenceTolerances& tol, IntegratorStats* stats) {
+  return simulate_on<ThesisReference, ThesisTrajectory>(sc, times, p, thesis_initial_state, tol, stats);
+}
+
 PaperTrajectory simulate(const PaperScenario& sc, const std::vector<double>& times, const PaperParams<double>& p,
                          const ReferenceTolerances& tol, IntegratorStats* stats) {
-  validate(sc);
-  check_sample_times(times, sc.duration);
-  PaperReference ref(p, paper_initial_state(sc, p), 0.0, tol);
-  PaperTrajectory out;
-  run_segments(ref, sc, times, out);
-  if (stats != nullptr) *stats = ref.stats();
-  return out;
+  return simulate_on<PaperReference, PaperTrajectory>(sc, times, p, paper_initial_state, tol, stats);
 }
 
 }  // namespace hstmon::sim

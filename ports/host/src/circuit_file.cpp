@@ -9,6 +9,7 @@
 
 #include "circuit_checks.hpp"
 #include "hstmon/circuit/validate.hpp"
+#include "json_errors.hpp"
 #include "json_locations.hpp"
 #include "text_util.hpp"
 
@@ -88,35 +89,17 @@ class Reader {
       j = Json::parse(text_.begin(), text_.end());
       return true;
     } catch (const Json::parse_error& e) {
-      record(e.byte > 0 ? e.byte - 1 : 0, "JSON: " + strip(e.what()));
+      record(e.byte > 0 ? e.byte - 1 : 0, detail::json_error_text(e.what()));
     } catch (const Json::exception& e) {
-      record(text_.size(), "JSON: " + strip(e.what()));
+      record(text_.size(), detail::json_error_text(e.what()));
     }
     return false;
   }
 
-  static std::string strip(const std::string& what) {
-    std::size_t start = 0;
-    const std::size_t col = what.find("column ");
-    if (col != std::string::npos) {
-      const std::size_t colon = what.find(": ", col);
-      if (colon != std::string::npos) start = colon + 2;
-    } else if (!what.empty() && what[0] == '[') {
-      const std::size_t close = what.find("] ");
-      if (close != std::string::npos) start = close + 2;
-    }
-    return detail::printable(what.substr(start), 200);
-  }
-
-  std::size_t first_non_blank() const {
-    std::size_t i = text_.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
-    while (i < text_.size() && (text_[i] == ' ' || text_[i] == '\t' || text_[i] == '\n' || text_[i] == '\r')) ++i;
-    return i;
-  }
+  std::size_t first_non_blank() const { return detail::first_non_blank(text_); }
 
   void record(std::size_t offset, std::string message) {
-    const detail::LineCol lc = detail::locate(text_, offset);
-    out_.error = SourceError{path_, lc.line, lc.column, std::move(message)};
+    out_.error = detail::error_at(text_, path_, offset, std::move(message));
   }
 
   [[noreturn]] void fail(std::size_t offset, std::string message) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "circuit_checks.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon/pump_curve.hpp"
 
 namespace hstmon::host::detail {
@@ -29,12 +30,6 @@ Everyday everyday(CircuitQuantity q) {
     case CircuitQuantity::kFlow: return {"L/min", 1e-3 / 60.0};
     default: return {nullptr, 1.0};
   }
-}
-
-std::string number(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", x);
-  return b;
 }
 
 class Checker {
@@ -65,9 +60,9 @@ class Checker {
   std::string shown(Ref r) const {
     const double x = value(r);
     const CircuitQuantity q = quantity(r);
-    std::string s = number(x) + " " + circuit_si_unit(q);
+    std::string s = number_text(x) + " " + circuit_si_unit(q);
     std::string aside;
-    if (const Everyday e = everyday(q); e.unit != nullptr) aside = number(x / e.si) + " " + e.unit;
+    if (const Everyday e = everyday(q); e.unit != nullptr) aside = number_text(x / e.si) + " " + e.unit;
     if (r.kind == RefKind::kInput) {
       aside += (aside.empty() ? "" : ", ") + std::string("input '") + f_.inputs[r.index].name + "', nominal";
     } else if (!f_.params[r.index].literal) {

@@ -3,21 +3,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "hstmon_host/number_text.hpp"
+
 namespace hstmon::host {
 
 namespace {
-
-// A number as %g and as %.4g.
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-std::string g4(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
 
 // "(t = 0.1 … 0.6 s)"
 std::string span(double t0, double t1) {
@@ -43,16 +33,16 @@ EnvelopeResult envelope_result(const EnvelopeFigures& f, const std::vector<Envel
   r.t1 = f.t1;
   switch (f.verdict) {
     case EnvelopeVerdict::kPending:
-      r.text = "not checked: no stretch of held inputs long enough to settle and judge (" + g(f.window) +
+      r.text = "not checked: no stretch of held inputs long enough to settle and judge (" + number_text(f.window) +
                " s after 3 time constants)";
       return r;
     case EnvelopeVerdict::kGivenUp:
-      r.text = "not checked: a fault was detected (t = " + g4(f.t_detected) +
+      r.text = "not checked: a fault was detected (t = " + number_text(f.t_detected, 4) +
                " s) before the machine held steady, so no stretch shows the machine as it was";
       return r;
     case EnvelopeVerdict::kUnverified:
       r.unverified = true;
-      r.text = "unverified: a fault was detected (t = " + g4(f.t_detected) +
+      r.text = "unverified: a fault was detected (t = " + number_text(f.t_detected, 4) +
                " s) before the machine was seen to match the model, and no steady stretch followed to judge it, so "
                "the data cannot tell a fault from a model that does not fit this machine; no fault is named. " +
                remedy;

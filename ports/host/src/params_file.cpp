@@ -9,7 +9,9 @@
 #include <system_error>
 
 #include "hstmon/circuit/thesis_circuit_model.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_host/units.hpp"
+#include "json_errors.hpp"
 #include "json_locations.hpp"
 #include "text_util.hpp"
 
@@ -63,12 +65,6 @@ std::string key_list(const FieldSpec<S> (&fields)[N]) {
     s += f.name;
   }
   return s;
-}
-
-std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
 }
 
 /// Reads one parameter file; each step that fails sets error and returns false.
@@ -145,7 +141,7 @@ class Reader {
       j = Json::parse(text_.begin(), text_.end());
       return true;
     } catch (const Json::parse_error& e) {
-      fail(e.byte > 0 ? e.byte - 1 : 0, strip_prefix(e.what()));
+      fail(e.byte > 0 ? e.byte - 1 : 0, detail::json_error_text(e.what()));
     } catch (const Json::exception& e) {
       // Number overflow (out_of_range.406) has no position: find the quoted token.
       const std::string what = e.what();
@@ -156,23 +152,9 @@ class Reader {
         const std::size_t found = text_.find(what.substr(q1 + 1, q2 - q1 - 1));
         if (found != std::string_view::npos) at = found;
       }
-      fail(at, strip_prefix(what));
+      fail(at, detail::json_error_text(what));
     }
     return false;
-  }
-
-  /// nlohmann messages start "[json.exception.x.n] parse error at line L, column C: ".
-  static std::string strip_prefix(const std::string& what) {
-    std::size_t start = 0;
-    const std::size_t col = what.find("column ");
-    if (col != std::string::npos) {
-      const std::size_t colon = what.find(": ", col);
-      if (colon != std::string::npos) start = colon + 2;
-    } else if (!what.empty() && what[0] == '[') {
-      const std::size_t close = what.find("] ");
-      if (close != std::string::npos) start = close + 2;
-    }
-    return "JSON: " + detail::printable(what.substr(start), 200);
   }
 
   template <typename S, std::size_t N>
@@ -215,7 +197,7 @@ class Reader {
       const bool ok = std::isfinite(v) && (spec->rule == Rule::kFinite || (spec->rule == Rule::kPositive ? v > 0.0 : v >= 0.0));
       if (!ok) {
         const char* need = spec->rule == Rule::kPositive ? "finite and > 0" : spec->rule == Rule::kNonNegative ? "finite and >= 0" : "finite";
-        fail_value(ptr, label + " must be " + need + " [" + spec->unit + "], got " + number_text(v));
+        fail_value(ptr, label + " must be " + need + " [" + spec->unit + "], got " + number_text(v, 9));
         return false;
       }
       dst.*(spec->member) = v;
@@ -275,8 +257,8 @@ class Reader {
         }
       }
       if (!(end[0] < end[1])) {
-        fail_value(ptr, label + ": the low end must be below the high end, got [" + number_text(end[0]) + ", " +
-                            number_text(end[1]) + "] " + si_unit(q));
+        fail_value(ptr, label + ": the low end must be below the high end, got [" + number_text(end[0], 9) + ", " +
+                            number_text(end[1], 9) + "] " + si_unit(q));
         return false;
       }
       r.lo[static_cast<std::size_t>(ch)] = end[0];
@@ -290,15 +272,10 @@ class Reader {
     return slash == 0 || slash == std::string::npos ? "the top level" : "'" + ptr.substr(1, slash - 1) + "'";
   }
 
-  std::size_t first_non_blank() const {
-    std::size_t i = text_.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
-    while (i < text_.size() && (text_[i] == ' ' || text_[i] == '\t' || text_[i] == '\n' || text_[i] == '\r')) ++i;
-    return i;
-  }
+  std::size_t first_non_blank() const { return detail::first_non_blank(text_); }
 
   void fail(std::size_t offset, std::string message) {
-    const detail::LineCol lc = detail::locate(text_, offset);
-    out_.error = SourceError{path_, lc.line, lc.column, std::move(message)};
+    out_.error = detail::error_at(text_, path_, offset, std::move(message));
   }
 
   void fail_key(const std::string& ptr, std::string message) {
