@@ -49,7 +49,8 @@ std::vector<std::string> verdict_candidates(const std::vector<host::ReplayEvent>
   if (events.empty()) return out;
   const host::ReplayEvent& e = events.back();
   if (e.event != "detected" && e.event != "isolated" && e.event != "ambiguous") return out;
-  const std::size_t k = std::min(e.candidates.size(), static_cast<std::size_t>(std::max(e.consistent, 1)));
+  const std::size_t k = e.event == "isolated" ? std::min<std::size_t>(e.candidates.size(), 1)
+                        : std::min(e.candidates.size(), static_cast<std::size_t>(std::max(e.consistent, 1)));
   for (std::size_t i = 0; i < k; ++i) out.push_back(e.candidates[i].fault);
   return out;
 }

@@ -296,11 +296,19 @@ std::string class_words(const LoadedCircuit& c, const std::vector<std::string>& 
   if (flow_loss && common.size() == 1) {
     return "a flow loss from " + node_words(c, common[0]) + " (a leak or a delivery loss)";
   }
-  // Otherwise the distinct effects, each said once, in the candidates' order.
-  std::vector<std::string> parts;
+  // Otherwise each effect with what its own candidates share ("a leak from line B"), in the
+  // order the candidates first name it.
+  std::vector<FaultEffect> order;
   for (const FaultMeaning& m : ms) {
-    const std::string w = m.effect == FaultEffect::kOther || m.effect == FaultEffect::kSensor ? m.words : effect_words(m.effect);
-    if (std::find(parts.begin(), parts.end(), w) == parts.end()) parts.push_back(w);
+    if (std::find(order.begin(), order.end(), m.effect) == order.end()) order.push_back(m.effect);
+  }
+  std::vector<std::string> parts;
+  for (const FaultEffect e : order) {
+    std::vector<std::string> same;
+    for (const FaultMeaning& m : ms) {
+      if (m.effect == e) same.push_back(m.fault);
+    }
+    parts.push_back(class_words(c, same));
   }
   std::string out;
   for (std::size_t i = 0; i < parts.size(); ++i) out += (i == 0 ? "" : (i + 1 == parts.size() ? " or " : ", ")) + parts[i];

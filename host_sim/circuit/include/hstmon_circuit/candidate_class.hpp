@@ -37,10 +37,10 @@ struct CandidateClass {
   std::string sentence;
 };
 
-/// The candidates a replay's final verdict names: the last event's consistent ones (its
-/// first `consistent`, at least one) when that event is `detected`, `isolated` or
-/// `ambiguous`; none after any other last event (cleared, unexplained, out of envelope) or
-/// without events.
+/// The candidates a replay's final verdict names: the last event's first candidate when
+/// that event is `isolated`, its consistent ones (its first `consistent`, at least one) when
+/// it is `detected` or `ambiguous`; none after any other last event (cleared, unexplained,
+/// out of envelope) or without events.
 std::vector<std::string> verdict_candidates(const std::vector<host::ReplayEvent>& events);
 
 /// The class of `candidates` (fault rows of c's table, best first; see the file comment),
