@@ -30,7 +30,7 @@ only a slope, the orders or both split; `--steady-only` gives the steady relatio
 
 On the four shipped circuits the transient splits **no pair** the steady signature does
 not already split, so the classes and weak pairs below are those of the steady relation
-(`--steady-only` gives the same), now checked against what the monitor reads. Why: a
+(`--steady-only` gives the same), checked against what the monitor reads. Why: a
 table keeps a slope only where it is the steady sign (two known slopes that differ are
 opposite magnitudes too, and no fault row keeps a 0 slope), and the rows that keep their
 orders either differ in their steady signature already — the closed loop's motor
@@ -39,6 +39,13 @@ split by the orders as well — or share their fastest path with their steady tw
 product such as Dp·eps or D·n; Dc, k_charge, p_charge, p_charge_crack entering at one
 point). Most of the thesis rig's rows have orders 0: p_pp, their most visible channel, is
 not on their fastest path.
+
+Each circuit also lists what a change of operating point splits (host_sim/circuit
+`operating_points`): the table rebuilt with each input at 50 % and 150 % of its nominal
+value, each fraction reversed, and fractions with torques reversed together; a pair not
+isolable at the nominal inputs is split when it is isolable at another point, when one fault
+shows there and the other does not, or when their responses scale differently between the
+points (docs/fdi.md, "Across operating points"); then the classes left at every point.
 
 The sensor tables list the best five single added sensors — `p(node)`, `w(shaft)` or
 `q(component)` — by classes split, then faults made detectable, then weak pairs cleared,

@@ -13,6 +13,7 @@
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "hstmon_circuit/bound_lead.hpp"
+#include "hstmon_circuit/candidate_class.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
@@ -24,6 +25,7 @@ namespace hstmon::cli {
 
 namespace {
 
+using circuit_tools::CandidateClass;
 using circuit_tools::CircuitReplayResult;
 using circuit_tools::LoadedCircuit;
 
@@ -36,7 +38,19 @@ const char* start_words(InitialState k) {
   return "?";
 }
 
-void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
+// The class of the final candidates, and what would split them (candidate_class.hpp); empty
+// when the matcher did not run or ended on no candidates.
+CandidateClass final_class(const LoadedCircuit& c, const CircuitReplayResult& r) {
+  if (r.table_rows == 0) return {};
+  try {
+    return circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+  } catch (const std::exception&) {
+    return {};  // no table at the nominal inputs: the replay's notes say so
+  }
+}
+
+void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r,
+                const CandidateClass& cls) {
   nlohmann::json head = replay_head_json(a.log, r);
   head["circuit"] = c.file.name;
   head["circuit_file"] = a.circuit;
@@ -70,10 +84,17 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                      {"share", l.share}});
   }
   fmt::print("{}\n", nlohmann::json{{"type", "bound"}, {"at", "last row"}, {"channels", leads}}.dump());
-  print_json_diagnosis(r.envelope, r.events, r.table_rows > 0 ? r.final_status : std::string("not_run"));
+  nlohmann::json more = nlohmann::json::object();
+  if (!cls.sentence.empty()) {
+    more["class"] = cls.description;
+    more["split_by"] = cls.split_by.empty() ? nlohmann::json() : nlohmann::json(cls.split_by);
+    more["verdict"] = r.final_status + ": " + cls.sentence;
+  }
+  print_json_diagnosis(r.envelope, r.events, r.table_rows > 0 ? r.final_status : std::string("not_run"), more);
 }
 
-void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r) {
+void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r,
+                 const CandidateClass& cls) {
   fmt::print("hstmon replay --circuit {} {}\n", a.circuit, a.log);
   fmt::print("  circuit {}{}: {} states, {} quasi-steady nodes\n", c.file.name,
              c.params_path.empty() ? std::string() : " with " + c.params_path, r.states, r.stiff_nodes);
@@ -123,6 +144,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
     if (const std::string lead = bound_lead_sentence(c, r); !lead.empty()) fmt::print("  {}\n", lead);
     fmt::print("\n  envelope: {}\n", r.envelope.text);
     print_events(r.events, r.final_status);
+    if (!cls.sentence.empty()) fmt::print("    verdict: {}: {}\n", r.final_status, cls.sentence);
   }
   print_observer_health(r.health, r.unhealthy_rows, r.max_substeps, r.implicit_ticks);
 }
@@ -188,10 +210,11 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
     fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", a.circuit, a.log, why);
     return kExitBadInput;
   }
+  const CandidateClass cls = a.diagnose ? final_class(c, r) : CandidateClass{};
   if (a.json) {
-    print_json(a, c, r);
+    print_json(a, c, r, cls);
   } else {
-    print_human(a, c, r);
+    print_human(a, c, r, cls);
   }
   // An output that cannot be written is an error, after the others have been written; so
   // is a lenient read that stopped early.
@@ -206,6 +229,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   }
   ReplayReport report = circuit_replay_report(a, c, r);
   if (log.error) report.read_error = log.error->to_string();
+  if (!cls.sentence.empty()) report.verdict_class = cls.sentence;
   if (!write_plot_and_report(a.plot, a.report, report, a.json)) code = kExitBadInput;
   return code;
 }

@@ -82,10 +82,12 @@ void print_events(const std::vector<host::ReplayEvent>& events, const std::strin
 }
 
 void print_json_diagnosis(const host::EnvelopeResult& envelope, const std::vector<host::ReplayEvent>& events,
-                          const std::string& final_status) {
+                          const std::string& final_status, const nlohmann::json& more) {
   fmt::print("{}\n", envelope_json(envelope).dump());
   for (const auto& e : events) fmt::print("{}\n", event_json(e).dump());
-  fmt::print("{}\n", nlohmann::json{{"type", "diagnosis"}, {"status", final_status}, {"events", events.size()}}.dump());
+  nlohmann::json d = {{"type", "diagnosis"}, {"status", final_status}, {"events", events.size()}};
+  for (auto it = more.begin(); it != more.end(); ++it) d[it.key()] = it.value();
+  fmt::print("{}\n", d.dump());
 }
 
 void print_observer_health(std::uint32_t health, std::size_t unhealthy_rows, std::uint32_t max_substeps,

@@ -50,9 +50,10 @@ nlohmann::json replay_head_json(const std::string& log, const Result& r) {
 }
 
 /// The JSON lines that end a replay: the envelope check, every event, and the diagnosis
-/// (the final status and the number of events).
+/// (the final status and the number of events, plus the keys of `more`: a circuit replay's
+/// class of the final candidates).
 void print_json_diagnosis(const host::EnvelopeResult& envelope, const std::vector<host::ReplayEvent>& events,
-                          const std::string& final_status);
+                          const std::string& final_status, const nlohmann::json& more = nlohmann::json::object());
 
 /// The human diagnosis block: every event in time order, then the final status.
 void print_events(const std::vector<host::ReplayEvent>& events, const std::string& final_status);

@@ -40,6 +40,7 @@ std::string verdict(const ReplayReport& r, sim::VerdictTone& tone) {
     text = fmt::format("{} at the end of the log", r.final_status);
     if (r.final_status != "nominal" && last != nullptr) {
       text += fmt::format(" (since t = {:.3f} s): {}", last->t, candidate_list(*last, 3));
+      if (!r.verdict_class.empty()) text += "; " + r.verdict_class;
     } else if (r.final_status == "nominal") {
       text = fmt::format("no fault at the end of the log ({} diagnosis events before, see below)", r.events.size());
     }

@@ -40,6 +40,9 @@ struct ReplayReport {
   /// A lenient read that stopped at a bad row ("file:line:column: error: …"): the verdict
   /// says that only the rows before it were replayed. Empty when the whole log was read.
   std::string read_error;
+  /// A circuit replay's final candidates said plainly, with what would split them
+  /// (circuit_tools::CandidateClass::sentence); the verdict adds it. Empty: nothing added.
+  std::string verdict_class;
   PlotTrace plot;                         ///< the trace (rows = 0: no plot)
 };
 

@@ -9,6 +9,7 @@
 #include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_table_header.hpp"
+#include "hstmon_circuit/operating_points.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace hstmon::fdi {
@@ -63,8 +64,14 @@ int run_isolability(const std::string& circuit, const std::string& params, bool 
   circuit_tools::LoadedCircuit c;
   if (!load(circuit, params, c)) return 2;
   const circuit_tools::Isolability r = circuit_tools::circuit_isolability(builder_of(steady_only)(c), parts_of(steady_only));
+  const circuit_tools::OperatingPointSplit op =
+      circuit_tools::split_by_operating_point(c, builder_of(steady_only), parts_of(steady_only));
   const std::size_t n = r.faults.size();
   if (json) {
+    nlohmann::json by_point = nlohmann::json::array();
+    for (std::size_t k = 0; k < op.pairs.size(); ++k) {
+      by_point.push_back({{"pair", {op.pairs[k].first, op.pairs[k].second}}, {"at", op.where[k]}});
+    }
     nlohmann::json weak = nlohmann::json::array();
     for (const auto& [a, b] : r.weak) weak.push_back({a, b});
     nlohmann::json split = nlohmann::json::array();
@@ -80,7 +87,10 @@ int run_isolability(const std::string& circuit, const std::string& params, bool 
                               {"split", split},
                               {"classes", r.classes},
                               {"weak", weak},
-                              {"undetectable", r.undetectable}};
+                              {"undetectable", r.undetectable},
+                              {"operating_points", op.points},
+                              {"split_by_operating_point", by_point},
+                              {"classes_across_operating_points", op.classes}};
     std::cout << j.dump() << '\n';
     return 0;
   }
@@ -97,6 +107,15 @@ int run_isolability(const std::string& circuit, const std::string& params, bool 
   std::cout << "\n## Weakly isolable (only steady directions within 11 degrees split them)\n\n";
   if (r.weak.empty()) std::cout << "none\n";
   for (const auto& [a, b] : r.weak) std::cout << "- " << a << " / " << b << '\n';
+  std::cout << "\n## Split by a change of operating point (not isolable at the nominal inputs)\n\n"
+            << "points: " << joined(op.points) << "\n\n";
+  if (op.pairs.empty()) std::cout << "none\n";
+  for (std::size_t k = 0; k < op.pairs.size(); ++k) {
+    std::cout << "- " << op.pairs[k].first << " / " << op.pairs[k].second << ": at " << op.where[k] << '\n';
+  }
+  std::cout << "\n## Not isolable at any of these operating points (classes)\n\n";
+  if (op.classes.empty()) std::cout << "none\n";
+  for (const auto& cls : op.classes) std::cout << "- " << joined(cls) << '\n';
   if (!steady_only) {
     std::cout << "\n## Split by the transient alone (the steady signature does not, or only weakly)\n\n";
     bool any = false;

@@ -231,6 +231,45 @@ TEST(CircuitCli, ReplaySaysWhichParameterLeadsEachBound) {
   EXPECT_TRUE(seen) << json.out;
 }
 
+// The final verdict in words (candidate_class.hpp) on the open validation circuit's pump
+// leak: the JSON diagnosis line's class, split_by and verdict, the report's verdict and the
+// text's verdict line; the events stay as they were (the scorers read them).
+TEST(CircuitCli, ReplaySaysTheFinalClassAndWhatSplitsIt) {
+  const std::string v = std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_circuits/";
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("hstmon_class_report_" + std::to_string(::getpid()))).string();
+  const std::string replay = std::string(HSTMON_CLI) + " replay --circuit " + v + "circuit.json " + v +
+                             "logs/fault_pump_leak.csv.gz --no-progress";
+  const CliRun json = run(replay + " --json --report " + dir);
+  ASSERT_EQ(json.exit_code, 0) << json.out;
+  std::istringstream lines(json.out);
+  std::string line;
+  nlohmann::json diagnosis, last_event;
+  while (std::getline(lines, line)) {
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded()) continue;
+    if (j["type"] == "event") last_event = j;
+    if (j["type"] == "diagnosis") diagnosis = j;
+  }
+  ASSERT_TRUE(diagnosis.is_object()) << json.out;
+  EXPECT_EQ(diagnosis["status"], "ambiguous");
+  EXPECT_EQ(diagnosis["class"], "a leak between line A and line B");
+  const std::string split = diagnosis["split_by"].get<std::string>();
+  EXPECT_EQ(split.rfind("a flow meter on leak_", 0), 0u) << split;
+  EXPECT_EQ(diagnosis["verdict"],
+            "ambiguous: a leak between line A and line B: R_ip-, R_im- (" + split + " would tell them apart)");
+  EXPECT_EQ(last_event["event"], "ambiguous");
+  EXPECT_EQ(last_event.count("class"), 0u) << "events keep their fields";
+  std::ifstream md(std::filesystem::path(dir) / "report.md");
+  const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("; a leak between line A and line B: R_ip-, R_im- ("), std::string::npos) << report;
+  std::filesystem::remove_all(dir);
+  const CliRun text = run(replay);
+  ASSERT_EQ(text.exit_code, 0) << text.out;
+  EXPECT_NE(text.out.find("    verdict: ambiguous: a leak between line A and line B: R_ip-, R_im- ("), std::string::npos)
+      << text.out;
+}
+
 // identify --circuit and gap --circuit write a report folder as replay does: report.md
 // and report.html with the verdict first and the values in an engineer's units, and the
 // figure's data and script, which redraw it from inside the folder.

@@ -48,7 +48,10 @@ def json_lines(result) -> List[Dict[str, Any]]:
     lines.append({"type": "envelope", "checked": env["checked"], "out": env["out"], "unverified": env["unverified"],
                   "text": env["text"]})
     lines += [event_line(e) for e in raw["events"]]
-    lines.append({"type": "diagnosis", "status": raw["status"], "events": len(raw["events"])})
+    diagnosis = {"type": "diagnosis", "status": raw["status"], "events": len(raw["events"])}
+    if raw.get("verdict") is not None:
+        diagnosis.update({"class": raw["class"], "split_by": raw["split_by"], "verdict": raw["verdict"]})
+    lines.append(diagnosis)
     return lines
 
 

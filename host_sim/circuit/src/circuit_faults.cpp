@@ -74,6 +74,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
   struct Pending {
     std::string name;
     CircuitFaultTable::Row row;
+    double gain = 0.0;
   };
   std::vector<Pending> pending;
   // One fault: `name`+ and `name`−, the quantity scaled by 1 ± 0.1 and 1 ± 0.3 by set().
@@ -93,7 +94,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
       set(p, v, 1.0 + side * 0.3);
       const bool big = scaled_steady(desc, p, v, sigma, z30);
       if (!big) t.notes.push_back(name + ": no steady state for a 30 % fault: signs from the 10 % fault alone");
-      Pending r{name, {}};
+      Pending r{name, {}, 0.0};
       r.row.sensor = false;
       double visible = 0.0, norm = 0.0;
       for (int i = 0; i < kN; ++i) {
@@ -114,6 +115,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
         continue;
       }
       norm = std::sqrt(norm);
+      r.gain = norm;
       for (int i = 0; i < kN; ++i) r.row.direction[i] = norm > 0.0 ? static_cast<float>((z10[i] - z0[i]) / norm) : 0.0f;
       pending.push_back(std::move(r));
     }
@@ -129,7 +131,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
     add_fault(c.file.inputs[i].name, [i](Model::Params&, Model::Inputs& v, double f) { v.v[i] *= f; });
   }
   for (std::size_t ch = 0; ch < channels; ++ch) {
-    Pending r{"sensor_" + c.file.sensors[ch].name, {}};
+    Pending r{"sensor_" + c.file.sensors[ch].name, {}, 0.0};
     r.row.sensor = true;
     for (int i = 0; i < kN; ++i) {
       const bool own = i == static_cast<int>(ch);
@@ -140,7 +142,10 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
   }
   // Names first, then the rows pointing at them: the strings do not move once placed.
   t.names.reserve(pending.size());
-  for (const Pending& r : pending) t.names.push_back(r.name);
+  for (const Pending& r : pending) {
+    t.names.push_back(r.name);
+    t.gains.push_back(r.gain);
+  }
   t.rows.reserve(pending.size());
   for (std::size_t j = 0; j < pending.size(); ++j) {
     t.rows.push_back(pending[j].row);

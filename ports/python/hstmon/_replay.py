@@ -72,6 +72,14 @@ class ReplayResult:
         return self.raw["status"]
 
     @property
+    def verdict(self) -> Optional[str]:
+        """The final verdict in words: the status, what the final candidates share and what
+        would tell them apart, e.g. ``ambiguous: a leak between line A and line B: R_ip-, R_im-
+        (a flow meter on leak_pump would tell them apart)``; None when the monitor ended on no
+        candidates. ``raw["class"]`` and ``raw["split_by"]`` hold its two parts."""
+        return self.raw.get("verdict")
+
+    @property
     def events(self) -> pd.DataFrame:
         """The monitor's events in time order: ``t`` [s], ``event`` (detected, isolated,
         ambiguous, unexplained, cleared, out_of_envelope, unverified), ``faults`` (names, best first),

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "binding.hpp"
+#include "hstmon_circuit/candidate_class.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/replay_outcome.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
@@ -103,6 +104,22 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   d["undetectable"] = r.undetectable;
   // As the CLI: a replay without a fault table has no diagnosis to report.
   d["status"] = r.table_rows > 0 ? r.final_status : std::string("not_run");
+  // As the CLI's diagnosis line: the final candidates' class and what would split them
+  // (None when the matcher ended on no candidates).
+  circuit_tools::CandidateClass cls;
+  if (r.table_rows > 0) {
+    try {
+      py::gil_scoped_release release;
+      cls =
+          circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+    } catch (const std::exception&) {
+      cls = {};
+    }
+  }
+  d["class"] = cls.sentence.empty() ? py::object(py::none()) : py::object(py::str(cls.description));
+  d["split_by"] = cls.split_by.empty() ? py::object(py::none()) : py::object(py::str(cls.split_by));
+  d["verdict"] = cls.sentence.empty() ? py::object(py::none())
+                                      : py::object(py::str(r.final_status + ": " + cls.sentence));
   d["notes"] = r.notes;
   py::list channels;
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {

@@ -38,6 +38,9 @@ struct CircuitFaultTable {
   std::vector<std::string> undetectable;  ///< faults without a row (see the file comment)
   std::vector<std::string> notes;         ///< what was assumed (no steady state for a 30 % fault, …)
   std::vector<std::string> remarks;       ///< per row, in row order (or empty): why a slope or the orders were left open
+  /// Per row, in row order (or empty): the length of the noise-scaled steady residual of a
+  /// 10 % fault, the scale its unit `direction` was divided by [σ]; 0 for sensor rows
+  std::vector<double> gains;
 
   CircuitFaultTable() = default;
   CircuitFaultTable(CircuitFaultTable&&) = default;
