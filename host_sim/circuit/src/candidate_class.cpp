@@ -76,7 +76,7 @@ CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::st
   }
   auto together_now = [&](std::size_t i, std::size_t j) {
     return row[i] >= 0 && row[j] >= 0 &&
-           now.isolable[static_cast<std::size_t>(row[i])][static_cast<std::size_t>(row[j])] == 0;
+           now.isolable[static_cast<std::size_t>(row[i])][static_cast<std::size_t>(row[j])] != 1;
   };
   r.groups_now = count_groups(n, together_now);
   r.groups_split = r.groups_now;

@@ -5,12 +5,10 @@
 /// "a leak from line A: R_ext_a-, R_ip-, R_im- (a flow meter on drain_a would tell them apart)".
 ///
 /// What would split them is chosen from the circuit's isolability (circuit_isolability.hpp):
-///  - the candidates are grouped by the not-isolable relation (isolable entry 0, as the
-///    classes): two stay together while no observation the matcher reads contradicts one
-///    without the other;
-///  - when the nominal point's sensors already split every pair (a weak pair too: its
-///    steady directions differ), more settled evidence would (the table tells them apart;
-///    the log did not show enough of it);
+///  - the candidates are grouped by the not-isolable relation: two stay together while no
+///    observation the matcher reads contradicts one without the other;
+///  - when the nominal point's sensors already split every pair, more settled evidence
+///    would (the table tells them apart; the log did not show enough of it);
 ///  - else each single added channel of the sensor placement (rank_added_sensors) and a
 ///    change of operating point (operating_points.hpp) are judged by how many groups they
 ///    split the candidates into; the most wins, a change of operating point on a tie (it
