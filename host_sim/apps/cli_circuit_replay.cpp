@@ -108,10 +108,9 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     const auto& s = r.channels[ch];
     const host::CircuitSensor& sensor = c.file.sensors[ch];
-    const std::string unit = sensor.unit.empty() ? host::circuit_si_unit(sensor.quantity) : sensor.unit;
-    const host::UnitResult u = host::parse_circuit_unit(sensor.quantity, sensor.unit);
-    const double k = u.ok() ? 1.0 / u.conversion.factor : 1.0;
-    const std::string label = fmt::format("{} [{}]", sensor.name, unit);
+    const host::DisplayUnit d = host::display_unit(sensor.quantity, sensor.unit);
+    const double k = d.per_si;
+    const std::string label = fmt::format("{} [{}]", sensor.name, d.unit);
     if (!r.measured[ch]) {
       fmt::print("  {:<16} {:>11}\n", label, "not in log");
       continue;
@@ -157,10 +156,9 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
   std::vector<double> k;
   std::string head = "t[s]";
   for (const host::CircuitSensor& s : c.file.sensors) {
-    const std::string unit = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
-    const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
-    k.push_back(u.ok() ? 1.0 / u.conversion.factor : 1.0);
-    head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}],b_{0}[{1}]", s.name, unit);
+    const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
+    k.push_back(d.per_si);
+    head += fmt::format(",{0}[{1}],{0}_hat[{1}],r_{0}[{1}],b_{0}[{1}]", s.name, d.unit);
   }
   head += ",health";
   // After the numbers: per channel the parameter leading its model bound, and its share.

@@ -12,12 +12,11 @@ namespace hstmon::cli {
 
 namespace {
 
-// A sensor's display unit and its factor from SI: the circuit file's unit, else SI.
+// A sensor's display unit and its factor from SI (host::display_unit).
 void display_unit(const host::CircuitSensor& s, std::string& unit, double& scale) {
-  const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
-  const bool stated = !s.unit.empty() && u.ok();
-  unit = stated ? s.unit : host::circuit_si_unit(s.quantity);
-  scale = stated ? 1.0 / u.conversion.factor : 1.0;
+  const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
+  unit = d.unit;
+  scale = d.per_si;
 }
 
 // Narrowest y range shown [display unit]: the sensor's noise, at least, so that a flat

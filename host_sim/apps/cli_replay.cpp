@@ -28,6 +28,7 @@
 #include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/log_writer.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
 
@@ -103,7 +104,8 @@ void print_human(const ReplayArgs& a, const host::ReplayResult& r) {
   fmt::print("hstmon replay {}\n", a.log);
   fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
              r.t_last, r.tick * 1e3, r.ticks, start_words(r.start));
-  fmt::print("  start-up hold-off {:.3g} ms (the model's transient from its initial state)\n", r.startup_hold * 1e3);
+  fmt::print("  start-up hold-off {} (the model's transient from its initial state)\n",
+             host::duration_text(r.startup_hold));
   for (const auto& n : r.notes) fmt::print("  note: {}\n", n);
   fmt::print("\n  residual = measured − model; noise = scatter estimated from successive samples\n");
   fmt::print("  {:<12} {:>11} {:>11} {:>11} {:>11} {:>10}\n", "channel", "mean", "RMS", "noise", "peak", "at t [s]");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli_events.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_plot/html_report.hpp"
 #include "hstmon_plot/residual_plot.hpp"
 
@@ -128,9 +129,9 @@ std::string write_replay_report(const std::string& dir, const ReplayReport& r, s
   sim::VerdictTone tone = sim::VerdictTone::kNeutral;
   const std::string verdict_text = verdict(r, tone);
   const std::string about =
-      fmt::format("Log: {}{}; {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms; start-up hold-off {:.3g} ms.", r.log,
-                  r.circuit.empty() ? std::string() : "; " + r.circuit, r.rows, r.t_first, r.t_last, r.tick * 1e3,
-                  r.startup_hold * 1e3);
+      fmt::format("Log: {}{}; {} rows, t = {:.6g} … {:.6g} s; observer tick {}; start-up hold-off {}.", r.log,
+                  r.circuit.empty() ? std::string() : "; " + r.circuit, r.rows, r.t_first, r.t_last,
+                  host::duration_text(r.tick), host::duration_text(r.startup_hold));
   const std::vector<std::string> residual_header = {"channel", "mean", "RMS", "noise", "peak", "at t [s]"};
   const std::vector<std::string> event_header = {"t [s]", "event", "candidates (score)"};
   const auto residuals = residual_rows(r);

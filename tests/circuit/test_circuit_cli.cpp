@@ -295,7 +295,7 @@ TEST(CircuitCli, IdentifyAndGapWriteAReportThatRedrawsFromItsFolder) {
   EXPECT_NE(ident_md.find("eps 60 %"), std::string::npos) << ident_md;
   const std::string gap_md = text_of(std::filesystem::path(gap_dir) / "report.md");
   EXPECT_NE(gap_md.find("**Verdict:** offset(p_a)"), std::string::npos) << gap_md;
-  EXPECT_NE(gap_md.find("| offset(p_a) | 2.03 bar |"), std::string::npos) << gap_md;  // bar, not Pa
+  EXPECT_NE(gap_md.find("| offset(p_a) | +2.03 bar |"), std::string::npos) << gap_md;  // bar, not Pa
   for (const std::string& dir : {ident_dir, gap_dir}) {
     for (const char* f : {"report.md", "report.html", "plots.gp", "figure.dat"}) {
       EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / f)) << dir << "/" << f;

@@ -188,7 +188,7 @@ TEST(Plots, CircuitReplayReportNamesTheCircuitAndItsVerdict) {
   const std::string md = read(out / "report.md");
   // A step at held inputs is detected at 4.110 s; the fit of the first steady window after
   // it isolates and sizes the fault (the log's truth: Dm 10 % low).
-  EXPECT_NE(md.find("**Verdict:** isolated at the end of the log (since t = 5.815 s): Dm- (1.000; Dm 6.04e-07 m3/rad, "
+  EXPECT_NE(md.find("**Verdict:** isolated at the end of the log (since t = 5.815 s): Dm- (1.000; Dm 3.8 cc/rev, "
                     "-10 % (-11 … -10 %))"),
             std::string::npos)
       << md;

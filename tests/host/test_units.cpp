@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_host/signals.hpp"
 #include "hstmon_host/units.hpp"
 
@@ -166,4 +168,28 @@ TEST(Units, SignalTable) {
     const auto s = static_cast<hh::Signal>(k);
     EXPECT_EQ(hh::signal_from_name(hh::signal_name(s)), s);
   }
+}
+
+// Tables, notes and plots show what an engineer reads: the unit the circuit file states for
+// a sensor, else bar, rpm, L/min, cc/rev, (L/min)/bar ...; never SI e-notation.
+TEST(Units, DisplayUnits) {
+  using Q = hh::CircuitQuantity;
+  EXPECT_EQ(hh::display_unit(Q::kPressure).text(2.031e5, 3, true), "+2.03 bar");
+  EXPECT_EQ(hh::display_unit(Q::kPressure, "psi").unit, "psi");
+  EXPECT_EQ(hh::display_unit(Q::kPressure, "furlong").unit, "bar");  // unknown: the engineering unit
+  EXPECT_EQ(hh::display_unit(Q::kSpeed).text(2.0 * M_PI * 1000.0 / 60.0, 4), "1000 rpm");
+  EXPECT_EQ(hh::display_unit(Q::kDisplacement).text(6.04e-7), "3.8 cc/rev");
+  EXPECT_EQ(hh::display_unit(Q::kArea).text(3.17e-6), "3.17 mm2");
+  EXPECT_EQ(hh::display_unit(Q::kConductance).text(9.357e-13), "0.00561 (L/min)/bar");
+  EXPECT_EQ(hh::display_unit(Q::kResistance).text(6e9), "1 bar/(L/min)");
+  EXPECT_EQ(hh::engineering_text(Q::kFlow, 1e-3 / 60.0), "1 L/min");
+  const hh::ValueResult leak = hh::parse_circuit_value(Q::kConductance, "0.006 (L/min)/bar");
+  ASSERT_TRUE(leak.ok()) << leak.error;
+  EXPECT_NEAR(leak.value, 1e-12, 1e-24);
+}
+
+TEST(Units, DurationText) {
+  EXPECT_EQ(hh::duration_text(0.00304), "3.04 ms");
+  EXPECT_EQ(hh::duration_text(2.0), "2 s");  // not "2e+03 ms"
+  EXPECT_EQ(hh::duration_text(0.0), "0 ms");
 }

@@ -15,6 +15,7 @@
 #include "hstmon_circuit/fault_fit_diagnosis.hpp"
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/envelope_result.hpp"
+#include "hstmon_host/number_text.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -46,12 +47,6 @@ std::vector<host::EnvelopeChannel> envelope_channels(const LoadedCircuit& c) {
 
 const char* const kEnvelopeRemedy =
     "Run `hstmon identify --circuit` on healthy steady data, or `hstmon gap --circuit`";
-
-std::string number(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 // The observer tick [s]: the option's, else the log's median sampling interval (to the ns), at most 10 ms.
 double replay_tick(double option, const std::vector<double>& t) {
@@ -85,9 +80,9 @@ LogColumns log_columns(const LoadedCircuit& c, const CircuitLog& log, CircuitRep
     if (i < log.inputs.size() && log.inputs[i].size() == res.rows) {
       cols.inputs[i] = log.inputs[i].data();
     } else {
-      res.notes.push_back("input " + c.file.inputs[i].name + " (column " + c.file.inputs[i].column +
-                          ") not in log: held at " + number(c.values.inputs.v[i]) + " " +
-                          host::circuit_si_unit(c.file.inputs[i].quantity));
+      res.notes.push_back(
+          "input " + c.file.inputs[i].name + " (column " + c.file.inputs[i].column + ") not in log: held at " +
+          host::display_unit(c.file.inputs[i].quantity, c.file.inputs[i].unit).text(c.values.inputs.v[i], 4));
     }
   }
   const std::size_t channels = c.file.sensors.size();
@@ -142,8 +137,8 @@ Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double ti
       const host::CircuitSensor& s = c.file.sensors[ch];
       sigma = sensor_sigma(s);
       if (!(s.noise > 0.0)) {
-        notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " + number(sigma) +
-                        " " + host::circuit_si_unit(s.quantity));
+        notes.push_back(s.name + ": no noise in the circuit file: sigma taken as 1 % of its span, " +
+                        host::display_unit(s.quantity, s.unit).text(sigma));
       }
       lo = s.lo;
       hi = s.hi;
@@ -162,9 +157,9 @@ Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double ti
   Model scratch = model;
   const double rate = circuit::widen_matcher_windows(scratch, u0, cfg.matcher);
   if (rate > 0.0) {
-    notes.push_back("slowest time constant at the first row's inputs " + number(1.0 / rate) +
-                    " s: the matcher settles for " + number(cfg.matcher.settle_time) + " s and averages " +
-                    number(cfg.matcher.average_time) + " s");
+    notes.push_back("slowest time constant at the first row's inputs " + host::number_text(1.0 / rate, 3) +
+                    " s: the matcher settles for " + host::number_text(cfg.matcher.settle_time, 3) +
+                    " s and averages " + host::number_text(cfg.matcher.average_time, 3) + " s");
   }
   return cfg;
 }
@@ -261,10 +256,11 @@ FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings& r) {
 void note_clipped(const LoadedCircuit& c, CircuitReplayResult& res) {
   for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
     if (res.clipped[ch] > 0) {
-      res.notes.push_back(c.file.sensors[ch].name + ": " + std::to_string(res.clipped[ch]) +
-                          " row(s) at an end of the sensor's range (" + number(c.file.sensors[ch].lo) + " .. " +
-                          number(c.file.sensors[ch].hi) + " " + host::circuit_si_unit(c.file.sensors[ch].quantity) +
-                          ") not compared");
+      const host::CircuitSensor& s = c.file.sensors[ch];
+      const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
+      res.notes.push_back(s.name + ": " + std::to_string(res.clipped[ch]) +
+                          " row(s) at an end of the sensor's range (" + host::number_text(d.of(s.lo), 4) + " … " +
+                          d.text(s.hi, 4) + ") not compared");
     }
   }
 }

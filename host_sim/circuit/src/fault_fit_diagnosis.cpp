@@ -107,15 +107,15 @@ struct FaultFitDiagnosis::Impl {
     const double v0 = nominal[static_cast<std::size_t>(f.hyp)];
     if (h.kind == HypothesisKind::kSensor) {
       const host::CircuitSensor& s = c.file.sensors[static_cast<std::size_t>(h.index)];
-      const host::UnitResult u = host::parse_circuit_unit(s.quantity, s.unit);
-      const double k = u.ok() ? 1.0 / u.conversion.factor : 1.0;
-      const std::string unit = s.unit.empty() ? host::circuit_si_unit(s.quantity) : s.unit;
-      return fmt::format("offset {:+.3g} {} ({:+.3g} … {:+.3g})", f.factor * k, unit, f.lo * k, f.hi * k);
+      const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
+      return fmt::format("offset {:+.3g} {} ({:+.3g} … {:+.3g})", d.of(f.factor), d.unit, d.of(f.lo), d.of(f.hi));
     }
-    const auto q = h.kind == HypothesisKind::kParam ? c.file.params[static_cast<std::size_t>(h.index)].quantity
-                                                    : c.file.inputs[static_cast<std::size_t>(h.index)].quantity;
     const std::string base = std::string(h.plus).substr(0, std::string(h.plus).size() - 1);
-    return fmt::format("{} {:.3g} {}, {}", base, v0 * f.factor, host::circuit_si_unit(q), percent(f.factor, f.lo, f.hi));
+    const host::DisplayUnit d = h.kind == HypothesisKind::kParam
+                                    ? host::display_unit(c.file.params[static_cast<std::size_t>(h.index)].quantity)
+                                    : host::display_unit(c.file.inputs[static_cast<std::size_t>(h.index)].quantity,
+                                                         c.file.inputs[static_cast<std::size_t>(h.index)].unit);
+    return fmt::format("{} {}, {}", base, d.text(v0 * f.factor), percent(f.factor, f.lo, f.hi));
   }
 };
 

@@ -15,17 +15,38 @@ namespace {
 // At most this many candidates in the figure (the table lists every one).
 constexpr std::size_t kDrawn = 10;
 
-// A candidate's magnitude as an engineer reads it: an offset in its sensor's engineering
-// unit, a parameter's change in %, the others in SI with their unit.
+// A candidate's magnitude as an engineer reads it: an offset in its sensor's display unit,
+// a parameter's change in %, a leak in (L/min)/bar, friction and torque in SI.
 std::string magnitude_text(const circuit_tools::LoadedCircuit& c, const CircuitEffectResult& e) {
   if (!std::isfinite(e.magnitude)) return "not fitted";
   using Kind = CircuitEffect::Kind;
-  if (e.effect.kind == Kind::kOffset && e.effect.index >= 0 &&
-      static_cast<std::size_t>(e.effect.index) < c.file.sensors.size()) {
-    return host::engineering_text(c.file.sensors[static_cast<std::size_t>(e.effect.index)].quantity, e.magnitude);
+  using Q = host::CircuitQuantity;
+  switch (e.effect.kind) {
+    case Kind::kOffset:
+      if (e.effect.index >= 0 && static_cast<std::size_t>(e.effect.index) < c.file.sensors.size()) {
+        const host::CircuitSensor& s = c.file.sensors[static_cast<std::size_t>(e.effect.index)];
+        return host::display_unit(s.quantity, s.unit).text(e.magnitude, 3, true);
+      }
+      break;
+    case Kind::kParam:
+      return fmt::format("{:+.3g} %", 100.0 * e.magnitude);
+    case Kind::kLeak:
+      return host::display_unit(Q::kConductance).text(e.magnitude);
+    case Kind::kFriction:
+      return host::display_unit(Q::kDamping).text(e.magnitude);
+    case Kind::kTorqueLoss:
+      return host::display_unit(Q::kTorque).text(e.magnitude);
   }
-  if (e.effect.kind == Kind::kParam) return fmt::format("{:+.3g} %", 100.0 * e.magnitude);
   return fmt::format("{:.4g} {}", e.magnitude, effect_unit(c, e.effect));
+}
+
+// An RMS [σ] or its shrink, or why there is none: a candidate whose fitted size leaves the
+// model without a steady state at some operating point has no residual there.
+std::string rms_text(double rms) { return std::isfinite(rms) ? fmt::format("{:.3g}", rms) : "no steady state"; }
+std::string shrink_text(double rms, double base) {
+  if (!std::isfinite(rms)) return "—";
+  const double pct = 100.0 * (1.0 - rms / base);
+  return base > 0.0 ? fmt::format("{:.0f} %", std::fabs(pct) < 0.5 ? 0.0 : pct) : "";
 }
 
 sim::ReportTable where_table(const circuit_tools::LoadedCircuit& c, const CircuitGapResult& r) {
@@ -46,10 +67,8 @@ sim::ReportTable candidate_table(const circuit_tools::LoadedCircuit& c, const Ci
                 {}};
   for (std::size_t k = 0; k < r.ranked.size(); ++k) {
     const auto& e = r.ranked[k];
-    t.rows.push_back({std::to_string(k + 1), e.effect.name, magnitude_text(c, e), fmt::format("{:.3g}", e.rms_fit),
-                      fmt::format("{:.3g}", e.rms_check),
-                      r.rms_check > 0.0 ? fmt::format("{:.0f} %", 100.0 * (1.0 - e.rms_check / r.rms_check)) : "",
-                      fmt::format("{:.3g}", e.z_check)});
+    t.rows.push_back({std::to_string(k + 1), e.effect.name, magnitude_text(c, e), rms_text(e.rms_fit),
+                      rms_text(e.rms_check), shrink_text(e.rms_check, r.rms_check), rms_text(e.z_check)});
   }
   return t;
 }
@@ -100,12 +119,11 @@ std::string circuit_gap_text(const CircuitGapRun& a, const circuit_tools::Loaded
   t += "\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ";
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) t += fmt::format(" {} {:+.3g}", r.channels[ch], r.mean_fit[ch]);
   t += fmt::format("\n\n  residual RMS without an effect: fit {:.3g}, check {:.3g} [σ]\n", r.rms_fit, r.rms_check);
-  t += fmt::format("\n  {:<26} {:>12} {:<11} {:>9} {:>9} {:>8}\n", "candidate", "magnitude", "unit", "fit RMS",
-                   "check RMS", "shrink");
+  t += fmt::format("\n  {:<26} {:>22} {:>16} {:>16} {:>8}\n", "candidate", "size", "fit RMS [σ]", "check RMS [σ]",
+                   "shrink");
   for (const auto& e : r.ranked) {
-    const double shrink = 100.0 * (1.0 - e.rms_check / r.rms_check);
-    t += fmt::format("  {:<26} {:>12.4g} {:<11} {:>9.3g} {:>9.3g} {:>7.1f}%\n", e.effect.name, e.magnitude,
-                     effect_unit(c, e.effect), e.rms_fit, e.rms_check, shrink);
+    t += fmt::format("  {:<26} {:>22} {:>16} {:>16} {:>8}\n", e.effect.name, magnitude_text(c, e), rms_text(e.rms_fit),
+                     rms_text(e.rms_check), shrink_text(e.rms_check, r.rms_check));
   }
   return t;
 }

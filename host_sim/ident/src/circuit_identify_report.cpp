@@ -92,11 +92,13 @@ std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_too
                    "std. error", "monitor's bound");
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const int k = c.file.param_index(r.names[j]);
-    const char* unit = host::circuit_si_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
+    // Start and fitted value as the report's table shows them (engineering units).
+    const host::DisplayUnit d = host::display_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
     const std::string bound = fmt::format("±{:.2g}% {}", 100.0 * r.uncertainty[j], r.pinned[j] ? "(was " : "(kept");
-    t += fmt::format("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>11.2f}%   {}{}   [{}]\n", r.names[j], r.start[j],
-                     r.value[j], 100.0 * (r.value[j] / r.start[j] - 1.0), 100.0 * r.rel_se[j], bound,
-                     r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), unit);
+    const std::string se = std::isfinite(r.rel_se[j]) ? fmt::format("{:.2f}%", 100.0 * r.rel_se[j]) : "not determined";
+    t += fmt::format("  {:<12} {:>14.6g} {:>14.6g} {:>+9.2f}% {:>12}   {}{}   [{}]\n", r.names[j], d.of(r.start[j]),
+                     d.of(r.value[j]), 100.0 * (r.value[j] / r.start[j] - 1.0), se, bound,
+                     r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), d.unit);
   }
   t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
                    r.rms_before, r.rms_after, r.status);

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_host/circuit_units.hpp"
+#include "hstmon_host/number_text.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
 
 namespace hstmon::ident {
@@ -16,6 +18,14 @@ namespace hstmon::ident {
 namespace {
 
 using Model = host::HostCircuitModel;
+
+// A change `si` of sensor `name` in its display unit ("-2.79 rpm"); SI if no sensor has that name.
+std::string sensor_text(const circuit_tools::LoadedCircuit& c, const std::string& name, double si) {
+  for (const host::CircuitSensor& s : c.file.sensors) {
+    if (s.name == name) return host::display_unit(s.quantity, s.unit).text(si, 3, true);
+  }
+  return host::number_text(si, 3) + " (SI)";
+}
 
 constexpr double kInputRelative = 0.005;  // an input within 0.5 % of its value holds…
 constexpr double kInputNoise = 8.0;       // … or within 8 of its own noise σ
@@ -208,11 +218,11 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
         notes.emplace_back(text);
         continue;
       }
-      char text[200];
+      char text[240];
       std::snprintf(text, sizeof text,
-                    "%s: %s steps by %.3g (SI) at t = %.4g s while the inputs hold (an event the log does not "
+                    "%s: %s steps by %s at t = %.4g s while the inputs hold (an event the log does not "
                     "record, or a start still settling): the stretch is split there and each side judged alone",
-                    log.path.c_str(), channel.c_str(), size, log.t[at]);
+                    log.path.c_str(), channel.c_str(), sensor_text(c, channel, size).c_str(), log.t[at]);
       notes.emplace_back(text);
       todo.push_back({s.a, at});
       todo.push_back({row_at(log, at, s.b, log.t[at] + settle), s.b});

@@ -50,9 +50,15 @@ std::string plot_xy(const std::string& path, const std::string& title, const std
   std::string script = fmt::format("set terminal {}\nset output {}\nset grid\nset key outside right top vertical\n", terminal, sim::gnuplot_quote(path));
   script += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\nset xrange {}\nset yrange {}\nplot ", sim::gnuplot_quote(title),
                         sim::gnuplot_quote(xlabel), sim::gnuplot_quote(ylabel), axis_range(series, false), axis_range(series, true));
+  // Point series that coincide (a model through its data) must all show: the first as large
+  // open circles, the later ones as smaller filled dots inside them.
+  int nth_points = 0;
   for (std::size_t k = 0; k < series.size(); ++k) {
-    script += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", " : "", sim::gnuplot_quote(data.string()), k,
-                          series[k].points ? "points pt 7 ps 0.6" : "lines lw 1.8", sim::gnuplot_quote(series[k].label));
+    const char* style = !series[k].points   ? "lines lw 1.8"
+                        : nth_points++ == 0 ? "points pt 6 ps 1.6"
+                                            : "points pt 7 ps 0.7";
+    script += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", " : "", sim::gnuplot_quote(data.string()),
+                          k, style, sim::gnuplot_quote(series[k].label));
   }
   script += "\n";
   const std::string err = sim::run_gnuplot(script);

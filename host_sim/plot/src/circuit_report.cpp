@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +71,10 @@ std::string figure_script(const CircuitReport& r) {
     s += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\n", sim::gnuplot_quote(p.title),
                      sim::gnuplot_quote(p.xlabel), sim::gnuplot_quote(p.ylabel));
     s += "set offsets 0.3, 0.3, 0, 0\n";
+    // Operating points and candidates are counted: ticks on whole numbers only.
+    const bool counted = !p.x.empty() &&
+                         std::all_of(p.x.begin(), p.x.end(), [](double x) { return x == std::round(x); });
+    s += counted && p.x.size() <= 40 ? "set xtics 1\n" : "set xtics autofreq\n";
     s += p.from_zero ? "set yrange [0:*]\n" : "set autoscale y\n";
     std::string plot = "plot ";
     for (std::size_t j = 0; j < p.series.size(); ++j) {

@@ -34,6 +34,7 @@ const Named kQuantities[] = {
     {CircuitQuantity::kTorque, "torque", "N*m"},
     {CircuitQuantity::kDensity, "density", "kg/m3"},
     {CircuitQuantity::kFraction, "fraction", "-"},
+    {CircuitQuantity::kConductance, "conductance", "m3/(s*Pa)"},
 };
 
 /// Units of the quantities units.hpp does not know: name (compared ignoring ASCII case)
@@ -78,6 +79,9 @@ const UnitRow kUnits[] = {
     {CircuitQuantity::kDensity, "kg/m^3", 1.0},
     {CircuitQuantity::kFraction, "-", 1.0},
     {CircuitQuantity::kFraction, "%", 0.01},
+    {CircuitQuantity::kConductance, "m3/(s*Pa)", 1.0},
+    {CircuitQuantity::kConductance, "(L/min)/bar", (1e-3 / 60.0) / 1e5},
+    {CircuitQuantity::kConductance, "L/min/bar", (1e-3 / 60.0) / 1e5},
 };
 
 }  // namespace
@@ -108,16 +112,32 @@ const char* engineering_unit(CircuitQuantity q) noexcept {
     case CircuitQuantity::kVolume: return "L";
     case CircuitQuantity::kTorque: return "N*m";
     case CircuitQuantity::kFraction: return "%";
+    case CircuitQuantity::kConductance:
+      return "(L/min)/bar";
     default: return circuit_si_unit(q);
   }
 }
 
-std::string engineering_text(CircuitQuantity q, double si, int digits) {
-  const char* unit = engineering_unit(q);
-  const UnitResult u = parse_circuit_unit(q, unit);
-  const double v = u.ok() ? u.conversion.from_si(si) : si;
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*g %s", digits, v, u.ok() ? unit : circuit_si_unit(q));
+std::string engineering_text(CircuitQuantity q, double si, int digits) { return display_unit(q).text(si, digits); }
+
+DisplayUnit display_unit(CircuitQuantity q, std::string_view stated) {
+  DisplayUnit d;
+  if (!detail::trim(stated).empty()) {
+    if (const UnitResult u = parse_circuit_unit(q, stated); u.ok() && u.conversion.offset == 0.0) {
+      d.unit = std::string(detail::trim(stated));
+      d.per_si = 1.0 / u.conversion.factor;
+      return d;
+    }
+  }
+  const UnitResult u = parse_circuit_unit(q, engineering_unit(q));
+  d.unit = u.ok() ? engineering_unit(q) : circuit_si_unit(q);
+  d.per_si = u.ok() ? 1.0 / u.conversion.factor : 1.0;
+  return d;
+}
+
+std::string DisplayUnit::text(double si, int digits, bool sign) const {
+  char b[96];
+  std::snprintf(b, sizeof b, sign ? "%+.*g %s" : "%.*g %s", digits, of(si), unit.c_str());
   return b;
 }
 

@@ -26,6 +26,7 @@ enum class CircuitQuantity {
   kTorque,        ///< N·m
   kDensity,       ///< kg/m³
   kFraction,      ///< dimensionless (-, %)
+  kConductance,   ///< laminar leak conductance, m³/(s·Pa) ((L/min)/bar, ...)
 };
 
 /// Name used in files ("pressure", "flow", ...).
@@ -45,6 +46,21 @@ const char* engineering_unit(CircuitQuantity q) noexcept;
 /// A value of quantity q [SI] in engineering_unit(q), e.g. "2.29e+11 Pa*s/m3" →
 /// "0.382 bar/(L/min)"; `digits` significant digits.
 std::string engineering_text(CircuitQuantity q, double si, int digits = 3);
+
+/// How one quantity is shown in tables, notes and plots: the unit a circuit file states
+/// for the sensor or input (an engineer's choice), else engineering_unit(q).
+struct DisplayUnit {
+  std::string unit;     ///< "bar", "rpm", "L/min", ...
+  double per_si = 1.0;  ///< display units per SI unit [unit/SI]
+  /// si in the display unit.
+  double of(double si) const noexcept { return si * per_si; }
+  /// "<value> <unit>" with `digits` significant digits; "+" before positive values if `sign`.
+  std::string text(double si, int digits = 3, bool sign = false) const;
+};
+
+/// The display unit of quantity q when its file states `stated` ("" or a unit q does not
+/// know: engineering_unit(q)).
+DisplayUnit display_unit(CircuitQuantity q, std::string_view stated = {});
 
 /// Conversion of a unit of quantity q to SI (error in the result if unknown).
 UnitResult parse_circuit_unit(CircuitQuantity q, std::string_view unit);
