@@ -17,7 +17,6 @@
 /// two threads at once.
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -25,6 +24,7 @@
 #include <limits>
 
 #include "hstmon/circuit/circuit.hpp"
+#include "hstmon/circuit/decay_rate.hpp"
 #include "hstmon/circuit/dense.hpp"
 #include "hstmon/circuit/laws.hpp"
 #include "hstmon/circuit/pseudo_transient.hpp"
@@ -292,11 +292,7 @@ class CircuitModel {
     T s = T(0);
     for (int r = 0; r < n_states_; ++r) s = std::max(s, J.row(r).cwiseAbs().sum());
     for (int r = n_states_; r < kStates; ++r) J(r, r) = -(T(1) + T(10) * s);
-    const Eigen::EigenSolver<StateMatrix> es(J, false);
-    if (es.info() != Eigen::Success) return T(0);
-    T rate = std::numeric_limits<T>::infinity();
-    for (int i = 0; i < kStates; ++i) rate = std::min(rate, -es.eigenvalues()[i].real());
-    return rate > T(0) && std::isfinite(rate) ? rate : T(0);
+    return slowest_decay_rate(J);
   }
 
   /// Local contraction factor of the quasi-steady solve at x [-]: the largest row sum
