@@ -43,7 +43,8 @@ const char* start_words(InitialState k) {
 CandidateClass final_class(const LoadedCircuit& c, const CircuitReplayResult& r) {
   if (r.table_rows == 0) return {};
   try {
-    return circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+    return circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events),
+                                          fdi::signature_fault_tables());
   } catch (const std::exception&) {
     return {};  // no table at the nominal inputs: the replay's notes say so
   }

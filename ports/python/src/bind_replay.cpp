@@ -111,7 +111,7 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
     try {
       py::gil_scoped_release release;
       cls =
-          circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+          circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::signature_fault_tables());
     } catch (const std::exception&) {
       cls = {};
     }
