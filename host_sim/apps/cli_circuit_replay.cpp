@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli_circuit_replay_report.hpp"
@@ -26,6 +27,7 @@ namespace hstmon::cli {
 namespace {
 
 using circuit_tools::CandidateClass;
+using circuit_tools::CircuitFaultTable;
 using circuit_tools::CircuitReplayResult;
 using circuit_tools::LoadedCircuit;
 
@@ -38,12 +40,14 @@ const char* start_words(InitialState k) {
   return "?";
 }
 
-// The class of the final candidates, and what would split them (candidate_class.hpp); empty
-// when the matcher did not run or ended on no candidates.
-CandidateClass final_class(const LoadedCircuit& c, const CircuitReplayResult& r) {
+// The class of the final candidates, and what would split them (candidate_class.hpp), on
+// the matcher's table `table` (nullptr: not built); empty when the matcher did not run or
+// ended on no candidates.
+CandidateClass final_class(const LoadedCircuit& c, const CircuitReplayResult& r, const CircuitFaultTable* table) {
   if (r.table_rows == 0) return {};
   try {
-    return circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+    return circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::signature_fault_tables(),
+                                          table);
   } catch (const std::exception&) {
     return {};  // no table at the nominal inputs: the replay's notes say so
   }
@@ -202,13 +206,24 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   o.fit = a.fit;
   o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
+  // Built once: the matcher runs on it and the verdict sentence reads it. Without one (no
+  // steady state at the nominal inputs), the replay tries its builder and says why not.
+  std::optional<CircuitFaultTable> table;
+  if (a.diagnose) {
+    try {
+      table.emplace(fdi::circuit_signature_table(c));
+      o.table = &*table;
+    } catch (const std::exception&) {
+      o.table = nullptr;
+    }
+  }
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   // A run that did not happen has no residuals to report, least of all quiet ones.
   if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
     fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", a.circuit, a.log, why);
     return kExitBadInput;
   }
-  const CandidateClass cls = a.diagnose ? final_class(c, r) : CandidateClass{};
+  const CandidateClass cls = a.diagnose ? final_class(c, r, o.table) : CandidateClass{};
   if (a.json) {
     print_json(a, c, r, cls);
   } else {

@@ -36,8 +36,8 @@ circuit_tools::SignatureParts parts_of(bool steady_only) {
 
 // The steady-only relation reads no slope or order: the steady table (no causal graph, no
 // simulations) gives the same magnitudes and directions at a fraction of the cost.
-circuit_tools::FaultTableBuilder builder_of(bool steady_only) {
-  return steady_only ? circuit_tools::circuit_fault_table : circuit_signature_table;
+circuit_tools::FaultTableBuilders builder_of(bool steady_only) {
+  return steady_only ? circuit_tools::steady_fault_tables() : signature_fault_tables();
 }
 
 std::vector<std::string> split_names(unsigned bits) {
@@ -63,9 +63,10 @@ char cell(int entry, unsigned bits) {
 int run_isolability(const std::string& circuit, const std::string& params, bool json, bool steady_only) {
   circuit_tools::LoadedCircuit c;
   if (!load(circuit, params, c)) return 2;
-  const circuit_tools::Isolability r = circuit_tools::circuit_isolability(builder_of(steady_only)(c), parts_of(steady_only));
+  const circuit_tools::CircuitFaultTable table = builder_of(steady_only).table(c);
+  const circuit_tools::Isolability r = circuit_tools::circuit_isolability(table, parts_of(steady_only));
   const circuit_tools::OperatingPointSplit op =
-      circuit_tools::split_by_operating_point(c, builder_of(steady_only), parts_of(steady_only));
+      circuit_tools::split_by_operating_point(c, builder_of(steady_only), parts_of(steady_only), {}, &table);
   const std::size_t n = r.faults.size();
   if (json) {
     nlohmann::json by_point = nlohmann::json::array();

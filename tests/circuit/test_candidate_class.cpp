@@ -106,7 +106,8 @@ TEST(OperatingPoints, SplitALeakFromADeliveryLoss) {
   // from a delivery loss; the load and the stroke can: a leak grows with the pressure
   // across it, a delivery loss with displacement × speed. The product Dp·eps stays.
   const ct::LoadedCircuit c = hst45();
-  const ct::OperatingPointSplit s = ct::split_by_operating_point(c, ct::circuit_fault_table, ct::SignatureParts::kFull);
+  const ct::OperatingPointSplit s =
+      ct::split_by_operating_point(c, ct::steady_fault_tables(), ct::SignatureParts::kFull);
   EXPECT_GT(s.points.size(), 3u);
   EXPECT_TRUE(split_pair(s, "R_ext_a-", "R_ip-"));
   EXPECT_TRUE(split_pair(s, "R_ip-", "Dp-"));

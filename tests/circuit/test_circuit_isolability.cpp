@@ -179,7 +179,7 @@ TEST(CircuitIsolability, ClosedLoopOrdersSplitTheMotorFromTheChargeCircuit) {
 TEST(CircuitIsolability, AddedSensorsAreRankedOnTheMonitorsTable) {
   // The added channel's slopes and orders come from the same causal graph: q(pump) still
   // separates the test stand's leak from a low delivery best.
-  const auto ranked = ct::rank_added_sensors(load("test_stand"), hstmon::fdi::circuit_signature_table);
+  const auto ranked = ct::rank_added_sensors(load("test_stand"), hstmon::fdi::signature_fault_tables());
   ASSERT_FALSE(ranked.empty());
   EXPECT_EQ(ranked.front().name, "q(pump)");
   EXPECT_GE(ranked.front().weak_cleared, 1);

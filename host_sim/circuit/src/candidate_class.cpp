@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <set>
 
@@ -56,7 +57,7 @@ std::vector<std::string> verdict_candidates(const std::vector<host::ReplayEvent>
 }
 
 CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::string>& candidates,
-                               FaultTableBuilder build) {
+                               const FaultTableBuilders& build, const CircuitFaultTable* nominal) {
   CandidateClass r;
   r.candidates = candidates;
   if (candidates.empty()) return r;
@@ -67,7 +68,10 @@ CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::st
     r.sentence = r.description + ": " + candidates.front();
     return r;
   }
-  const CircuitFaultTable table = build(c);
+  // The nominal table, built once: the operating points and the sensor placement read it too.
+  std::unique_ptr<const CircuitFaultTable> own;
+  if (nominal == nullptr) own = std::make_unique<const CircuitFaultTable>(build.table(c));
+  const CircuitFaultTable& table = nominal != nullptr ? *nominal : *own;
   const Isolability now = circuit_isolability(table, SignatureParts::kFull);
   std::vector<int> row(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -84,7 +88,7 @@ CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::st
     r.split_by = "more settled data at a steady operating point";
   } else {
     // A change of operating point: the pairs it splits among the candidates.
-    const OperatingPointSplit op = split_by_operating_point(c, build, SignatureParts::kFull, candidates);
+    const OperatingPointSplit op = split_by_operating_point(c, build, SignatureParts::kFull, candidates, &table);
     auto split_elsewhere = [&](std::size_t i, std::size_t j) {
       for (const auto& p : op.pairs) {
         if ((p.first == candidates[i] && p.second == candidates[j]) ||
@@ -99,7 +103,7 @@ CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::st
     // The single added channel that splits them into the most groups.
     int groups_sensor = r.groups_now;
     std::string best_sensor;
-    for (const SensorCandidate& s : rank_added_sensors(c, build, SignatureParts::kFull)) {
+    for (const SensorCandidate& s : rank_added_sensors(c, build, SignatureParts::kFull, &table)) {
       const int g = count_groups(n, [&](std::size_t i, std::size_t j) {
         const int ci = class_of(s.classes, candidates[i]);
         return together_now(i, j) && ci >= 0 && ci == class_of(s.classes, candidates[j]);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <set>
 #include <stdexcept>
 
 #include "hstmon/circuit/monitor_setup.hpp"
@@ -59,7 +60,10 @@ circuit::CircuitUncertainty<double, host::CircuitCap> circuit_uncertainty(const 
   return e;
 }
 
-CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
+namespace {
+
+// The table, or with `only` its rows of those faults (and every sensor row).
+CircuitFaultTable fault_table(const LoadedCircuit& c, const std::set<std::string>* only) {
   CircuitFaultTable t;
   host::HostCircuit desc = c.file.circuit;
   desc.stiff_mask = 0;  // the full equations: steady states do not depend on it
@@ -81,6 +85,7 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
   auto add_fault = [&](const std::string& base, const auto& set) {
     for (const int side : {+1, -1}) {
       const std::string name = base + (side > 0 ? "+" : "-");
+      if (only != nullptr && only->count(name) == 0) continue;
       double z10[kN], z30[kN];
       Model::Params p = c.values.params;
       Model::Inputs v = u;
@@ -152,6 +157,15 @@ CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) {
     t.rows.back().name = t.names[j].c_str();
   }
   return t;
+}
+
+}  // namespace
+
+CircuitFaultTable circuit_fault_table(const LoadedCircuit& c) { return fault_table(c, nullptr); }
+
+CircuitFaultTable circuit_fault_rows(const LoadedCircuit& c, const std::vector<std::string>& faults) {
+  const std::set<std::string> only(faults.begin(), faults.end());
+  return fault_table(c, &only);
 }
 
 }  // namespace hstmon::circuit_tools

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -192,13 +193,6 @@ std::vector<std::vector<std::string>> classes_of(const std::vector<std::string>&
   return big;
 }
 
-double typical_sigma(const LoadedCircuit& c, host::CircuitQuantity q, double fallback) {
-  for (const auto& s : c.file.sensors) {
-    if (s.quantity == q && s.noise > 0.0) return s.noise;
-  }
-  return fallback;
-}
-
 }  // namespace
 
 Isolability circuit_isolability(const CircuitFaultTable& t, SignatureParts parts) {
@@ -234,61 +228,18 @@ Isolability circuit_isolability(const CircuitFaultTable& t, SignatureParts parts
   return r;
 }
 
-std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c, FaultTableBuilder build, SignatureParts parts) {
-  const Isolability today = circuit_isolability(build(c), parts);
-  const host::HostCircuit& d = c.file.circuit;
+std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c, const FaultTableBuilders& build,
+                                                SignatureParts parts, const CircuitFaultTable* today_table) {
+  const Isolability today = today_table != nullptr ? circuit_isolability(*today_table, parts)
+                                                   : circuit_isolability(build.table(c), parts);
+  const std::vector<AddedSensor> tries = added_sensors(c);
+  const std::vector<std::optional<CircuitFaultTable>> tables = build.with_each_sensor(c, tries);
   std::vector<SensorCandidate> out;
-  if (d.n_channels >= host::CircuitCap::kChannels) return out;
-  const host::HostCircuitModel m(d, c.values.params, c.values.inputs);
-  struct Try {
-    std::string name;
-    circuit::Channel ch;
-    host::CircuitQuantity q;
-    double sigma;
-  };
-  std::vector<Try> tries;
-  auto measured = [&](circuit::ChannelKind k, int index) {
-    for (int i = 0; i < d.n_channels; ++i) {
-      if (d.channels[i].kind == k && d.channels[i].index == index) return true;
-    }
-    return false;
-  };
-  const double sp = typical_sigma(c, host::CircuitQuantity::kPressure, 0.01 * m.pressure_envelope());
-  const double sw = typical_sigma(c, host::CircuitQuantity::kSpeed, 0.01 * m.speed_envelope());
-  const double sq = typical_sigma(c, host::CircuitQuantity::kFlow, 1e-6);
-  for (int i = 0; i < d.n_nodes; ++i) {
-    if (d.nodes[i].kind != circuit::NodeKind::kVolume || measured(circuit::ChannelKind::kPressure, i)) continue;
-    tries.push_back({"p(" + c.file.nodes[static_cast<std::size_t>(i)] + ")",
-                     {circuit::ChannelKind::kPressure, static_cast<std::uint8_t>(i)}, host::CircuitQuantity::kPressure, sp});
-  }
-  for (int s = 0; s < d.n_shafts; ++s) {
-    if (d.shafts[s].driven || measured(circuit::ChannelKind::kSpeed, s)) continue;
-    tries.push_back({"w(" + c.file.shafts[static_cast<std::size_t>(s)] + ")",
-                     {circuit::ChannelKind::kSpeed, static_cast<std::uint8_t>(s)}, host::CircuitQuantity::kSpeed, sw});
-  }
-  for (int e = 0; e < d.n_elements; ++e) {
-    if (!circuit::has_ports(d.elements[e].kind) || measured(circuit::ChannelKind::kFlow, e)) continue;
-    tries.push_back({"q(" + c.file.elements[static_cast<std::size_t>(e)] + ")",
-                     {circuit::ChannelKind::kFlow, static_cast<std::uint8_t>(e)}, host::CircuitQuantity::kFlow, sq});
-  }
-  for (const Try& t : tries) {
-    LoadedCircuit a = c;
-    a.file.circuit.channels[a.file.circuit.n_channels++] = t.ch;
-    host::CircuitSensor s;
-    s.name = t.name;
-    s.quantity = t.q;
-    s.noise = t.sigma;
-    s.lo = -HUGE_VAL;
-    s.hi = HUGE_VAL;
-    a.file.sensors.push_back(s);
-    Isolability with;
-    try {
-      with = circuit_isolability(build(a), parts);
-    } catch (const std::exception&) {
-      continue;
-    }
+  for (std::size_t t = 0; t < tries.size(); ++t) {
+    if (!tables[t]) continue;  // no table with this channel
+    const Isolability with = circuit_isolability(*tables[t], parts);
     SensorCandidate sc;
-    sc.name = t.name;
+    sc.name = tries[t].name;
     sc.classes = with.classes;
     // A class of today is split when its members are no longer all in one class.
     auto class_of = [&](const std::string& f) -> int {

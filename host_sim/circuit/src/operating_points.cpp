@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -23,10 +24,11 @@ RowIndex index_rows(const CircuitFaultTable& t) {
   return ix;
 }
 
-// One point's table with what the pair test reads.
+// One point's table with what the pair test reads: its own, or the caller's nominal one.
 struct PointTable {
   std::string name;
-  CircuitFaultTable table;
+  std::unique_ptr<const CircuitFaultTable> own;
+  const CircuitFaultTable* table = nullptr;
   Isolability iso;
   RowIndex rows;
 };
@@ -35,7 +37,7 @@ struct PointTable {
 // lengths along their directions, of one sign when those agree); NaN when it is unknown
 // (a sensor row, no gains, or a zero response).
 double response_ratio(const PointTable& p, std::size_t a, std::size_t b) {
-  const CircuitFaultTable& t = p.table;
+  const CircuitFaultTable& t = *p.table;
   if (t.rows[a].sensor || t.rows[b].sensor || t.gains.size() != t.rows.size()) return std::nan("");
   const double ga = t.gains[a], gb = t.gains[b];
   if (!(ga > 0.0) || !(gb > 0.0)) return std::nan("");
@@ -51,7 +53,7 @@ bool splits(const PointTable& n, const PointTable& p, const std::string& a, cons
   const auto pa = p.rows.find(a), pb = p.rows.find(b);
   // One shows there, the other cannot (undetectable at that point).
   auto silent = [&](const std::string& f) {
-    return std::find(p.table.undetectable.begin(), p.table.undetectable.end(), f) != p.table.undetectable.end();
+    return std::find(p.table->undetectable.begin(), p.table->undetectable.end(), f) != p.table->undetectable.end();
   };
   if ((pa != p.rows.end() && silent(b)) || (pb != p.rows.end() && silent(a))) return true;
   if (pa == p.rows.end() || pb == p.rows.end()) return false;
@@ -103,9 +105,15 @@ std::vector<OperatingPoint> operating_points(const LoadedCircuit& c) {
   return out;
 }
 
-OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, FaultTableBuilder build, SignatureParts parts,
-                                             const std::vector<std::string>& only) {
+OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, const FaultTableBuilders& build,
+                                             SignatureParts parts, const std::vector<std::string>& only,
+                                             const CircuitFaultTable* nominal) {
   OperatingPointSplit out;
+  // Only the rows judged: a pair's relation reads its two rows alone (the sensor rows,
+  // always built, keep which channels exist).
+  auto table_at = [&](const LoadedCircuit& at) {
+    return std::make_unique<const CircuitFaultTable>(only.empty() ? build.table(at) : build.rows(at, only));
+  };
   std::vector<PointTable> tables;
   for (const OperatingPoint& op : operating_points(c)) {
     LoadedCircuit at = c;
@@ -113,24 +121,25 @@ OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, FaultTableB
     PointTable p;
     p.name = op.name;
     if (tables.empty()) {
-      p.table = build(at);  // the nominal point: its error is the caller's
+      if (nominal == nullptr) p.own = table_at(at);  // the nominal point: its error is the caller's
     } else {
       try {
-        p.table = build(at);
+        p.own = table_at(at);
       } catch (const std::exception&) {
         continue;  // no steady state there
       }
     }
-    p.iso = circuit_isolability(p.table, parts);
-    p.rows = index_rows(p.table);
+    p.table = p.own != nullptr ? p.own.get() : nominal;
+    p.iso = circuit_isolability(*p.table, parts);
+    p.rows = index_rows(*p.table);
     out.points.push_back(p.name);
     tables.push_back(std::move(p));
   }
   const PointTable& n = tables.front();
   const std::set<std::string> wanted(only.begin(), only.end());
-  for (std::size_t i = 0; i < n.table.names.size(); ++i) {
-    for (std::size_t j = i + 1; j < n.table.names.size(); ++j) {
-      const std::string &a = n.table.names[i], &b = n.table.names[j];
+  for (std::size_t i = 0; i < n.table->names.size(); ++i) {
+    for (std::size_t j = i + 1; j < n.table->names.size(); ++j) {
+      const std::string &a = n.table->names[i], &b = n.table->names[j];
       if (n.iso.isolable[i][j] == 1) continue;
       if (!wanted.empty() && (wanted.count(a) == 0 || wanted.count(b) == 0)) continue;
       for (std::size_t k = 1; k < tables.size(); ++k) {
@@ -142,7 +151,7 @@ OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, FaultTableB
     }
   }
   // The classes left: union of the nominal not-isolable pairs that no point splits.
-  const std::size_t rows = n.table.names.size();
+  const std::size_t rows = n.table->names.size();
   std::vector<std::size_t> up(rows);
   for (std::size_t i = 0; i < rows; ++i) up[i] = i;
   auto root = [&](std::size_t i) {
@@ -152,13 +161,13 @@ OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, FaultTableB
   std::set<std::pair<std::string, std::string>> split(out.pairs.begin(), out.pairs.end());
   for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t j = i + 1; j < rows; ++j) {
-      if (n.iso.isolable[i][j] != 0 || split.count({n.table.names[i], n.table.names[j]}) > 0) continue;
-      if (!wanted.empty() && (wanted.count(n.table.names[i]) == 0 || wanted.count(n.table.names[j]) == 0)) continue;
+      if (n.iso.isolable[i][j] != 0 || split.count({n.table->names[i], n.table->names[j]}) > 0) continue;
+      if (!wanted.empty() && (wanted.count(n.table->names[i]) == 0 || wanted.count(n.table->names[j]) == 0)) continue;
       up[root(i)] = root(j);
     }
   }
   std::map<std::size_t, std::vector<std::string>> by_root;
-  for (std::size_t i = 0; i < rows; ++i) by_root[root(i)].push_back(n.table.names[i]);
+  for (std::size_t i = 0; i < rows; ++i) by_root[root(i)].push_back(n.table->names[i]);
   for (auto& entry : by_root) {
     if (entry.second.size() >= 2) out.classes.push_back(std::move(entry.second));
   }

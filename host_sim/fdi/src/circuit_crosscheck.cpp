@@ -2,6 +2,7 @@
 #include "hstmon_fdi/circuit_crosscheck.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -239,6 +240,9 @@ CircuitCrosscheck run_circuit_crosscheck(const circuit_tools::LoadedCircuit& c, 
         CircuitCrosscheckRow row;
         row.case_name = cs.name;
         row.fault = fault + (dir > 0 ? "+" : "-");
+        const bool wanted = opt.faults.empty() ||
+                            std::find(opt.faults.begin(), opt.faults.end(), row.fault) != opt.faults.end();
+        if (!wanted) continue;
         row.step = step;
         Model::Params p1 = p0;
         Model::Inputs u1 = u0;

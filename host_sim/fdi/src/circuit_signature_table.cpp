@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_fdi/circuit_crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/forward.hpp"
 #include "hstmon_fdi/qual.hpp"
+#include "fault_runs.hpp"
 
 namespace hstmon::fdi {
 
@@ -29,49 +29,20 @@ struct EngineReading {
 
 void append(std::string& to, const std::string& what) { to += (to.empty() ? "" : "; ") + what; }
 
-/// The fault `base` scaled by factor from a steady start, noise off, per channel: true when
-/// the channel's first crossing of every threshold T ≥ σ is on the side `sign` (or it
-/// crosses none), i.e. its alarm onset reads `sign` whatever the threshold; false where an
-/// opposite excursion is the first to reach some T (an early undershoot, the closed loop's
-/// p_c under n_e+). Nothing when the faulted circuit has no steady state (a fault of that
-/// size is not one the table describes: circuit_faults.hpp); empty when the run fails.
-std::optional<std::vector<bool>> onset_holds(const circuit_tools::LoadedCircuit& c, const std::string& base, double factor,
-                              const std::vector<std::int8_t>& sign, double duration) {
-  circuit_tools::CircuitSimOptions o;
-  o.noise = false;
-  o.rate = 1000.0;
-  constexpr double kFaultTime = 0.01;  // [s] a few samples of the steady start first
-  o.duration = kFaultTime + duration;
-  circuit_tools::InputStep step;
-  step.t = kFaultTime;
-  step.param = c.file.param_index(base);
-  if (step.param >= 0) {
-    step.factor = factor;
-  } else {
-    step.input = c.file.input_index(base);
-    step.value = c.values.inputs.v[step.input] * factor;
-  }
-  o.steps = {step};
-  host::HostCircuitModel::Params p = c.values.params;
-  host::HostCircuitModel::Inputs u = c.values.inputs;
-  if (step.param >= 0) {
-    p.v[step.param] *= factor;
-  } else {
-    u.v[step.input] = step.value;
-  }
-  const host::HostCircuitModel faulted(c.file.circuit, p, u);
-  host::HostCircuitModel::State xs;
-  if (!faulted.valid() || !faulted.steady_state(xs)) return std::nullopt;
-  circuit_tools::CircuitLog log;
-  try {
-    log = circuit_tools::simulate_circuit(c, o);
-  } catch (const std::exception&) {
-    return std::vector<bool>{};
-  }
+/// Per channel of c, from one fault's run (fault_runs.hpp): true when the channel's first
+/// crossing of every threshold T ≥ σ is on the side `sign` (or it crosses none), i.e. its
+/// alarm onset reads `sign` whatever the threshold; false where an opposite excursion is the
+/// first to reach some T (an early undershoot, the closed loop's p_c under n_e+). Nothing
+/// when the faulted circuit has no steady state (a fault of that size is not one the table
+/// describes: circuit_faults.hpp); empty when the run failed.
+std::optional<std::vector<bool>> onset_holds(const FaultRun& run, const circuit_tools::LoadedCircuit& c,
+                                             const std::vector<std::int8_t>& sign) {
+  if (!run.steady) return std::nullopt;
+  if (run.failed) return std::vector<bool>{};
   std::vector<bool> holds(sign.size(), true);
-  for (std::size_t ch = 0; ch < sign.size() && ch < log.sensors.size(); ++ch) {
+  for (std::size_t ch = 0; ch < sign.size() && ch < run.sensors.size(); ++ch) {
     if (sign[ch] != kQualPlus && sign[ch] != kQualMinus) continue;
-    const std::vector<double>& y = log.sensors[ch];
+    const std::vector<double>& y = run.sensors[ch];
     if (y.empty()) continue;
     const double sigma = circuit_tools::sensor_sigma(c.file.sensors[ch]);
     double with = 0.0;  // largest excursion so far on the predicted side [SI]
@@ -89,14 +60,18 @@ std::optional<std::vector<bool>> onset_holds(const circuit_tools::LoadedCircuit&
 
 // The engine at each point of default_circuit_cases, one point at a time: fault name → one
 // reading per point; `points` the number of points checked (0 when a check fails, noted).
+// `faults`: the rows read (empty: every one).
 std::map<std::string, std::vector<EngineReading>> engine_readings(const circuit_tools::LoadedCircuit& c,
-                                                                  std::vector<std::string>& notes, std::size_t& points) {
+                                                                  const std::vector<std::string>& faults,
+                                                                  std::vector<std::string>& notes,
+                                                                  std::size_t& points) {
   std::map<std::string, std::vector<EngineReading>> engine;
   points = 0;
   for (const CircuitCase& cs : default_circuit_cases(c)) {
     CircuitCrosscheckOptions o;
     o.cases = {cs};
     o.max_order = kCircuitTableMaxOrder;
+    o.faults = faults;
     try {
       const CircuitCrosscheck x = run_circuit_crosscheck(c, o);
       ++points;
@@ -160,11 +135,11 @@ bool set_graph_slopes_and_orders(circuit_tools::CircuitFaultTable::Row& row, std
 }
 
 // The matcher reads the sign at the alarm onset, which the 0+ derivative gives only if
-// no opposite excursion reaches a threshold first: the fault `base` (dir ±1) simulated at
-// 10 % and 30 % for `transient` s; a slope that does not hold becomes `?`.
+// no opposite excursion reaches a threshold first: the fault `base` (dir ±1) run at 10 %
+// and 30 % for `transient` s; a slope that does not hold becomes `?`.
 void check_onsets(circuit_tools::CircuitFaultTable::Row& row, std::string& why, const circuit_tools::LoadedCircuit& c,
-                  const std::string& base, int dir, double transient, const std::vector<std::string>& measured,
-                  int channels) {
+                  const FaultRuns& runs, const std::string& base, int dir, double transient,
+                  const std::vector<std::string>& measured, int channels) {
   std::vector<std::int8_t> sign(static_cast<std::size_t>(channels));
   bool any = false;
   for (int i = 0; i < channels; ++i) {
@@ -174,7 +149,7 @@ void check_onsets(circuit_tools::CircuitFaultTable::Row& row, std::string& why, 
   int simulated = 0;
   for (const double size : {0.1, 0.3}) {
     if (!any) break;
-    const std::optional<std::vector<bool>> run = onset_holds(c, base, 1.0 + dir * size, sign, transient);
+    const std::optional<std::vector<bool>> run = onset_holds(runs(base, 1.0 + dir * size, transient), c, sign);
     if (!run) continue;
     ++simulated;
     const std::vector<bool>& holds = *run;
@@ -221,10 +196,11 @@ int most_visible_off_fastest_path(const circuit_tools::CircuitFaultTable::Row& r
   return fastest >= 0 && fastest_visible < most_visible ? most : -1;
 }
 
-}  // namespace
-
-circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c) {
-  circuit_tools::CircuitFaultTable t = circuit_tools::circuit_fault_table(c);
+// The slopes and orders of t, c's steady table or some of its rows (`faults`, empty: all),
+// each slope's onset checked on the fault runs `runs`.
+circuit_tools::CircuitFaultTable with_transients(const circuit_tools::LoadedCircuit& c,
+                                                 circuit_tools::CircuitFaultTable t,
+                                                 const std::vector<std::string>& faults, const FaultRuns& runs) {
   // Without a graph the table stays a steady-state one: a monitor still diagnoses.
   CircuitOperatingPoint op;
   if (const auto err = circuit_operating_point(c, c.values.params, c.values.inputs, op)) {
@@ -243,7 +219,7 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
   // A point without a steady state checks nothing, and every row then keeps `?` (nothing
   // confirms the graph there).
   std::size_t points = 0;
-  const std::map<std::string, std::vector<EngineReading>> engine = engine_readings(c, t.notes, points);
+  const std::map<std::string, std::vector<EngineReading>> engine = engine_readings(c, faults, t.notes, points);
   const double transient = transient_duration(op);
   const int channels = static_cast<int>(c.file.sensors.size());
   t.remarks.assign(t.rows.size(), std::string());
@@ -268,7 +244,7 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
       continue;
     }
     bool orders_hold = set_graph_slopes_and_orders(row, why, g, steps, it->second, channels);
-    check_onsets(row, why, c, base, dir, transient, g.measured, channels);
+    check_onsets(row, why, c, runs, base, dir, transient, g.measured, channels);
     if (!orders_hold) append(why, "orders 0: the engine's differ from the graph's");
     const int most = orders_hold ? most_visible_off_fastest_path(row, channels) : -1;
     if (most >= 0) {
@@ -280,6 +256,57 @@ circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::Lo
     }
   }
   return t;
+}
+
+FaultRuns simulated_for(const circuit_tools::LoadedCircuit& c) {
+  return [&c](const std::string& base, double factor, double duration) {
+    return simulate_fault(c, base, factor, duration);
+  };
+}
+
+}  // namespace
+
+circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c) {
+  return with_transients(c, circuit_tools::circuit_fault_table(c), {}, simulated_for(c));
+}
+
+circuit_tools::CircuitFaultTable circuit_signature_rows(const circuit_tools::LoadedCircuit& c,
+                                                        const std::vector<std::string>& faults) {
+  return with_transients(c, circuit_tools::circuit_fault_rows(c, faults), faults, simulated_for(c));
+}
+
+std::vector<std::optional<circuit_tools::CircuitFaultTable>> circuit_signature_tables_with_each(
+    const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::AddedSensor>& added) {
+  std::vector<std::optional<circuit_tools::CircuitFaultTable>> out(added.size());
+  const auto n = static_cast<std::size_t>(c.file.circuit.n_channels);
+  const auto cap = static_cast<std::size_t>(host::CircuitCap::kChannels);
+  const std::size_t room = n < cap ? cap - n : 0;
+  // As many added channels as c has room for at a time, their fault runs simulated once.
+  for (std::size_t first = 0; room > 0 && first < added.size(); first += room) {
+    const std::size_t last = std::min(first + room, added.size());
+    circuit_tools::LoadedCircuit all = c;
+    for (std::size_t k = first; k < last; ++k) all = circuit_tools::with_added_sensor(all, added[k]);
+    SharedFaultRuns shared(std::move(all));
+    for (std::size_t k = first; k < last; ++k) {
+      std::vector<std::size_t> channels(n + 1);
+      for (std::size_t ch = 0; ch < n; ++ch) channels[ch] = ch;
+      channels[n] = n + (k - first);
+      const auto runs = [&](const std::string& base, double factor, double duration) {
+        return shared.run(base, factor, duration, channels);
+      };
+      const circuit_tools::LoadedCircuit with = circuit_tools::with_added_sensor(c, added[k]);
+      try {
+        out[k] = with_transients(with, circuit_tools::circuit_fault_table(with), {}, runs);
+      } catch (const std::exception&) {
+        // no table with this channel: left empty
+      }
+    }
+  }
+  return out;
+}
+
+circuit_tools::FaultTableBuilders signature_fault_tables() {
+  return {circuit_signature_table, circuit_signature_rows, circuit_signature_tables_with_each};
 }
 
 }  // namespace hstmon::fdi

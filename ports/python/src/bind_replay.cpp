@@ -85,7 +85,10 @@ py::dict trace_of(const CircuitReplayResult& r, std::size_t channels) {
   return d;
 }
 
-py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayResult& r, bool keep_trace) {
+// The replay's result as a dict; `table` the matcher's (nullptr: none was built), which the
+// verdict's class reads too.
+py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayResult& r, bool keep_trace,
+                   const circuit_tools::CircuitFaultTable* table) {
   py::dict d;
   d["rows"] = r.rows;
   d["ticks"] = r.ticks;
@@ -110,8 +113,8 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   if (r.table_rows > 0) {
     try {
       py::gil_scoped_release release;
-      cls =
-          circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events), fdi::circuit_signature_table);
+      cls = circuit_tools::candidate_class(c, circuit_tools::verdict_candidates(r.events),
+                                           fdi::signature_fault_tables(), table);
     } catch (const std::exception&) {
       cls = {};
     }
@@ -188,7 +191,7 @@ py::dict replay(const std::shared_ptr<Log>& log, double tick, const std::string&
   if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
     throw LocatedError(host::SourceError{c.path(), 0, 0, "nothing replayed on " + log->data.path + ": " + why});
   }
-  return result_of(c.loaded(), r, keep_trace);
+  return result_of(c.loaded(), r, keep_trace, o.table);
 }
 
 }  // namespace

@@ -45,9 +45,12 @@ std::vector<std::string> verdict_candidates(const std::vector<host::ReplayEvent>
 
 /// The class of `candidates` (fault rows of c's table, best first; see the file comment),
 /// each table made by `build` and read in full (SignatureParts::kFull). Candidates that
-/// are no row of the nominal table stay a group of their own.
-/// @throws std::runtime_error as `build` for c itself (no steady state at the nominal inputs)
+/// are no row of the nominal table stay a group of their own. `nominal`: c's table
+/// (build.table), when the caller has it already (the replay's); else it is built here,
+/// once. At the other operating points only the candidates' rows are built (build.rows).
+/// @throws std::runtime_error as build.table for c itself (no steady state at the nominal inputs)
 CandidateClass candidate_class(const LoadedCircuit& c, const std::vector<std::string>& candidates,
-                               FaultTableBuilder build = circuit_fault_table);
+                               const FaultTableBuilders& build = steady_fault_tables(),
+                               const CircuitFaultTable* nominal = nullptr);
 
 }  // namespace hstmon::circuit_tools

@@ -70,4 +70,11 @@ bool moves_steady_state(const host::CircuitParam& p);
 /// @throws std::runtime_error when the circuit has no steady state at the nominal inputs
 CircuitFaultTable circuit_fault_table(const LoadedCircuit& c);
 
+/// The rows of circuit_fault_table(c) for the named faults ("R_ip-", with their sign) and
+/// every sensor row, bit for bit and in the table's order, solving only for those: the named
+/// faults without a row are in `undetectable`, the notes are those on them; a name that is
+/// no fault of c is left out (fault_table_builders.hpp, FaultRowsBuilder).
+/// @throws std::runtime_error as circuit_fault_table
+CircuitFaultTable circuit_fault_rows(const LoadedCircuit& c, const std::vector<std::string>& faults);
+
 }  // namespace hstmon::circuit_tools

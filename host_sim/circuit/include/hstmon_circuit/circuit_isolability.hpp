@@ -37,9 +37,9 @@
 /// nominal point.
 ///
 /// Sensor placement: every pressure node, free shaft and element flow not yet measured is
-/// tried as one added channel (its σ that of the circuit's sensors of the same quantity,
-/// else 1 % of the envelope); the caller's table builder makes the table with it
-/// (fdi::circuit_signature_table derives the added channel's slopes and orders from the
+/// tried as one added channel (added_sensors.hpp: its σ that of the circuit's sensors of the
+/// same quantity, else 1 % of the envelope); the caller's table builder makes the table with
+/// it (fdi::circuit_signature_table derives the added channel's slopes and orders from the
 /// same causal graph); candidates are ranked by how many of today's classes they split,
 /// then by how many undetectable faults they make detectable, then by how many weak pairs
 /// they make clear.
@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/fault_table_builders.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -87,14 +88,13 @@ struct SensorCandidate {
   std::vector<std::vector<std::string>> classes;  ///< the classes with it
 };
 
-/// Builds a circuit's fault table: circuit_fault_table (steady-state only) or
-/// fdi::circuit_signature_table (the monitor's, with slopes and orders).
-using FaultTableBuilder = CircuitFaultTable (*)(const LoadedCircuit&);
-
 /// Every candidate sensor of c, best first (see the file comment), each judged on the table
-/// `build` makes for c with it, read as `parts` says.
-/// @throws std::runtime_error as `build` for c itself (no steady state at the nominal inputs)
-std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c, FaultTableBuilder build = circuit_fault_table,
-                                                SignatureParts parts = SignatureParts::kFull);
+/// `build` makes for c with it (build.with_each_sensor), read as `parts` says, against
+/// today's: `today` when given (c's table by build.table, already built), else build.table(c).
+/// @throws std::runtime_error as build.table for c itself (no steady state at the nominal inputs)
+std::vector<SensorCandidate> rank_added_sensors(const LoadedCircuit& c,
+                                                const FaultTableBuilders& build = steady_fault_tables(),
+                                                SignatureParts parts = SignatureParts::kFull,
+                                                const CircuitFaultTable* today = nullptr);
 
 }  // namespace hstmon::circuit_tools

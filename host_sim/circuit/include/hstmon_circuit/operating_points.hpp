@@ -54,10 +54,15 @@ struct OperatingPointSplit {
 
 /// Pairs of c's rows split by a change of operating point, each table made by `build` at
 /// each point of operating_points(c) and read as `parts` says. With `only` non-empty, only
-/// pairs of those rows are judged.
+/// pairs of those rows are judged, and each point's table holds only their rows (and every
+/// sensor row: build.rows) — the same pairs, points and classes, for a fraction of the
+/// solves. `nominal`: c's table at the nominal point (build.table), when the caller has
+/// already built it; it is then not built again.
 /// @throws std::runtime_error as `build` for c itself (no steady state at the nominal inputs)
-OperatingPointSplit split_by_operating_point(const LoadedCircuit& c, FaultTableBuilder build = circuit_fault_table,
+OperatingPointSplit split_by_operating_point(const LoadedCircuit& c,
+                                             const FaultTableBuilders& build = steady_fault_tables(),
                                              SignatureParts parts = SignatureParts::kFull,
-                                             const std::vector<std::string>& only = {});
+                                             const std::vector<std::string>& only = {},
+                                             const CircuitFaultTable* nominal = nullptr);
 
 }  // namespace hstmon::circuit_tools

@@ -31,6 +31,9 @@ struct CircuitCrosscheckOptions {
   std::vector<CircuitCase> cases;  ///< empty: default_circuit_cases
   double step = 0.1;               ///< relative fault step [-]
   std::vector<std::pair<std::string, double>> steps;  ///< per-fault steps overriding `step` [-]
+  /// The rows checked, by name with their sign ("kp-"); empty: both signs of every fault on
+  /// the graph. A row's readings do not depend on which others are checked.
+  std::vector<std::string> faults;
   int max_order = 6;               ///< highest derivative examined [-]
   /// Steady change relative to the channel's value read as zero [-]: the thesis rig's
   /// smallest real effect (Ripl ±10 % on Pmi) is ~1e-12; K and J move nothing (< 1e-15 after

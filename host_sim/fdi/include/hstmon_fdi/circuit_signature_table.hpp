@@ -29,9 +29,21 @@
 /// Each row's reasons are in CircuitFaultTable::remarks; docs/fdi.md §10 has the campaign
 /// figures behind the rules. A circuit whose graph cannot be derived gets the steady-state
 /// table with a note saying so.
+///
+/// The same table comes in the other shapes the circuit tools read (fault_table_builders.hpp):
+/// some of its rows, each built alone (a row reads only its own fault's solves, engine
+/// readings and runs), and the tables of sensor placement, whose fault transients are
+/// simulated once for several added channels (the channels a circuit measures do not change
+/// how it moves; each reading is the engine's output for its own channel).
 
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hstmon_circuit/added_sensors.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/fault_table_builders.hpp"
 
 namespace hstmon::fdi {
 
@@ -42,5 +54,26 @@ inline constexpr int kCircuitTableMaxOrder = 6;
 /// @throws std::runtime_error as circuit_tools::circuit_fault_table (no steady state at the
 ///         nominal inputs)
 circuit_tools::CircuitFaultTable circuit_signature_table(const circuit_tools::LoadedCircuit& c);
+
+/// The rows of circuit_signature_table(c) for the named faults ("R_ip-", with their sign)
+/// and every sensor row, bit for bit with their remarks, building only those (a
+/// circuit_tools::FaultRowsBuilder): the named faults without a row are in `undetectable`; a
+/// name that is no fault of c is left out.
+/// @throws std::runtime_error as circuit_signature_table
+circuit_tools::CircuitFaultTable circuit_signature_rows(const circuit_tools::LoadedCircuit& c,
+                                                        const std::vector<std::string>& faults);
+
+/// circuit_signature_table of c with each of `added` appended in turn (sensor placement, a
+/// circuit_tools::AddedSensorTablesBuilder): element k is circuit_signature_table(
+/// with_added_sensor(c, added[k])), bit for bit, or empty where that throws. The fault
+/// transients that check the slopes, most of a table's cost, are simulated once for as many
+/// added channels as c has room for (host::CircuitCap::kChannels). All empty when c has no
+/// room for a channel.
+std::vector<std::optional<circuit_tools::CircuitFaultTable>> circuit_signature_tables_with_each(
+    const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::AddedSensor>& added);
+
+/// This table in the three shapes the circuit tools take (circuit_signature_table,
+/// circuit_signature_rows, circuit_signature_tables_with_each).
+circuit_tools::FaultTableBuilders signature_fault_tables();
 
 }  // namespace hstmon::fdi
