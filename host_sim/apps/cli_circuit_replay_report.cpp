@@ -12,13 +12,6 @@ namespace hstmon::cli {
 
 namespace {
 
-// A sensor's display unit and its factor from SI (host::display_unit).
-void display_unit(const host::CircuitSensor& s, std::string& unit, double& scale) {
-  const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
-  unit = d.unit;
-  scale = d.per_si;
-}
-
 // Narrowest y range shown [display unit]: the sensor's noise, at least, so that a flat
 // signal is not drawn as rounding noise (the thesis panels use 0.1 bar and 1 rpm).
 double min_span(const host::CircuitSensor& s, double scale) {
@@ -32,12 +25,11 @@ std::string bound_lead_sentence(const circuit_tools::LoadedCircuit& c, const cir
   std::string line;
   for (std::size_t ch = 0; ch < r.bound_lead.size() && ch < r.measured.size(); ++ch) {
     if (!r.measured[ch]) continue;
-    std::string unit;
-    double scale = 1.0;
-    display_unit(c.file.sensors[ch], unit, scale);
+    const host::CircuitSensor& s = c.file.sensors[ch];
     const std::string lead = circuit_tools::lead_text(c, r.bound_lead[ch]);
-    line += fmt::format("{}{} ±{:.3g} {}{}", line.empty() ? "" : ", ", c.file.sensors[ch].name,
-                        r.bound_lead[ch].bound * scale, unit, lead.empty() ? "" : " (" + lead + ")");
+    line += fmt::format("{}{} ±{}{}", line.empty() ? "" : ", ", s.name,
+                        host::display_unit(s.quantity, s.unit).text(r.bound_lead[ch].bound),
+                        lead.empty() ? "" : " (" + lead + ")");
   }
   return line.empty() ? line : "model bound at the last row's inputs (the parameter that leads it): " + line;
 }
@@ -49,7 +41,9 @@ PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circui
     const host::CircuitSensor& s = c.file.sensors[ch];
     PlotChannel p;
     p.name = s.name;
-    display_unit(s, p.unit, p.scale);
+    const host::DisplayUnit d = host::display_unit(s.quantity, s.unit);
+    p.unit = d.unit;
+    p.scale = d.per_si;
     p.min_span = min_span(s, p.scale);
     p.measured = r.measured[ch];
     trace.channels.push_back(p);
@@ -66,7 +60,9 @@ ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_too
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     ReportChannel rc;
     rc.label = c.file.sensors[ch].name;
-    display_unit(c.file.sensors[ch], rc.unit, rc.scale);
+    const host::DisplayUnit d = host::display_unit(c.file.sensors[ch].quantity, c.file.sensors[ch].unit);
+    rc.unit = d.unit;
+    rc.scale = d.per_si;
     rc.measured = r.measured[ch];
     rc.stats = r.channels[ch];
     rep.channels.push_back(rc);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hstmon_circuit/candidate_class.hpp"
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/fault_words.hpp"
 #include "hstmon_circuit/operating_points.hpp"
@@ -18,14 +19,7 @@ namespace {
 
 namespace ct = hstmon::circuit_tools;
 
-ct::LoadedCircuit load(const std::string& path) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/" + path, "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-  return c;
-}
-
-ct::LoadedCircuit hst45() { return load("tests/data/validation_circuits/circuit.json"); }
+using hstmon_test::load_hst45;
 
 bool split_pair(const ct::OperatingPointSplit& s, const std::string& a, const std::string& b) {
   for (const auto& [x, y] : s.pairs) {
@@ -35,7 +29,7 @@ bool split_pair(const ct::OperatingPointSplit& s, const std::string& a, const st
 }
 
 TEST(FaultWords, EachFaultOfTheValidationCircuit) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::FaultMeaning drain_b = ct::fault_meaning(c, "R_ext_b-");
   EXPECT_EQ(drain_b.effect, ct::FaultEffect::kLeak);
   EXPECT_EQ(drain_b.words, "a leak from line B to tank");
@@ -57,7 +51,7 @@ TEST(FaultWords, EachFaultOfTheValidationCircuit) {
 }
 
 TEST(FaultWords, ClassesOfTheValidationCircuit) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   EXPECT_EQ(ct::class_words(c, {"R_ext_a-", "R_ip-", "R_im-"}), "a leak from line A");
   EXPECT_EQ(ct::class_words(c, {"R_ip-", "R_im-"}), "a leak between line A and line B");
   EXPECT_EQ(ct::class_words(c, {"Dp-", "eps-", "n_e-"}), "a delivery loss at pump");
@@ -72,13 +66,13 @@ TEST(FaultWords, ClassesOfTheValidationCircuit) {
 
 TEST(FaultWords, ShippedCircuitsSayTheirOwnNames) {
   // The words come from each file's elements: nothing names hst45's lines.
-  const ct::LoadedCircuit cl = load("examples/circuits/closed_loop_hst.json");
+  const ct::LoadedCircuit cl = hstmon_test::load_example("closed_loop_hst");
   EXPECT_EQ(ct::class_words(cl, {"Dp-", "eps-"}).rfind("a delivery loss at ", 0), 0u) << ct::class_words(cl, {"Dp-", "eps-"});
-  const ct::LoadedCircuit ts = load("examples/circuits/test_stand.json");
+  const ct::LoadedCircuit ts = hstmon_test::load_example("test_stand");
   EXPECT_EQ(ct::fault_meaning(ts, "R_leak-").words, "a leak from line to tank");
   const std::string ts_delivery = ct::class_words(ts, {"D-", "n_drive-"});
   EXPECT_EQ(ts_delivery.rfind("a delivery loss at ", 0), 0u) << ts_delivery;
-  const ct::LoadedCircuit th = load("examples/circuits/thesis.json");
+  const ct::LoadedCircuit th = hstmon_test::load_example("thesis");
   EXPECT_EQ(ct::fault_meaning(th, "Rbl+").effect, ct::FaultEffect::kMoreTorque);
   EXPECT_EQ(ct::fault_meaning(th, "Dm-").effect, ct::FaultEffect::kDisplacementLoss);
 }
@@ -91,7 +85,7 @@ TEST(FaultWords, AddedSensors) {
 }
 
 TEST(OperatingPoints, SpanTheInputs) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   std::vector<std::string> names;
   for (const auto& p : ct::operating_points(c)) names.push_back(p.name);
   ASSERT_FALSE(names.empty());
@@ -105,7 +99,7 @@ TEST(OperatingPoints, SplitALeakFromADeliveryLoss) {
   // One point cannot tell a case drain from line A and a cross-port leak apart, nor a leak
   // from a delivery loss; the load and the stroke can: a leak grows with the pressure
   // across it, a delivery loss with displacement × speed. The product Dp·eps stays.
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::OperatingPointSplit s =
       ct::split_by_operating_point(c, ct::steady_fault_tables(), ct::SignatureParts::kFull);
   EXPECT_GT(s.points.size(), 3u);
@@ -117,7 +111,7 @@ TEST(OperatingPoints, SplitALeakFromADeliveryLoss) {
 }
 
 TEST(CandidateClass, OneCandidateIsNamed) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CandidateClass k = ct::candidate_class(c, {"R_ext_b-"});
   EXPECT_EQ(k.description, "a leak from line B to tank");
   EXPECT_EQ(k.split_by, "");
@@ -128,7 +122,7 @@ TEST(CandidateClass, OneCandidateIsNamed) {
 TEST(CandidateClass, CrossPortLeaksNeedAFlowMeter) {
   // Pump and motor cross-port leakage: one laminar law between the same two lines at
   // every operating point; only a flow measured on one of the two paths splits them.
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CandidateClass k = ct::candidate_class(c, {"R_ip-", "R_im-"});
   EXPECT_EQ(k.description, "a leak between line A and line B");
   EXPECT_EQ(k.groups_now, 1);
@@ -138,7 +132,7 @@ TEST(CandidateClass, CrossPortLeaksNeedAFlowMeter) {
 }
 
 TEST(CandidateClass, LeaksFromOneLineSplitByTheOperatingPoint) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CandidateClass k = ct::candidate_class(c, {"R_ext_a-", "R_ip-", "Dp-"});
   EXPECT_EQ(k.description, "a flow loss from line A (a leak or a delivery loss)");
   EXPECT_EQ(k.groups_now, 1);
@@ -148,7 +142,7 @@ TEST(CandidateClass, LeaksFromOneLineSplitByTheOperatingPoint) {
 
 TEST(CandidateClass, ProductsStayTogether) {
   // Dp·eps: no sensor and no operating point splits a displacement from its stroke.
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CandidateClass k = ct::candidate_class(c, {"Dp-", "eps-"});
   EXPECT_EQ(k.description, "a delivery loss at pump");
   EXPECT_EQ(k.split_by, "nothing in reach");
@@ -158,7 +152,7 @@ TEST(CandidateClass, ProductsStayTogether) {
 
 TEST(CandidateClass, IsolablePairsNeedMoreData) {
   // A motor displacement loss and a sensor fault differ at the nominal point already.
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CandidateClass k = ct::candidate_class(c, {"Dm-", "sensor_p_c"});
   EXPECT_EQ(k.groups_now, 2);
   EXPECT_EQ(k.split_by, "more settled data at a steady operating point");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hstmon_circuit/candidate_class.hpp"
+#include "../support/loaded_circuit.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/fault_table_builders.hpp"
 #include "hstmon_circuit/operating_points.hpp"
@@ -21,14 +22,7 @@ namespace {
 
 namespace ct = hstmon::circuit_tools;
 
-ct::LoadedCircuit load(const std::string& path) {
-  ct::LoadedCircuit c;
-  const auto err = ct::load_circuit(std::string(HSTMON_SOURCE_DIR) + "/" + path, "", c);
-  EXPECT_FALSE(err.has_value()) << (err ? err->to_string() : std::string());
-  return c;
-}
-
-ct::LoadedCircuit hst45() { return load("tests/data/validation_circuits/circuit.json"); }
+using hstmon_test::load_hst45;
 
 // Row k in words exact to the bit: magnitudes, slopes, orders, directions, gain, remarks.
 std::string row_text(const ct::CircuitFaultTable& t, std::size_t k) {
@@ -92,7 +86,7 @@ const std::vector<std::string> kFaults = {"R_ext_b-", "R_ip-", "R_im-", "sensor_
                                           "Dp-",      "n_e-",  "eps-",  "no_such+"};
 
 TEST(FaultTableShapes, SteadyRowsAreTheWholeTablesRowsAtEveryOperatingPoint) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   for (const ct::OperatingPoint& op : ct::operating_points(c)) {
     ct::LoadedCircuit at = c;
     at.values.inputs = op.inputs;
@@ -101,14 +95,14 @@ TEST(FaultTableShapes, SteadyRowsAreTheWholeTablesRowsAtEveryOperatingPoint) {
 }
 
 TEST(FaultTableShapes, MonitorRowsAreTheWholeTablesRows) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   expect_rows_of(hstmon::fdi::circuit_signature_table(c), hstmon::fdi::circuit_signature_rows(c, kFaults), kFaults);
 }
 
 TEST(FaultTableShapes, SensorPlacementTablesAreTheTablesWithEachSensor) {
   // hst45 measures 4 channels of 8: its 10 tries (flow meters) take 3 rounds of shared runs,
   // and the slopes its rows keep on them are checked on those runs.
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const std::vector<ct::AddedSensor> added = ct::added_sensors(c);
   ASSERT_GT(added.size(), 8u);
   expect_same_tables(hstmon::fdi::circuit_signature_tables_with_each(c, added), c, added,
@@ -117,7 +111,7 @@ TEST(FaultTableShapes, SensorPlacementTablesAreTheTablesWithEachSensor) {
 }
 
 TEST(FaultTableShapes, VerdictOnTheCallersTableSaysTheSame) {
-  const ct::LoadedCircuit c = hst45();
+  const ct::LoadedCircuit c = load_hst45();
   const ct::CircuitFaultTable table = ct::circuit_fault_table(c);
   for (const std::vector<std::string>& cands :
        {std::vector<std::string>{"R_ip-", "R_im-"}, std::vector<std::string>{"R_ext_a-", "R_ip-", "Dp-"},

@@ -28,4 +28,10 @@ inline hstmon::circuit_tools::LoadedCircuit load_example(const std::string& name
   return load_circuit_file(example_circuit(name + ".json"));
 }
 
+/// The validation set's closed-circuit HST (hst45, tests/data/validation_circuits) with
+/// its parameter file.
+inline hstmon::circuit_tools::LoadedCircuit load_hst45() {
+  return load_circuit_file(std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_circuits/circuit.json");
+}
+
 }  // namespace hstmon_test
