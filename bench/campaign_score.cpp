@@ -1,6 +1,7 @@
 // Scoring of one monitored fault run by its events (campaign_score.hpp).
 #include "campaign_score.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -13,23 +14,24 @@ namespace {
 // A matcher score (a cosine) as an angle [rad].
 double angle(double c) { return std::acos(std::fmin(1.0, std::fmax(-1.0, c))); }
 
-// Whether decision e isolates the truth or its class (Scored::isolated_class).
-bool isolates(const hstmon::host::ReplayEvent& e, const std::string& truth) {
+// Whether decision e isolates the truth or its class (Scored::isolated_class): a candidate
+// is alike when it is in the class or ties the truth's weight (hypotheses that act as one).
+bool isolates(const hstmon::host::ReplayEvent& e, const std::string& truth, const std::vector<std::string>& cls) {
   if (e.candidates.empty() || (e.event != "isolated" && e.event != "ambiguous")) return false;
-  const double s0 = e.candidates[0].score;
-  bool in_group = false, all_tie = true;
-  for (const auto& c : e.candidates) {
-    const bool tie = std::fabs(c.score - s0) <= 1e-6 * std::fmax(1.0, s0);
-    in_group = in_group || (tie && c.fault == truth);
-    all_tie = all_tie && tie;
-  }
-  return in_group && (e.event == "isolated" || all_tie);
+  const auto it =
+      std::find_if(e.candidates.begin(), e.candidates.end(), [&](const auto& c) { return c.fault == truth; });
+  const auto alike = [&](const hstmon::host::ReplayCandidate& c) {
+    if (c.fault == truth || std::find(cls.begin(), cls.end(), c.fault) != cls.end()) return true;
+    return it != e.candidates.end() && std::fabs(c.score - it->score) <= 1e-6 * std::fmax(1.0, it->score);
+  };
+  if (e.event == "isolated") return alike(e.candidates[0]);
+  return std::all_of(e.candidates.begin(), e.candidates.end(), alike);
 }
 
 }  // namespace
 
 Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
-             double tie_margin) {
+             double tie_margin, const std::vector<std::string>& truth_class) {
   Scored s;
   const double eps = 1e-9;
   const hstmon::host::ReplayEvent* last_decision = nullptr;
@@ -88,7 +90,7 @@ Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::st
   // The first decision of the run's final stretch of decisions that all isolate the truth.
   for (auto it = events.rbegin(); it != events.rend() && it->t >= t_fault - eps; ++it) {
     if (!is_decision(it->event)) continue;
-    if (!isolates(*it, truth)) break;
+    if (!isolates(*it, truth, truth_class)) break;
     s.isolated_class = true;
     s.isolation_delay = it->t - t_fault;
   }

@@ -27,8 +27,9 @@ struct Scored {
   std::string last;          ///< that event as text ("isolated at 4.460 s: Rplkg+ 0.96 …"; "" if none)
   bool isolated_as_truth = false;  ///< last decision isolated with the truth best
   /// The last decision isolates the truth or its class: `isolated` with the truth among the
-  /// candidates that tie with the first (a group that acts as one), or `ambiguous` with
-  /// every candidate in such a tie and the truth among them.
+  /// candidates that tie with the first (a group that acts as one) or the first in the
+  /// truth's class, or `ambiguous` with every candidate in such a tie or in that class and
+  /// the truth among them (the rule of ../shared/validation/circuits/score_circuit.py).
   bool isolated_class = false;
   double isolation_delay = 0.0;  ///< from the fault to the first of the decisions that all isolate it so [s]
   double size = 0.0;             ///< the truth's fitted size in the last decision (factor or offset; NaN if none)
@@ -38,7 +39,9 @@ struct Scored {
 };
 
 /// Scores the events of a run whose fault `truth` starts at t_fault [s]; tie_margin [rad].
+/// @param truth_class the faults the sensors cannot tell from the truth (the truth among them
+///        or not; empty: only the truth and the candidates that tie with it)
 Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
-             double tie_margin);
+             double tie_margin, const std::vector<std::string>& truth_class = {});
 
 }  // namespace hstmon_campaign

@@ -44,6 +44,7 @@
 #include "hstmon_circuit/circuit_isolability.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/operating_points.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
@@ -69,12 +70,18 @@ const std::vector<Condition> kConditions = {
 constexpr double kSegment = 100.0;  // nominal segment [s]
 constexpr double kTieMargin = 0.01;  // FaultMatcher's default tie margin [rad]
 
+// Operating-point changes after the fault in a fault run: enough for a change of
+// operating point to split what one point cannot (operating_points.hpp), and for the
+// estimator to judge a hypothesis at three points.
+constexpr int kChangesAfterFault = 2;
+
 // Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
-// longer (a start from rest has settled); the run 2.5 s beyond, or 6 τ where longer
-// (detection, then the matcher's settle of 3 τ and window of τ, as replay_circuit sets them).
+// longer (a start from rest has settled); the run goes on through kChangesAfterFault input
+// steps after it, and 2.5 s or 6 τ beyond the last (the matcher's settle of 3 τ and window
+// of τ, as replay_circuit sets them, and the estimator's window).
 struct Timing {
   double t_fault = 2.5, run = 5.0, tau = 0.0;
-  double load_period = 2.0;  // [s] between load steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
+  double load_period = 2.0;  // [s] between input steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
 };
 
 Timing timing(const LoadedCircuit& c) {
@@ -82,12 +89,15 @@ Timing timing(const LoadedCircuit& c) {
   const hstmon::host::HostCircuitModel m(c.file.circuit, c.values.params, c.values.inputs);
   hstmon::host::HostCircuitModel::State xs;
   const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
+  const double settle = rate > 0.0 ? std::max(2.5, 6.0 / rate) : 2.5;
   if (rate > 0.0) {
     tm.tau = 1.0 / rate;
     tm.t_fault = std::max(2.5, 3.0 * tm.tau);
-    tm.run = tm.t_fault + std::max(2.5, 6.0 * tm.tau);
     tm.load_period = std::max(2.0, 6.0 * tm.tau);
   }
+  // Steps fall at 1 s + k·period; the kChangesAfterFault-th after the fault ends the changes.
+  const double first_after = 1.0 + std::floor((tm.t_fault - 1.0) / tm.load_period + 1.0) * tm.load_period;
+  tm.run = first_after + (kChangesAfterFault - 1) * tm.load_period + settle;
   return tm;
 }
 Timing g_timing;
@@ -95,6 +105,17 @@ Timing g_timing;
 hstmon::circuit_tools::CircuitFaultTable g_table;
 // --matcher-only: the matcher's verdict alone, as the firmware runs it (no fit, no step at held inputs).
 bool g_matcher_only = false;
+// The classes of faults no operating point of the runs' span splits (split_by_operating_point
+// on the matcher's table; hstmon-fdi isolability --circuit): "isolated on the truth or its class".
+std::vector<std::vector<std::string>> g_classes;
+
+// The class of fault f (empty when it is isolable from every other).
+std::vector<std::string> class_of(const std::string& f) {
+  for (const auto& cls : g_classes) {
+    if (std::find(cls.begin(), cls.end(), f) != cls.end()) return cls;
+  }
+  return {};
+}
 
 // What one campaign run injects.
 struct Fault {
@@ -121,7 +142,13 @@ LoadedCircuit machine(const LoadedCircuit& c, std::mt19937_64& rng) {
   return m;
 }
 
-// Load steps every load period from 1 s: one input with a non-zero nominal value, nominal × U[0.8, 1.25].
+// Input steps every load period from 1 s, each on one input with a non-zero nominal value.
+// Before the fault time: a random input to nominal × U[0.8, 1.25], load steps near the
+// nominal point. From it on (fault runs and nominal segments alike): the inputs in turn, so
+// that a load change and a displacement change both come after a fault, each to nominal ×
+// U[0.5, 0.8] or U[1.25, 1.5] — the span of the isolability analysis's operating points
+// (operating_points.hpp), so what it says a change of operating point splits, a run can
+// show, and the nominal hours cover the same span.
 std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::mt19937_64& rng) {
   std::vector<int> movable;
   for (std::size_t i = 0; i < c.file.inputs.size(); ++i) {
@@ -130,12 +157,22 @@ std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::
   std::vector<InputStep> steps;
   if (movable.empty()) return steps;
   std::uniform_int_distribution<std::size_t> pick(0, movable.size() - 1);
-  std::uniform_real_distribution<double> level(0.8, 1.25);
+  std::uniform_real_distribution<double> level(0.8, 1.25), away(0.0, 0.6);
+  std::size_t next = pick(rng);
   for (double t = 1.0; t < duration; t += g_timing.load_period) {
     InputStep s;
     s.t = t;
-    s.input = movable[pick(rng)];
-    s.value = c.values.inputs.v[s.input] * level(rng);
+    double factor = 1.0;
+    if (t < g_timing.t_fault) {
+      s.input = movable[pick(rng)];
+      factor = level(rng);
+    } else {
+      s.input = movable[next];
+      next = (next + 1) % movable.size();
+      const double a = away(rng);  // [0, 0.3): below nominal, [0.3, 0.6): above
+      factor = a < 0.3 ? 0.5 + a : 1.25 + (a - 0.3) * (0.25 / 0.3);
+    }
+    s.value = c.values.inputs.v[s.input] * factor;
     if (c.file.inputs[s.input].quantity == hstmon::host::CircuitQuantity::kFraction) s.value = std::clamp(s.value, -1.0, 1.0);
     steps.push_back(s);
   }
@@ -203,7 +240,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   ro.fit = !g_matcher_only;
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
-    r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin);
+    r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin, class_of(f.name));
   } else {
     for (const auto& e : res.events) r.alarms += e.event == "detected" ? 1 : 0;
   }
@@ -312,7 +349,9 @@ void add_options(CLI::App& app, Settings& o) {
                  "another value draws other runs, to check a figure is not these seeds'");
   app.add_flag("--json", o.json, "one JSON object with the figures");
   app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
-  app.add_flag("--verbose", o.verbose, "print every fault run whose truth is not in the reported set");
+  app.add_flag("--verbose", o.verbose,
+               "print every fault run whose truth is not in the reported set, or that is detected and not isolated on "
+               "the truth or its class");
   app.add_flag("--matcher-only", g_matcher_only,
                "the matcher's verdict alone, as the firmware runs it (replay --circuit --matcher-only)");
 }
@@ -391,9 +430,10 @@ Tallies tally(const std::vector<Job>& work, const std::vector<RunResult>& result
       }
     }
     if (verbose && !r.error.empty()) fmt::print(stderr, "{} seed {}: simulation failed: {}\n", f.name, w.seed, r.error);
-    if (verbose && r.error.empty() && r.missed())
-      fmt::print(stderr, "{} seed {} ({}): detected {} early {} — {}\n", f.name, w.seed,
-                 kConditions[static_cast<std::size_t>(w.condition)].name, r.s.detected, r.early(), r.s.last.empty() ? "no decision" : r.s.last);
+    if (verbose && r.error.empty() && (r.missed() || (r.s.detected && !r.s.isolated_class)))
+      fmt::print(stderr, "{} seed {} ({}): detected {} early {}{} — {}\n", f.name, w.seed,
+                 kConditions[static_cast<std::size_t>(w.condition)].name, r.s.detected, r.early(),
+                 r.missed() ? "" : ", not isolated", r.s.last.empty() ? "no decision" : r.s.last);
   }
   return t;
 }
@@ -440,9 +480,15 @@ void print_report(const Settings& o, const LoadedCircuit& c, std::size_t n_fault
                   const std::vector<std::string>& fault_notes, Tallies& t) {
   fmt::print("circuit {} ({}): {} faults in the table, magnitude {:.0f} %, {} seeds × {} conditions\n", c.file.name, o.circuit,
              n_faults, 100.0 * o.magnitude, o.seeds, kConditions.size());
-  fmt::print("slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, load steps every {:.3g} s\n", g_timing.tau,
-             g_timing.t_fault, g_timing.run, g_timing.load_period);
+  fmt::print(
+      "slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, input steps every {:.3g} s ({} after "
+      "the fault)\n",
+      g_timing.tau, g_timing.t_fault, g_timing.run, g_timing.load_period, kChangesAfterFault);
   if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
+  std::vector<std::string> classes;
+  for (const auto& cls : g_classes) classes.push_back("{" + fmt::format("{}", fmt::join(cls, ", ")) + "}");
+  fmt::print("classes no operating point splits (isolated on one counts for its members): {}\n",
+             classes.empty() ? "none" : fmt::format("{}", fmt::join(classes, " ")));
   for (const std::string& n : fault_notes) fmt::print("{}\n", n);
   fmt::print("\n{:<22} {:>5} {:>9} {:>8} {:>7} {:>9} {:>9} {:>9} {:>6}\n", "fault", "runs", "detected", "in set", "best",
              "isolated", "delay ms", "to iso s", "early");
@@ -485,6 +531,10 @@ int main(int argc, char** argv) {
   try {
     g_table = hstmon::fdi::circuit_signature_table(c);
     faults = table_faults(c, g_table, o.magnitude, undetectable, fault_notes);
+    g_classes = hstmon::circuit_tools::split_by_operating_point(c, hstmon::fdi::signature_fault_tables(),
+                                                                hstmon::circuit_tools::SignatureParts::kFull, {},
+                                                                &g_table)
+                    .classes;
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", o.circuit, e.what());
     return 2;
