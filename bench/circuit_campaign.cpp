@@ -70,18 +70,25 @@ const std::vector<Condition> kConditions = {
 constexpr double kSegment = 100.0;  // nominal segment [s]
 constexpr double kTieMargin = 0.01;  // FaultMatcher's default tie margin [rad]
 
-// Operating-point changes after the fault in a fault run: enough for a change of
-// operating point to split what one point cannot (operating_points.hpp), and for the
-// estimator to judge a hypothesis at three points.
-constexpr int kChangesAfterFault = 2;
+// Operating-point changes after the fault in a fault run: each movable input once, and at
+// least two, so that what a change of operating point splits (operating_points.hpp: a load
+// change splits a torque fault from a pressure sensor's offset, a speed change a flow loss
+// from a relief setting) a run can show, and the estimator judges a hypothesis at three
+// points or more.
+int changes_after_fault(const LoadedCircuit& c) {
+  int movable = 0;
+  for (std::size_t i = 0; i < c.file.inputs.size(); ++i) movable += c.values.inputs.v[i] != 0.0 ? 1 : 0;
+  return std::max(2, movable);
+}
 
 // Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
-// longer (a start from rest has settled); the run goes on through kChangesAfterFault input
+// longer (a start from rest has settled); the run goes on through changes_after input
 // steps after it, and 2.5 s or 6 τ beyond the last (the matcher's settle of 3 τ and window
 // of τ, as replay_circuit sets them, and the estimator's window).
 struct Timing {
   double t_fault = 2.5, run = 5.0, tau = 0.0;
   double load_period = 2.0;  // [s] between input steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
+  int changes_after = 2;     // input steps after the fault (changes_after_fault)
 };
 
 Timing timing(const LoadedCircuit& c) {
@@ -95,9 +102,10 @@ Timing timing(const LoadedCircuit& c) {
     tm.t_fault = std::max(2.5, 3.0 * tm.tau);
     tm.load_period = std::max(2.0, 6.0 * tm.tau);
   }
-  // Steps fall at 1 s + k·period; the kChangesAfterFault-th after the fault ends the changes.
+  // Steps fall at 1 s + k·period; the changes_after-th after the fault ends the changes.
+  tm.changes_after = changes_after_fault(c);
   const double first_after = 1.0 + std::floor((tm.t_fault - 1.0) / tm.load_period + 1.0) * tm.load_period;
-  tm.run = first_after + (kChangesAfterFault - 1) * tm.load_period + settle;
+  tm.run = first_after + (tm.changes_after - 1) * tm.load_period + settle;
   return tm;
 }
 Timing g_timing;
@@ -483,7 +491,7 @@ void print_report(const Settings& o, const LoadedCircuit& c, std::size_t n_fault
   fmt::print(
       "slowest time constant {:.3g} s: faults at {:.3g} s in runs of {:.3g} s, input steps every {:.3g} s ({} after "
       "the fault)\n",
-      g_timing.tau, g_timing.t_fault, g_timing.run, g_timing.load_period, kChangesAfterFault);
+      g_timing.tau, g_timing.t_fault, g_timing.run, g_timing.load_period, g_timing.changes_after);
   if (!undetectable.empty()) fmt::print("not detectable at the nominal inputs (no row): {}\n", fmt::join(undetectable, ", "));
   std::vector<std::string> classes;
   for (const auto& cls : g_classes) classes.push_back("{" + fmt::format("{}", fmt::join(cls, ", ")) + "}");
