@@ -80,6 +80,10 @@ T radius_2x2(T a, T b, T c, T d, T rho_max) noexcept {
 /// where the bound is ρ(|J|)). Exact for n = 1 and for real spectra of sign-symmetric
 /// matrices; at most about twice ρ for a lightly damped oscillatory pair. 0 when the
 /// bound is at most rho_max; NaN for a non-finite J.
+/// The maxima and minimum are plain comparisons, not std::fmax/fmin: every value they see
+/// is finite or +∞ and ≥ +0 (the NaN test comes first), where the two agree bit for bit,
+/// and newlib's fmaxf/fminf are calls that classify both arguments (on the Cortex-M4F
+/// they were over a quarter of a circuit monitor's usual tick).
 template <typename T, std::size_t N>
 T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
   if (n <= 0) return T(0);
@@ -101,10 +105,11 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
       for (int j = 0; j < n; ++j) s += std::fabs(J[i][j]) * v[j];
       if (!std::isfinite(s)) return s - s;  // NaN
       w[i] = s;
-      bound = std::fmax(bound, s / v[i]);
-      wmax = std::fmax(wmax, s);
+      const T r = s / v[i];
+      bound = r > bound ? r : bound;
+      wmax = s > wmax ? s : wmax;
     }
-    best = std::fmin(best, bound);
+    best = bound < best ? bound : best;
     if (best <= rho_max) return T(0);
     if (!(wmax > T(0))) return T(0);
     // Keep v strictly positive (a reducible |J| would zero entries and lose the bound).
