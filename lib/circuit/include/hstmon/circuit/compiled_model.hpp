@@ -153,7 +153,8 @@ class CompiledModel {
   }
 
   /// CircuitModel::tick_derivative, compiled: rho from the reduced Jacobian's bound
-  /// (dense.hpp radius_bound: its first, cheapest bound decides when it is ≤ rho_max).
+  /// (dense.hpp radius_bound_fixed, radius_bound's bits: its first, cheapest bound decides
+  /// when it is ≤ rho_max).
   /// The Jacobian's rows come from the evaluations the solve and the rates make anyway:
   /// a closed-form stiff node's row from its own root (the orifice's slope c0/(2·root)),
   /// a Newton node's from its balance's last evaluation, at most 8ε (Newton's step test)
@@ -171,7 +172,7 @@ class CompiledModel {
     T jr[kExtent<kStates>][kExtent<kStates>];
     T q = T(0);
     Kernel::schur(G, inv_mass_, jr, q);
-    rho = radius_bound(jr, Kernel::kN, rho_max);
+    rho = radius_bound_fixed<Kernel::kN>(jr, rho_max);
     alg_ok = conv && q < T(0.5);
     return d;
   }
