@@ -177,9 +177,10 @@ class CompiledModel {
     return d;
   }
 
-  /// True where this build has the fused usual tick (usual_tick): everywhere but Arm
-  /// M-profile, where flash is scarce and the observer's general tick serves (code_size.hpp).
-  static constexpr bool kHasUsualTick = !HSTMON_FLASH_LEAN;
+  /// True where this build has the fused usual tick (usual_tick): HSTMON_USUAL_TICK,
+  /// everywhere but Arm M-profile by default, where flash is scarce and the observer's
+  /// general tick serves (code_size.hpp).
+  static constexpr bool kHasUsualTick = HSTMON_USUAL_TICK != 0;
 
   /// What usual_tick needs for one RK4 step of h: the step's factors and a box of the
   /// unknowns certified around a state (stiffness_certificate.hpp) — everywhere in it the
