@@ -6,8 +6,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 
+#include "hstmon/circuit/dense.hpp"
 #include "hstmon/circuit/laws.hpp"
 #include "hstmon/circuit/stiffness_certificate.hpp"
 
@@ -162,6 +165,43 @@ TEST(CertifyReduced, ProvesAndRefuses) {
   }
   hi_shut[0][0] = 0.0;
   EXPECT_FALSE(circuit::certify_reduced(lo_shut, hi_shut, ia, 1, ix, 2, inv_mass, 800.0));
+}
+
+// radius_bound_fixed<K> (compiled circuits' observer ticks) is radius_bound(J, K, ·) bit for
+// bit: matrices whose rows mix scales decades apart (Pa/s against rad/s², as the paper
+// circuit's), radii below, near and above rho_max, and non-finite entries.
+template <typename T, int K>
+void expect_fixed_matches_loop(std::mt19937& rng) {
+  constexpr std::size_t kCap = 6;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> decade(-3, 5);
+  for (int trial = 0; trial < 4000; ++trial) {
+    T J[kCap][kCap] = {};
+    for (int i = 0; i < K; ++i) {
+      for (int j = 0; j < K; ++j) J[i][j] = static_cast<T>(u(rng) * std::pow(10.0, decade(rng)));
+    }
+    if (trial % 97 == 0) J[trial % K][(trial / 7) % K] = std::numeric_limits<T>::quiet_NaN();
+    if (trial % 89 == 0) J[(trial / 3) % K][trial % K] = std::numeric_limits<T>::infinity();
+    const T rho_max = static_cast<T>(std::pow(10.0, decade(rng)) * (0.5 + 0.5 * (u(rng) + 1.0)));
+    const T loop = circuit::radius_bound(J, K, rho_max);
+    const T fixed = circuit::radius_bound_fixed<K>(J, rho_max);
+    if (std::isnan(loop)) {
+      EXPECT_TRUE(std::isnan(fixed)) << "trial " << trial;
+    } else {
+      EXPECT_EQ(std::memcmp(&loop, &fixed, sizeof loop), 0) << "trial " << trial << ": " << loop << " vs " << fixed;
+    }
+  }
+}
+
+TEST(RadiusBound, FixedSizeIsTheLoopBitForBit) {
+  std::mt19937 rng(29);
+  expect_fixed_matches_loop<float, 1>(rng);
+  expect_fixed_matches_loop<float, 2>(rng);
+  expect_fixed_matches_loop<float, 3>(rng);
+  expect_fixed_matches_loop<float, 4>(rng);
+  expect_fixed_matches_loop<float, 6>(rng);
+  expect_fixed_matches_loop<double, 4>(rng);
+  expect_fixed_matches_loop<double, 5>(rng);
 }
 
 }  // namespace

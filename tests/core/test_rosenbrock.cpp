@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "hstmon/rosenbrock.hpp"
@@ -117,6 +118,51 @@ TEST(Rosenbrock, NonFiniteMatrixIsRefused) {
   J(1, 1) = std::numeric_limits<double>::quiet_NaN();
   StiffModel<3>::State step, err;
   EXPECT_FALSE(hstmon::rosenbrock_increment(m, x, 0.1, m.derivative(x), J, 3, step, err));
+}
+
+// The coefficients rounded at compile time (Ros34pw2As) are those a run-time conversion
+// gives, bit for bit, in float and double; fmax_inline is std::fmax on what the tick's
+// error norm sees (≥ +0, ∞, NaN).
+template <typename T>
+bool same_bits(T a, T b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+template <typename T>
+void expect_coefficients_as_at_run_time() {
+  using M = hstmon::Ros34pw2;
+  constexpr hstmon::rosenbrock_detail::Ros34pw2As<T> c{};
+  for (int i = 0; i < M::kStages; ++i) {
+    for (int j = 0; j < M::kStages; ++j) {
+      volatile double a = M::kAlpha[i][j];
+      volatile double g = M::kGammaIJ[i][j];
+      EXPECT_TRUE(same_bits(c.alpha[i][j], static_cast<T>(a))) << i << "," << j;
+      EXPECT_TRUE(same_bits(c.gamma_ij[i][j], static_cast<T>(g))) << i << "," << j;
+      EXPECT_EQ(c.alpha[i][j] != T(0), M::kAlpha[i][j] != 0.0);
+    }
+    volatile double b = M::kB[i];
+    volatile double bh = M::kBHat[i];
+    EXPECT_TRUE(same_bits(c.b[i], static_cast<T>(b))) << i;
+    EXPECT_TRUE(same_bits(c.b_err[i], static_cast<T>(b - bh))) << i;
+  }
+}
+
+TEST(Rosenbrock, CoefficientsRoundedAtCompileTimeAreTheRunTimeOnes) {
+  expect_coefficients_as_at_run_time<float>();
+  expect_coefficients_as_at_run_time<double>();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float v[] = {0.0f, 1e-30f, 0.5f, 1.0f, 3e7f, inf, nan};
+  for (float a : v) {
+    for (float b : v) {
+      const float f = hstmon::rosenbrock_detail::fmax_inline(a, b);
+      const float g = std::fmax(a, b);
+      if (std::isnan(g)) {
+        EXPECT_TRUE(std::isnan(f)) << a << " " << b;
+      } else {
+        EXPECT_TRUE(same_bits(f, g)) << a << " " << b;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -14,6 +14,19 @@
 #endif
 #endif
 
+/// The models' fused usual tick (CompiledModel and ThesisReducedModel kHasUsualTick; the
+/// observer takes it: observer.hpp), a switch of its own: on where flash is not scarce (the
+/// default follows HSTMON_FLASH_LEAN), and a microcontroller image may turn it on with
+/// -DHSTMON_USUAL_TICK=1 while its helpers stay out of line. The results are the general
+/// tick's bit for bit either way; it costs flash (the fused tick beside the general one).
+#ifndef HSTMON_USUAL_TICK
+#if HSTMON_FLASH_LEAN
+#define HSTMON_USUAL_TICK 0
+#else
+#define HSTMON_USUAL_TICK 1
+#endif
+#endif
+
 /// Marks a function to keep out of line where HSTMON_FLASH_LEAN is 1 (GCC, Clang).
 #if HSTMON_FLASH_LEAN && defined(__GNUC__)
 #define HSTMON_LEAN_NOINLINE __attribute__((noinline))

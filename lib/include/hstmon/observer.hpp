@@ -56,10 +56,11 @@
 #include "hstmon/rosenbrock.hpp"
 #include "hstmon/status.hpp"
 
-/// The general tick: out of line where the usual tick is in front of it (hosts: the usual
-/// tick's frame stays small), inline where it is step()'s only path (firmware: flash and
-/// stack).
-#if defined(__GNUC__) && !HSTMON_FLASH_LEAN
+/// The general tick: out of line where the usual tick is in front of it (HSTMON_USUAL_TICK,
+/// hosts by default: the usual tick's frame stays small, and the general tick is one copy
+/// for step() and the usual substeps), inline where it is step()'s only path (firmware by
+/// default: flash and stack).
+#if defined(__GNUC__) && HSTMON_USUAL_TICK
 #define HSTMON_OFF_USUAL_PATH __attribute__((noinline))
 #elif defined(__GNUC__)
 #define HSTMON_OFF_USUAL_PATH inline __attribute__((always_inline))

@@ -150,9 +150,10 @@ class ThesisReducedModel {
     return d;
   }
 
-  /// True where this build has the fused usual tick (usual_tick): everywhere but Arm
-  /// M-profile, where flash is scarce and the observer's general tick serves (code_size.hpp).
-  static constexpr bool kHasUsualTick = !HSTMON_FLASH_LEAN;
+  /// True where this build has the fused usual tick (usual_tick): HSTMON_USUAL_TICK,
+  /// everywhere but Arm M-profile by default, where flash is scarce and the observer's
+  /// general tick serves (code_size.hpp).
+  static constexpr bool kHasUsualTick = HSTMON_USUAL_TICK != 0;
 
   /// Coefficients of usual_tick for one RK4 step of h under the current inputs; from
   /// usual_tick_coeffs(), stale once the inputs change.

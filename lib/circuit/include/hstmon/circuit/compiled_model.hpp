@@ -153,7 +153,8 @@ class CompiledModel {
   }
 
   /// CircuitModel::tick_derivative, compiled: rho from the reduced Jacobian's bound
-  /// (dense.hpp radius_bound: its first, cheapest bound decides when it is ≤ rho_max).
+  /// (dense.hpp radius_bound_fixed, radius_bound's bits: its first, cheapest bound decides
+  /// when it is ≤ rho_max).
   /// The Jacobian's rows come from the evaluations the solve and the rates make anyway:
   /// a closed-form stiff node's row from its own root (the orifice's slope c0/(2·root)),
   /// a Newton node's from its balance's last evaluation, at most 8ε (Newton's step test)
@@ -171,14 +172,15 @@ class CompiledModel {
     T jr[kExtent<kStates>][kExtent<kStates>];
     T q = T(0);
     Kernel::schur(G, inv_mass_, jr, q);
-    rho = radius_bound(jr, Kernel::kN, rho_max);
+    rho = radius_bound_fixed<Kernel::kN>(jr, rho_max);
     alg_ok = conv && q < T(0.5);
     return d;
   }
 
-  /// True where this build has the fused usual tick (usual_tick): everywhere but Arm
-  /// M-profile, where flash is scarce and the observer's general tick serves (code_size.hpp).
-  static constexpr bool kHasUsualTick = !HSTMON_FLASH_LEAN;
+  /// True where this build has the fused usual tick (usual_tick): HSTMON_USUAL_TICK,
+  /// everywhere but Arm M-profile by default, where flash is scarce and the observer's
+  /// general tick serves (code_size.hpp).
+  static constexpr bool kHasUsualTick = HSTMON_USUAL_TICK != 0;
 
   /// What usual_tick needs for one RK4 step of h: the step's factors and a box of the
   /// unknowns certified around a state (stiffness_certificate.hpp) — everywhere in it the

@@ -8,6 +8,16 @@
 #include <cstddef>
 #include <limits>
 
+/// Full unrolling of a loop whose trip count is a compile-time constant (GCC; elsewhere the
+/// compiler's choice); the definition residual_evaluator.hpp and sensor_check.hpp also hold.
+#ifndef HSTMON_UNROLL
+#if defined(__GNUC__) && !defined(__clang__)
+#define HSTMON_UNROLL _Pragma("GCC unroll 8")
+#else
+#define HSTMON_UNROLL
+#endif
+#endif
+
 namespace hstmon::circuit {
 
 /// Solves A·x = b in place (b becomes x) for the leading n×n block of A, by Gaussian
@@ -80,6 +90,10 @@ T radius_2x2(T a, T b, T c, T d, T rho_max) noexcept {
 /// where the bound is ρ(|J|)). Exact for n = 1 and for real spectra of sign-symmetric
 /// matrices; at most about twice ρ for a lightly damped oscillatory pair. 0 when the
 /// bound is at most rho_max; NaN for a non-finite J.
+/// The maxima and minimum are plain comparisons, not std::fmax/fmin: every value they see
+/// is finite or +∞ and ≥ +0 (the NaN test comes first), where the two agree bit for bit,
+/// and newlib's fmaxf/fminf are calls that classify both arguments (on the Cortex-M4F
+/// they were over a quarter of a circuit monitor's usual tick).
 template <typename T, std::size_t N>
 T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
   if (n <= 0) return T(0);
@@ -101,16 +115,67 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
       for (int j = 0; j < n; ++j) s += std::fabs(J[i][j]) * v[j];
       if (!std::isfinite(s)) return s - s;  // NaN
       w[i] = s;
-      bound = std::fmax(bound, s / v[i]);
-      wmax = std::fmax(wmax, s);
+      const T r = s / v[i];
+      bound = r > bound ? r : bound;
+      wmax = s > wmax ? s : wmax;
     }
-    best = std::fmin(best, bound);
+    best = bound < best ? bound : best;
     if (best <= rho_max) return T(0);
     if (!(wmax > T(0))) return T(0);
     // Keep v strictly positive (a reducible |J| would zero entries and lose the bound).
     for (int i = 0; i < n; ++i) v[i] = w[i] / wmax + T(1e-3);
   }
   return best;
+}
+
+/// radius_bound(J, K, rho_max) for a size K known at compile time (a compiled circuit's
+/// states), bit for bit: the same operations in the same order, with |J| taken once rather
+/// than in each power iteration (fabs is exact) and the loops over K unrolled (K ≤ 8). It
+/// runs on every general observer tick of a compiled circuit; on the Cortex-M4F the loop
+/// form cost the paper circuit's 4 states about 680 instructions a tick, most of them loop
+/// overhead and the repeated fabs (bench/RESULTS.md, 2026-11-28).
+/// @tparam K  states, 1 ≤ K ≤ N
+/// @param J        the reduced Jacobian [1/s], leading K×K block used
+/// @param rho_max  the radius below which 0 is returned [1/s]
+/// @return         the bound [1/s]; 0 when it is at most rho_max; NaN for a non-finite J
+template <int K, typename T, std::size_t N>
+T radius_bound_fixed(const T (&J)[N][N], T rho_max) noexcept {
+  static_assert(K >= 1 && static_cast<std::size_t>(K) <= N, "K states within the capacity");
+  if constexpr (K <= 2 || K > 8) {
+    return radius_bound(J, K, rho_max);
+  } else {
+    constexpr std::size_t kK = static_cast<std::size_t>(K);  // an array extent
+    T a[kK][kK];
+    HSTMON_UNROLL
+    for (int i = 0; i < K; ++i) {
+      HSTMON_UNROLL
+      for (int j = 0; j < K; ++j) a[i][j] = std::fabs(J[i][j]);
+    }
+    T v[kK], w[kK];
+    HSTMON_UNROLL
+    for (int i = 0; i < K; ++i) v[i] = T(1);
+    T best = std::numeric_limits<T>::infinity();
+    for (int it = 0; it < 8; ++it) {
+      T bound = T(0), wmax = T(0);
+      HSTMON_UNROLL
+      for (int i = 0; i < K; ++i) {
+        T s = T(0);
+        HSTMON_UNROLL
+        for (int j = 0; j < K; ++j) s += a[i][j] * v[j];
+        if (!std::isfinite(s)) return s - s;  // NaN
+        w[i] = s;
+        const T r = s / v[i];
+        bound = r > bound ? r : bound;
+        wmax = s > wmax ? s : wmax;
+      }
+      best = bound < best ? bound : best;
+      if (best <= rho_max) return T(0);
+      if (!(wmax > T(0))) return T(0);
+      HSTMON_UNROLL
+      for (int i = 0; i < K; ++i) v[i] = w[i] / wmax + T(1e-3);
+    }
+    return best;
+  }
 }
 
 }  // namespace hstmon::circuit
