@@ -103,7 +103,7 @@ echo "circuit engine: Observer<CompiledModel<float>> on the generated circuit ($
 row "flash (text+data, image with − without)" "$c_flash" "B" "$max_flash"
 row "RAM (data+bss, image with − without)" "$c_ram" "B" "$max_ram"
 printf "  %-44s %8s %-6s\n" "  of which the observer object" "$(cfield observer_bytes)" "B"
-printf "  %-44s %8s %-6s\n" "  model object (the bound's stack copy)" "$(cfield model_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "  of which the model object" "$(cfield model_bytes)" "B"
 row "stack, configure + reset_steady (painting)" "$(cfield stack_setup_bytes)" "B" "$max_stack"
 row "stack, step (painting, incl. timing loop)" "$(cfield stack_step_bytes)" "B" "$max_stack"
 row "instructions per tick (qemu icount)" "$c_instr" "instr" "$max_instr"
