@@ -83,8 +83,9 @@ int changes_after_fault(const LoadedCircuit& c) {
 
 // Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
 // longer (a start from rest has settled); the run goes on through changes_after input
-// steps after it, and 2.5 s or 6 τ beyond the last (the matcher's settle of 3 τ and window
-// of τ, as replay_circuit sets them, and the estimator's window).
+// steps after it and ends where the next would come, a load period after the last (the
+// matcher's settle of 3 τ and window of τ, as replay_circuit sets them, and the
+// estimator's window fit in it).
 struct Timing {
   double t_fault = 2.5, run = 5.0, tau = 0.0;
   double load_period = 2.0;  // [s] between input steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
@@ -96,7 +97,6 @@ Timing timing(const LoadedCircuit& c) {
   const hstmon::host::HostCircuitModel m(c.file.circuit, c.values.params, c.values.inputs);
   hstmon::host::HostCircuitModel::State xs;
   const double rate = m.valid() && m.steady_state(xs) ? m.slowest_rate(xs) : 0.0;
-  const double settle = rate > 0.0 ? std::max(2.5, 6.0 / rate) : 2.5;
   if (rate > 0.0) {
     tm.tau = 1.0 / rate;
     tm.t_fault = std::max(2.5, 3.0 * tm.tau);
@@ -105,7 +105,7 @@ Timing timing(const LoadedCircuit& c) {
   // Steps fall at 1 s + k·period; the changes_after-th after the fault ends the changes.
   tm.changes_after = changes_after_fault(c);
   const double first_after = 1.0 + std::floor((tm.t_fault - 1.0) / tm.load_period + 1.0) * tm.load_period;
-  tm.run = first_after + (tm.changes_after - 1) * tm.load_period + settle;
+  tm.run = first_after + tm.changes_after * tm.load_period;
   return tm;
 }
 Timing g_timing;
