@@ -33,3 +33,14 @@
 #else
 #define HSTMON_LEAN_NOINLINE
 #endif
+
+/// Full unrolling of a loop whose trip count is a compile-time constant (GCC; elsewhere the
+/// compiler's choice): the per-channel and per-state loops of a tick, whose overhead is a
+/// large share of it on the Cortex-M4F. Override with -DHSTMON_UNROLL=.
+#ifndef HSTMON_UNROLL
+#if defined(__GNUC__) && !defined(__clang__)
+#define HSTMON_UNROLL _Pragma("GCC unroll 8")
+#else
+#define HSTMON_UNROLL
+#endif
+#endif

@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
 #include "hstmon/cusum.hpp"
 #include "hstmon/status.hpp"
 
@@ -38,13 +39,6 @@
 #define HSTMON_NOINLINE __attribute__((noinline))
 #else
 #define HSTMON_NOINLINE
-#endif
-#endif
-#ifndef HSTMON_UNROLL
-#if defined(__GNUC__) && !defined(__clang__)
-#define HSTMON_UNROLL _Pragma("GCC unroll 8")
-#else
-#define HSTMON_UNROLL
 #endif
 #endif
 

@@ -26,6 +26,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
 #include "hstmon/status.hpp"
 
 /// Out of line (GCC, Clang): the rare per-channel path, so the nominal loop stays small
@@ -44,13 +45,6 @@
 #define HSTMON_SENSOR_SLOW_PATH __attribute__((noinline, cold))
 #else
 #define HSTMON_SENSOR_SLOW_PATH
-#endif
-#ifndef HSTMON_UNROLL
-#if defined(__GNUC__) && !defined(__clang__)
-#define HSTMON_UNROLL _Pragma("GCC unroll 8")
-#else
-#define HSTMON_UNROLL
-#endif
 #endif
 
 namespace hstmon {

@@ -8,15 +8,7 @@
 #include <cstddef>
 #include <limits>
 
-/// Full unrolling of a loop whose trip count is a compile-time constant (GCC; elsewhere the
-/// compiler's choice); the definition residual_evaluator.hpp and sensor_check.hpp also hold.
-#ifndef HSTMON_UNROLL
-#if defined(__GNUC__) && !defined(__clang__)
-#define HSTMON_UNROLL _Pragma("GCC unroll 8")
-#else
-#define HSTMON_UNROLL
-#endif
-#endif
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
 
 namespace hstmon::circuit {
 
