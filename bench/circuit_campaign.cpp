@@ -265,7 +265,8 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
 bool has_steady_state(const LoadedCircuit& c, int p, int i, double factor) {
   auto params = c.values.params;
   auto inputs = c.values.inputs;
-  if (p >= 0) params.v[p] *= factor;
+  if (p >= 0)
+    hstmon::circuit_tools::apply_param_fault(c.file, params, c.values.params, static_cast<std::size_t>(p), factor);
   if (i >= 0) inputs.v[i] *= factor;
   const hstmon::host::HostCircuitModel m(c.file.circuit, params, inputs);
   hstmon::host::HostCircuitModel::State xs;

@@ -230,7 +230,8 @@ int main(int argc, char** argv) {
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
   app.add_option("--fault", o.faults,
                  "with --circuit: parameter fault PARAM=FACTOR@T, the parameter times FACTOR from T on, e.g. "
-                 "Rmlkg=0.5@3 (repeatable)");
+                 "Rmlkg=0.5@3 (repeatable); a valve's cracking pressure or a pump's cut-in moves the element's "
+                 "other pressure thresholds by the same amount");
   app.add_option("--inputs", o.circuit_inputs,
                  "with --circuit: drive it with this log's input columns (a logged run re-simulated); inputs not in "
                  "the log keep their parameter-file values. The run is on the log's clock: it starts at the first "

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "hstmon/circuit/monitor_setup.hpp"
+#include "hstmon/circuit/setting_shift.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -58,6 +59,12 @@ circuit::CircuitUncertainty<double, host::CircuitCap> circuit_uncertainty(const 
     if (stated[k]) e.rel[k] = *stated[k];
   }
   return e;
+}
+
+void apply_param_fault(const host::CircuitFile& c, Model::Params& p, const Model::Params& nominal, std::size_t k,
+                       double factor) {
+  const circuit::SettingCompanions with = circuit::setting_companions(c.circuit, static_cast<int>(k));
+  hstmon::apply_param_fault(p, nominal, static_cast<int>(k), with.index, factor);
 }
 
 namespace {
@@ -127,7 +134,9 @@ CircuitFaultTable fault_table(const LoadedCircuit& c, const std::set<std::string
   };
   for (std::size_t k = 0; k < c.file.params.size(); ++k) {
     if (!moves_steady_state(c.file.params[k])) continue;
-    add_fault(c.file.params[k].name, [k](Model::Params& p, Model::Inputs&, double f) { p.v[k] *= f; });
+    add_fault(c.file.params[k].name, [&c, k](Model::Params& p, Model::Inputs&, double f) {
+      apply_param_fault(c.file, p, c.values.params, k, f);
+    });
   }
   // A logged input can be wrong too: the machine's true value differs from the log's
   // (the thesis's kp− is the PRV blockage under an unchanged logged setting).

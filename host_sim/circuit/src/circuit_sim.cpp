@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_sensors/sensor_chain.hpp"
 #include "hstmon_sim/stiff_integrator.hpp"
 
@@ -50,7 +51,8 @@ std::vector<double> sample_times_of(const CircuitSimOptions& o) {
 class Stimulus {
  public:
   Stimulus(const LoadedCircuit& c, const CircuitSimOptions& o)
-      : nominal_(c.values.params),
+      : file_(c.file),
+        nominal_(c.values.params),
         prof_(o.profile),
         ramps_(prof_.any() && prof_.hold == InputHold::kLinear && prof_.t.size() >= 2),
         steps_(o.steps),
@@ -74,7 +76,7 @@ class Stimulus {
     while (next_ < steps_.size() && steps_[next_].t <= t + kSameInstant) {
       const InputStep& st = steps_[next_];
       if (st.param >= 0) {
-        params_.v[st.param] = nominal_.v[st.param] * st.factor;
+        apply_param_fault(file_, params_, nominal_, static_cast<std::size_t>(st.param), st.factor);
         params_changed_ = true;
       } else {
         held_.v[st.input] = st.value;
@@ -125,6 +127,7 @@ class Stimulus {
   const Model::Params& params() const { return params_; }
 
  private:
+  const host::CircuitFile& file_;
   const Model::Params& nominal_;
   const InputProfile& prof_;
   bool ramps_;  // linear profile: inputs ramp between rows

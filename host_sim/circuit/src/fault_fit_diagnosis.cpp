@@ -6,6 +6,7 @@
 #include <deque>
 
 #include "hstmon/circuit/circuit_bound.hpp"
+#include "hstmon/circuit/setting_shift.hpp"
 #include "hstmon/fault_estimator.hpp"
 #include "hstmon/held_step_detector.hpp"
 #include "hstmon_host/circuit_units.hpp"
@@ -91,6 +92,10 @@ struct FaultFitDiagnosis::Impl {
     FaultHypothesis h;
     h.kind = kind;
     h.index = static_cast<std::int16_t>(index);
+    if (kind == HypothesisKind::kParam) {
+      const circuit::SettingCompanions with = circuit::setting_companions(c.file.circuit, index);
+      for (int j = 0; j < kMaxCompanions; ++j) h.with[j] = with.index[j];
+    }
     if (kind == HypothesisKind::kSensor) {
       h.plus = h.minus = keep("sensor_" + base);
     } else {

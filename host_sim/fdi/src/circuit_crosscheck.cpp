@@ -9,6 +9,7 @@
 
 #include "hstmon/circuit/circuit_bound.hpp"
 #include "hstmon/circuit/laws.hpp"
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_fdi/crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/forward.hpp"
@@ -20,7 +21,8 @@ namespace {
 
 using Model = host::HostCircuitModel;
 
-/// Multiplies the input or parameter `name` by factor in (p, u); false if c has none.
+/// The fault `name` × factor applied to (p, u), the nominal values, as the fault table
+/// applies it (circuit_tools::apply_param_fault); false if c has no such input or parameter.
 bool scale_value(const host::CircuitFile& f, const std::string& name, double factor, Model::Params& p, Model::Inputs& u) {
   const int i = f.input_index(name);
   if (i >= 0) {
@@ -29,7 +31,8 @@ bool scale_value(const host::CircuitFile& f, const std::string& name, double fac
   }
   const int k = f.param_index(name);
   if (k >= 0) {
-    p.v[k] *= factor;
+    const Model::Params nominal = p;
+    circuit_tools::apply_param_fault(f, p, nominal, static_cast<std::size_t>(k), factor);
     return true;
   }
   return false;

@@ -3,6 +3,7 @@
 #include <exception>
 #include <utility>
 
+#include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 
 namespace hstmon::fdi {
@@ -27,7 +28,7 @@ FaultRun simulate_fault(const circuit_tools::LoadedCircuit& c, const std::string
   host::HostCircuitModel::Params p = c.values.params;
   host::HostCircuitModel::Inputs u = c.values.inputs;
   if (step.param >= 0) {
-    p.v[step.param] *= factor;
+    circuit_tools::apply_param_fault(c.file, p, c.values.params, static_cast<std::size_t>(step.param), factor);
   } else {
     u.v[step.input] = step.value;
   }

@@ -76,6 +76,7 @@
 #include <cstdint>
 
 #include "hstmon/model_bound.hpp"
+#include "hstmon/param_fault.hpp"
 #include "hstmon/status.hpp"
 
 namespace hstmon {
@@ -94,6 +95,10 @@ struct FaultHypothesis {
   const char* minus = nullptr;  ///< name when the factor is < 1 (sensor: same as plus)
   HypothesisKind kind = HypothesisKind::kParam;
   std::int16_t index = 0;       ///< parameter, input or channel index
+  /// kParam: parameters that move by the same amount as this one, nominal·(factor − 1)
+  /// (a setting's companions: a relief's full-open pressure with its cracking pressure,
+  /// circuit/setting_shift.hpp); -1 marks an unused entry.
+  std::int16_t with[kMaxCompanions] = {-1, -1};
 };
 
 /// How long model m takes to settle at inputs u: `taus` of its slowest time constants at
@@ -157,7 +162,7 @@ class FaultEstimator {
   using Fit = HypothesisFit<T>;
   static constexpr int kChannels = Model::kOutputs;
   /// The factor grid in ln(factor): dense near 0 (a few % faults), out to ×20 and ×1/20.
-  static constexpr int kGrid = 25;
+  static constexpr int kGrid = 35;
   static constexpr int kRanked = Ranked;
 
   /// Settings; times in s, k_* dimensionless.
@@ -387,9 +392,10 @@ class FaultEstimator {
   static constexpr std::size_t kGz = static_cast<std::size_t>(kGrid);   ///< array extent
 
   static T grid_log(int g) noexcept {
-    // |ln f| steps: 0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.45, 0.7, 1, 1.5, 2.2, 3.
-    constexpr T kSteps[13] = {T(0), T(0.02), T(0.05), T(0.1), T(0.15), T(0.2), T(0.3),
-                              T(0.45), T(0.7), T(1), T(1.5), T(2.2), T(3)};
+    // |ln f| steps: 0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.375, 0.45, 0.525, 0.6, 0.7,
+    // 0.85, 1, 1.5, 2.2, 3.
+    constexpr T kSteps[18] = {T(0),    T(0.02),  T(0.05), T(0.1), T(0.15), T(0.2), T(0.25), T(0.3), T(0.375),
+                              T(0.45), T(0.525), T(0.6),  T(0.7), T(0.85), T(1),   T(1.5),  T(2.2), T(3)};
     const int j = g - kGrid / 2;
     return j < 0 ? -kSteps[-j] : kSteps[j];
   }
@@ -467,7 +473,7 @@ class FaultEstimator {
         typename Model::Params p = nominal_;
         Inputs v = w.u;
         if (h.kind == HypothesisKind::kParam) {
-          p.v[h.index] *= factor;
+          apply_param_fault(p, nominal_, h.index, h.with, factor);
         } else {
           v.v[h.index] *= factor;
         }
@@ -620,7 +626,7 @@ class FaultEstimator {
         typename Model::Params p = nominal_;
         Inputs v = u;
         if (h.kind == HypothesisKind::kParam) {
-          p.v[h.index] *= factor_[g];
+          apply_param_fault(p, nominal_, h.index, h.with, factor_[g]);
         } else {
           v.v[h.index] *= factor_[g];
         }

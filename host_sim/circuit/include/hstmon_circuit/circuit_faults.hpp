@@ -49,6 +49,14 @@ struct CircuitFaultTable {
   CircuitFaultTable& operator=(const CircuitFaultTable&) = delete;
 };
 
+/// Applies a fault on parameter k of circuit c to p, relative to nominal, as every
+/// circuit tool applies one (the fault table, its simulations, the monitor's fits, the
+/// campaign's machines): the parameter × factor, and a setting's companions moved by the
+/// same pressure (hstmon/circuit/setting_shift.hpp: a relief valve's full-open pressure
+/// with its cracking pressure, a compensated pump's knee and dead-head with its cut-in).
+void apply_param_fault(const host::CircuitFile& c, host::HostCircuitModel::Params& p,
+                       const host::HostCircuitModel::Params& nominal, std::size_t k, double factor);
+
 /// The noise σ the circuit tools judge sensor s by [SI]: its `noise`, or, without one, 1 %
 /// of its range (of 100 SI units without a range) — the fault table's directions, the
 /// monitor's thresholds and the fits' weights need a scale; a sign does not.

@@ -28,9 +28,9 @@ inline constexpr BasicFaultSignature<kChannels> kSignatures[] = {
     // Rpump-: orders 0: w_m, the most visible channel, is not on the fastest path
     {"Rpump-", false, {{kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.411986f, -0.309077f, -0.137717f, -0.846034f}},
     // Pc+: orders 0: w_m, the most visible channel, is not on the fastest path
-    {"Pc+", false, {{kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}}, {0.415484f, 0.310601f, 0.140031f, 0.843381f}},
+    {"Pc+", false, {{kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}, {kQualPlus, kQualPlus, 0}}, {0.416404f, 0.311000f, 0.140639f, 0.842678f}},
     // Pc-: orders 0: w_m, the most visible channel, is not on the fastest path
-    {"Pc-", false, {{kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.409089f, -0.307807f, -0.135797f, -0.848210f}},
+    {"Pc-", false, {{kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.407304f, -0.307021f, -0.134613f, -0.849541f}},
     // Pk-: orders 0: w_m, the most visible channel, is not on the fastest path
     {"Pk-", false, {{kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}, {kQualMinus, kQualMinus, 0}}, {-0.411047f, -0.308666f, -0.137095f, -0.846741f}},
     // Pmax+: orders 0: w_m, the most visible channel, is not on the fastest path
