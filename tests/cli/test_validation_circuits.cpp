@@ -117,6 +117,32 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"validation_paper", "fault_dcv_block", true}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.set.substr(11) + "_" + i.param.name; });
 
+// A relief setting dropped below a later working pressure (fault_relief_B: 300 -> 165 bar,
+// seen from 25 s when line B needs 171 bar): once named it stays named — no `unexplained`
+// between the operating points after it — and its size is the setting's, because the
+// fault moves the valve's whole characteristic (setting_shift.hpp), not its cracking
+// pressure alone.
+TEST(ValidationCircuitsSetting, ReliefSettingStaysIsolatedAtItsSize) {
+#if !defined(__OPTIMIZE__)
+  GTEST_SKIP() << "closed-circuit logs run in optimised builds only";
+#endif
+  const fs::path dir = kData / "validation_circuits";
+  const CliRun r = replay(dir / "circuit.json", dir / "logs" / "fault_relief_B.csv.gz");
+  ASSERT_EQ(r.status, 0) << r.err;
+  bool named = false;
+  for (const Json& e : r.events) {
+    const bool isolated = e.at("event") == "isolated" && !e.at("candidates").empty() &&
+                          e.at("candidates").front().at("fault") == "p_rv_b-";
+    if (named) {
+      EXPECT_TRUE(isolated) << "the relief setting, once isolated, was dropped: " << e.dump();
+    }
+    named = named || isolated;
+  }
+  ASSERT_TRUE(named) << "p_rv_b- never isolated";
+  const Json& lead = r.events.back().at("candidates").front();
+  EXPECT_NEAR(lead.at("size").get<double>() * 300e5, 165e5, 0.05 * 165e5) << lead.dump();
+}
+
 // The gap cases: `hstmon gap --circuit C --fit F --check K --json` names the truth's
 // effect (or none) and, for an effect, its size within 20 % (score_*.py's rule).
 struct GapCase {

@@ -169,9 +169,9 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     return;
   }
   // isolated / ambiguous / unexplained: the matcher's word stands for a sensor flag, and
-  // until the estimator has a window.
+  // until the estimator has a window that shows the fault.
   if (sensor_flag) sensor_lock_ = true;
-  if (sensor_lock_ || est.verdict() == EstimateVerdict::kNone) {
+  if (sensor_lock_ || est.verdict() == EstimateVerdict::kNone || est.verdict() == EstimateVerdict::kUnsteady) {
     last_key_.clear();
     emit(e, out);
   }

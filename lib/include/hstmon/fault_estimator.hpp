@@ -30,6 +30,16 @@
 /// bound (parameter uncertainty) at that point stands for the model error the fit cannot
 /// remove, and the cap for noise that is not white.
 ///
+/// Motion: a window's readings are also fitted with a straight line in time. Where a
+/// channel moves over the window by more than k_drift times what noise gives such a line,
+/// half that motion is added to s (the mean of a slide stands for no steady value better
+/// than that): a motor stalling under a load that a relief valve cannot hold is judged by
+/// its direction, not by whichever hypothesis's steady state sits at the slide's mean. A
+/// window that moves by more than k_drift times its scale also marks the episode: the
+/// machine did something at held inputs that no steady state explains, so steady windows
+/// that show nothing afterwards (a relief setting below a pressure not reached again)
+/// give kUnsteady, not kNoFault, and do not end the episode.
+///
 /// Baseline: when the caller knows the readings at the same inputs before the fault (a
 /// stretch the machine held still before the detection; set_baseline()), a window at those
 /// inputs compares the change since then with the change each hypothesis predicts. The
@@ -134,6 +144,7 @@ enum class EstimateVerdict : std::uint8_t {
   kIsolated = 2,     ///< one hypothesis consistent
   kAmbiguous = 3,    ///< several consistent
   kUnexplained = 4,  ///< the best hypothesis still misses by far (several faults, or outside the model)
+  kUnsteady = 5,     ///< no steady window shows a fault, but one saw the machine move at held inputs
 };
 
 /// The fit of one hypothesis.
@@ -183,6 +194,7 @@ class FaultEstimator {
     T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the model bound is not used [-]
     T k_onset_odds = T(10);     ///< timing odds of the best group over every other that isolate [-]
     T past_settle_taus = T(1);  ///< wait before a window of the record before an episode [time constants]
+    T k_drift = T(4);           ///< a window's trend counts beyond this many of its noise spread [-]
   };
   /// Steady windows kept from before an episode (the oldest dropped first).
   static constexpr int kPast = 16;
@@ -219,6 +231,7 @@ class FaultEstimator {
     chi0_ = T(0);
     dof_ = 0;
     windows_ = 0;
+    moved_ = false;
     open_ = false;
     armed_ = false;
     verdict_ = EstimateVerdict::kNone;
@@ -338,10 +351,14 @@ class FaultEstimator {
       t_open_ = t + cfg_.settle_max;  // no steady state here: try again later
       return false;
     }
+    const T tau = t - t_first_;
     for (int i = 0; i < kChannels; ++i) {
       if (((valid & measured_) >> i & 1u) == 0) continue;
       sum_[i] += y[i];
       n_[i] += 1;
+      sum_t_[i] += tau;
+      sum_tt_[i] += tau * tau;
+      sum_ty_[i] += tau * y[i];
     }
     t_last_ = t;
     if (t - t_first_ >= cfg_.window_min && t - t_decided_ >= cfg_.decide_every) {
@@ -639,7 +656,7 @@ class FaultEstimator {
     }
     model_.set_params(nominal_);
     for (int i = 0; i < kN; ++i) {
-      sum_[i] = T(0);
+      sum_[i] = sum_t_[i] = sum_tt_[i] = sum_ty_[i] = T(0);
       n_[i] = 0;
     }
     open_ = true;
@@ -656,10 +673,40 @@ class FaultEstimator {
   // change: the window's mean less the baseline's model error, less the model's output.
   T variance(int i, T change) const noexcept {
     const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
-    const T noise = sigma_[i] * sigma_[i] / n;
+    const T motion = T(0.5) * drift(i);
+    const T noise = sigma_[i] * sigma_[i] / n + motion * motion;
     if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
     const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
     return noise + base_var_[i] + share * share;
+  }
+
+  // How far channel i's readings move over the open window by their least-squares line,
+  // beyond what noise alone gives such a line (k_drift of its spread) [channel unit]. A
+  // window's mean stands for a steady value only to within half of it: a machine still
+  // sliding at held inputs (a motor stalling under a load that a relief valve cannot hold)
+  // is not at any steady state, and its mean favours whichever hypothesis's steady state
+  // happens to sit there.
+  // True when some channel of the open window moves by more than k_drift times its scale
+  // in the fit without the motion (noise of the mean and model error).
+  bool window_moved() const noexcept {
+    for (int i = 0; i < kN; ++i) {
+      if (n_[i] == 0) continue;
+      const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
+      const T scale = std::sqrt(sigma_[i] * sigma_[i] / n + model_err_[i] * model_err_[i]);
+      if (drift(i) > cfg_.k_drift * scale) return true;
+    }
+    return false;
+  }
+
+  T drift(int i) const noexcept {
+    if (n_[i] < 8) return T(0);
+    const T n = static_cast<T>(n_[i]);
+    const T den = n * sum_tt_[i] - sum_t_[i] * sum_t_[i];
+    if (!(den > T(0))) return T(0);
+    const T span = t_last_ - t_first_;
+    const T d = std::fabs(n * sum_ty_[i] - sum_t_[i] * sum_[i]) / den * span;
+    const T noise = cfg_.k_drift * sigma_[i] * std::sqrt(n / den) * span;
+    return d > noise ? d : T(0);
   }
 
   // The open window's χ² per hypothesis and factor (and the spread between neighbouring
@@ -709,6 +756,7 @@ class FaultEstimator {
     bool any = false;
     for (int i = 0; i < kN; ++i) any = any || n_[i] > 0;
     if (!any || t_last_ - t_first_ < cfg_.window_min) return false;
+    moved_ = moved_ || window_moved();
     T c0_before = chi0_;
     int d_before = dof_;
     window_terms(scratch_, chi0_, sens_a_, sens_b_, dof_);
@@ -895,7 +943,9 @@ class FaultEstimator {
       onset_from_[r] = t_origin_;
     }
     if (chi0 <= best_chi + cfg_.k_present * scale) {
-      verdict_ = EstimateVerdict::kNoFault;
+      // After a window where the machine moved at held inputs, that no steady window
+      // shows a fault says only that none shows at these points, not that it has gone.
+      verdict_ = moved_ || window_moved() ? EstimateVerdict::kUnsteady : EstimateVerdict::kNoFault;
     } else if (per > cfg_.k_unexplained && best_chi > cfg_.explained_share * chi0) {
       verdict_ = EstimateVerdict::kUnexplained;
     } else {
@@ -932,6 +982,7 @@ class FaultEstimator {
   T sens_a_[kNz] = {}, sens_b_[kNz] = {};
   int dof_ = 0;
   int windows_ = 0;
+  bool moved_ = false;  ///< a closed window of this episode saw the machine move at held inputs (window_moved)
   // The open window.
   bool armed_ = false, open_ = false;
   Inputs u_win_{};
@@ -950,6 +1001,8 @@ class FaultEstimator {
   bool ok_[kHz][kGz] = {};
   T sum_[kNz] = {};
   std::uint32_t n_[kNz] = {};
+  T sum_t_[kNz] = {}, sum_tt_[kNz] = {},
+    sum_ty_[kNz] = {};  ///< Σ τ, Σ τ², Σ τ·y over the open window (τ from t_first_)
   // The record before the episode (observe()): the window being observed, and the ring.
   struct PastWindow {
     Inputs u{};
