@@ -194,7 +194,9 @@ class FaultEstimator {
     T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the model bound is not used [-]
     T k_onset_odds = T(10);     ///< timing odds of the best group over every other that isolate [-]
     T past_settle_taus = T(1);  ///< wait before a window of the record before an episode [time constants]
-    T k_drift = T(4);           ///< a window's trend counts beyond this many of its noise spread [-]
+    /// A window's trend counts beyond this many of its noise spread, and marks the episode
+    /// beyond this many of its scale in the fit [-].
+    T k_drift = T(4);
   };
   /// Steady windows kept from before an episode (the oldest dropped first).
   static constexpr int kPast = 16;
