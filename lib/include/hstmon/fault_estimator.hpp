@@ -674,12 +674,28 @@ class FaultEstimator {
   // change (never more than the model error) that a sensitivity off the model's may make.
   // change: the window's mean less the baseline's model error, less the model's output.
   T variance(int i, T change) const noexcept {
-    const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
     const T motion = T(0.5) * drift(i);
-    const T noise = sigma_[i] * sigma_[i] / n + motion * motion;
+    const T noise = mean_noise(i) + motion * motion;
     if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
     const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
     return noise + base_var_[i] + share * share;
+  }
+
+  // The noise variance of the open window's mean on channel i [channel unit²].
+  T mean_noise(int i) const noexcept {
+    const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
+    return sigma_[i] * sigma_[i] / n;
+  }
+
+  // True when some channel of the open window moves by more than k_drift times its scale
+  // in the fit without the motion (noise of the mean and model error).
+  bool window_moved() const noexcept {
+    for (int i = 0; i < kN; ++i) {
+      if (n_[i] == 0) continue;
+      const T scale = std::sqrt(mean_noise(i) + model_err_[i] * model_err_[i]);
+      if (drift(i) > cfg_.k_drift * scale) return true;
+    }
+    return false;
   }
 
   // How far channel i's readings move over the open window by their least-squares line,
@@ -688,18 +704,6 @@ class FaultEstimator {
   // sliding at held inputs (a motor stalling under a load that a relief valve cannot hold)
   // is not at any steady state, and its mean favours whichever hypothesis's steady state
   // happens to sit there.
-  // True when some channel of the open window moves by more than k_drift times its scale
-  // in the fit without the motion (noise of the mean and model error).
-  bool window_moved() const noexcept {
-    for (int i = 0; i < kN; ++i) {
-      if (n_[i] == 0) continue;
-      const T n = std::fmin(static_cast<T>(n_[i]), cfg_.n_cap);
-      const T scale = std::sqrt(sigma_[i] * sigma_[i] / n + model_err_[i] * model_err_[i]);
-      if (drift(i) > cfg_.k_drift * scale) return true;
-    }
-    return false;
-  }
-
   T drift(int i) const noexcept {
     if (n_[i] < 8) return T(0);
     const T n = static_cast<T>(n_[i]);
