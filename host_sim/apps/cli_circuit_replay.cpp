@@ -1,5 +1,5 @@
-// `hstmon replay --circuit FILE LOG`: prints per-channel residual statistics of a circuit
-// log and the monitor's diagnosis, in the shapes of the thesis replay (cli_replay.cpp).
+// `hstmon replay [--circuit FILE] LOG`: prints per-channel residual statistics of a log of
+// a circuit (the built-in thesis rig by default) and the monitor's diagnosis.
 #include "cli_circuit_replay.hpp"
 
 #include <fmt/format.h>
@@ -57,7 +57,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
                 const CandidateClass& cls) {
   nlohmann::json head = replay_head_json(a.log, r);
   head["circuit"] = c.file.name;
-  head["circuit_file"] = a.circuit;
+  head["circuit_file"] = c.file.path;
   head["params_file"] = c.params_path;
   head["fault_table_rows"] = r.table_rows;
   head["undetectable"] = r.undetectable;
@@ -99,8 +99,8 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
 
 void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r,
                  const CandidateClass& cls) {
-  fmt::print("hstmon replay --circuit {} {}\n", a.circuit, a.log);
-  fmt::print("  circuit {}{}: {} states, {} quasi-steady nodes\n", c.file.name,
+  fmt::print("hstmon replay {}{}\n", a.circuit.empty() ? std::string() : "--circuit " + a.circuit + " ", a.log);
+  fmt::print("  circuit {}{}{}: {} states, {} quasi-steady nodes\n", c.file.name, c.builtin() ? " (built in)" : "",
              c.params_path.empty() ? std::string() : " with " + c.params_path, r.states, r.stiff_nodes);
   fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,
              r.t_last, r.tick * 1e3, r.ticks, start_words(r.start));
@@ -125,10 +125,7 @@ void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circu
       beyond += fmt::format("{}{}{}", beyond.empty() ? "" : ", ", sensor.name, s.mean() > 0 ? "+" : "−");
     }
   }
-  const bool any_measured = std::find(r.measured.begin(), r.measured.end(), true) != r.measured.end();
-  if (!any_measured) {
-    fmt::print("\n  no sensor column in the log: no residual compared\n");
-  } else if (beyond.empty()) {
+  if (beyond.empty()) {
     fmt::print("\n  residual means are within the sensor noise on every measured channel\n");
   } else {
     fmt::print("\n  residual means beyond 5× noise: {} (measured above (+) or below (−) the model)\n", beyond);
@@ -199,6 +196,17 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
     if (!a.read.lenient || log.rows() == 0) return kExitBadInput;
     fmt::print(stderr, "{}: note: --lenient: replaying the {} valid rows before the error\n", a.log, log.rows());
   }
+  // A log of another machine: nothing compared is not "within noise".
+  if (std::all_of(log.sensors.begin(), log.sensors.end(), [](const auto& col) { return col.empty(); })) {
+    std::string columns;
+    for (const host::CircuitSensor& s : c.file.sensors) columns += (columns.empty() ? "" : ", ") + s.column;
+    fmt::print(stderr,
+               "{}: error: none of circuit {}'s sensor columns ({}) is in the log, so nothing can be compared and "
+               "nothing is diagnosed; name its columns with --map (e.g. --map {}=P1), or replay it through its own "
+               "machine's circuit file with --circuit FILE (docs/circuits.md)\n",
+               a.log, c.file.name, columns, c.file.sensors.empty() ? "p_a" : c.file.sensors.front().column);
+    return kExitBadInput;
+  }
   circuit_tools::CircuitReplayOptions o;
   o.tick = a.tick;
   o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
@@ -220,7 +228,7 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   // A run that did not happen has no residuals to report, least of all quiet ones.
   if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {
-    fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", a.circuit, a.log, why);
+    fmt::print(stderr, "{}: error: nothing replayed on {}: {}\n", c.file.path, a.log, why);
     return kExitBadInput;
   }
   const CandidateClass cls = a.diagnose ? final_class(c, r, o.table) : CandidateClass{};

@@ -55,7 +55,7 @@ PlotTrace circuit_plot_trace(const circuit_tools::LoadedCircuit& c, const circui
 ReplayReport circuit_replay_report(const CircuitReplayArgs& a, const circuit_tools::LoadedCircuit& c,
                                    const circuit_tools::CircuitReplayResult& r) {
   ReplayReport rep = replay_report_facts(a.log, r);
-  rep.circuit = fmt::format("circuit {} ({}{})", c.file.name, a.circuit,
+  rep.circuit = fmt::format("circuit {} ({}{})", c.file.name, c.file.path,
                             c.params_path.empty() ? std::string() : ", " + c.params_path);
   for (std::size_t ch = 0; ch < r.channels.size(); ++ch) {
     ReportChannel rc;

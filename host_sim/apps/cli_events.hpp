@@ -1,6 +1,6 @@
 #pragma once
-// What `hstmon replay` prints for the thesis rig and for any circuit alike: the matcher's
-// events (JSON lines and the human diagnosis block) and a channel's residual statistics;
+// What `hstmon replay` prints (and the thesis firmware image's oracle, tests/firmware): the
+// matcher's events (JSON lines and the human diagnosis block), a channel's residual statistics;
 // and the JSON number every hstmon command writes (null for NaN or infinity).
 #include <cstddef>
 #include <cstdint>

@@ -18,7 +18,6 @@
 #include "cli_commands.hpp"
 #include "cli_events.hpp"
 #include "cli_log_options.hpp"
-#include "cli_log_replay.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 
 namespace hstmon::cli {
@@ -86,13 +85,7 @@ std::vector<std::string> expand_logs(const std::vector<std::string>& names) {
 
 namespace {
 
-const char* const kChannelNames[4] = {"p_mi", "p_mo", "p_pp", "w_m"};
-
-}  // namespace
-
-namespace {
-
-// What a summary line says of one replay, whichever monitor ran it.
+// What a summary line says of one replay.
 struct SummaryFacts {
   std::size_t rows = 0;
   double t_first = 0.0, t_last = 0.0;
@@ -131,31 +124,11 @@ void add_facts(nlohmann::json& j, SummaryFacts f) {
   j["notes"] = f.notes;
 }
 
-std::string thesis_summary(nlohmann::json& j, const std::string& path, const FleetReplayArgs& args, bool& failed) {
-  host::ReplayOptions opt = args.replay;
-  opt.keep_trace = false;
-  opt.progress = nullptr;
-  const LogReplay lr = replay_log_file(path, args.read, args.params, args.inputs, opt);
-  const host::ReplayResult& r = lr.result;
-  // A strict read with an error has no valid rows; a lenient one replays those before it.
-  failed = lr.error && (!args.read.lenient || r.rows == 0);
-  j["status"] = failed ? "error" : "ok";
-  if (lr.error) j["error"] = capped(lr.error->to_string());
-  if (failed) return j.dump();
-  SummaryFacts f{r.rows, r.t_first, r.t_last, r.final_status, &r.events, r.health, {}, lr.notes};
-  for (std::size_t c = 0; c < 4; ++c) {
-    if (r.measured[c]) f.measured.emplace_back(kChannelNames[c], &r.channels[c]);
-  }
-  f.notes.insert(f.notes.end(), r.notes.begin(), r.notes.end());
-  add_facts(j, std::move(f));
-  return j.dump();
-}
-
 std::string circuit_summary(nlohmann::json& j, const std::string& path, const FleetReplayArgs& args, bool& failed) {
   const circuit_tools::LoadedCircuit& c = *args.circuit;
   j["circuit"] = c.file.name;
   const circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, args.read);
-  // As for the thesis logs: a lenient read replays the rows before its error.
+  // A strict read with an error has no valid rows; a lenient one replays those before it.
   failed = log.rows() == 0 || (log.error && !args.read.lenient);
   j["status"] = failed ? "error" : "ok";
   if (log.error) j["error"] = capped(log.error->to_string());
@@ -179,7 +152,7 @@ std::string circuit_summary(nlohmann::json& j, const std::string& path, const Fl
 std::string summary_line(const std::string& path, const FleetReplayArgs& args, bool* failed_out) {
   nlohmann::json j = {{"type", "log"}, {"log", path}, {"machine", machine_of(path, args.machine)}};
   bool failed = false;
-  std::string line = args.circuit ? circuit_summary(j, path, args, failed) : thesis_summary(j, path, args, failed);
+  std::string line = circuit_summary(j, path, args, failed);
   if (failed_out != nullptr) *failed_out = failed;
   return line;
 }

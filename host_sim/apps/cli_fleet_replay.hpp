@@ -1,17 +1,15 @@
 #pragma once
-// `hstmon replay --summary LOG|DIR...`: many logs, each replayed on its own (streamed,
-// cli_log_replay.hpp) on a pool of threads, one JSON summary line per log in the order of
+// `hstmon replay --summary LOG|DIR...`: many logs of one circuit, each read and replayed
+// on its own (circuit_replay.hpp) on a pool of threads, one JSON summary line per log in the order of
 // the sorted paths, whatever the number of threads. docs/fleet.md describes the line, the
 // machine rule and how to run it under GNU parallel or a Slurm array instead.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "hstmon/thesis_params.hpp"
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_host/log_reader.hpp"
-#include "hstmon_host/replay.hpp"
 
 namespace hstmon::cli {
 
@@ -37,13 +35,10 @@ std::vector<std::string> expand_logs(const std::vector<std::string>& names);
 /// Everything a summary replay needs besides the logs.
 struct FleetReplayArgs {
   host::ReadOptions read;
-  ThesisParams<double> params;
-  ThesisInputs<double> inputs;
-  host::ReplayOptions replay;  ///< keep_trace and progress are ignored
   MachineRule machine;
   unsigned jobs = 0;           ///< threads; 0 = all cores
-  /// `--circuit`: every log is the circuit's (read whole, circuit_log.hpp), replayed
-  /// through its monitor with circuit_replay (params, inputs and replay are then unused).
+  /// The circuit every log is of (read whole, circuit_log.hpp), replayed through its
+  /// monitor with circuit_replay. Required.
   std::shared_ptr<const circuit_tools::LoadedCircuit> circuit;
   /// Its fault table, built once for every log (null: each replay builds its own, or runs
   /// residuals only, as circuit_replay says).
@@ -52,7 +47,7 @@ struct FleetReplayArgs {
 };
 
 /// One log's summary line (no newline): {"type":"log","log",...,"status":"ok"|"error",...};
-/// residuals keyed by the channel names (the thesis rig's, or the circuit's sensors).
+/// residuals keyed by the circuit's sensor names.
 /// The same input gives the same bytes. `failed` (if given) is set when the log failed.
 std::string summary_line(const std::string& path, const FleetReplayArgs& args, bool* failed = nullptr);
 

@@ -105,19 +105,6 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
 
 }  // namespace
 
-ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResult& r, bool diagnosed) {
-  ReplayReport rep = replay_report_facts(log, r);
-  const char* const label[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
-  for (std::size_t c = 0; c < 4; ++c) {
-    const bool speed = c == 3;
-    rep.channels.push_back({label[c], speed ? "rpm" : "bar", speed ? 60.0 / (2.0 * M_PI) : 1e-5, r.measured[c],
-                            r.channels[c]});
-  }
-  rep.diagnosed = diagnosed;
-  rep.plot = thesis_plot_trace(r);
-  return rep;
-}
-
 std::string write_replay_report(const std::string& dir, const ReplayReport& r, std::string& plot_warning) {
   namespace fs = std::filesystem;
   std::error_code ec;

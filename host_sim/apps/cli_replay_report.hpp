@@ -2,7 +2,7 @@
 // `hstmon replay --report DIR`: the replay as a report a person reads and files: report.md
 // and report.html (one self-contained page: the diagnosis verdict first, the residual table,
 // the diagnosis events, the residual plot embedded) and the plot itself, residuals.svg.
-// One writer for the thesis rig's replay and a circuit's (`replay --circuit`).
+// One writer for every replay's report (`hstmon replay`, any circuit).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -67,9 +67,6 @@ ReplayReport replay_report_facts(const std::string& log, const Result& r) {
   rep.unhealthy_rows = r.unhealthy_rows;
   return rep;
 }
-
-/// The thesis replay's report (r with its trace: ReplayOptions::keep_trace).
-ReplayReport thesis_replay_report(const std::string& log, const host::ReplayResult& r, bool diagnosed);
 
 /// Writes the report into `dir` (created).
 /// @param plot_warning  out: why the plot is missing (gnuplot absent or failed), else empty

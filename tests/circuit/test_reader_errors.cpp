@@ -2,6 +2,7 @@
 // message saying what is wrong, and nothing crashes (including on binary junk).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -132,6 +133,46 @@ TEST(CircuitReader, ParameterFileStatesUncertainty) {
     ASSERT_TRUE(v.ok()) << v.error->to_string();
     ASSERT_TRUE(v.values->uncertainty[k].has_value()) << text;
     EXPECT_DOUBLE_EQ(*v.values->uncertainty[k], want) << text;
+  }
+}
+
+// The optional "sensors" section: a transmitter range per sensor in the sensor's quantity
+// (null for no end), which load_circuit writes over the circuit file's; and the circuit's
+// name under "model", as the thesis rig's Table 2.2 files write it.
+TEST(CircuitReader, ParameterFileSetsSensorRangesAndTakesModelForCircuit) {
+  const auto r = parse_circuit_json(kGood, "c.json");
+  ASSERT_TRUE(r.ok());
+  using hstmon::host::parse_circuit_values_json;
+  const auto v = parse_circuit_values_json(
+      R"({"model": "tiny", "params": {"k": 1e-7}, "inputs": {"q": 1}, "sensors": {"p": [null, "250 bar"]}})", "p.json",
+      *r.file);
+  ASSERT_TRUE(v.ok()) << v.error->to_string();
+  ASSERT_EQ(v.values->ranges.size(), 1u);
+  ASSERT_TRUE(v.values->ranges[0].has_value());
+  EXPECT_EQ(v.values->ranges[0]->lo, -HUGE_VAL);
+  EXPECT_DOUBLE_EQ(v.values->ranges[0]->hi, 250e5);
+  hstmon::host::CircuitFile cf = *r.file;
+  hstmon::host::apply_sensor_ranges(*v.values, cf);
+  EXPECT_DOUBLE_EQ(cf.sensors[0].hi, 250e5);
+  struct Case {
+    const char* text;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {R"({"circuit": "tiny", "model": "tiny", "inputs": {"q": 1}})",
+       "p.json:1:21: error: give the circuit's name once"},
+      {R"({"model": "big", "inputs": {"q": 1}})", "p.json:1:11: error: 'model' must be \"tiny\""},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "sensors": {"w": [0, 1]}})", "p.json:1:53: error: no sensor 'w'"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "sensors": {"p": "200 bar"}})", "p.json:1:58: error: p: a range is"},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "sensors": {"p": ["9 rpm", null]}})", "p.json:1:58: error: p: "},
+      {R"({"circuit": "tiny", "inputs": {"q": 1}, "sensors": {"p": ["200 bar", "100 bar"]}})",
+       "p.json:1:58: error: p: the low end must be below the high end"},
+  };
+  for (const Case& c : cases) {
+    const auto e = parse_circuit_values_json(c.text, "p.json", *r.file);
+    ASSERT_FALSE(e.ok()) << c.text;
+    const std::string m = e.error->to_string();
+    EXPECT_EQ(m.substr(0, std::string(c.expect).size()), c.expect) << "got: " << m;
   }
 }
 

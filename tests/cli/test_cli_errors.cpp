@@ -73,7 +73,7 @@ TEST(CliErrors, GoodLogReplays) {
   const std::string log = write_file("good.csv", kHeader + kRow0 + kRow1);
   const CliRun r = run_hstmon("replay " + log);
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_NE(r.out.find("Ppp [bar]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("p_pp [bar]"), std::string::npos) << r.out;
 }
 
 // Another machine's log (a test stand's line pressure and flow) through the thesis rig's
@@ -84,7 +84,9 @@ TEST(CliErrors, LogWithNoneOfTheRigsChannelsIsAnError) {
   const std::string path = write_file("other_machine.csv", text);
   const CliRun r = run_hstmon("replay " + path);
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find(path + ": error: none of the thesis rig's channels"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(path + ": error: none of circuit thesis's sensor columns (p_mi, p_mo, p_pp, w_m)"),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("--circuit"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("within the sensor noise"), std::string::npos) << r.out;
 }
@@ -113,7 +115,7 @@ TEST(CliParams, SensorsSectionSetsTheTransmitterRanges) {
 TEST(CliReplay, DasRateLogIsolatesTheBlockage) {
   const CliRun r = run_hstmon(std::string("replay ") + HSTMON_EXAMPLE_DAS_LOG);
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_NE(r.out.find("isolated: kp- (0.99"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("isolated: kp- ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("status at the end of the log: isolated"), std::string::npos) << r.out;
 }
 

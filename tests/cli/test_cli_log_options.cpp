@@ -53,10 +53,10 @@ TEST(CliLogOptions, ReplayLoadsTheSpider8ExportWithOneCommand) {
   const CliRun r = run_hstmon("replay " + spider8_path() + " " + spider8_options());
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("3000 rows, t = 0 … 0.624792 s"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("Ppp [bar]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("p_pp [bar]"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("error"), std::string::npos) << r.out;
-  // Notes in the table's units: bar, not 3500000.000000 Pa.
-  EXPECT_NE(r.out.find("held at the parameter value 35 bar"), std::string::npos) << r.out;
+  // Notes in the circuit's units: bar, not 3500000.000000 Pa.
+  EXPECT_NE(r.out.find("not in log: held at 35 bar"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("3500000"), std::string::npos) << r.out;
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One firmware test case (registered by CMakeLists.txt in this folder). Environment:
 #   FW_SRC (repo root), FW_BUILD (cross build dir), FW_LOG (embedded log), FW_OUT (scratch
-#   dir), FW_HOST (host float replay), FW_CIRCUIT_HOST (host float circuit-engine replay), FW_COMPARE (comparison tool), HSTMON_CLI (optional),
+#   dir), FW_HOST (host float replay), FW_CIRCUIT_HOST (host float circuit-engine replay), FW_COMPARE (comparison tool),
+#   FW_ORACLE (the thesis image's monitor in double on the host), HSTMON_CLI (optional),
 #   FW_MIN_EVENTS (matcher events the log must give; 2 for the default prv_blockage.csv),
 #   FW_MONITOR_HOST (host float circuit monitor), FW_MONITOR_LOG (its embedded log),
 #   FW_MONITOR_CIRCUIT_FILE (the circuit file the CLI replays it with), FW_MONITOR_EXPECT
@@ -21,9 +22,10 @@ need_cross() {
     command -v "$t" >/dev/null || { echo "skipped: $t not installed"; exit 77; }
   done
 }
-need_cli() {
-  [ -n "${HSTMON_CLI:-}" ] && [ -x "$HSTMON_CLI" ] || { echo "skipped: hstmon CLI not built"; exit 77; }
-  "$HSTMON_CLI" replay --json --no-progress "$FW_LOG" >"$out.cli.jsonl"
+# The thesis image runs the hand-written thesis monitor; its reference is that monitor in
+# double (hstmon_thesis_oracle), as `hstmon replay` runs thesis.json through the engine.
+need_oracle() {
+  "$FW_ORACLE" "$FW_LOG" >"$out.oracle.jsonl"
 }
 fw() { "$FW_SRC/scripts/firmware.sh" "$@" --build-dir "$FW_BUILD" --log "$FW_LOG" --monitor-log "$FW_MONITOR_LOG"; }
 # The circuit monitor's output must not be vacuous: a detection, and an isolation whose
@@ -37,20 +39,20 @@ monitor_not_vacuous() {
 }
 
 case "$case_name" in
-  host_float_vs_cli)  # the portable loop in float (host) vs the double CLI
-    need_cli
+  host_float_vs_oracle)  # the portable loop in float (host) vs the same monitor in double
+    need_oracle
     "$FW_HOST" >"$out.fw.jsonl"
-    "$FW_COMPARE" "$out.cli.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
+    "$FW_COMPARE" "$out.oracle.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
   build)              # fixture: configure and build every image, run the smallest
     need_cross
     fw footprint_empty ;;
   heap_probe)         # an image that calls malloc must not link
     need_cross
     fw heap_probe ;;
-  qemu_vs_cli)        # Cortex-M4F under qemu vs the double CLI
-    need_cross; need_cli
+  qemu_vs_oracle)     # Cortex-M4F under qemu vs the same monitor in double
+    need_cross; need_oracle
     fw replay --no-build >"$out.fw.jsonl"
-    "$FW_COMPARE" "$out.cli.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
+    "$FW_COMPARE" "$out.oracle.jsonl" "$out.fw.jsonl" "${tol[@]}" ;;
   qemu_bitexact)      # Cortex-M4F vs host float, every residual of every row in %a
     need_cross
     fw replay_trace --no-build >"$out.qemu.txt"

@@ -13,7 +13,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 cd "$root"
 mkdir -p "$out"
 
-# Thesis-model logs: Table 2.2 built in (lib/include/hstmon/thesis_params.hpp), diagnosis on.
+# The thesis rig's logs: no --circuit, so the built-in thesis.json with Table 2.2, diagnosis on.
 for log in prv_blockage prv_blockage_das prv_staircase_das; do
   "$cli" replay --json --no-progress "examples/$log.csv" >"$out/$log.jsonl"
 done

@@ -2,6 +2,8 @@
 
 #include <fstream>
 
+#include "hstmon_circuit/builtin_rig.hpp"
+
 namespace hstmon::circuit_tools {
 
 namespace {
@@ -25,12 +27,15 @@ bool readable(const std::string& path) {
 
 std::optional<host::SourceError> load_circuit(const std::string& circuit_path, const std::string& params_path,
                                               LoadedCircuit& out) {
-  host::CircuitFileResult f = host::read_circuit_file(circuit_path);
+  const bool builtin = circuit_path.empty();
+  host::CircuitFileResult f = builtin
+                                  ? host::parse_circuit_json(builtin_thesis_circuit(), std::string(kBuiltinCircuitName))
+                                  : host::read_circuit_file(circuit_path);
   if (!f.ok()) return f.error;
   out.file = std::move(*f.file);
   out.file.circuit.stiff_mask = 0;
   std::string pp = params_path;
-  if (pp.empty()) {
+  if (pp.empty() && !builtin) {
     const std::string sib = sibling_params(circuit_path);
     if (readable(sib)) pp = sib;
   }
@@ -39,6 +44,7 @@ std::optional<host::SourceError> load_circuit(const std::string& circuit_path, c
   if (!v.ok()) return v.error;
   out.values = std::move(*v.values);
   out.params_path = pp;
+  host::apply_sensor_ranges(out.values, out.file);
   return std::nullopt;
 }
 

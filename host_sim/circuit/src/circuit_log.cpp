@@ -221,6 +221,7 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
   std::vector<std::string_view> names;  // for messages about a missing column
   std::vector<bool> map_used(o.column_map.size(), false);
   bool time_seen = false;
+  std::size_t ignored = 0, last_ignored_col = 0;  // columns of no input or sensor, noted so far
   std::vector<bool> in_seen(c.inputs.size(), false), s_seen(c.sensors.size(), false);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     if (host::is_trailing_empty_column(k, fields.size(), trim(fields[k]))) {
@@ -233,7 +234,10 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
     if (!name.empty()) names.push_back(name);
     const std::size_t lead = fields[k].find_first_not_of(" \t");
     const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
-    std::size_t unit_line_no = line_no, unit_col = col;  // where a unit error points
+    // Where a unit error points: at the unit in the header cell (or in the units row).
+    std::size_t unit_line_no = line_no;
+    std::size_t unit_col =
+        has_unit && !unit.empty() ? char_column(line, static_cast<std::size_t>(unit.data() - line.data())) : col;
     if (units_line != 0) {
       std::string_view u = unit_fields[k].text;
       if (u.size() >= 2 && ((u.front() == '[' && u.back() == ']') || (u.front() == '(' && u.back() == ')'))) {
@@ -302,10 +306,16 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
         return SourceError{log.path, unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error};
       tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
     }
-    if (tg.kind == Target::kIgnored) {
+    // A wide export would list every column: the first few, then a count.
+    if (tg.kind == Target::kIgnored && ++ignored <= host::LogNoteRules::kMaxColumnNotes) {
       log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": note: column '" +
                           std::string(name) + "' is no input or sensor of circuit " + c.name + ": ignored");
     }
+    if (tg.kind == Target::kIgnored) last_ignored_col = col;
+  }
+  if (ignored > host::LogNoteRules::kMaxColumnNotes) {
+    log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(last_ignored_col) +
+                        ": note: " + host::ignored_columns_note(ignored, "inputs or sensors of circuit " + c.name));
   }
   if (!time_seen && !(o.rate > 0.0)) {
     return SourceError{
@@ -319,6 +329,41 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
   return std::nullopt;
 }
 
+// The rows a lenient read skipped (time not strictly increasing): the first few noted,
+// then a count (host::LogNoteRules, the rule of every log reader).
+struct Skips {
+  std::size_t count = 0;
+  std::size_t first_line = 0, first_column = 0, last_line = 0, last_column = 0;
+  std::size_t notes_before = 0;  // the log's notes before the first skip
+
+  void add(CircuitLog& log, std::size_t line, std::size_t column, const std::string& msg) {
+    if (count++ == 0) {
+      first_line = line;
+      first_column = column;
+      notes_before = log.notes.size();
+    }
+    last_line = line;
+    last_column = column;
+    if (count > host::LogNoteRules::kMaxSkipNotes) return;
+    log.notes.push_back(log.path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": note: " + msg +
+                        ": row skipped");
+  }
+
+  /// At the end of a read of `total` rows: the error when too many were skipped (set, and
+  /// their notes taken back), else the closing count when not every skip had a note.
+  std::optional<SourceError> finish(CircuitLog& log, std::size_t total) const {
+    if (host::lenient_skips_too_many(count, total)) {
+      log.notes.resize(notes_before);  // the error says it; no list of rows
+      return SourceError{log.path, first_line, first_column, host::lenient_refusal_message(count, total)};
+    }
+    if (count > host::LogNoteRules::kMaxSkipNotes) {
+      log.notes.push_back(log.path + ":" + std::to_string(last_line) + ":" + std::to_string(last_column) +
+                          ": note: " + host::skipped_rows_note(count));
+    }
+    return std::nullopt;
+  }
+};
+
 // What becomes of a data row for its time: kept, skipped (a lenient read, the time not
 // above the last kept row's: noted) or an error (msg). With o.rate the time is the row
 // index's (t0 the first row's logged time). The one rule of the text and column readers.
@@ -326,13 +371,11 @@ enum class RowTime { kKeep, kSkip, kFail };
 
 // row_time's rare case, out of the row loop: the time does not rise (t_col: its column).
 RowTime time_not_rising(const host::ReadOptions& o, CircuitLog& log, double t, std::size_t line_no, std::size_t t_col,
-                        std::size_t& skipped, std::string& msg) {
+                        Skips& skipped, std::string& msg) {
   msg = "time not strictly increasing: " + host::number_text(t, 9) + " s after " + host::number_text(log.t.back(), 9) +
         " s (a logger that rounds its time: give the sample rate, --rate HZ)";
   if (!o.lenient) return RowTime::kFail;
-  ++skipped;
-  log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(t_col) + ": note: " + msg +
-                      ": row skipped");
+  skipped.add(log, line_no, t_col, msg);
   return RowTime::kSkip;
 }
 
@@ -340,7 +383,7 @@ RowTime time_not_rising(const host::ReadOptions& o, CircuitLog& log, double t, s
 // (counting a text row's characters costs more than the rest of the row).
 template <class TimeColumn>
 RowTime row_time(const host::ReadOptions& o, CircuitLog& log, double& t, double& t0, std::size_t line_no,
-                 const TimeColumn& t_col, std::size_t& skipped, std::string& msg) {
+                 const TimeColumn& t_col, Skips& skipped, std::string& msg) {
   if (o.rate > 0.0) {
     // Time from the row index: a rounded or missing time column no longer matters.
     if (log.t.empty() && std::isfinite(t)) t0 = t;
@@ -558,7 +601,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     log.error = SourceError{log.path, line, col, std::move(msg)};
     return log;
   };
-  std::size_t skipped = 0;     // rows a lenient read skipped (time not increasing)
+  Skips skipped;               // rows a lenient read skipped (time not increasing)
   std::size_t data_rows = 0;   // data rows met
   double t0 = 0.0;             // with a rate: the first row's logged time
   std::string converted;       // the text with its head in UTF-8, when it was not
@@ -627,10 +670,7 @@ CircuitLog parse_circuit_log(std::string_view text, std::string path_for_message
     if (log.t.empty()) return fail(log.error->line, log.error->column, log.error->message);
     return log;  // lenient: the rows before the bad one
   }
-  if (skipped * 20 > data_rows) {
-    return fail(line_no, 1, "--lenient would skip " + std::to_string(skipped) + " of " + std::to_string(data_rows) +
-                                " rows (more than 5 %) whose time does not increase: give the sample rate, --rate HZ");
-  }
+  if (auto e = skipped.finish(log, data_rows)) return fail(e->line, e->column, e->message);
   if (log.t.empty()) return fail(line_no, 1, "no data rows after the header");
   return log;
 }
@@ -758,7 +798,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
   if (rows == 0) return fail(1, 1, "no data rows after the header");
   attach_columns(targets, log);
   reserve_rows(log, targets, rows);
-  std::size_t skipped = 0;
+  Skips skipped;
   double t0 = 0.0;
   std::vector<double> values(targets.size(), 0.0);
   for (std::size_t i = 0; i < rows; ++i) {
@@ -791,10 +831,7 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
     if (kept == RowTime::kSkip) continue;
     keep_row(log, targets, values, t);
   }
-  if (skipped * 20 > rows) {
-    return fail(rows + 1, 1, "--lenient would skip " + std::to_string(skipped) + " of " + std::to_string(rows) +
-                                 " rows (more than 5 %) whose time does not increase: give the sample rate, --rate HZ");
-  }
+  if (auto e = skipped.finish(log, rows)) return fail(e->line, e->column, e->message);
   return log;
 }
 

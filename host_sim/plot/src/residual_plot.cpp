@@ -138,15 +138,4 @@ std::string plot_replay(const PlotTrace& trace, const std::string& title, const 
   return err.empty() ? err : err + " (writing " + path + ")";
 }
 
-PlotTrace thesis_plot_trace(const host::ReplayResult& result) {
-  PlotTrace trace;
-  const double rpm = 60.0 / (2.0 * M_PI);
-  trace.channels = {{"Pmi", "bar", 1e-5, 0.1, result.measured[0]},
-                    {"Pmo", "bar", 1e-5, 0.1, result.measured[1]},
-                    {"Ppp", "bar", 1e-5, 0.1, result.measured[2]},
-                    {"ωm", "rpm", rpm, 1.0, result.measured[3]}};
-  set_trace_rows(trace, result, 4);
-  return trace;
-}
-
 }  // namespace hstmon::cli

@@ -1,6 +1,7 @@
 #include "hstmon_host/circuit_values.hpp"
 
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "circuit_checks.hpp"
@@ -84,16 +85,24 @@ class Reader {
       return;
     }
     for (auto it = j.begin(); it != j.end(); ++it) {
-      if (it.key() != "circuit" && it.key() != "description" && it.key() != "params" && it.key() != "inputs" &&
-          it.key() != "uncertainty") {
-        fail_key("/" + detail::json_pointer_token(it.key()), "unknown key '" + detail::printable(it.key()) +
-                                                                 "' (known: circuit, description, params, inputs, uncertainty)");
+      if (it.key() != "circuit" && it.key() != "model" && it.key() != "description" && it.key() != "params" &&
+          it.key() != "inputs" && it.key() != "uncertainty" && it.key() != "sensors") {
+        fail_key("/" + detail::json_pointer_token(it.key()),
+                 "unknown key '" + detail::printable(it.key()) +
+                     "' (known: circuit, description, params, inputs, uncertainty, sensors)");
         return;
       }
     }
-    const auto c = j.find("circuit");
+    // "model" names the circuit as the thesis rig's parameter files (Table 2.2) write it.
+    if (j.contains("circuit") && j.contains("model")) {
+      fail_key("/model", "give the circuit's name once: 'circuit' or 'model', not both");
+      return;
+    }
+    const char* const name_key = j.contains("model") ? "model" : "circuit";
+    const auto c = j.find(name_key);
     if (c == j.end() || !c->is_string() || c->get<std::string>() != cf_.name) {
-      fail_value(c == j.end() ? "" : "/circuit", "'circuit' must be \"" + cf_.name + "\" (the circuit file's name)");
+      fail_value(c == j.end() ? "" : std::string("/") + name_key,
+                 std::string("'") + name_key + "' must be \"" + cf_.name + "\" (the circuit file's name)");
       return;
     }
     CircuitValues v;
@@ -109,6 +118,7 @@ class Reader {
     if (const auto p = j.find("params"); p != j.end() && !section(*p, "params", true, v, p_set)) return;
     if (const auto u = j.find("inputs"); u != j.end() && !section(*u, "inputs", false, v, u_set)) return;
     if (const auto e = j.find("uncertainty"); e != j.end() && !uncertainty(*e, v)) return;
+    if (const auto e = j.find("sensors"); e != j.end() && !sensors(*e, v)) return;
     const std::string m = missing(cf_, p_set, u_set);
     if (!m.empty()) {
       fail(0, m + " (give it in this file or in the circuit file)");
@@ -199,6 +209,60 @@ class Reader {
     return true;
   }
 
+  /// The "sensors" section: sensor name → transmitter range [low end, high end], each an
+  /// SI number, a string with a unit of the sensor's quantity, or null for no end.
+  bool sensors(const Json& obj, CircuitValues& v) {
+    if (!obj.is_object()) {
+      fail_value("/sensors", "'sensors' must be an object of sensor: [low end, high end] pairs");
+      return false;
+    }
+    v.ranges.assign(cf_.sensors.size(), std::nullopt);
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      const std::string ptr = "/sensors/" + detail::json_pointer_token(it.key());
+      std::size_t i = 0;
+      while (i < cf_.sensors.size() && cf_.sensors[i].name != it.key()) ++i;
+      if (i == cf_.sensors.size()) {
+        fail_key(ptr, "no sensor '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
+        return false;
+      }
+      const CircuitQuantity q = cf_.sensors[i].quantity;
+      if (!it->is_array() || it->size() != 2) {
+        fail_value(ptr, it.key() + ": a range is [low end, high end] (numbers [" + circuit_si_unit(q) +
+                            "], strings with a unit, or null for no end)");
+        return false;
+      }
+      double end[2] = {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      for (std::size_t k = 0; k < 2; ++k) {
+        const Json& e = (*it)[k];
+        if (e.is_null()) continue;
+        if (e.is_number()) {
+          end[k] = e.get<double>();
+        } else if (e.is_string()) {
+          const ValueResult r = parse_circuit_value(q, e.get<std::string>());
+          if (!r.ok()) {
+            fail_value(ptr, it.key() + ": " + r.error);
+            return false;
+          }
+          end[k] = r.value;
+        } else {
+          fail_value(
+              ptr, it.key() + ": a range end is a number [" + circuit_si_unit(q) + "], a string with a unit, or null");
+          return false;
+        }
+        if (!std::isfinite(end[k])) {
+          fail_value(ptr, it.key() + ": a range end must be finite (null for no end)");
+          return false;
+        }
+      }
+      if (!(end[0] < end[1])) {
+        fail_value(ptr, it.key() + ": the low end must be below the high end");
+        return false;
+      }
+      v.ranges[i] = SensorRange{end[0], end[1]};
+    }
+    return true;
+  }
+
   /// At the value in this file when it set the value, else where the circuit file writes it.
   void locate(const detail::ValueProblem& p) {
     const std::size_t i = p.ref.index;
@@ -263,6 +327,14 @@ CircuitValuesResult parse_circuit_values_json(std::string_view text, std::string
   r.run();
   if (out.error) out.values.reset();
   return out;
+}
+
+void apply_sensor_ranges(const CircuitValues& values, CircuitFile& circuit) {
+  for (std::size_t i = 0; i < values.ranges.size() && i < circuit.sensors.size(); ++i) {
+    if (!values.ranges[i]) continue;
+    circuit.sensors[i].lo = values.ranges[i]->lo;
+    circuit.sensors[i].hi = values.ranges[i]->hi;
+  }
 }
 
 CircuitValuesResult read_circuit_values(const std::string& path, const CircuitFile& circuit) {

@@ -1,6 +1,7 @@
 #include "hstmon_host/log_options.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <optional>
 
@@ -83,6 +84,33 @@ std::string listed_columns(const std::vector<std::string_view>& columns) {
 
 std::string unmatched_map_message(std::string_view key, const std::vector<std::string_view>& columns) {
   return "column map entry '" + detail::printable(key) + "' matches no column; " + listed_columns(columns);
+}
+
+bool lenient_skips_too_many(std::size_t skipped, std::size_t total) noexcept {
+  return skipped > LogNoteRules::kFreeSkips && skipped * 100 > LogNoteRules::kMaxSkipPercent * total;
+}
+
+std::string lenient_refusal_message(std::size_t skipped, std::size_t total) {
+  char msg[320];
+  std::snprintf(msg, sizeof msg,
+                "time not strictly increasing in %zu of %zu rows (%.0f %%); a lenient read skips at most %zu %% "
+                "(a time column rounded coarser than the sample period repeats timestamps: rebuild time from the "
+                "row index with --rate HZ)",
+                skipped, total, 100.0 * static_cast<double>(skipped) / static_cast<double>(total),
+                LogNoteRules::kMaxSkipPercent);
+  return msg;
+}
+
+std::string skipped_rows_note(std::size_t skipped) {
+  return std::to_string(skipped) +
+         " rows skipped in all for time not strictly increasing (this is the last; only the "
+         "first " +
+         std::to_string(LogNoteRules::kMaxSkipNotes) + " have a note of their own)";
+}
+
+std::string ignored_columns_note(std::size_t ignored, std::string_view what) {
+  return std::to_string(ignored) + " columns in all are not " + std::string(what) + " and ignored (only the first " +
+         std::to_string(LogNoteRules::kMaxColumnNotes) + " have a note of their own)";
 }
 
 }  // namespace hstmon::host

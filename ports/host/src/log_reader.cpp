@@ -460,9 +460,7 @@ class Parser {
       out_.source_columns[k] = i + 1;
     }
     if (ignored > kMaxColumnNotes) {
-      note(header_, last_ignored->name_pos,
-           std::to_string(ignored) + " columns in all are not known signals and ignored (only the first " +
-               std::to_string(kMaxColumnNotes) + " have a note of their own)");
+      note(header_, last_ignored->name_pos, ignored_columns_note(ignored, "known signals"));
     }
     if (field_of[index(Signal::kT)] == 0) {
       if (opt_.rate == 0.0) {
@@ -808,15 +806,13 @@ class Parser {
 
   /// The checks at the end of the rows (lenient skips, --rate), then the rows kept.
   void finish_rows() {
-    if (!out_.error && skipped_ > kFreeSkips && skipped_ * 100 > kMaxSkipPercent * (rows_ + skipped_)) {
+    if (!out_.error && lenient_skips_too_many(skipped_, rows_ + skipped_)) {
       refuse_lenient_skips();
       return;
     }
     if (skipped_ > kMaxSkipNotes) {
-      out_.notes.push_back(out_.path + ':' + std::to_string(last_skip_line_) + ':' +
-                           std::to_string(last_skip_column_) + ": note: " + std::to_string(skipped_) +
-                           " rows skipped in all for time not strictly increasing (this is the last; only the first " +
-                           std::to_string(kMaxSkipNotes) + " have a note of their own)");
+      out_.notes.push_back(out_.path + ':' + std::to_string(last_skip_line_) + ':' + std::to_string(last_skip_column_) +
+                           ": note: " + skipped_rows_note(skipped_));
     }
     out_.skipped_rows = skipped_;
     if (out_.error) drop_rows_after_error();
@@ -872,15 +868,7 @@ class Parser {
   /// clock reset). It fails at the first such row instead of losing most of the file.
   void refuse_lenient_skips() {
     out_.notes.resize(notes_before_skips_);  // the error says it; no list of rows
-    const std::size_t total = rows_ + skipped_;
-    char msg[320];
-    std::snprintf(msg, sizeof msg,
-                  "time not strictly increasing in %zu of %zu rows (%.0f %%); a lenient read skips at most %zu %% "
-                  "(a time column rounded coarser than the sample period repeats timestamps: rebuild time from the "
-                  "row index with --rate HZ)",
-                  skipped_, total, 100.0 * static_cast<double>(skipped_) / static_cast<double>(total),
-                  kMaxSkipPercent);
-    fail_at(first_skip_line_, first_skip_column_, msg);
+    fail_at(first_skip_line_, first_skip_column_, lenient_refusal_message(skipped_, rows_ + skipped_));
     out_.skipped_rows = skipped_;
     rows_ = 0;
     trim_to_kept_rows();
@@ -922,14 +910,8 @@ class Parser {
     }
   }
 
-  /// Skipped rows that get a note of their own (a clock reset can skip thousands).
-  static constexpr std::size_t kMaxSkipNotes = 20;
-  /// A lenient read fails when it would skip more than this share of the rows [%] ...
-  static constexpr std::size_t kMaxSkipPercent = 5;
-  /// ... and more than this many (a short log may have a glitch or two).
-  static constexpr std::size_t kFreeSkips = 10;
-  /// Unknown columns that get a note of their own (then one note with the count).
-  static constexpr std::size_t kMaxColumnNotes = 8;
+  static constexpr std::size_t kMaxSkipNotes = LogNoteRules::kMaxSkipNotes;
+  static constexpr std::size_t kMaxColumnNotes = LogNoteRules::kMaxColumnNotes;
   /// Lines looked at for a units row above the names or a metadata block.
   /// Lowest sample rate option [Hz] (a smaller one is a unit mistake).
   static constexpr double kMinRate = 1e-6;

@@ -1,7 +1,7 @@
 #pragma once
 // Plots a replay trace with gnuplot: measured against model, and the residual, for each
-// channel. SVG or PNG by the output file's extension. Any channel set: the thesis rig's
-// four (thesis_plot_trace) or a circuit's sensors (PlotTrace filled by the circuit replay).
+// channel. SVG or PNG by the output file's extension. The channels are a circuit's
+// sensors (PlotTrace filled by the circuit replay).
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -53,9 +53,5 @@ void set_trace_rows(PlotTrace& trace, const Result& result, std::size_t channels
 /// Writes the figure to `path` (.svg or .png). Returns an empty string on success, else
 /// a message saying what failed (gnuplot missing, unknown extension, …).
 std::string plot_replay(const PlotTrace& trace, const std::string& title, const std::string& path);
-
-/// The thesis replay's trace as a PlotTrace (Pmi, Pmo, Ppp in bar, ωm in rpm); it refers
-/// to `result`, which must outlive it.
-PlotTrace thesis_plot_trace(const host::ReplayResult& result);
 
 }  // namespace hstmon::cli

@@ -3,6 +3,7 @@
 /// The log options of every command that reads a log (`--map`, `--separator`, `--rate`)
 /// as text → ReadOptions. One parser, so `replay`, `identify` and `gap` mean the same.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,5 +47,32 @@ std::string unmatched_map_message(std::string_view key, const std::vector<std::s
 /// "the columns are 'a', 'b', …" (the first two dozen, then the count): what an error
 /// about a column that is not there appends.
 std::string listed_columns(const std::vector<std::string_view>& columns);
+
+/// How many notes a read writes, and how many rows a lenient read may skip: the rules of
+/// every log reader, so that one file gives the same messages through every command.
+struct LogNoteRules {
+  /// Unknown columns that get a note of their own (then one note with the count).
+  static constexpr std::size_t kMaxColumnNotes = 8;
+  /// Skipped rows that get a note of their own (a clock reset can skip thousands).
+  static constexpr std::size_t kMaxSkipNotes = 20;
+  /// A lenient read fails when it would skip more than this share of the rows [%] ...
+  static constexpr std::size_t kMaxSkipPercent = 5;
+  /// ... and more than this many (a short log may have a glitch or two).
+  static constexpr std::size_t kFreeSkips = 10;
+};
+
+/// True when a lenient read that skipped `skipped` of `total` rows (time not strictly
+/// increasing) must fail instead (LogNoteRules): its time column cannot be used.
+bool lenient_skips_too_many(std::size_t skipped, std::size_t total) noexcept;
+
+/// The error of such a read, placed at its first skipped row.
+std::string lenient_refusal_message(std::size_t skipped, std::size_t total);
+
+/// The closing note of a read that skipped more rows than have a note of their own.
+std::string skipped_rows_note(std::size_t skipped);
+
+/// The closing note of a header with more unknown columns than have a note of their own.
+/// @param what  what they are not, e.g. "known signals"
+std::string ignored_columns_note(std::size_t ignored, std::string_view what);
 
 }  // namespace hstmon::host
