@@ -91,9 +91,14 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<GapArgs>();
   CLI::App* cmd = app.add_subcommand(
       "gap", "Where model and machine disagree (channels, balance equations), which unmodelled effect explains it, how far the gap shrinks");
-  cmd->add_option("--fit", args->fit, "log to fit the effects on (CSV as for replay, with p_sup and kp)")->required();
+  cmd->add_option("--fit", args->fit,
+                  "log to fit the effects on (CSV as for replay: the thesis rig's with p_sup and kp; with --circuit, "
+                  "the circuit's input and sensor columns)")
+      ->required();
   cmd->add_option("--check", args->check, "withheld log to judge the fitted effects on")->required();
-  add_log_options(*cmd, args->io, "nominal parameter file (default Table 2.2)");
+  add_log_options(
+      *cmd, args->io,
+      "nominal parameter file (default Table 2.2; with --circuit the circuit's, default <stem>.params.json)");
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
   cmd->add_option("--report", args->report, "directory for report.md, report.html (one self-contained page) and PNG plots");
   cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");

@@ -77,7 +77,7 @@ TEST(CircuitCli, ReplayErrorsNameFileLineColumn) {
   }
   CliRun r = run(std::string(HSTMON_CLI) + " replay --circuit " + kDir + "test_stand.json " + bad_log + " 2>&1");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.out.find(bad_log + ":3:7: error: not a number: 'oops'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(bad_log + ":3:7: error: bad number 'oops' in column 'p_line'"), std::string::npos) << r.out;
 
   const std::string bad_circuit = (dir / "hstmon_circuit_cli_bad.json").string();
   {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <regex>
 #include <string>
+#include <utility>
 
 #include "../support/cli_run.hpp"
 #include "../support/instrument_exports.hpp"
@@ -139,6 +140,27 @@ TEST(CliLogOptions, ReplayReadsAnHmgExport) {
   EXPECT_NE(r.out.find(log + ":1:1: note: lines 1-6 above the column names taken as metadata"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("500 rows"), std::string::npos) << r.out;
+}
+
+// One log, one message: `replay` reads through the circuit reader, `gap` through the
+// thesis rig's; a bad field or unit gives the same line through both.
+TEST(CliLogOptions, TheSameBadLogGivesTheSameErrorThroughEveryCommand) {
+  const std::string head = "t[s],p_mi[bar],p_pp[bar]\n0,1,2\n";
+  const std::pair<const char*, std::string> cases[] = {
+      {"bad_number.csv", head + "0.01,1x,2\n"},      {"empty_field.csv", head + "0.01,,2\n"},
+      {"nan_field.csv", head + "0.01,nan,2\n"},      {"big_number.csv", head + "0.01,1e400,2\n"},
+      {"bad_unit.csv", "t[s],p_mi[furlong]\n0,1\n"},
+  };
+  for (const auto& [name, text] : cases) {
+    const std::string log = write_file(name, text);
+    const CliRun replay = run_hstmon("replay " + log);
+    const CliRun gap = run_hstmon("gap --fit " + log + " --check " + log);
+    EXPECT_EQ(replay.exit_code, 2) << replay.out;
+    const std::size_t at = replay.out.find(log + ":");
+    ASSERT_NE(at, std::string::npos) << replay.out;
+    const std::string line = replay.out.substr(at, replay.out.find('\n', at) - at);
+    EXPECT_NE(gap.out.find(line), std::string::npos) << "replay: " << line << "\ngap: " << gap.out;
+  }
 }
 
 // No message fills a screen: a 5000-column export with a bad row prints a handful of

@@ -52,7 +52,7 @@ def test_bad_log_file_raises_with_position(tmp_path):
     with pytest.raises(hstmon.SourceError) as e:
         hstmon.replay(str(bad))
     assert (e.value.file, e.value.line, e.value.column) == (str(bad), 3, 6)
-    assert str(e.value).startswith(f"{bad}:3:6: error: not a number")
+    assert str(e.value).startswith(f"{bad}:3:6: error: bad number 'x' in column 'p_mi'")
 
 
 def test_bad_frame_raises_with_row_and_column(root):

@@ -31,6 +31,7 @@ struct Target {
   enum Kind { kIgnored, kTime, kInput, kSensor, kUnnamed } kind = kIgnored;  // kUnnamed: a trailing separator's
   int index = -1;
   host::UnitConversion conv;
+  std::string name;  ///< the column's name as the header writes it (for messages)
   /// An input's or sensor's column of the log, once it exists (attach_columns): the log's
   /// vectors of columns are never resized, so the pointer stays valid.
   std::vector<double>* dst = nullptr;
@@ -92,16 +93,18 @@ void name_and_unit(std::string_view f, std::string_view& name, std::string_view&
   has_unit = true;
 }
 
-// A number field: blanks around, optional '+', a decimal comma when allowed.
-bool parse_number(std::string_view f, bool decimal_comma, double& v) {
+// A number field: blanks around, optional '+', a decimal comma when allowed. errc() when
+// it is one, result_out_of_range for a number beyond a double, else invalid_argument.
+std::errc parse_number(std::string_view f, bool decimal_comma, double& v) {
   f = trim(f);
   if (!f.empty() && f.front() == '+') f.remove_prefix(1);
-  if (f.empty() || f.size() > 64) return false;
+  if (f.empty() || f.size() > 64) return std::errc::invalid_argument;
   char buf[65];
   for (std::size_t i = 0; i < f.size(); ++i) buf[i] = (decimal_comma && f[i] == ',') ? '.' : f[i];
   const char* end = buf + f.size();
   const auto r = std::from_chars(buf, end, v);
-  return r.ec == std::errc() && r.ptr == end;
+  if (r.ec == std::errc() && r.ptr != end) return std::errc::invalid_argument;
+  return r.ec;
 }
 
 // A time: "%.9g" when that is within a nanosecond of it and no exponent (below 1e9 s), else
@@ -232,6 +235,7 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
     bool has_unit = false;
     name_and_unit(fields[k], name, unit, has_unit);
     if (!name.empty()) names.push_back(name);
+    const std::string_view header_name = name;  // before a --map renames it
     const std::size_t lead = fields[k].find_first_not_of(" \t");
     const std::size_t col = char_column(line, offs[k] + (lead == std::string_view::npos ? 0 : lead));
     // Where a unit error points: at the unit in the header cell (or in the units row).
@@ -281,6 +285,7 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
       if (time_seen) return SourceError{log.path, line_no, col, "duplicated time column '" + std::string(name) + "'"};
       time_seen = true;
       tg.kind = Target::kTime;
+      tg.name = std::string(header_name);
       const host::UnitResult u = host::parse_unit(host::Quantity::kTime, has_unit ? unit : std::string_view("s"));
       if (!u.ok()) return SourceError{log.path, unit_line_no, unit_col, u.error};
       tg.conv = u.conversion;
@@ -293,8 +298,8 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
       const host::UnitResult u =
           host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
       if (!u.ok())
-        return SourceError{log.path, unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error};
-      tg = Target{Target::kInput, static_cast<int>(i), u.conversion};
+        return SourceError{log.path, unit_line_no, unit_col, u.error + " in column '" + std::string(header_name) + "'"};
+      tg = Target{Target::kInput, static_cast<int>(i), u.conversion, std::string(header_name)};
     }
     for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
       if (!same_name(name, c.sensors[i].column)) continue;
@@ -303,8 +308,8 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
       const host::UnitResult u =
           host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
       if (!u.ok())
-        return SourceError{log.path, unit_line_no, unit_col, "column '" + std::string(name) + "': " + u.error};
-      tg = Target{Target::kSensor, static_cast<int>(i), u.conversion};
+        return SourceError{log.path, unit_line_no, unit_col, u.error + " in column '" + std::string(header_name) + "'"};
+      tg = Target{Target::kSensor, static_cast<int>(i), u.conversion, std::string(header_name)};
     }
     // A wide export would list every column: the first few, then a count.
     if (tg.kind == Target::kIgnored && ++ignored <= host::LogNoteRules::kMaxColumnNotes) {
@@ -542,11 +547,13 @@ std::optional<RowError> row_values(std::string_view line, const std::vector<Targ
       continue;
     }
     double v = 0.0;
-    if (!parse_number(fields[k], sep != ',', v)) {
-      return RowError{col(k), "not a number: '" + std::string(trim(fields[k])) + "'"};
+    if (const std::errc ec = parse_number(fields[k], sep != ',', v); ec != std::errc()) {
+      return RowError{col(k), host::bad_number_message(trim(fields[k]), tg.name, ec == std::errc::result_out_of_range)};
     }
+    const double written = v;
     v = tg.conv.to_si(v);
-    if (!std::isfinite(v)) return RowError{col(k), "value is not finite"};
+    if (!std::isfinite(v))
+      return RowError{col(k), host::non_finite_message(trim(fields[k]), tg.name, std::isfinite(written))};
     if (tg.kind == Target::kTime) {
       row.t = v;
       row.t_field = line.data() + offs[k];
@@ -811,7 +818,9 @@ CircuitLog circuit_log_from_columns(const std::vector<std::string>& names, const
       if (tg.kind != Target::kTime && tg.kind != Target::kInput && tg.kind != Target::kSensor) continue;
       const double v = tg.conv.to_si(columns[k][i]);
       if (!std::isfinite(v)) {
-        log.error = SourceError{log.path, line_no, k + 1, "value is not finite"};
+        log.error = SourceError{
+            log.path, line_no, k + 1,
+            host::non_finite_message(host::number_text(columns[k][i], 9), names[k], std::isfinite(columns[k][i]))};
         bad = true;
         break;
       }

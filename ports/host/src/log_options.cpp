@@ -113,4 +113,16 @@ std::string ignored_columns_note(std::size_t ignored, std::string_view what) {
          std::to_string(LogNoteRules::kMaxColumnNotes) + " have a note of their own)";
 }
 
+std::string bad_number_message(std::string_view text, std::string_view column, bool out_of_range) {
+  const std::string what = out_of_range   ? "number out of range '" + detail::printable(text) + "'"
+                           : text.empty() ? std::string("empty field")
+                                          : "bad number '" + detail::printable(text) + "'";
+  return what + " in column '" + detail::printable(column) + "'";
+}
+
+std::string non_finite_message(std::string_view text, std::string_view column, bool written_finite) {
+  return (written_finite ? "value out of range after unit conversion '" : "non-finite value '") +
+         detail::printable(text) + "' in column '" + detail::printable(column) + "'";
+}
+
 }  // namespace hstmon::host

@@ -516,10 +516,10 @@ class Parser {
 
   bool blank_in_field(char c) const noexcept { return c == ' ' || (c == '\t' && sep_ != '\t'); }
 
-  /// Text of the field starting at f, for messages.
-  std::string field_text(const char* f, const char* le) const {
+  /// Text of the field starting at f (trimmed, as written), for messages.
+  std::string_view field_text(const char* f, const char* le) const {
     const auto* s = static_cast<const char*>(std::memchr(f, sep_, static_cast<std::size_t>(le - f)));
-    return printable(trim(std::string_view(f, static_cast<std::size_t>((s != nullptr ? s : le) - f))));
+    return trim(std::string_view(f, static_cast<std::size_t>((s != nullptr ? s : le) - f)));
   }
 
   /// A line fast_row may take: not blank, not a comment (those need next_content_line).
@@ -688,24 +688,13 @@ class Parser {
         while (e < le && blank_in_field(*e)) ++e;
       }
       if (r.ec != std::errc() || (e < le && *e != sep)) {
-        const std::string text = field_text(f, le);
-        std::string msg;
-        if (r.ec == std::errc::result_out_of_range) {
-          msg = "number out of range '" + text + "'";
-        } else if (text.empty()) {
-          msg = "empty field";
-        } else {
-          msg = "bad number '" + text + "'";
-        }
-        fail(line, f, msg + " in column '" + printable(col.name) + "'");
+        fail(line, f, bad_number_message(field_text(f, le), col.name, r.ec == std::errc::result_out_of_range));
         return RowResult::kFailed;
       }
       double si = v * col.factor;
       if (col.offset != 0.0) si += col.offset;  // (adding +0 would turn -0 into +0)
       if (!std::isfinite(si)) {
-        const std::string text = field_text(f, le);
-        fail(line, f, (std::isfinite(v) ? "value out of range after unit conversion '" : "non-finite value '") +
-                          text + "' in column '" + printable(col.name) + "'");
+        fail(line, f, non_finite_message(field_text(f, le), col.name, std::isfinite(v)));
         return RowResult::kFailed;
       }
       if (col.is_time) {

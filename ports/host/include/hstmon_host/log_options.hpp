@@ -75,4 +75,14 @@ std::string skipped_rows_note(std::size_t skipped);
 /// @param what  what they are not, e.g. "known signals"
 std::string ignored_columns_note(std::size_t ignored, std::string_view what);
 
+/// What is wrong with a data field that is no number: "empty field", "number out of range
+/// 'TEXT'" or "bad number 'TEXT'", then " in column 'COLUMN'" (both quoted shortened to
+/// printable text, as every reader's messages).
+std::string bad_number_message(std::string_view text, std::string_view column, bool out_of_range);
+
+/// What is wrong with a number that is not finite in SI: "non-finite value 'TEXT'" (nan,
+/// inf as written), or "value out of range after unit conversion 'TEXT'", then the column.
+/// @param written_finite  the number as written was finite (the unit overflowed it)
+std::string non_finite_message(std::string_view text, std::string_view column, bool written_finite);
+
 }  // namespace hstmon::host
