@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli_circuit_replay_report.hpp"
@@ -183,6 +182,27 @@ std::string write_circuit_residuals(const std::string& path, const LoadedCircuit
 
 }  // namespace
 
+circuit_tools::CircuitReplayOptions circuit_replay_options(const CircuitReplayArgs& a) {
+  circuit_tools::CircuitReplayOptions o;
+  o.tick = a.tick;
+  o.init = a.init == "rest"     ? host::InitMode::kRest
+           : a.init == "steady" ? host::InitMode::kSteady
+                                : host::InitMode::kAuto;
+  o.diagnose = a.diagnose;
+  o.fit = a.fit;
+  o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
+  o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
+  return o;
+}
+
+std::shared_ptr<const CircuitFaultTable> replay_fault_table(const LoadedCircuit& c) {
+  try {
+    return std::make_shared<const CircuitFaultTable>(fdi::circuit_signature_table(c));
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
 int run_circuit_replay(const CircuitReplayArgs& a) {
   LoadedCircuit c;
   if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
@@ -207,24 +227,9 @@ int run_circuit_replay(const CircuitReplayArgs& a) {
                a.log, c.file.name, columns, c.file.sensors.empty() ? "p_a" : c.file.sensors.front().column);
     return kExitBadInput;
   }
-  circuit_tools::CircuitReplayOptions o;
-  o.tick = a.tick;
-  o.init = a.init == "rest" ? host::InitMode::kRest : a.init == "steady" ? host::InitMode::kSteady : host::InitMode::kAuto;
-  o.diagnose = a.diagnose;
-  o.fit = a.fit;
-  o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
-  o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
-  // Built once: the matcher runs on it and the verdict sentence reads it. Without one (no
-  // steady state at the nominal inputs), the replay tries its builder and says why not.
-  std::optional<CircuitFaultTable> table;
-  if (a.diagnose) {
-    try {
-      table.emplace(fdi::circuit_signature_table(c));
-      o.table = &*table;
-    } catch (const std::exception&) {
-      o.table = nullptr;
-    }
-  }
+  circuit_tools::CircuitReplayOptions o = circuit_replay_options(a);
+  const std::shared_ptr<const CircuitFaultTable> table = a.diagnose ? replay_fault_table(c) : nullptr;
+  o.table = table.get();
   const CircuitReplayResult r = circuit_tools::replay_circuit(c, log, o);
   // A run that did not happen has no residuals to report, least of all quiet ones.
   if (const std::string why = circuit_tools::why_not_replayed(r); !why.empty()) {

@@ -1,8 +1,11 @@
 #pragma once
 // `hstmon replay --circuit FILE [--params FILE] LOG`: a log of any circuit file through
 // the circuit's monitor (circuit_replay.hpp): residuals and the fault matcher.
+#include <memory>
 #include <string>
 
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_host/log_reader.hpp"
 
 namespace hstmon::cli {
@@ -22,6 +25,16 @@ struct CircuitReplayArgs {
   std::string report;        ///< --report: report.md and report.html in this directory ("" = none)
   host::ReadOptions read;    ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
+
+/// The monitor's options for these arguments: tick, start, diagnosis, fit, trace, and the
+/// committed headers' table builder (fdi::circuit_signature_table) for a circuit without a
+/// table built beforehand.
+circuit_tools::CircuitReplayOptions circuit_replay_options(const CircuitReplayArgs& a);
+
+/// The fault table the matcher runs on and the verdict sentence reads, built once for c;
+/// null where none can be built (no steady state at the nominal inputs: each replay then
+/// tries its builder and says why not).
+std::shared_ptr<const circuit_tools::CircuitFaultTable> replay_fault_table(const circuit_tools::LoadedCircuit& c);
 
 /// Runs it and prints the result (human, or JSON lines); errors as file:line:column on
 /// stderr. @return kExitOk, or kExitBadInput for an unusable circuit, parameter file or log

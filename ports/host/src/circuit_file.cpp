@@ -676,6 +676,12 @@ int CircuitFile::input_index(std::string_view n) const {
 int CircuitFile::node_index(std::string_view n) const { return index_of(nodes, n); }
 int CircuitFile::shaft_index(std::string_view n) const { return index_of(shafts, n); }
 int CircuitFile::element_index(std::string_view n) const { return index_of(elements, n); }
+int CircuitFile::sensor_index(std::string_view n) const {
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    if (sensors[i].name == n) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 CircuitFileResult parse_circuit_json(std::string_view text, std::string path_for_messages) {
   CircuitFileResult out;

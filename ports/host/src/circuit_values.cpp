@@ -148,17 +148,8 @@ class Reader {
       }
       const CircuitQuantity q = params ? cf_.params[static_cast<std::size_t>(i)].quantity : cf_.inputs[static_cast<std::size_t>(i)].quantity;
       double x;
-      if (it->is_number()) {
-        x = it->get<double>();
-      } else if (it->is_string()) {
-        const ValueResult r = parse_circuit_value(q, it->get<std::string>());
-        if (!r.ok()) {
-          fail_value(ptr, it.key() + ": " + r.error);
-          return false;
-        }
-        x = r.value;
-      } else {
-        fail_value(ptr, it.key() + " must be a number [" + circuit_si_unit(q) + "] or a string with a unit");
+      if (!quantity_value(*it, q, ptr, it.key(),
+                          it.key() + " must be a number [" + circuit_si_unit(q) + "] or a string with a unit", x)) {
         return false;
       }
       if (!std::isfinite(x)) {
@@ -170,6 +161,28 @@ class Reader {
       (params ? p_ptr_ : u_ptr_)[static_cast<std::size_t>(i)] = ptr;
     }
     return true;
+  }
+
+  /// A value of quantity q: an SI number, or a string with a unit ("35 bar"). Else fails at
+  /// ptr: "label: <the unit's error>" for a string it cannot read, `wrong_type` for any
+  /// other JSON value.
+  bool quantity_value(const Json& e, CircuitQuantity q, const std::string& ptr, const std::string& label,
+                      const std::string& wrong_type, double& x) {
+    if (e.is_number()) {
+      x = e.get<double>();
+      return true;
+    }
+    if (e.is_string()) {
+      const ValueResult r = parse_circuit_value(q, e.get<std::string>());
+      if (!r.ok()) {
+        fail_value(ptr, label + ": " + r.error);
+        return false;
+      }
+      x = r.value;
+      return true;
+    }
+    fail_value(ptr, wrong_type);
+    return false;
   }
 
   /// The "uncertainty" section: parameter name → relative uncertainty, a fraction or a
@@ -187,17 +200,8 @@ class Reader {
         return false;
       }
       double x;
-      if (it->is_number()) {
-        x = it->get<double>();
-      } else if (it->is_string()) {
-        const ValueResult r = parse_circuit_value(CircuitQuantity::kFraction, it->get<std::string>());
-        if (!r.ok()) {
-          fail_value(ptr, it.key() + ": " + r.error);
-          return false;
-        }
-        x = r.value;
-      } else {
-        fail_value(ptr, it.key() + " must be a fraction (0.05) or a percentage (\"5 %\")");
+      if (!quantity_value(*it, CircuitQuantity::kFraction, ptr, it.key(),
+                          it.key() + " must be a fraction (0.05) or a percentage (\"5 %\")", x)) {
         return false;
       }
       if (!(x >= 0.0 && x <= 0.5)) {
@@ -219,12 +223,12 @@ class Reader {
     v.ranges.assign(cf_.sensors.size(), std::nullopt);
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       const std::string ptr = "/sensors/" + detail::json_pointer_token(it.key());
-      std::size_t i = 0;
-      while (i < cf_.sensors.size() && cf_.sensors[i].name != it.key()) ++i;
-      if (i == cf_.sensors.size()) {
+      const int index = cf_.sensor_index(it.key());
+      if (index < 0) {
         fail_key(ptr, "no sensor '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
         return false;
       }
+      const auto i = static_cast<std::size_t>(index);
       const CircuitQuantity q = cf_.sensors[i].quantity;
       if (!it->is_array() || it->size() != 2) {
         fail_value(ptr, it.key() + ": a range is [low end, high end] (numbers [" + circuit_si_unit(q) +
@@ -235,18 +239,10 @@ class Reader {
       for (std::size_t k = 0; k < 2; ++k) {
         const Json& e = (*it)[k];
         if (e.is_null()) continue;
-        if (e.is_number()) {
-          end[k] = e.get<double>();
-        } else if (e.is_string()) {
-          const ValueResult r = parse_circuit_value(q, e.get<std::string>());
-          if (!r.ok()) {
-            fail_value(ptr, it.key() + ": " + r.error);
-            return false;
-          }
-          end[k] = r.value;
-        } else {
-          fail_value(
-              ptr, it.key() + ": a range end is a number [" + circuit_si_unit(q) + "], a string with a unit, or null");
+        if (!quantity_value(
+                e, q, ptr, it.key(),
+                it.key() + ": a range end is a number [" + circuit_si_unit(q) + "], a string with a unit, or null",
+                end[k])) {
           return false;
         }
         if (!std::isfinite(end[k])) {

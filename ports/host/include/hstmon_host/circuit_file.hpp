@@ -68,12 +68,13 @@ struct CircuitFile {
   std::vector<std::string> elements;         ///< element names by index ("dcv.PA" for a valve's path)
   std::vector<CircuitSensor> sensors;        ///< by channel index
 
-  /// Index of the parameter / input / node / shaft / element named n, or −1.
+  /// Index of the parameter / input / node / shaft / element / sensor named n, or −1.
   int param_index(std::string_view n) const;
   int input_index(std::string_view n) const;
   int node_index(std::string_view n) const;
   int shaft_index(std::string_view n) const;
   int element_index(std::string_view n) const;
+  int sensor_index(std::string_view n) const;
 };
 
 /// Result of reading a circuit file: `file` on success, `error` otherwise.
