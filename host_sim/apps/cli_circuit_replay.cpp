@@ -190,6 +190,7 @@ circuit_tools::CircuitReplayOptions circuit_replay_options(const CircuitReplayAr
                                 : host::InitMode::kAuto;
   o.diagnose = a.diagnose;
   o.fit = a.fit;
+  o.interpret = a.interpret;
   o.keep_trace = !a.residuals_csv.empty() || !a.plot.empty() || !a.report.empty();
   o.fault_table = fdi::circuit_signature_table;  // the committed headers' table (hstmon-fdi table)
   return o;

@@ -20,6 +20,7 @@ struct CircuitReplayArgs {
   std::string init = "auto"; ///< auto | rest | steady
   bool diagnose = true;      ///< false: residuals only (--no-diagnosis)
   bool fit = true;           ///< false: the matcher's verdict alone, as on firmware (--matcher-only)
+  bool interpret = false;    ///< true: the interpreter even on a circuit compiled in (--interpret)
   std::string residuals_csv; ///< --residuals: measured, model and residual per row ("" = none)
   std::string plot;          ///< --plot: figure of measured, model and residual (.svg/.png; "" = none)
   std::string report;        ///< --report: report.md and report.html in this directory ("" = none)

@@ -104,6 +104,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--matcher-only", args->matcher_only,
                 "Report the fault matcher's verdict alone, as the firmware monitor does: no step "
                 "detection at held inputs, no fit of the steady windows after a detection (docs/circuits.md)");
+  cmd->add_flag("--interpret", args->run.interpret,
+                "Run the circuit engine's interpreter even where the circuit is compiled into the program (the "
+                "shipped circuits: the same numbers, slower; docs/circuits.md)");
   cmd->add_option(
       "--circuit", args->run.circuit,
       "The machine's circuit file (docs/circuits.md; default: the thesis rig, examples/circuits/thesis.json, "

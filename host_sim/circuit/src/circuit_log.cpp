@@ -13,9 +13,9 @@
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/log_text.hpp"
 #include "hstmon_host/number_text.hpp"
 #include "hstmon_host/text_encoding.hpp"
-#include "hstmon_host/text_source.hpp"
 #include "hstmon_host/units.hpp"
 #include "fast_decimal.hpp"  // ports/host's exact fast path for the numbers loggers write
 #include "row_estimate.hpp"  // and its row count for reserving the columns
@@ -588,14 +588,14 @@ std::optional<SourceError> text_to_read(std::string_view& text, const host::Read
 }  // namespace
 
 CircuitLog read_circuit_log(const std::string& path, const host::CircuitFile& c, const host::ReadOptions& o) {
-  std::string text;
-  if (auto err = host::read_log_text(path, text)) {
+  host::LogText text;
+  if (auto err = host::load_log_text(path, text)) {
     CircuitLog log;
     log.path = path;
     log.error = *err;
     return log;
   }
-  return parse_circuit_log(text, path, c, o);
+  return parse_circuit_log(text.view(), path, c, o);
 }
 
 CircuitLog parse_circuit_log(std::string_view text, std::string path_for_messages, const host::CircuitFile& c,

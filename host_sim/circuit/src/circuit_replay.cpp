@@ -4,14 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-
 #include <stdexcept>
+#include <type_traits>
 
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/engine.hpp"
 #include "hstmon/envelope_check.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
+#include "hstmon_circuit/compiled_circuits.hpp"
 #include "hstmon_circuit/fault_fit_diagnosis.hpp"
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/envelope_result.hpp"
@@ -21,10 +22,40 @@ namespace hstmon::circuit_tools {
 
 namespace {
 
+// The interpreter: the fit, the bound leads, and the monitor of a circuit not compiled in.
 using Model = host::HostCircuitModel;
+// The monitor on model M (the interpreter, or a compiled circuit's model: compiled_circuits.hpp).
 // 127 rows: every named parameter twice and every channel, for the host's capacity.
-using Mon = circuit::CircuitMonitor<double, host::CircuitCap, 127>;
-using Obs = Mon::Obs;
+template <class M>
+using MonitorOn = ModelMonitor<M, 127>;
+
+// Host values (Params, Inputs: the file's capacity) as model M holds them: the first
+// entries, as many as M has room for (same_circuit checked that the circuit's fit).
+template <class To, class From>
+To first_entries(const From& from) {
+  To to{};
+  constexpr std::size_t n = std::min(std::extent_v<decltype(To::v)>, std::extent_v<decltype(From::v)>);
+  for (std::size_t i = 0; i < n; ++i) to.v[i] = from.v[i];
+  return to;
+}
+
+// The fault table's rows as monitor Mon's matcher takes them (its channel count).
+template <class Mon>
+std::vector<typename Mon::Signature> matcher_rows(const CircuitFaultTable* table, std::size_t count) {
+  using Row = typename Mon::Signature;
+  static_assert(Row::kChannels <= CircuitFaultTable::Row::kChannels, "a compiled circuit fits the host's capacity");
+  std::vector<Row> rows(table != nullptr ? count : 0);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const CircuitFaultTable::Row& from = table->rows[k];
+    rows[k].name = from.name;
+    rows[k].sensor = from.sensor;
+    for (std::size_t ch = 0; ch < static_cast<std::size_t>(Row::kChannels); ++ch) {
+      rows[k].channel[ch] = from.channel[ch];
+      rows[k].direction[ch] = from.direction[ch];
+    }
+  }
+  return rows;
+}
 
 double median_interval(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;
@@ -125,12 +156,13 @@ const CircuitFaultTable* matcher_table(const LoadedCircuit& c, const CircuitRepl
 
 // The monitor's configuration for c at this tick: sensor noise and ranges from the circuit file,
 // the circuit allowances, and matcher windows that follow the slowest time constant at u0.
-Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double tick, const Model::Inputs& u0,
-                           std::vector<std::string>& notes) {
+template <class Mon>
+typename Mon::Config monitor_config(const LoadedCircuit& c, const typename Mon::Model& model, double tick,
+                                    const typename Mon::Inputs& u0, std::vector<std::string>& notes) {
   const std::size_t channels = c.file.sensors.size();
-  Mon::Config cfg;
+  typename Mon::Config cfg;
   cfg.observer.tick = tick;
-  for (int i = 0; i < Model::kOutputs; ++i) {
+  for (int i = 0; i < Mon::kChannels; ++i) {
     const auto ch = static_cast<std::size_t>(i);
     double sigma = 1.0, lo = -HUGE_VAL, hi = HUGE_VAL;
     if (ch < channels) {
@@ -148,13 +180,16 @@ Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double ti
     cfg.sensors.range_lo[i] = lo;
     cfg.sensors.range_hi[i] = hi;
   }
-  cfg.uncertainty = circuit_uncertainty(c);
+  const auto uncertainty = circuit_uncertainty(c);
+  constexpr std::size_t n_params = std::extent_v<decltype(cfg.uncertainty.rel)>;
+  static_assert(n_params <= std::extent_v<decltype(uncertainty.rel)>, "a compiled circuit fits the host's capacity");
+  for (std::size_t k = 0; k < n_params; ++k) cfg.uncertainty.rel[k] = uncertainty.rel[k];
   // What a circuit file does not say (its damping, how far a fault moves the model error)
   // the monitor allows for (circuit::set_circuit_allowances, shared with the firmware).
   circuit::set_circuit_allowances(cfg);
   // The matcher's magnitudes and direction are steady-state ones: its windows follow the
   // slowest time constant (circuit::widen_matcher_windows, shared with the firmware).
-  Model scratch = model;
+  typename Mon::Model scratch = model;
   const double rate = circuit::widen_matcher_windows(scratch, u0, cfg.matcher);
   if (rate > 0.0) {
     notes.push_back("slowest time constant at the first row's inputs " + host::number_text(1.0 / rate, 3) +
@@ -167,8 +202,9 @@ Mon::Config monitor_config(const LoadedCircuit& c, const Model& model, double ti
 // One row's readings as the monitor takes them. A reading at or beyond an end of its
 // transmitter's range says only that the signal is there or beyond: the monitor's sensor
 // checks judge it, the statistics leave it out (counted in clipped; `compared` has the others).
+template <class Mon>
 struct Readings {
-  Obs::Measurement m;
+  typename Mon::Measurement m;
   std::uint8_t compared = 0;
 
   void read(std::size_t row, const LogColumns& cols, const std::vector<host::CircuitSensor>& sensors,
@@ -189,17 +225,18 @@ struct Readings {
 
 // Starts the monitor at u0 as o.init asks (auto: at the first row's readings, or at the steady
 // state when they are within noise of it), at rest when that fails; sets res.start and the hold-off.
-void start_monitor(Mon& mon, const Model& model, const LoadedCircuit& c, host::InitMode init, const Model::Inputs& u0,
-                   const Obs::Measurement& m, CircuitReplayResult& res) {
+template <class Mon>
+void start_monitor(Mon& mon, const typename Mon::Model& model, const LoadedCircuit& c, host::InitMode init,
+                   const typename Mon::Inputs& u0, const typename Mon::Measurement& m, CircuitReplayResult& res) {
   const std::size_t channels = c.file.sensors.size();
   Status started = Status::kInvalidInputs;
   if (init == host::InitMode::kAuto) {
     started = mon.reset_measured(u0, m, &res.start);
-    double noise[Model::kOutputs] = {};
-    for (std::size_t ch = 0; ch < channels && ch < static_cast<std::size_t>(Model::kOutputs); ++ch) {
+    double noise[Mon::kChannels] = {};
+    for (std::size_t ch = 0; ch < channels && ch < static_cast<std::size_t>(Mon::kChannels); ++ch) {
       noise[ch] = c.file.sensors[ch].noise;
     }
-    Model scratch = model;
+    typename Mon::Model scratch = model;
     if (started == Status::kOk &&
         circuit::at_steady_within_noise(scratch, u0, m.y, m.valid, noise, static_cast<int>(channels))) {
       // The readings' noise would otherwise be the initial error of a parallel model,
@@ -221,9 +258,10 @@ void start_monitor(Mon& mon, const Model& model, const LoadedCircuit& c, host::I
 }
 
 // Row k's measured, model, residual (rv: the channels compared) and bound per channel; leads filled by the caller.
+template <class Mon>
 CircuitTraceRow trace_row(const Mon& mon, const LogColumns& cols, std::size_t k, double t, std::uint32_t health,
                           unsigned rv) {
-  const Obs& obs = mon.observer();
+  const auto& obs = mon.observer();
   CircuitTraceRow tr;
   tr.t = t;
   tr.health = health;
@@ -238,8 +276,9 @@ CircuitTraceRow trace_row(const Mon& mon, const LogColumns& cols, std::size_t k,
 }
 
 // The fit's view of the row just stepped.
-FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings& r) {
-  const Obs& obs = mon.observer();
+template <class Mon>
+FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings<Mon>& r) {
+  const auto& obs = mon.observer();
   FaultFitDiagnosis::Row row;
   row.t = t;
   row.y = r.m.y.data();
@@ -265,64 +304,49 @@ void note_clipped(const LoadedCircuit& c, CircuitReplayResult& res) {
   }
 }
 
-}  // namespace
-
-CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o) {
-  CircuitReplayResult res;
+// One replay through monitor Mon on `model` (the interpreter, or a compiled circuit's
+// model); `host_model` is the interpreter on the same description and values, for the fit
+// and the bound leads. res holds what replay_circuit set up (rows, tick, table size).
+template <class Mon>
+void run_monitor(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o,
+                 const typename Mon::Model& model, const Model& host_model, const LogColumns& cols,
+                 const CircuitFaultTable* table, CircuitReplayResult& res) {
+  using Inputs = typename Mon::Inputs;
   const std::size_t channels = c.file.sensors.size();
-  res.measured.assign(channels, false);
-  res.clipped.assign(channels, 0);
-  res.channels.assign(channels, host::ChannelStats{});
-  res.rows = log.rows();
-  if (res.rows == 0) return res;
   const std::vector<double>& t = log.t;
-  res.t_first = t.front();
-  res.t_last = t.back();
-  const double tick = replay_tick(o.tick, t);
-  res.tick = tick;
-  const LogColumns cols = log_columns(c, log, res);
+  const double tick = res.tick;
   const std::uint8_t mask = cols.mask;
-  auto inputs_at = [&](std::size_t row) { return cols.inputs_at(c.values.inputs, row); };
+  auto host_inputs_at = [&](std::size_t row) { return cols.inputs_at(c.values.inputs, row); };
+  auto inputs_of = [](const Model::Inputs& u) { return first_entries<Inputs>(u); };
 
-  // The description outlives the model and the observer (both refer to it by pointer).
-  host::HostCircuit desc = c.file.circuit;
-  desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, tick);
-  Model model(desc, c.values.params, c.values.inputs);
-  if (model.error() != circuit::CircuitError::kOk || !model.valid()) {
-    res.notes.push_back("the circuit's values do not make a physical circuit: nothing replayed");
-    return res;
-  }
-  res.states = model.n_states();
-  res.stiff_nodes = model.n_stiff();
-
-  CircuitFaultTable built;
-  const CircuitFaultTable* table = o.diagnose ? matcher_table(c, o, built, res) : nullptr;
+  // The matcher borrows its rows: they live as long as the monitor.
+  const std::vector<typename Mon::Signature> rows = matcher_rows<Mon>(table, res.table_rows);
   auto mon = std::make_unique<Mon>();
-  const Mon::Config cfg = monitor_config(c, model, tick, inputs_at(0), res.notes);
-  if (mon->configure(model, cfg, table == nullptr || table->rows.empty() ? nullptr : table->rows.data(),
-                     static_cast<int>(res.table_rows)) != Status::kOk) {
+  const typename Mon::Config cfg = monitor_config<Mon>(c, model, tick, inputs_of(host_inputs_at(0)), res.notes);
+  if (mon->configure(model, cfg, rows.empty() ? nullptr : rows.data(), static_cast<int>(rows.size())) != Status::kOk) {
     res.notes.push_back("invalid monitor configuration: nothing replayed");
-    return res;
+    return;
   }
-  const Obs& obs = mon->observer();
+  const auto& obs = mon->observer();
 
-  const Model::Inputs u0 = inputs_at(0);
-  Readings readings;
-  const Obs::Measurement& m = readings.m;
+  const Model::Inputs host_u0 = host_inputs_at(0);
+  Readings<Mon> readings;
+  const typename Mon::Measurement& m = readings.m;
   readings.read(0, cols, c.file.sensors, res.clipped);
-  start_monitor(*mon, model, c, o.init, u0, m, res);
+  start_monitor(*mon, model, c, o.init, inputs_of(host_u0), m, res);
 
   res.clipped.assign(channels, 0);  // the first row is counted again below
-  Model::Inputs u_prev = u0;
-  const Obs::Measurement none;
-  Mon::Event ev;
+  Model::Inputs host_u_prev = host_u0;
+  Inputs u_prev = inputs_of(host_u0);
+  const typename Mon::Measurement none;
+  typename Mon::Event ev;
   // The matcher detects; the fit over the steady windows after a detection decides.
   std::unique_ptr<FaultFitDiagnosis> diag;
-  if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, model, mask);
+  if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, host_model, mask);
   // Outside the model's envelope at the first steady stretch, nothing more is diagnosed.
-  EnvelopeCheck<Model> envelope;
+  EnvelopeCheck<typename Mon::Model> envelope;
   {
-    double sigma[Model::kOutputs] = {};
+    double sigma[Mon::kChannels] = {};
     for (std::size_t ch = 0; ch < channels; ++ch) sigma[ch] = sensor_sigma(c.file.sensors[ch]);
     envelope.configure(model, sigma);
   }
@@ -353,11 +377,12 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       res.health |= mon->health();
       res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     }
-    const Model::Inputs u = inputs_at(k);
+    const Model::Inputs host_u = host_inputs_at(k);
+    const Inputs u = inputs_of(host_u);
     readings.read(k, cols, c.file.sensors, res.clipped);
     const std::uint8_t compared = readings.compared;
     mon->step(t[k], u, m);
-    drain_events(t[k], u);
+    drain_events(t[k], host_u);
     if (!res.events.empty()) envelope.detected(res.events.front().t);
     envelope.add(t[k], u, obs.residual().data(), obs.residual_valid() & compared, mon->model_bound());
     if (!out_of_envelope && envelope.verdict() == EnvelopeVerdict::kOutside && o.diagnose && res.table_rows > 0) {
@@ -366,12 +391,13 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       out_of_envelope = true;
       res.events.assign(1, host::envelope_event(t[k], envelope_now(), res.events));
     }
-    if (diag && !out_of_envelope) diag->on_row(fit_row(*mon, t[k], readings), u, res.events);
+    if (diag && !out_of_envelope) diag->on_row(fit_row(*mon, t[k], readings), host_u, res.events);
     const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;
     res.max_substeps = std::max<std::uint32_t>(res.max_substeps, obs.substeps());
     u_prev = u;
+    host_u_prev = host_u;
     const unsigned rv = obs.residual_valid() & compared;
     for (std::size_t ch = 0; ch < channels; ++ch) {
       if ((rv & (1u << ch)) != 0) res.channels[ch].add(obs.residual()[static_cast<int>(ch)], t[k], k);
@@ -381,18 +407,18 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
       const double* mb = mon->model_bound();
       if (lead_bound.empty() || !std::equal(lead_bound.begin(), lead_bound.end(), mb)) {
         lead_bound.assign(mb, mb + channels);
-        leads = bound_leads(c, model, u);
+        leads = bound_leads(c, host_model, host_u);
       }
       tr.lead = leads;
       res.trace.push_back(std::move(tr));
     }
   }
-  drain_events(res.t_last, u_prev);
+  drain_events(res.t_last, host_u_prev);
   res.ticks = obs.ticks();
   res.final_status = to_string(mon->matcher().status());
   envelope.finish();
   res.envelope = envelope_now();
-  res.bound_lead = bound_leads(c, model, u_prev);
+  res.bound_lead = bound_leads(c, host_model, host_u_prev);
   if (out_of_envelope) {
     res.final_status = "out_of_envelope";
   } else if (res.envelope.unverified && o.diagnose && res.table_rows > 0 && !res.events.empty()) {
@@ -405,6 +431,45 @@ CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log
     res.final_status = diag->status();
   }
   res.implicit_ticks = obs.implicit_ticks();
+}
+
+}  // namespace
+
+CircuitReplayResult replay_circuit(const LoadedCircuit& c, const CircuitLog& log, const CircuitReplayOptions& o) {
+  CircuitReplayResult res;
+  const std::size_t channels = c.file.sensors.size();
+  res.measured = std::vector<bool>(channels, false);
+  res.clipped.assign(channels, 0);
+  res.channels.assign(channels, host::ChannelStats{});
+  res.rows = log.rows();
+  if (res.rows == 0) return res;
+  res.t_first = log.t.front();
+  res.t_last = log.t.back();
+  res.tick = replay_tick(o.tick, log.t);
+  const LogColumns cols = log_columns(c, log, res);
+
+  // The description outlives the model and the observer (both refer to it by pointer).
+  host::HostCircuit desc = c.file.circuit;
+  desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, res.tick);
+  const Model model(desc, c.values.params, c.values.inputs);
+  if (model.error() != circuit::CircuitError::kOk || !model.valid()) {
+    res.notes.push_back("the circuit's values do not make a physical circuit: nothing replayed");
+    return res;
+  }
+  res.states = model.n_states();
+  res.stiff_nodes = model.n_stiff();
+
+  CircuitFaultTable built;
+  const CircuitFaultTable* table = o.diagnose ? matcher_table(c, o, built, res) : nullptr;
+  // A circuit compiled into the program runs its generated code: the interpreter's numbers, faster.
+  const bool compiled = !o.interpret && with_compiled_kernel(desc, [&](auto kernel) {
+    using CompiledModel = circuit::CompiledModel<double, typename decltype(kernel)::type>;
+    const CompiledModel compiled_model(first_entries<typename CompiledModel::Params>(c.values.params),
+                                       first_entries<typename CompiledModel::Inputs>(c.values.inputs));
+    run_monitor<MonitorOn<CompiledModel>>(c, log, o, compiled_model, model, cols, table, res);
+  });
+  if (!compiled) run_monitor<MonitorOn<Model>>(c, log, o, model, model, cols, table, res);
+  res.compiled = compiled;
   note_clipped(c, res);
   return res;
 }

@@ -17,6 +17,7 @@
 #include "delimiter_scan.hpp"
 #include "hstmon_host/log_layout.hpp"
 #include "hstmon_host/log_options.hpp"
+#include "hstmon_host/log_text.hpp"
 #include "hstmon_host/text_encoding.hpp"
 #include "hstmon_host/text_source.hpp"
 #include "fast_decimal.hpp"
@@ -965,10 +966,10 @@ LogData read_log_from_memory(std::string_view text, std::string path_for_message
 }
 
 LogData read_log(const std::string& path, const ReadOptions& options) {
-  std::string text;
+  LogText text;
   std::optional<SourceError> error;
   try {
-    error = read_log_text(path, text);
+    error = load_log_text(path, text);
   } catch (const std::bad_alloc&) {
     error = SourceError{path, 0, 0, "cannot read: " + std::generic_category().message(ENOMEM)};
   }
@@ -978,7 +979,7 @@ LogData read_log(const std::string& path, const ReadOptions& options) {
     out.error = std::move(error);
     return out;
   }
-  return read_log_from_memory(text, path, options);
+  return read_log_from_memory(text.view(), path, options);
 }
 
 }  // namespace hstmon::host

@@ -46,6 +46,9 @@ struct CircuitReplayOptions {
   /// A table already built for c by the caller (a campaign replaying many logs of one
   /// circuit builds it once); when set, fault_table is not called. Must outlive the call.
   const CircuitFaultTable* table = nullptr;
+  /// Run the interpreter even where the circuit is compiled into the program
+  /// (compiled_circuits.hpp); for comparing the two, which give the same numbers.
+  bool interpret = false;
 };
 
 /// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).
@@ -68,6 +71,7 @@ struct CircuitReplayResult {
   double tick = 0.0;                          ///< [s]
   double t_first = 0.0, t_last = 0.0;         ///< [s]
   int states = 0, stiff_nodes = 0;            ///< the reduced model's states and quasi-steady nodes
+  bool compiled = false;                      ///< the monitor ran a compiled circuit's code (compiled_circuits.hpp)
   std::vector<bool> measured;                 ///< per channel: in the log
   std::vector<host::ChannelStats> channels;   ///< per channel
   std::vector<std::size_t> clipped;           ///< per channel: rows not compared (reading at a range end)
