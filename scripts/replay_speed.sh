@@ -3,9 +3,11 @@
 # of a 1 kHz log of 15 min and of 60 min (3.6 M rows, ~290 MB), written by hstmon-sim,
 # single-threaded (one core), Release build. Prints wall, user and system time, peak
 # memory (/usr/bin/time -v) and rows/s per wall second; best of RUNS (default 3). The
-# target is ≥ 3.6 M rows/s wall for the one-hour log. The log is read whole, column by
-# column (circuit_log.hpp), so peak memory grows with it. The first run of each size warms the page cache,
-# so the figures are for a log the machine has just written or read.
+# target is ≥ 3.6 M rows/s wall for the one-hour log. The log is read whole (a plain file
+# mapped, log_text.hpp), column by column (circuit_log.hpp), so peak memory grows with it.
+# The first run of each size warms the page cache, so the figures are for a log the machine
+# has just written or read. HSTMON_REPLAY_ARGS adds arguments to the replay (e.g.
+# --interpret: the generic engine instead of the compiled thesis circuit).
 #   bash scripts/replay_speed.sh [BUILD_DIR] [RUNS]     (default build/host-release, 3)
 set -euo pipefail
 source "$(dirname "$0")/speed_setup.sh" "$@"
@@ -15,7 +17,7 @@ for minutes in 15 60; do
   rows=$(($(wc -l < "$log") - 1))
   best=""
   for ((i = 0; i < runs; ++i)); do
-    /usr/bin/time -v -o "$tmp/time.txt" "$build/bin/hstmon" replay --json --no-progress "$log" > "$tmp/out.jsonl"
+    /usr/bin/time -v -o "$tmp/time.txt" "$build/bin/hstmon" replay --json --no-progress ${HSTMON_REPLAY_ARGS:-} "$log" > "$tmp/out.jsonl"
     read -r wall user sys rss < <(awk -F': ' '
       /Elapsed \(wall clock\)/ { n = split($2, p, ":"); w = 0; for (i = 1; i <= n; ++i) w = w * 60 + p[i] }
       /User time/ { u = $2 } /System time/ { s = $2 } /Maximum resident/ { r = $2 }
