@@ -1,7 +1,8 @@
 // The replay on a circuit compiled into the program (compiled_circuits.hpp) gives the
 // interpreter's numbers: every residual statistic, event, score and size bit for bit, on
 // the shipped logs of each compiled circuit at the ticks its kernel was generated for,
-// and on a circuit that is not compiled the interpreter runs.
+// and on a circuit that is not compiled the interpreter runs. So does the fit when it
+// takes the monitor's steady outputs and bound instead of solving them again.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -71,6 +72,10 @@ TEST(CompiledReplay, SameNumbersAsTheInterpreter) {
       {"examples/circuits/paper.json", "tests/data/validation_paper/logs/fault_friction.csv.gz", true, true},  // 1 ms
       {"examples/circuits/closed_loop_hst.json", "examples/circuits/closed_loop_hst.csv", true, false},        // 5 ms
       {"examples/circuits/test_stand.json", "examples/circuits/test_stand.csv", false, false},
+      // Not compiled; input changes in both directions, and a verdict that rests on the
+      // windows before the detection (the fit's past windows: their steady outputs and bound).
+      {"tests/data/validation_circuits/circuit.json", "tests/data/validation_circuits/logs/fault_leak_B.csv.gz", false,
+       true},
   };
   for (const Case& k : cases) {
     const std::string what = std::string(*k.circuit ? k.circuit : "thesis (built in)") + " on " + k.log;
@@ -82,10 +87,13 @@ TEST(CompiledReplay, SameNumbersAsTheInterpreter) {
     const ct::CircuitReplayResult compiled = ct::replay_circuit(c, log, o);
     o.interpret = true;
     const ct::CircuitReplayResult interpreted = ct::replay_circuit(c, log, o);
+    o.share_bound = false;  // the fit solves its own steady states, as the monitor does
+    const ct::CircuitReplayResult unshared = ct::replay_circuit(c, log, o);
     EXPECT_EQ(compiled.compiled, k.compiled) << what;
     EXPECT_FALSE(interpreted.compiled) << what;
     EXPECT_EQ(!compiled.events.empty(), k.events) << what;
     expect_same_replay(compiled, interpreted, what);
+    expect_same_replay(compiled, unshared, what + " (fit's own steady solves)");
   }
 }
 

@@ -277,7 +277,7 @@ CircuitTraceRow trace_row(const Mon& mon, const LogColumns& cols, std::size_t k,
 
 // The fit's view of the row just stepped.
 template <class Mon>
-FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings<Mon>& r) {
+FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings<Mon>& r, const Model::Inputs* bound_u) {
   const auto& obs = mon.observer();
   FaultFitDiagnosis::Row row;
   row.t = t;
@@ -288,6 +288,8 @@ FaultFitDiagnosis::Row fit_row(const Mon& mon, double t, const Readings<Mon>& r)
   row.r_valid = obs.residual_valid();
   row.bound = mon.model_bound();
   row.matcher_quiet = mon.matcher().status() == MatchStatus::kNominal;
+  row.steady_y = bound_u != nullptr ? mon.steady_outputs_at_bound_inputs() : nullptr;
+  row.bound_u = bound_u;
   return row;
 }
 
@@ -356,6 +358,10 @@ void run_monitor(const LoadedCircuit& c, const CircuitLog& log, const CircuitRep
     return host::envelope_result(host::envelope_figures(envelope), envelope_names, kEnvelopeRemedy);
   };
   bool out_of_envelope = false;
+  // The monitor's bound inputs as the fit takes them (host inputs: the file's other entries 0).
+  Inputs bound_u{};
+  Model::Inputs host_bound_u{};
+  auto to_host_inputs = [](const Inputs& u) { return first_entries<Model::Inputs>(u); };
   // The trace's bound leads, recomputed where the monitor's bound changed (an input change).
   std::vector<ChannelBoundLead> leads;
   std::vector<double> lead_bound;
@@ -391,7 +397,13 @@ void run_monitor(const LoadedCircuit& c, const CircuitLog& log, const CircuitRep
       out_of_envelope = true;
       res.events.assign(1, host::envelope_event(t[k], envelope_now(), res.events));
     }
-    if (diag && !out_of_envelope) diag->on_row(fit_row(*mon, t[k], readings), host_u, res.events);
+    if (diag && !out_of_envelope) {
+      if (o.share_bound && !(mon->bound_inputs() == bound_u)) {
+        bound_u = mon->bound_inputs();
+        host_bound_u = to_host_inputs(bound_u);
+      }
+      diag->on_row(fit_row(*mon, t[k], readings, o.share_bound ? &host_bound_u : nullptr), host_u, res.events);
+    }
     const std::uint32_t flags = mon->health();
     res.health |= flags;
     if (flags != 0) ++res.unhealthy_rows;

@@ -250,6 +250,10 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
 
 void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out) {
   if (!impl_->ok) return;
+  if (row.steady_y != nullptr && row.bound_u != nullptr && row.bound != nullptr &&
+      !impl_->est.offers_nominal(*row.bound_u)) {
+    impl_->est.offer_nominal(*row.bound_u, row.steady_y, row.bound);
+  }
   if (!active_) {
     impl_->est.observe(row.t, u, row.r, row.r_valid & row.valid);
     watch(row, u, out);

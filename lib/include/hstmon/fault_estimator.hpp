@@ -223,6 +223,24 @@ class FaultEstimator {
     return true;
   }
 
+  /// Offers the nominal model's steady outputs y0 and model bound at inputs u, computed
+  /// elsewhere on this estimator's model, nominal parameters and uncertainty (a monitor's,
+  /// at its last input change): a window at exactly these inputs takes them instead of
+  /// solving the same steady states again. The caller vouches that they are the numbers
+  /// this estimator would compute (the host replay checks it: test_compiled_replay).
+  /// @param y0     steady outputs at u [channel unit]
+  /// @param bound  model bound at u per channel [channel unit]
+  void offer_nominal(const Inputs& u, const T* y0, const T* bound) noexcept {
+    offer_u_ = u;
+    for (int i = 0; i < kN; ++i) {
+      offer_y0_[i] = y0[i];
+      offer_bound_[i] = bound[i];
+    }
+    offered_ = true;
+  }
+  /// True when the nominal steady outputs and bound at exactly u are on offer (offer_nominal).
+  bool offers_nominal(const Inputs& u) const noexcept { return offered_ && offer_u_ == u; }
+
   /// Forgets the episode (windows, fits, verdict); the next window opens after a settle.
   void reset() noexcept {
     for (int k = 0; k < count_; ++k) {
@@ -440,6 +458,11 @@ class FaultEstimator {
   bool nominal_at(const Inputs& u, Output& y0, T (&bound)[kNz]) noexcept {
     model_.set_params(nominal_);
     model_.set_inputs(u);
+    if (offers_nominal(u)) {
+      y0 = offer_y0_;
+      for (int i = 0; i < kN; ++i) bound[i] = offer_bound_[i];
+      return true;
+    }
     typename Model::State xs;
     if (!model_.valid() || !model_.steady_state(xs)) return false;
     y0 = model_.outputs(xs);
@@ -973,6 +996,11 @@ class FaultEstimator {
 
   Model model_{};
   typename Model::Params nominal_{};
+  // What offer_nominal() gave: the nominal steady outputs and bound at offer_u_.
+  bool offered_ = false;
+  Inputs offer_u_{};
+  Output offer_y0_{};
+  T offer_bound_[kNz] = {};
   const FaultHypothesis* hyps_ = nullptr;
   int count_ = 0;
   unsigned measured_ = 0;

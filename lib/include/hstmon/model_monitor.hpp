@@ -101,6 +101,8 @@ struct CarryState {
   T carry_decay_ = T(0);    ///< e^(−tick/τ_c), τ_c the slower of the last change's two points' [-]
   T tau_here_ = T(0);       ///< slowest time constant at the current inputs' steady state [s]
   bool carry_hold_ = false; ///< y_steady_ is the steady state of the current inputs
+  /// bound_ and y_steady_ were computed at bound_inputs_
+  bool bound_here_ = false;
   Obs lead_{};              ///< the observer's model, lead_ticks_ ticks ahead under the held inputs
   T timing_lead_ = T(0);    ///< Config::timing_lead [-]
   int lead_ticks_ = 0;      ///< ticks lead_ runs ahead [-]; 0 = no copy running
@@ -322,6 +324,19 @@ class ModelMonitor
   std::uint32_t health() const noexcept { return obs_.last_health(); }
   /// The model bound in use, per channel [channel unit].
   const T* model_bound() const noexcept { return bound_; }
+  /// The inputs the model bound in use was last computed for.
+  const Inputs& bound_inputs() const noexcept { return bound_inputs_; }
+  /// The nominal model's steady outputs at bound_inputs() [channel unit], where both they
+  /// and model_bound() were computed there at the last input change; nullptr otherwise (no
+  /// steady state there, or no bound: the last good bound stays in force; or a monitor
+  /// that does not carry its bound, which keeps no steady outputs per input change).
+  const T* steady_outputs_at_bound_inputs() const noexcept {
+    if constexpr (kCanCarry) {
+      return this->bound_here_ ? y_steady_ : nullptr;
+    } else {
+      return nullptr;
+    }
+  }
   /// The transient allowance of channel i at the last sample [channel unit]: the model's
   /// own recent output variation times transient_factor, plus model_transient times the
   /// envelope of the model's distance from its steady state (0 unless configured), plus
@@ -369,6 +384,7 @@ class ModelMonitor
     steady_ok_ = false;
     if constexpr (kCanCarry) {
       this->carry_hold_ = false;
+      this->bound_here_ = false;
       this->lead_ticks_ = 0;
     }
     plan_startup();
@@ -641,11 +657,13 @@ class ModelMonitor
     // The carry is held while the model is still on its way to this steady state.
     typename Model::State xs;
     this->carry_hold_ = obs_.model().steady_state(xs);
+    this->bound_here_ = false;
     if (this->carry_hold_) set_steady_outputs(xs);
     T m[kN_];
     T tau_new = T(0);
     if (compute_bound(m, &tau_new) != Status::kOk) return;  // all stay
     for (int i = 0; i < kChannels; ++i) bound_[i] = m[i];
+    this->bound_here_ = this->carry_hold_;
     (void)ev_.set_model_bound(bound_);
     const T tau = tau_new > this->tau_here_ ? tau_new : this->tau_here_;
     this->tau_here_ = tau_new;

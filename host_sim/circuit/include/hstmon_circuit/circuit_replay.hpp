@@ -49,6 +49,10 @@ struct CircuitReplayOptions {
   /// Run the interpreter even where the circuit is compiled into the program
   /// (compiled_circuits.hpp); for comparing the two, which give the same numbers.
   bool interpret = false;
+  /// The fit after a detection takes the monitor's nominal steady outputs and model bound
+  /// at the inputs it computed them for, instead of solving the same steady states again
+  /// (false: it solves them; the same numbers, for comparing the two).
+  bool share_bound = true;
 };
 
 /// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).

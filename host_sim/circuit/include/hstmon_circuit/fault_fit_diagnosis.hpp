@@ -54,6 +54,11 @@ class FaultFitDiagnosis {
     unsigned r_valid = 0;           ///< bit ch: r[ch] is one
     const double* bound = nullptr;  ///< the monitor's model bound at the row's inputs
     bool matcher_quiet = false;     ///< the matcher's status is nominal
+    /// The monitor's nominal steady outputs at inputs *bound_u, where `bound` was computed
+    /// too (nullptr: none on offer); the fit's windows at exactly those inputs take them and
+    /// `bound` instead of solving the same steady states again (FaultEstimator::offer_nominal)
+    const double* steady_y = nullptr;
+    const Model::Inputs* bound_u = nullptr;
   };
   void on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
   /// The end of the log: the open window counts.
