@@ -967,13 +967,7 @@ LogData read_log_from_memory(std::string_view text, std::string path_for_message
 
 LogData read_log(const std::string& path, const ReadOptions& options) {
   LogText text;
-  std::optional<SourceError> error;
-  try {
-    error = load_log_text(path, text);
-  } catch (const std::bad_alloc&) {
-    error = SourceError{path, 0, 0, "cannot read: " + std::generic_category().message(ENOMEM)};
-  }
-  if (error) {
+  if (std::optional<SourceError> error = load_log_text(path, text)) {
     LogData out;
     out.path = path;
     out.error = std::move(error);

@@ -5,6 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <new>
+#include <system_error>
+
 #include "hstmon_host/text_source.hpp"
 
 namespace hstmon::host {
@@ -56,7 +60,12 @@ std::optional<SourceError> load_log_text(const std::string& path, LogText& text)
     text.map_size_ = size;
     return std::nullopt;
   }
-  return read_log_text(path, text.owned_);
+  try {
+    return read_log_text(path, text.owned_);
+  } catch (const std::bad_alloc&) {
+    text.release();  // what was read so far
+    return SourceError{path, 0, 0, "cannot read: " + std::generic_category().message(ENOMEM)};
+  }
 }
 
 }  // namespace hstmon::host

@@ -39,7 +39,8 @@ class LogText {
 };
 
 /// Loads the log file at `path` into `text` (replacing what it held): mapped when it is a
-/// plain regular file, else read and decompressed as read_log_text does, with its errors.
+/// plain regular file, else read and decompressed as read_log_text does, with its errors;
+/// a text too large for memory is an error too ("cannot read: ..."), not an exception.
 /// A file must not be truncated by another program while mapped (the mapping's pages past
 /// the new end no longer exist); logs are written before they are read.
 std::optional<SourceError> load_log_text(const std::string& path, LogText& text);
