@@ -13,7 +13,6 @@
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/circuit_crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
-#include "hstmon_fdi/fault_catalogue.hpp"
 #include "hstmon_fdi/fault_tree.hpp"
 #include "hstmon_fdi/qual.hpp"
 
@@ -153,16 +152,27 @@ int run_circuit_forward(const CircuitSource& s, const std::string& fault, int or
   if (!load(s, l)) return 2;
   std::string name;
   int sign = 0;
-  parse_fault(fault, name, sign);
+  parse_observation(fault, name, sign);
   const std::vector<ParamStep> steps = circuit_fault_steps(l.t, name, sign);
   const std::vector<ChannelPrediction> q = forward_qualitative_at(l.t.graph, steps, order, l.t.measured);
   const std::vector<ChannelPrediction> w = forward_weighted_at(l.t.graph, steps, order, l.t.measured);
   const std::vector<double> lin = linear_steady_change_at(l.t.graph, steps, l.t.measured);
   if (json) {
+    auto derivatives = [](const ChannelPrediction& p) {
+      std::vector<int> v;
+      for (QualSign d : p.derivative) v.push_back(static_cast<int>(d));
+      return v;
+    };
     nlohmann::json a = nlohmann::json::array();
     for (std::size_t c = 0; c < q.size(); ++c) {
-      a.push_back({{"channel", l.t.measured[c]}, {"slope", static_cast<int>(q[c].slope)}, {"order", q[c].order},
-                   {"weighted_slope", static_cast<int>(w[c].slope)}, {"linear_steady_change", lin[c]}});
+      a.push_back({{"channel", l.t.measured[c]},
+                   {"magnitude", static_cast<int>(q[c].magnitude)},
+                   {"slope", static_cast<int>(q[c].slope)},
+                   {"order", q[c].order},
+                   {"derivatives", derivatives(q[c])},
+                   {"weighted_slope", static_cast<int>(w[c].slope)},
+                   {"weighted_derivatives", derivatives(w[c])},
+                   {"linear_steady_change", lin[c]}});
     }
     std::cout << a.dump(2) << '\n';
     return 0;

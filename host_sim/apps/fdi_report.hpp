@@ -1,7 +1,7 @@
 #pragma once
 /// @file fdi_report.hpp
 /// Text (Markdown) and JSON renderings of the hstmon-fdi results, shared by the
-/// subcommands of fdi_app.cpp.
+/// subcommands of hstmon-fdi (fdi_circuit_tcg.cpp).
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -9,8 +9,6 @@
 
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/causal_graph.hpp"
-#include "hstmon_fdi/crosscheck.hpp"
-#include "hstmon_fdi/forward.hpp"
 
 namespace hstmon::fdi {
 
@@ -23,15 +21,5 @@ nlohmann::json json_edges(const CausalGraph& g);
 std::string text_backward(const BackwardResult& r);
 /// Candidates and conflicts as JSON.
 nlohmann::json json_backward(const BackwardResult& r);
-
-/// Predictions per channel as a Markdown table.
-std::string markdown_forward(const ForwardResult& q, const ForwardResult& w);
-/// Predictions per channel as JSON.
-nlohmann::json json_forward(const ForwardResult& q, const ForwardResult& w);
-
-/// The cross-check as Markdown: one table per operating case, then the agreement counts.
-std::string markdown_crosscheck(const std::vector<CrosscheckRow>& rows);
-/// The cross-check as JSON.
-nlohmann::json json_crosscheck(const std::vector<CrosscheckRow>& rows);
 
 }  // namespace hstmon::fdi

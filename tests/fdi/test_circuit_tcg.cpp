@@ -18,7 +18,7 @@
 #include "hstmon_fdi/crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/fault_tree.hpp"
-#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/thesis_forward.hpp"
 #include "hstmon_fdi/qual.hpp"
 #include "hstmon_fdi/thesis_tcg.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <set>
 
-#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/thesis_forward.hpp"
 #include "hstmon_fdi/thesis_tcg.hpp"
 
 namespace hstmon::fdi {

@@ -9,7 +9,7 @@
 #include "hstmon/thesis_reduced.hpp"
 #include "hstmon_fdi/backward.hpp"
 #include "hstmon_fdi/fault_catalogue.hpp"
-#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/thesis_forward.hpp"
 #include "hstmon_fdi/qual.hpp"
 #include "hstmon_fdi/thesis_tcg.hpp"
 

@@ -27,7 +27,7 @@ TEST(SignatureHeader, CommittedHeaderIsUpToDate) {
   ss << f.rdbuf();
   const SignatureOptions opt;
   EXPECT_EQ(ss.str(), render_signature_header(build_signature_rows(opt), opt))
-      << "regenerate: hstmon-fdi header --out " << kSignatureHeaderPath;
+      << "regenerate: thesis_signature_header " << kSignatureHeaderPath;
 }
 
 TEST(SignatureHeader, RowsFollowTheCatalogue) {

@@ -10,7 +10,6 @@
 #include "hstmon/circuit/circuit_bound.hpp"
 #include "hstmon/circuit/laws.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
-#include "hstmon_fdi/crosscheck.hpp"
 #include "hstmon_fdi/circuit_tcg.hpp"
 #include "hstmon_fdi/forward.hpp"
 #include "hstmon_fdi/qual.hpp"

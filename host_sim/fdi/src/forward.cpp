@@ -3,11 +3,9 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <iterator>
 #include <stdexcept>
 
 #include "hstmon_fdi/qual.hpp"
-#include "hstmon_fdi/thesis_tcg.hpp"
 
 namespace hstmon::fdi {
 
@@ -168,15 +166,6 @@ void evaluate_linear(const CausalGraph& g, const std::vector<int>& order, const 
   }
 }
 
-/// The thesis's four measurement nodes as a ForwardResult.
-ForwardResult thesis_channels(const std::vector<ChannelPrediction>& v) {
-  ForwardResult r;
-  for (std::size_t c = 0; c < 4; ++c) r.channel[c] = v[c];
-  return r;
-}
-
-std::vector<std::string> thesis_measurements() { return {std::begin(kMeasurementNodes), std::end(kMeasurementNodes)}; }
-
 }  // namespace
 
 std::vector<ChannelPrediction> forward_qualitative_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
@@ -187,14 +176,6 @@ std::vector<ChannelPrediction> forward_qualitative_at(const CausalGraph& g, cons
 std::vector<ChannelPrediction> forward_weighted_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
                                                    int max_order, const std::vector<std::string>& measured) {
   return propagate<WeightedAlgebra>(g, fault, max_order, measured);
-}
-
-ForwardResult forward_qualitative(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order) {
-  return thesis_channels(forward_qualitative_at(g, fault, max_order, thesis_measurements()));
-}
-
-ForwardResult forward_weighted(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order) {
-  return thesis_channels(forward_weighted_at(g, fault, max_order, thesis_measurements()));
 }
 
 std::vector<int> integrated_nodes(const CausalGraph& g) {
@@ -240,14 +221,6 @@ std::vector<double> linear_steady_change_at(const CausalGraph& g, const std::vec
   std::vector<double> y;
   for (const std::string& m : measured) y.push_back(value[static_cast<std::size_t>(g.at(m))]);
   return y;
-}
-
-std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vector<ParamStep>& fault) {
-  if (integrated_nodes(g).size() != 4) {
-    throw std::invalid_argument("linear_steady_change: the graph must have exactly 4 integrated nodes");
-  }
-  const std::vector<double> v = linear_steady_change_at(g, fault, thesis_measurements());
-  return {v[0], v[1], v[2], v[3]};
 }
 
 std::string render_derivatives(const ChannelPrediction& c) {

@@ -1,21 +1,13 @@
 #pragma once
 /// @file bond_graph.hpp
-/// The thesis's bond graph (Fig. 2.3, nonlinear valves; Fig. 2.14, linearised valves) as
-/// data: elements and bonds with their half-arrow (power) directions. The figures are not
-/// in the seed's text; the structure is reconstructed from equations 2.5–2.8 and the bond
-/// numbers of Table 2.4 (docs/fdi.md lists the reconstruction and where it departs).
+/// A bond graph as data: elements and bonds with their half-arrow (power) directions.
+/// circuit_bond_graph.hpp derives one from any circuit file.
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace hstmon::fdi {
-
-/// How the valve orifices (DCV inlet R2, DCV outlet R15, PRV R33) are modelled.
-enum class ValveModel {
-  kNonlinear,   ///< Fig. 2.3: Q = k·sq(ΔP), parameters kfi, kfo, kp; edge gains are the tangent slopes
-  kLinearised,  ///< Fig. 2.14: Q = ΔP/R, parameters Rin, Rout, Rpl of eq. 2.11 (secant R = √ΔP/k)
-};
 
 /// Kind of a bond-graph element.
 enum class ElementKind { kSe, kR, kC, kI, kTF, kZero, kOne, kDetector, kSf };
@@ -47,8 +39,5 @@ struct BondGraph {
   /// +1 if the bond points into element `name`, −1 if it leaves it, 0 if not attached.
   int orientation(int bond_number, std::string_view name) const;
 };
-
-/// The thesis HST's bond graph with the given valve model.
-BondGraph thesis_bond_graph(ValveModel valves);
 
 }  // namespace hstmon::fdi

@@ -5,7 +5,7 @@
 /// channel the slope and order of the circuit's temporal causal graph (circuit_tcg.hpp) —
 /// forward propagation of the fault at the nominal operating point, the qualitative graph
 /// first and, where opposite paths meet, the graph weighted by the operating-point gains
-/// (as the thesis rig's table, signature_table.hpp). It is what `hstmon replay --circuit`
+/// (as the thesis rig's hand-made table did). It is what `hstmon replay --circuit`
 /// runs on and what `hstmon-fdi table` writes into the committed headers.
 ///
 /// What the table promises must hold for the nonlinear engine, not only for the graph: the

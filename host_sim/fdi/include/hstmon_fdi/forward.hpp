@@ -8,7 +8,6 @@
 /// ?), and weighted by the operating-point gains (the Markov parameters of the linearised
 /// model). The linearised steady state (−A⁻¹·b) is given alongside.
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -31,41 +30,25 @@ struct ChannelPrediction {
   QualSign magnitude;                ///< thesis reading: the first effect persists = slope
 };
 
-/// Forward propagation result for the four measurement nodes (ThesisChannel order).
-struct ForwardResult {
-  std::array<ChannelPrediction, 4> channel;
-};
-
-/// Qualitative forward propagation (signs only; parameter influence signs of the edges).
+/// Qualitative forward propagation (signs only; parameter influence signs of the edges) to
+/// the measured nodes (a circuit's sensor channels), in the given order.
 /// @param max_order  highest derivative predicted, ≥ 0
-/// @throws std::invalid_argument for an unknown parameter, a derivative edge, or an algebraic loop
-ForwardResult forward_qualitative(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order);
-
-/// Forward propagation weighted by the edges' gains and injections at the operating point:
-/// the signs of the linearised model's derivatives at 0+ for a unit relative step.
-/// A contribution within 1e-9 of the sum of absolute contributions counts as zero.
-ForwardResult forward_weighted(const CausalGraph& g, const std::vector<ParamStep>& fault, int max_order);
-
-/// Steady-state change of the four measurements in the linearised model for a unit
-/// relative step (x_ss = −A⁻¹·b over the dt-edge targets) [Pa or rad/s per unit ln θ].
-/// @throws std::invalid_argument if the graph does not have exactly 4 integrated nodes
-///         or A is singular
-std::array<double, 4> linear_steady_change(const CausalGraph& g, const std::vector<ParamStep>& fault);
-
-/// forward_qualitative for any measured nodes (a circuit's sensor channels), in the given order.
-/// @throws std::invalid_argument as forward_qualitative, or for a name that is not a node
+/// @throws std::invalid_argument for an unknown parameter or node, a derivative edge, or an algebraic loop
 std::vector<ChannelPrediction> forward_qualitative_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
                                                       int max_order, const std::vector<std::string>& measured);
 
-/// forward_weighted for any measured nodes, in the given order.
+/// Forward propagation weighted by the edges' gains and injections at the operating point:
+/// the signs of the linearised model's derivatives at 0+ for a unit relative step, at the
+/// measured nodes in the given order. A contribution within 1e-9 of the sum of absolute
+/// contributions counts as zero.
 std::vector<ChannelPrediction> forward_weighted_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
                                                    int max_order, const std::vector<std::string>& measured);
 
 /// Nodes with an integrating (dt) in-edge: the states of the linearised model, in node order.
 std::vector<int> integrated_nodes(const CausalGraph& g);
 
-/// linear_steady_change for any number of integrated nodes and any measured nodes
-/// [measured units per unit ln θ].
+/// Steady-state change of the measured nodes in the linearised model for a unit relative
+/// step (x_ss = −A⁻¹·b over the dt-edge targets) [measured units per unit ln θ].
 /// @throws std::invalid_argument without integrated nodes, for a singular A or an unknown name
 std::vector<double> linear_steady_change_at(const CausalGraph& g, const std::vector<ParamStep>& fault,
                                             const std::vector<std::string>& measured);

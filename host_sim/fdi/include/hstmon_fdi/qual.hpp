@@ -40,4 +40,9 @@ constexpr QualSign qual_from_value(double v, double zero_tol) noexcept {
   return v > zero_tol ? kQualPlus : (v < -zero_tol ? kQualMinus : kQualZero);
 }
 
+/// Agreement of a prediction with a reading: ? agrees with anything.
+constexpr bool qual_agrees(QualSign predicted, QualSign observed) noexcept {
+  return predicted == kQualAny || observed == kQualAny || predicted == observed;
+}
+
 }  // namespace hstmon::fdi

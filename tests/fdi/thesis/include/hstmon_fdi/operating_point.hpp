@@ -9,15 +9,15 @@ namespace hstmon::fdi {
 
 /// Steady operating point of equations 2.5–2.8 under (p, u).
 struct OperatingPoint {
-  ThesisParams<double> p;   ///< parameters
-  ThesisInputs<double> u;   ///< inputs
-  ThesisState<double> x;    ///< steady state: Pmi, Pmo, Ppp [Pa], ωm [rad/s]
-  double Rin = 0.0;         ///< DCV inlet secant resistance √(Psupl − Pmi)/kf, eq. 2.11 [Pa·s/m³]
-  double Rout = 0.0;        ///< DCV outlet secant resistance √(Pmo − Ps)/kf [Pa·s/m³]
-  double Rpl = 0.0;         ///< PRV secant resistance √(Ppp − Pbp)/kp [Pa·s/m³]
-  double g_in = 0.0;        ///< DCV inlet tangent conductance ∂Q/∂ΔP [m³/(s·Pa)]
-  double g_out = 0.0;       ///< DCV outlet tangent conductance [m³/(s·Pa)]
-  double g_prv = 0.0;       ///< PRV tangent conductance [m³/(s·Pa)]
+  ThesisParams<double> p;  ///< parameters
+  ThesisInputs<double> u;  ///< inputs
+  ThesisState<double> x;   ///< steady state: Pmi, Pmo, Ppp [Pa], ωm [rad/s]
+  double Rin = 0.0;        ///< DCV inlet secant resistance √(Psupl − Pmi)/kf, eq. 2.11 [Pa·s/m³]
+  double Rout = 0.0;       ///< DCV outlet secant resistance √(Pmo − Ps)/kf [Pa·s/m³]
+  double Rpl = 0.0;        ///< PRV secant resistance √(Ppp − Pbp)/kp [Pa·s/m³]
+  double g_in = 0.0;       ///< DCV inlet tangent conductance ∂Q/∂ΔP [m³/(s·Pa)]
+  double g_out = 0.0;      ///< DCV outlet tangent conductance [m³/(s·Pa)]
+  double g_prv = 0.0;      ///< PRV tangent conductance [m³/(s·Pa)]
 };
 
 /// Steady operating point from ThesisCircuitModel<double>::steady_state.

@@ -18,8 +18,12 @@ class Builder {
  public:
   explicit Builder(CausalGraph& g) : g_(g) {}
 
-  void effort(int bond, double value, const char* meaning = "") { node("e" + std::to_string(bond), NodeKind::kEffort, bond, value, meaning); }
-  void flow(int bond, double value, const char* meaning = "") { node("f" + std::to_string(bond), NodeKind::kFlow, bond, value, meaning); }
+  void effort(int bond, double value, const char* meaning = "") {
+    node("e" + std::to_string(bond), NodeKind::kEffort, bond, value, meaning);
+  }
+  void flow(int bond, double value, const char* meaning = "") {
+    node("f" + std::to_string(bond), NodeKind::kFlow, bond, value, meaning);
+  }
   void node(const std::string& name, NodeKind kind, int bond, double value, const char* meaning) {
     g_.add_node(Node{name, kind, bond, meaning, value});
   }
@@ -42,10 +46,10 @@ class Builder {
 // The operating point's steady flows and the split of the valve friction, which the nodes'
 // values and the edges' injections are written with.
 struct SteadyValues {
-  double Pmi, Pmo, Ppp, w;    ///< states [Pa, Pa, Pa, rad/s]
-  double Rbl1, Rbl2;          ///< inlet and outlet valve friction [N·m·s/rad]
-  double q_in, q_out;         ///< DCV inlet and outlet flows [m³/s]
-  double q_prv, q_ipl;        ///< PRV and cross-port leakage flows [m³/s]
+  double Pmi, Pmo, Ppp, w;  ///< states [Pa, Pa, Pa, rad/s]
+  double Rbl1, Rbl2;        ///< inlet and outlet valve friction [N·m·s/rad]
+  double q_in, q_out;       ///< DCV inlet and outlet flows [m³/s]
+  double q_prv, q_ipl;      ///< PRV and cross-port leakage flows [m³/s]
 };
 
 SteadyValues steady_values(const OperatingPoint& op) {

@@ -34,25 +34,39 @@ const FaultParameter* find_fault_parameter(std::string_view name) {
 }
 
 void scale_parameter(std::string_view name, double factor, ThesisParams<double>& p, ThesisInputs<double>& u) {
-  if (name == "kp") u.kp *= factor;
-  else if (name == "kf") p.kf *= factor;
-  else if (name == "Psupl") u.Psupl *= factor;
-  else if (name == "Pbp") u.Pbp *= factor;
-  else if (name == "Rbl") p.Rbl *= factor;
-  else if (name == "Rf") p.Rf *= factor;
-  else if (name == "Dp") p.Dp *= factor;
-  else if (name == "Dm") p.Dm *= factor;
-  else if (name == "Rlkg") p.Rlkg *= factor;
-  else if (name == "Ripl") p.Ripl *= factor;
-  else if (name == "J") p.J *= factor;
-  else if (name == "K") p.K *= factor;
-  else throw std::invalid_argument("unknown fault parameter " + std::string(name));
+  if (name == "kp")
+    u.kp *= factor;
+  else if (name == "kf")
+    p.kf *= factor;
+  else if (name == "Psupl")
+    u.Psupl *= factor;
+  else if (name == "Pbp")
+    u.Pbp *= factor;
+  else if (name == "Rbl")
+    p.Rbl *= factor;
+  else if (name == "Rf")
+    p.Rf *= factor;
+  else if (name == "Dp")
+    p.Dp *= factor;
+  else if (name == "Dm")
+    p.Dm *= factor;
+  else if (name == "Rlkg")
+    p.Rlkg *= factor;
+  else if (name == "Ripl")
+    p.Ripl *= factor;
+  else if (name == "J")
+    p.J *= factor;
+  else if (name == "K")
+    p.K *= factor;
+  else
+    throw std::invalid_argument("unknown fault parameter " + std::string(name));
 }
 
 std::vector<ParamStep> graph_parameters(std::string_view name, ValveModel valves) {
   const bool lin = valves == ValveModel::kLinearised;
   if (name == "kp") return {lin ? ParamStep{"Rpl", -1} : ParamStep{"kp", 1}};
-  if (name == "kf") return lin ? std::vector<ParamStep>{{"Rin", -1}, {"Rout", -1}} : std::vector<ParamStep>{{"kfi", 1}, {"kfo", 1}};
+  if (name == "kf")
+    return lin ? std::vector<ParamStep>{{"Rin", -1}, {"Rout", -1}} : std::vector<ParamStep>{{"kfi", 1}, {"kfo", 1}};
   if (name == "Psupl" || name == "Pbp" || name == "Rf" || name == "Dp" || name == "Dm" || name == "Ripl") {
     return {ParamStep{std::string(name), 1}};
   }

@@ -26,7 +26,7 @@ struct SignatureOptions {
 struct SignatureRow {
   FaultSignature sig;  ///< sig.name points into `name`; refresh with sig.name = name.c_str() after copying
   std::string name;
-  std::string note;    ///< where the TCG and the nonlinear model disagree, or empty
+  std::string note;  ///< where the TCG and the nonlinear model disagree, or empty
 };
 
 /// Builds the rows (parameter faults in catalogue order, then the four sensor faults).

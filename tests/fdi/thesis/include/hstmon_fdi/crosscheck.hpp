@@ -12,14 +12,15 @@
 #include <vector>
 
 #include "hstmon/fault_signature.hpp"
-#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/thesis_forward.hpp"
+#include "hstmon_fdi/qual.hpp"
 
 namespace hstmon::fdi {
 
 /// One operating point of the cross-check: Table 2.2 with kp scaled.
 struct OperatingCase {
-  std::string name;   ///< "light", "nominal", "heavy"
-  double kp_factor;   ///< kp / 4.41e-8 [-]
+  std::string name;  ///< "light", "nominal", "heavy"
+  double kp_factor;  ///< kp / 4.41e-8 [-]
 };
 
 /// light (kp × 1.6), nominal, heavy (kp × 0.65).
@@ -28,8 +29,8 @@ std::vector<OperatingCase> default_operating_cases();
 /// Options of the cross-check.
 struct CrosscheckOptions {
   std::vector<OperatingCase> cases = default_operating_cases();
-  double t_early = 1e-3;   ///< time after the fault at which the reference deviation is read [s]
-  int max_order = 6;       ///< highest derivative examined [-]
+  double t_early = 1e-3;       ///< time after the fault at which the reference deviation is read [s]
+  int max_order = 6;           ///< highest derivative examined [-]
   double ss_zero_rel = 1e-12;  ///< relative steady-state change read as zero [-]
 };
 
@@ -58,10 +59,5 @@ struct CrosscheckRow {
 /// Runs the cross-check for every catalogue parameter, both directions, every case.
 /// @throws std::runtime_error if a steady state or a reference run fails
 std::vector<CrosscheckRow> run_crosscheck(const CrosscheckOptions& opt = CrosscheckOptions{});
-
-/// Agreement of a prediction with a reading: ? agrees with anything.
-constexpr bool qual_agrees(QualSign predicted, QualSign observed) noexcept {
-  return predicted == kQualAny || observed == kQualAny || predicted == observed;
-}
 
 }  // namespace hstmon::fdi

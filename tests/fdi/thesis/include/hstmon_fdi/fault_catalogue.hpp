@@ -10,18 +10,18 @@
 #include <vector>
 
 #include "hstmon/thesis_params.hpp"
-#include "hstmon_fdi/bond_graph.hpp"
-#include "hstmon_fdi/forward.hpp"
+#include "hstmon_fdi/thesis_bond_graph.hpp"
+#include "hstmon_fdi/thesis_forward.hpp"
 
 namespace hstmon::fdi {
 
 /// One model parameter that can be faulty.
 struct FaultParameter {
-  std::string name;         ///< seed name: "kp", "kf", "Psupl", "Pbp", "Rbl", "Rf", "Dp", "Dm", "Rlkg", "Ripl", "J", "K"
-  std::string meaning;      ///< what it is
-  double crosscheck_step;   ///< relative step of the nonlinear cross-check (0.1; 0.5 for kp) [-]
-  bool up_in_table;         ///< the increase is a physical fault and gets a table row
-  bool down_in_table;       ///< the decrease is a physical fault and gets a table row
+  std::string name;        ///< seed name: "kp", "kf", "Psupl", "Pbp", "Rbl", "Rf", "Dp", "Dm", "Rlkg", "Ripl", "J", "K"
+  std::string meaning;     ///< what it is
+  double crosscheck_step;  ///< relative step of the nonlinear cross-check (0.1; 0.5 for kp) [-]
+  bool up_in_table;        ///< the increase is a physical fault and gets a table row
+  bool down_in_table;      ///< the decrease is a physical fault and gets a table row
 };
 
 /// The catalogue, in table order.

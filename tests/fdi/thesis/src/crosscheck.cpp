@@ -77,8 +77,8 @@ void taylor_signs(const ThesisParams<double>& p0, const ThesisInputs<double>& u0
 }
 
 /// State of the stiff reference t after starting at x0 under (p, u).
-Vec4 reference_at(const ThesisParams<double>& p, const ThesisInputs<double>& u, const ThesisState<double>& x0,
-                  double t, const sim::ReferenceTolerances& tol) {
+Vec4 reference_at(const ThesisParams<double>& p, const ThesisInputs<double>& u, const ThesisState<double>& x0, double t,
+                  const sim::ReferenceTolerances& tol) {
   sim::ThesisReference ref(p, x0, 0.0, tol);
   ref.advance_to(t, u);
   return as_array(ref.state());
@@ -86,9 +86,7 @@ Vec4 reference_at(const ThesisParams<double>& p, const ThesisInputs<double>& u, 
 
 }  // namespace
 
-std::vector<OperatingCase> default_operating_cases() {
-  return {{"light", 1.6}, {"nominal", 1.0}, {"heavy", 0.65}};
-}
+std::vector<OperatingCase> default_operating_cases() { return {{"light", 1.6}, {"nominal", 1.0}, {"heavy", 0.65}}; }
 
 std::vector<CrosscheckRow> run_crosscheck(const CrosscheckOptions& opt) {
   sim::ReferenceTolerances tol;
@@ -118,8 +116,10 @@ std::vector<CrosscheckRow> run_crosscheck(const CrosscheckOptions& opt) {
         if (!steady_outputs(p1, u1, y1)) throw std::runtime_error("crosscheck: no steady state for " + row.fault);
         taylor_signs(p0, u0, p1, u1, op.x, opt.max_order, row.channel);
         const Vec4 r1 = reference_at(p1, u1, op.x, opt.t_early, tol);
-        const ForwardResult q = forward_qualitative(g_nl, fault_steps(fp.name, dir, ValveModel::kNonlinear), opt.max_order);
-        const ForwardResult w = forward_weighted(g_nl, fault_steps(fp.name, dir, ValveModel::kNonlinear), opt.max_order);
+        const ForwardResult q =
+            forward_qualitative(g_nl, fault_steps(fp.name, dir, ValveModel::kNonlinear), opt.max_order);
+        const ForwardResult w =
+            forward_weighted(g_nl, fault_steps(fp.name, dir, ValveModel::kNonlinear), opt.max_order);
         const Vec4 dc_sec = linear_steady_change(g_lin, fault_steps(fp.name, dir, ValveModel::kLinearised));
         const Vec4 dc_tan = linear_steady_change(g_nl, fault_steps(fp.name, dir, ValveModel::kNonlinear));
         for (std::size_t c = 0; c < 4; ++c) {

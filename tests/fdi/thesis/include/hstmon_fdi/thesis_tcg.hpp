@@ -4,7 +4,7 @@
 /// graph of thesis_bond_graph() in the causality of Table 2.4, with numeric gains at an
 /// operating point. Measurement nodes: p_mi ← e4, p_mo ← e18, p_pp ← e31, w_m ← f24.
 
-#include "hstmon_fdi/bond_graph.hpp"
+#include "hstmon_fdi/thesis_bond_graph.hpp"
 #include "hstmon_fdi/causal_graph.hpp"
 #include "hstmon_fdi/operating_point.hpp"
 
