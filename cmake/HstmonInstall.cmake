@@ -40,7 +40,8 @@ if(TARGET hstmon_cpu_cm4f)
 endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/ ${PROJECT_SOURCE_DIR}/lib/circuit/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
-install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_circuit_c.h
+install(FILES ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c.h ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_c_types.h
+  ${PROJECT_SOURCE_DIR}/ports/c_api/include/hstmon_circuit_c.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT development)
 # A circuit's C API is built by the user, for the circuit they generated: its source (and
 # the one header it includes beside it) and the CMake function that compiles them.

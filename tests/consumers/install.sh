@@ -12,7 +12,7 @@ mkdir -p "$(dirname "$HSTMON_PREFIX")"
 cmake --install "$build" --prefix "$HSTMON_PREFIX" --component development >"$HSTMON_PREFIX.log" 2>&1 ||
   { cat "$HSTMON_PREFIX.log"; exit 1; }
 cd "$HSTMON_PREFIX"
-for f in include/hstmon/hstmon.hpp include/hstmon_c.h include/hstmon_circuit_c.h lib/libhstmon_c.a lib/libhstmon_c_engine.a \
+for f in include/hstmon/hstmon.hpp include/hstmon_c.h include/hstmon_c_types.h include/hstmon_circuit_c.h lib/libhstmon_c.a lib/libhstmon_c_engine.a \
          lib/cmake/hstmon/hstmonConfig.cmake lib/cmake/hstmon/hstmonConfigVersion.cmake \
          lib/cmake/hstmon/hstmonTargets.cmake lib/cmake/hstmon/HstmonCircuitCApi.cmake \
          share/hstmon/c_api/hstmon_circuit_c.cpp lib/pkgconfig/hstmon-c.pc lib/pkgconfig/hstmon-c-engine.pc; do

@@ -7,13 +7,17 @@
  * builds one library per circuit). Channel and input counts, names and units come from
  * the circuit: ask hstmon_circuit_channels(), hstmon_circuit_channel_column(), … .
  *
- * - No heap: monitors come from a static pool of HSTMON_CIRCUIT_MONITORS (a build
- *   definition, default 1) inside the library, sized for this circuit at compile time.
+ * - No heap: a monitor lives in a buffer the caller owns (as hstmon_c.h's), of
+ *   hstmon_circuit_monitor_size() bytes aligned to HSTMON_CIRCUIT_MONITOR_ALIGN; a static
+ *   `hstmon_circuit_monitor_storage` has both. Its size, HSTMON_CIRCUIT_MONITOR_BYTES, is
+ *   set where the library is built (hstmon_add_circuit_c_api(... MONITOR_BYTES n)) and
+ *   checked against the monitor at compile time. The monitor lives as long as its buffer:
+ *   nothing to release.
  * - Never blocks, never throws. Not thread-safe per monitor.
  * - Units are SI: pressures in Pa (gauge), speeds in rad/s, flows in m³/s, orifice areas
  *   in m², time in s. A log column's factor to SI is hstmon_circuit_*_unit_scale().
- * - Status codes, matcher states, events, candidates and health bits are those of the
- *   thesis C API (hstmon_c.h), which this header includes.
+ * - Status codes, matcher states, events, candidates and health bits are the shared C
+ *   types (hstmon_c_types.h), as in the thesis rig's API (hstmon_c.h).
  */
 #ifndef HSTMON_CIRCUIT_C_H
 #define HSTMON_CIRCUIT_C_H
@@ -21,7 +25,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "hstmon_c.h"
+#include "hstmon_c_types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -51,8 +55,24 @@ typedef struct hstmon_circuit_report {
   uint64_t ticks;                               /**< ticks since the last start */
 } hstmon_circuit_report;
 
-/** Opaque monitor handle (a slot of the library's static pool). */
+/** Bytes of hstmon_circuit_monitor_storage: the library's MONITOR_BYTES (a compile
+ *  definition its users see; hstmon_circuit_monitor_size() is never larger). */
+#ifndef HSTMON_CIRCUIT_MONITOR_BYTES
+#error "HSTMON_CIRCUIT_MONITOR_BYTES comes with the library: link the target hstmon_add_circuit_c_api() made"
+#endif
+/** Alignment a monitor buffer needs [bytes] (Eigen's fixed-size types on SIMD hosts). */
+#define HSTMON_CIRCUIT_MONITOR_ALIGN 16
+
+/** Opaque monitor handle; points into the caller's buffer. */
 typedef struct hstmon_circuit_monitor hstmon_circuit_monitor;
+
+/** A buffer with the right size and alignment for one monitor; declare it static. */
+typedef struct hstmon_circuit_monitor_storage {
+  HSTMON_ALIGNAS(HSTMON_CIRCUIT_MONITOR_ALIGN) unsigned char bytes[HSTMON_CIRCUIT_MONITOR_BYTES];
+} hstmon_circuit_monitor_storage;
+
+/** Bytes one monitor takes (with the model its setup solves on), ≤ HSTMON_CIRCUIT_MONITOR_BYTES. */
+size_t hstmon_circuit_monitor_size(void);
 
 /** The generated circuit header the library was built with ("paper_circuit", …). */
 const char* hstmon_circuit_name(void);
@@ -74,33 +94,31 @@ double hstmon_circuit_input_unit_scale(int i);
 /** Fills u[0 … hstmon_circuit_inputs()−1] with the circuit's nominal inputs [SI]. */
 void hstmon_circuit_nominal_inputs(float* u);
 
-/** Takes a monitor from the pool, configures it from the generated values as
- *  `hstmon replay --circuit` does (sensor noise and ranges, parameter uncertainty, the
- *  circuit allowances, matcher windows from the slowest time constant at first->u) and
- *  starts it from the first sample as `--init auto` does: from the measured states, or at
- *  the steady state when every channel reads within 3σ of it, else at rest. Pass `first`
- *  to hstmon_circuit_step() as the first tick's sample too. Costs a few hundred
- *  steady-state solves (the bound and the start); never call it on a tick deadline.
+/** Constructs a monitor in buf (placement; no heap), configures it from the generated
+ *  values as `hstmon replay --circuit` does (sensor noise and ranges, parameter
+ *  uncertainty, the circuit allowances, matcher windows from the slowest time constant at
+ *  first->u) and starts it from the first sample as `--init auto` does: from the measured
+ *  states, or at the steady state when every channel reads within 3σ of it, else at rest.
+ *  Pass `first` to hstmon_circuit_step() as the first tick's sample too. Costs a few
+ *  hundred steady-state solves (the bound and the start); never call it on a tick
+ *  deadline. The buffer must stay valid while the monitor is used; there is no destroy:
+ *  drop or reuse the buffer.
+ *  @param buf    ≥ hstmon_circuit_monitor_size() bytes, aligned to HSTMON_CIRCUIT_MONITOR_ALIGN
+ *  @param size   size of buf [bytes]
  *  @param first  the first sample (inputs and measurements) [SI]
  *  @param out    receives the handle on HSTMON_OK, NULL otherwise
  *  @param start  out, may be NULL: how the state was chosen (hstmon_start)
- *  @return HSTMON_OK; HSTMON_INVALID_CONFIG when NULL pointers are passed or the pool is
- *          used up; HSTMON_INVALID_PARAMS when the generated values make no circuit;
+ *  @return HSTMON_OK; HSTMON_INVALID_CONFIG for NULL pointers or a small or misaligned
+ *          buffer; HSTMON_INVALID_PARAMS when the generated values make no circuit;
  *          HSTMON_INVALID_INPUTS when first->u is refused */
-hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_circuit_monitor** out,
-                                    uint8_t* start);
+hstmon_status hstmon_circuit_create(void* buf, size_t size, const hstmon_circuit_sample* first,
+                                    hstmon_circuit_monitor** out, uint8_t* start);
 
 /** Restarts an existing monitor at the steady state for inputs u (a machine known to be
  *  running; no measurement needed).
  *  @param u  hstmon_circuit_inputs() inputs [SI]
  *  @return HSTMON_OK, HSTMON_INVALID_INPUTS or HSTMON_NO_STEADY_STATE (monitor unchanged) */
 hstmon_status hstmon_circuit_reset_steady(hstmon_circuit_monitor* m, const float* u);
-
-/** Bytes one monitor of the pool takes (static RAM, with the model its setup solves on). */
-size_t hstmon_circuit_monitor_size(void);
-
-/** Returns the monitor to the pool; the handle must not be used again. */
-void hstmon_circuit_release(hstmon_circuit_monitor* m);
 
 /** Restarts an existing monitor from sample s as hstmon_circuit_create() starts it. */
 hstmon_status hstmon_circuit_restart(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s, uint8_t* start);

@@ -1,7 +1,7 @@
 #pragma once
 // What the two C APIs (hstmon_c.cpp, hstmon_circuit_c.cpp) share: copying a matcher's
 // ranked candidates and its events into the C structs.
-#include "hstmon_c.h"
+#include "hstmon_c_types.h"
 
 namespace hstmon::c_api {
 

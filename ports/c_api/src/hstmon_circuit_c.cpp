@@ -6,8 +6,10 @@
 // plain C structs and the core's types; all numerics stay in lib/.
 #include "hstmon_circuit_c.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <new>
+#include <type_traits>
 
 #include "c_api_copy.hpp"
 
@@ -20,9 +22,6 @@
 #endif
 #ifndef HSTMON_C_SIGNATURES
 #error "HSTMON_C_SIGNATURES must name the generated fault table (e.g. paper_signatures)"
-#endif
-#ifndef HSTMON_CIRCUIT_MONITORS
-#define HSTMON_CIRCUIT_MONITORS 1
 #endif
 #ifndef HSTMON_C_COMPILED
 #define HSTMON_C_COMPILED 0
@@ -61,7 +60,6 @@ constexpr int kIn = gen::Cap::kInputs;
 static_assert(sig::kChannels == kCh, "the fault table and the circuit header must come from the same circuit");
 static_assert(kCh <= HSTMON_CIRCUIT_MAX_CHANNELS, "a circuit has at most 8 channels");
 static_assert(kIn <= HSTMON_CIRCUIT_MAX_INPUTS, "raise HSTMON_CIRCUIT_MAX_INPUTS in hstmon_circuit_c.h");
-static_assert(HSTMON_CIRCUIT_MONITORS >= 1, "the pool needs at least one monitor");
 
 constexpr hstmon::circuit::GeneratedValues<gen::Cap> kValues{&gen::kCircuit, gen::kParams,  gen::kNoiseSigma,
                                                              gen::kRangeLo,  gen::kRangeHi, gen::kUncertainty,
@@ -69,17 +67,27 @@ constexpr hstmon::circuit::GeneratedValues<gen::Cap> kValues{&gen::kCircuit, gen
 
 }  // namespace
 
-// The object behind the opaque handle: the monitor and the model its setup solves on.
+// The object behind the opaque handle, in the caller's buffer: the monitor and the model
+// its setup solves on.
 struct hstmon_circuit_monitor {
   Mon mon;
   Model scratch;
-  bool used = false;
 };
 
-namespace {
+// A buffer is dropped or reused without a destructor call.
+static_assert(std::is_trivially_destructible<hstmon_circuit_monitor>::value, "the monitor must need no destructor");
+static_assert(alignof(hstmon_circuit_monitor) <= HSTMON_CIRCUIT_MONITOR_ALIGN,
+              "raise HSTMON_CIRCUIT_MONITOR_ALIGN in hstmon_circuit_c.h");
+// MONITOR_BYTES of hstmon_add_circuit_c_api() too small: the template argument in the
+// compiler's message is the size this circuit's monitor needs [bytes].
+template <std::size_t kNeeded, std::size_t kGiven>
+struct MonitorFitsStorage {
+  static_assert(kNeeded <= kGiven, "raise MONITOR_BYTES of hstmon_add_circuit_c_api() to kNeeded");
+  static constexpr bool value = true;
+};
+static_assert(MonitorFitsStorage<sizeof(hstmon_circuit_monitor), HSTMON_CIRCUIT_MONITOR_BYTES>::value, "");
 
-// The pool (static: no heap, not on the stack).
-hstmon_circuit_monitor g_pool[HSTMON_CIRCUIT_MONITORS];
+namespace {
 
 Model::Inputs to_core(const float* u) noexcept {
   Model::Inputs v;
@@ -136,33 +144,28 @@ void hstmon_circuit_nominal_inputs(float* u) {
   for (int i = 0; i < gen::kCircuit.n_inputs; ++i) u[i] = static_cast<float>(gen::kInputs[i]);
 }
 
-hstmon_status hstmon_circuit_create(const hstmon_circuit_sample* first, hstmon_circuit_monitor** out, uint8_t* start) {
+hstmon_status hstmon_circuit_create(void* buf, size_t size, const hstmon_circuit_sample* first,
+                                    hstmon_circuit_monitor** out, uint8_t* start) {
   if (out != nullptr) *out = nullptr;
-  if (first == nullptr || out == nullptr) return HSTMON_INVALID_CONFIG;
-  for (hstmon_circuit_monitor& m : g_pool) {
-    if (m.used) continue;
-    const hstmon_status s = start_from(m, *first, start);
-    if (s != HSTMON_OK) return s;  // the slot stays free
-    m.used = true;
-    *out = &m;
-    return HSTMON_OK;
+  if (buf == nullptr || first == nullptr || out == nullptr || size < sizeof(hstmon_circuit_monitor) ||
+      reinterpret_cast<std::uintptr_t>(buf) % alignof(hstmon_circuit_monitor) != 0) {
+    return HSTMON_INVALID_CONFIG;
   }
-  return HSTMON_INVALID_CONFIG;
+  auto* m = new (buf) hstmon_circuit_monitor();
+  const hstmon_status s = start_from(*m, *first, start);
+  if (s == HSTMON_OK) *out = m;
+  return s;
 }
 
 hstmon_status hstmon_circuit_reset_steady(hstmon_circuit_monitor* m, const float* u) {
-  if (m == nullptr || u == nullptr || !m->used) return HSTMON_INVALID_INPUTS;
+  if (m == nullptr || u == nullptr) return HSTMON_INVALID_INPUTS;
   return static_cast<hstmon_status>(m->mon.reset_steady(to_core(u)));
 }
 
 size_t hstmon_circuit_monitor_size(void) { return sizeof(hstmon_circuit_monitor); }
 
-void hstmon_circuit_release(hstmon_circuit_monitor* m) {
-  if (m != nullptr) m->used = false;
-}
-
 hstmon_status hstmon_circuit_restart(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s, uint8_t* start) {
-  if (m == nullptr || s == nullptr || !m->used) return HSTMON_INVALID_CONFIG;
+  if (m == nullptr || s == nullptr) return HSTMON_INVALID_CONFIG;
   return start_from(*m, *s, start);
 }
 

@@ -4,8 +4,9 @@
  * SI with its unit scales, one hstmon_circuit_step() per row — and checks what the same
  * log gives through `hstmon replay --circuit` and the firmware image: no event before the
  * fault, then a detection and an isolation whose best candidate is the expected fault.
- * Also: counts and names come from the circuit, the pool refuses a second monitor and
- * takes one again after a release, NULL and NaN never crash or propagate.
+ * Also: counts and names come from the circuit; a monitor lives in a buffer the caller
+ * owns (a small or misaligned one is refused, two are independent); NULL and NaN never
+ * crash or propagate.
  *   test_circuit_c_api LOG.csv EXPECTED_FAULT FAULT_TIME_S
  * Exit status 0 = pass. */
 #include <math.h>
@@ -92,17 +93,33 @@ static void test_describes_the_circuit(void) {
   for (i = 0; i < hstmon_circuit_inputs(); ++i) CHECK(u[i] > 0.0f);
 }
 
+/* The monitors live in buffers the caller owns (two: each is independent of the other). */
+static hstmon_circuit_monitor_storage g_buf[2];
+
 static void test_bad_calls_never_crash(void) {
   hstmon_circuit_report r;
+  hstmon_circuit_sample s;
   hstmon_event e;
   hstmon_circuit_monitor* m = (hstmon_circuit_monitor*)&r; /* must be set to NULL */
-  CHECK(hstmon_circuit_create(NULL, &m, NULL) == HSTMON_INVALID_CONFIG && m == NULL);
+  memset(&s, 0, sizeof s);
+  hstmon_circuit_nominal_inputs(s.u);
+  CHECK(hstmon_circuit_monitor_size() > 0u && hstmon_circuit_monitor_size() <= sizeof g_buf[0]);
+  CHECK(hstmon_circuit_create(g_buf[0].bytes, sizeof g_buf[0], NULL, &m, NULL) == HSTMON_INVALID_CONFIG && m == NULL);
+  m = (hstmon_circuit_monitor*)&r;
+  CHECK(hstmon_circuit_create(NULL, sizeof g_buf[0], &s, &m, NULL) == HSTMON_INVALID_CONFIG && m == NULL);
+  m = (hstmon_circuit_monitor*)&r;
+  /* Too small by one byte, or misaligned: refused. */
+  CHECK(hstmon_circuit_create(g_buf[0].bytes, hstmon_circuit_monitor_size() - 1u, &s, &m, NULL) ==
+            HSTMON_INVALID_CONFIG &&
+        m == NULL);
+  CHECK(hstmon_circuit_create(g_buf[0].bytes + 1, sizeof g_buf[0] - 1u, &s, &m, NULL) == HSTMON_INVALID_CONFIG &&
+        m == NULL);
   CHECK(hstmon_circuit_step(NULL, NULL) == 0u);
   hstmon_circuit_read(NULL, &r);
   CHECK(hstmon_circuit_match_status(NULL) == HSTMON_MATCH_NOMINAL);
   CHECK(hstmon_circuit_pop_event(NULL, &e) == 0);
   CHECK(hstmon_circuit_candidates(NULL, NULL, 0) == 0);
-  hstmon_circuit_release(NULL);
+  CHECK(hstmon_circuit_restart(NULL, &s, NULL) == HSTMON_INVALID_CONFIG);
 }
 
 static void replay(const char* path, const char* expect, double t_fault) {
@@ -134,10 +151,9 @@ static void replay(const char* path, const char* expect, double t_fault) {
     for (i = 0; i < n_ch; ++i) s.y[i] = (float)(data[k][ch_col[i]] * hstmon_circuit_channel_unit_scale(i));
     s.valid = (uint8_t)((1u << n_ch) - 1u);
     if (k == 0) {
-      CHECK(hstmon_circuit_create(&s, &m, &start) == HSTMON_OK && m != NULL);
+      CHECK(hstmon_circuit_create(g_buf[0].bytes, sizeof g_buf[0], &s, &m, &start) == HSTMON_OK &&
+            m == (hstmon_circuit_monitor*)(void*)g_buf[0].bytes);
       CHECK(start <= HSTMON_START_STEADY);
-      /* The pool holds one monitor: a second create is refused. */
-      CHECK(hstmon_circuit_create(&s, &second, NULL) == HSTMON_INVALID_CONFIG && second == NULL);
       if (m == NULL) return;
     }
     CHECK(hstmon_circuit_step(m, &s) == 0u);
@@ -170,16 +186,15 @@ static void replay(const char* path, const char* expect, double t_fault) {
   hstmon_circuit_read(m, &r);
   for (i = 0; i < n_ch; ++i) CHECK(isfinite(r.estimate[i]));
 
-  /* Released, the slot is taken again; a restart starts afresh. */
-  hstmon_circuit_release(m);
-  CHECK(hstmon_circuit_restart(m, &last, &start) == HSTMON_INVALID_CONFIG); /* released */
-  CHECK(hstmon_circuit_create(&last, &second, NULL) == HSTMON_OK && second == m);
+  /* A second monitor in its own buffer leaves the first alone; a restart starts afresh. */
+  CHECK(hstmon_circuit_create(g_buf[1].bytes, sizeof g_buf[1], &last, &second, NULL) == HSTMON_OK && second != NULL);
   if (second != NULL) {
     (void)hstmon_circuit_step(second, &last);
+    hstmon_circuit_read(m, &r);
+    CHECK(r.ticks == (uint64_t)rows + 2u);
     CHECK(hstmon_circuit_restart(second, &last, &start) == HSTMON_OK);
     hstmon_circuit_read(second, &r);
     CHECK(r.ticks == 0u);
-    hstmon_circuit_release(second);
   }
 }
 

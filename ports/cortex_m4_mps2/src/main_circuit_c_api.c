@@ -1,6 +1,6 @@
 /* Circuit C API image: the paper's HST monitor through hstmon_circuit_c.h, from C, as C
  * firmware would hold it (ports/c_api: hstmon_add_circuit_c_api, paper_circuit +
- * paper_signatures, one monitor in the library's static pool). Under
+ * paper_signatures, one monitor in a static buffer of the program's). Under
  * `qemu -icount shift=0` it measures (scripts/footprint.sh reports them, not gated):
  *  - instructions per hstmon_circuit_step() at the steady state of the nominal inputs, the
  *    generated 5 ms tick, every channel measured with ±σ-sized alternating noise (SysTick
@@ -22,8 +22,8 @@
 enum { kTicks = 1000, kCalibLoop = 100000 };
 
 static volatile uint32_t sink;
-
-
+/* The monitor's buffer (static RAM; the library's MONITOR_BYTES sizes it). */
+static hstmon_circuit_monitor_storage g_monitor;
 
 __attribute__((noinline)) static uint32_t empty_step(hstmon_circuit_monitor* m, const hstmon_circuit_sample* s) {
   __asm volatile("" ::"r"(m), "r"(s) : "memory");
@@ -67,7 +67,7 @@ int main(void) {
   memset(&s, 0, sizeof s);
   hstmon_circuit_nominal_inputs(s.u);
   hstmon_circuit_monitor* m = 0;
-  if (hstmon_circuit_create(&s, &m, 0) != HSTMON_OK) semihost_exit(10);
+  if (hstmon_circuit_create(&g_monitor, sizeof g_monitor, &s, &m, 0) != HSTMON_OK) semihost_exit(10);
   if (hstmon_circuit_reset_steady(m, s.u) != HSTMON_OK) semihost_exit(11);
   hstmon_circuit_report r;
   hstmon_circuit_read(m, &r);

@@ -8,6 +8,9 @@
 
 #include "hstmon_circuit_c.h"
 
+/* The monitor's buffer: static, owned by the program (no heap). */
+static hstmon_circuit_monitor_storage g_monitor;
+
 /* Uniform noise in [-a, a] from a fixed linear congruential sequence. */
 static float noise(float a) {
   static uint32_t x = 12345u;
@@ -29,7 +32,8 @@ int main(void) {
     printf("circuit: %s with %d channels\n", hstmon_circuit_name(), hstmon_circuit_channels());
     return 1;
   }
-  if (hstmon_circuit_create(&s, &m, NULL) != HSTMON_OK || hstmon_circuit_reset_steady(m, s.u) != HSTMON_OK) {
+  if (hstmon_circuit_create(&g_monitor, sizeof g_monitor, &s, &m, NULL) != HSTMON_OK ||
+      hstmon_circuit_reset_steady(m, s.u) != HSTMON_OK) {
     printf("create/reset_steady failed\n");
     return 1;
   }
@@ -54,6 +58,5 @@ int main(void) {
   printf("%s: %d channels, %d faults, %d events before the offset, offset detected after %.3f s\n",
          hstmon_circuit_name(), hstmon_circuit_channels(), hstmon_circuit_faults(), events,
          detected_at < 0 ? -1.0 : (double)(detected_at - n) * (double)tick);
-  hstmon_circuit_release(m);
   return events == 0 && detected_at >= 0 ? 0 : 1;
 }
