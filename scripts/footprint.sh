@@ -160,7 +160,7 @@ printf "  %-44s %8s %-6s\n" "flash (image − C API empty image)" "$(( (t1 + d1)
 aelf="$build/bin/hstmon_fw_circuit_c_api.elf"
 asym() { arm-none-eabi-nm "$aelf" | awk -v n="$1" '$3==n{print $1}'; }
 printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$(( d1 + b1 - (16#$(asym __stack_top__) - 16#$(asym __stack_limit__)) ))" "B"
-printf "  %-44s %8s %-6s\n" "  of which one monitor of the pool" "$(afield monitor_bytes)" "B"
+printf "  %-44s %8s %-6s\n" "  of which the monitor's buffer (static)" "$(afield monitor_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "stack, create + reset_steady (painting)" "$(afield stack_setup_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "stack, step (painting)" "$(afield stack_step_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "instructions per 5 ms step (qemu icount)" \
