@@ -179,8 +179,7 @@ int run_table_header(const std::string& circuit, const std::string& params, cons
   }
   circuit_tools::LoadedCircuit c;
   if (!load(circuit, params, c)) return 2;
-  std::string source = circuit.empty() ? std::string("the built-in thesis.json")
-                                       : std::filesystem::path(circuit).filename().string();
+  std::string source = std::filesystem::path(c.file.path).filename().string();  // "thesis.json (built in)" too
   if (!c.params_path.empty()) source += " with " + std::filesystem::path(c.params_path).filename().string();
   const circuit_tools::CircuitFaultTable table = circuit_signature_table(c);
   for (const std::string& n : table.notes) std::cerr << "hstmon-fdi table: note: " << n << '\n';
