@@ -8,8 +8,9 @@
 # caller owns: MONITOR_BYTES (default 16384) sizes hstmon_circuit_monitor_storage, a public
 # compile definition the library's users see; the build fails when the circuit's monitor
 # needs more, and the compiler's message names the size it needs (firmware sets it to
-# that; hstmon_circuit_monitor_size() says it at run time). COMPILED runs the circuit's compiled model instead of the
-# interpreter: hstmon/generated/<header>_compiled.hpp (`hstmon-circuit-header --compiled`),
+# that; hstmon_circuit_monitor_size() says it at run time). COMPILED runs the circuit's
+# compiled model instead of the interpreter: hstmon/generated/<header>_compiled.hpp
+# (`hstmon-circuit-header --compiled`),
 # the same numbers from straight-line code at a fraction of the instructions per step. The same code-generation flags as hstmon::c_api (no exceptions, no
 # RTTI, no fused multiply-add: the host float build and the firmware compute the same bits).
 #

@@ -1,9 +1,18 @@
 #pragma once
-// What the two C APIs (hstmon_c.cpp, hstmon_circuit_c.cpp) share: copying a matcher's
-// ranked candidates and its events into the C structs.
+// What the two C APIs (hstmon_c.cpp, hstmon_circuit_c.cpp) share: the check of a caller's
+// monitor buffer, and copying a matcher's ranked candidates and its events into the C structs.
+#include <cstddef>
+#include <cstdint>
+
 #include "hstmon_c_types.h"
 
 namespace hstmon::c_api {
+
+/// True when buf can hold a T: not NULL, at least sizeof(T) bytes, aligned for T.
+template <class T>
+bool buffer_fits(const void* buf, std::size_t size) noexcept {
+  return buf != nullptr && size >= sizeof(T) && reinterpret_cast<std::uintptr_t>(buf) % alignof(T) == 0;
+}
 
 /// Copies min(total, max) candidates of `mt` (best first) into out (may be NULL when max is 0).
 /// @return the number of consistent hypotheses in total

@@ -166,8 +166,7 @@ HSTMON_C_RARE void hstmon_default_inputs(hstmon_inputs* u) {
 
 HSTMON_C_RARE hstmon_status hstmon_create(void* buf, size_t size, const hstmon_config* cfg, hstmon_monitor** out) {
   if (out != nullptr) *out = nullptr;
-  if (buf == nullptr || cfg == nullptr || out == nullptr || size < sizeof(hstmon_monitor) ||
-      reinterpret_cast<std::uintptr_t>(buf) % alignof(hstmon_monitor) != 0) {
+  if (cfg == nullptr || out == nullptr || !hstmon::c_api::buffer_fits<hstmon_monitor>(buf, size)) {
     return HSTMON_INVALID_CONFIG;
   }
   const hstmon::ThesisParams<float> p = to_core(cfg->params);

@@ -147,8 +147,7 @@ void hstmon_circuit_nominal_inputs(float* u) {
 hstmon_status hstmon_circuit_create(void* buf, size_t size, const hstmon_circuit_sample* first,
                                     hstmon_circuit_monitor** out, uint8_t* start) {
   if (out != nullptr) *out = nullptr;
-  if (buf == nullptr || first == nullptr || out == nullptr || size < sizeof(hstmon_circuit_monitor) ||
-      reinterpret_cast<std::uintptr_t>(buf) % alignof(hstmon_circuit_monitor) != 0) {
+  if (first == nullptr || out == nullptr || !hstmon::c_api::buffer_fits<hstmon_circuit_monitor>(buf, size)) {
     return HSTMON_INVALID_CONFIG;
   }
   auto* m = new (buf) hstmon_circuit_monitor();
