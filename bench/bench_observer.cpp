@@ -149,22 +149,21 @@ void BM_Interleaved(benchmark::State& state) {
   const MeasurementTable<T> table(ours.estimate());
   hstmon::ThesisInputs<T> u{};
   std::uint64_t i = 0, j = 0;
+  // kBlock ticks of obs, reading the table from row `at` on.
+  const auto block = [&](auto& obs, std::uint64_t& at) {
+    for (int k = 0; k < kBlock; ++k) {
+      benchmark::DoNotOptimize(u);
+      one_tick(obs, u, table[at++]);
+      benchmark::DoNotOptimize(obs.residual());
+      benchmark::ClobberMemory();
+    }
+  };
   double t_ours = 0, t_theirs = 0;
   for (auto _ : state) {
     const double t0 = thread_seconds();
-    for (int k = 0; k < kBlock; ++k) {
-      benchmark::DoNotOptimize(u);
-      one_tick(ours, u, table[i++]);
-      benchmark::DoNotOptimize(ours.residual());
-      benchmark::ClobberMemory();
-    }
+    block(ours, i);
     const double t1 = thread_seconds();
-    for (int k = 0; k < kBlock; ++k) {
-      benchmark::DoNotOptimize(u);
-      one_tick(theirs, u, table[j++]);
-      benchmark::DoNotOptimize(theirs.residual());
-      benchmark::ClobberMemory();
-    }
+    block(theirs, j);
     const double t2 = thread_seconds();
     const double a = t1 - t0;
     const double b = t2 - t1;

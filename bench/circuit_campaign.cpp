@@ -1,11 +1,11 @@
-// Fault campaign for any circuit file (issue 15; docs/fault_campaign.md, "Any circuit"):
+// Fault campaign for any circuit file (docs/fault_campaign.md, "Any circuit"):
 // synthetic logs of the circuit from host_sim's stiff reference (hstmon-sim --circuit's
 // simulate_circuit), replayed exactly as `hstmon replay --circuit` does (replay_circuit:
 // the circuit's monitor and its generated fault table), scored as the thesis campaign
 // scores. A benchmark program, not a test: nothing in CI runs it.
 //
 //   hstmon_circuit_campaign --circuit F [--params P] [--hours H] [--seeds N] [--jobs N]
-//                           [--magnitude M] [--seed-base B] [--json] [--verbose]
+//                           [--magnitude M] [--seed-base B] [--adc-bits N] [--lag S] [--json] [--verbose]
 //
 // Conditions: start at the steady state or from rest (inputs on at the first sample), at
 // 1 kHz and 100 Hz. Every run has a machine 2 % off the file's values (each parameter the
@@ -13,7 +13,7 @@
 // where longer: a steady-state signature needs 4 τ to be read) one of
 // the logged inputs with a non-zero nominal value moves to nominal × U[0.8, 1.25]
 // (fractions kept within ±1). The sensors are the circuit file's (white noise, range
-// clipping; no lag, no ADC: the circuit simulator has none yet).
+// clipping), the pressures through an ADC and every channel through a lag only when --adc-bits / --lag ask.
 //
 // Faults (fault at 2.5 s or 3 τ, runs 2.5 s or 6 τ longer, τ the circuit's slowest time
 // constant at its nominal inputs): every row of the circuit's fault table —
@@ -47,6 +47,7 @@
 #include "hstmon_circuit/operating_points.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
+#include "hstmon_circuit/machine_spread.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace {
@@ -113,6 +114,8 @@ Timing g_timing;
 hstmon::circuit_tools::CircuitFaultTable g_table;
 // --matcher-only: the matcher's verdict alone, as the firmware runs it (no fit, no step at held inputs).
 bool g_matcher_only = false;
+// The transducers of every run (--lag, --adc-bits; none by default, as the recorded figures).
+hstmon::circuit_tools::TransducerOptions g_transducers;
 // The classes of faults no operating point of the runs' span splits (split_by_operating_point
 // on the matcher's table; hstmon-fdi isolability --circuit): "isolated on the truth or its class".
 std::vector<std::vector<std::string>> g_classes;
@@ -139,16 +142,6 @@ struct RunResult {
   bool early() const { return s.false_events > 0; }
   bool missed() const { return !s.detected || !s.in_last || early(); }
 };
-
-// The machine for one run: the file's values with every uncertain parameter ±2 %.
-LoadedCircuit machine(const LoadedCircuit& c, std::mt19937_64& rng) {
-  LoadedCircuit m = c;
-  std::uniform_real_distribution<double> u(-0.02, 0.02);
-  for (std::size_t p = 0; p < c.file.params.size(); ++p) {
-    if (hstmon::circuit_tools::moves_steady_state(c.file.params[p])) m.values.params.v[p] *= 1.0 + u(rng);
-  }
-  return m;
-}
 
 // Input steps every load period from 1 s, each on one input with a non-zero nominal value.
 // Before the fault time: a random input to nominal × U[0.8, 1.25], load steps near the
@@ -199,12 +192,13 @@ std::string g_dump_dir;
 RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f, double duration, std::uint64_t seed) {
   RunResult r;
   std::mt19937_64 rng(seed);
-  LoadedCircuit m = machine(c, rng);
+  LoadedCircuit m = hstmon::circuit_tools::spread_machine(c, 0.02, rng);  // the file's values, uncertain ones ±2 %
   CircuitSimOptions so;
   so.duration = duration;
   so.rate = cond.rate;
   so.seed = seed;
   so.from_rest = cond.from_rest;
+  so.transducers = g_transducers;
   so.steps = load_steps(c, duration, rng);
   const bool faulted = !f.name.empty();
   if (f.param >= 0) {
@@ -361,6 +355,11 @@ void add_options(CLI::App& app, Settings& o) {
   app.add_flag("--verbose", o.verbose,
                "print every fault run whose truth is not in the reported set, or that is detected and not isolated on "
                "the truth or its class");
+  app.add_option("--adc-bits", g_transducers.pressure_adc_bits,
+                 "every pressure channel through an ADC of N bits over its range")
+      ->check(CLI::Range(4, 24));
+  app.add_option("--lag", g_transducers.lag, "every channel through a first-order lag of this time constant [s]")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--matcher-only", g_matcher_only,
                "the matcher's verdict alone, as the firmware runs it (replay --circuit --matcher-only)");
 }

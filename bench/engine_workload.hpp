@@ -9,6 +9,7 @@
 
 #include <array>
 #include <boost/numeric/odeint.hpp>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -108,19 +109,20 @@ template <typename T>
 using CompiledGeneralObs = hstmon::Observer<Compiled<T>, false>;
 static_assert(CompiledObs<double>::kUsualTick, "host builds: the compiled model's usual tick");
 
+/// The generated header's values (its kParams or kInputs) as the compiled model's Vec of T.
+template <typename T, typename Vec, std::size_t N>
+Vec compiled_values(const double (&values)[N]) noexcept {
+  Vec v;
+  for (std::size_t i = 0; i < N; ++i) v.v[i] = static_cast<T>(values[i]);
+  return v;
+}
 template <typename T>
 typename Compiled<T>::Params compiled_params() noexcept {
-  namespace gen = hstmon::generated::thesis_circuit;
-  typename Compiled<T>::Params p;
-  for (int i = 0; i < gen::Cap::kParams; ++i) p.v[i] = static_cast<T>(gen::kParams[i]);
-  return p;
+  return compiled_values<T, typename Compiled<T>::Params>(hstmon::generated::thesis_circuit::kParams);
 }
 template <typename T>
 typename Compiled<T>::Inputs compiled_inputs() noexcept {
-  namespace gen = hstmon::generated::thesis_circuit;
-  typename Compiled<T>::Inputs u;
-  for (int i = 0; i < gen::Cap::kInputs; ++i) u.v[i] = static_cast<T>(gen::kInputs[i]);
-  return u;
+  return compiled_values<T, typename Compiled<T>::Inputs>(hstmon::generated::thesis_circuit::kInputs);
 }
 
 template <typename T, class Obs = CompiledObs<T>>

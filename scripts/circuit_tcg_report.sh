@@ -4,9 +4,7 @@
 # (hstmon-fdi graph|backward|crosscheck --circuit FILE; host_sim/fdi circuit_tcg).
 # scripts/circuit_tcg_report.sh [BUILD_DIR]  (default build/host-release)
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bin="${1:-$root/build/host-release}/bin/hstmon-fdi"
-[ -x "$bin" ] || { echo "circuit_tcg_report.sh: $bin not built" >&2; exit 2; }
+source "$(dirname "${BASH_SOURCE[0]}")/fdi_report_setup.sh"
 out="$root/docs/circuit_tcg.md"
 {
   cat <<'HEAD'

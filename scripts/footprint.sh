@@ -40,21 +40,55 @@ done
 max_flash=24576 max_ram=1536 max_stack=512 max_instr=1000
 
 fw() { "$root/scripts/firmware.sh" "$@" --build-dir "$build"; }
+# What every image below is measured with.
+json_field() { echo "$1" | grep -o "\"$2\":[0-9]*" | head -1 | cut -d: -f2; }  # JSON line, key
+elf_size() { arm-none-eabi-size "$1" | awk 'NR==2{print $1,$2,$3}'; }          # text data bss
+elf_symbol() { arm-none-eabi-nm "$1" | awk -v n="$2" '$3==n{print $1}'; }      # address (hex)
+heap_symbols() { arm-none-eabi-nm "$1" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true; }
+# Flash (text + data) and RAM (data + bss) of image $1 less those of image $2 [B].
+size_less() {
+  local t1 d1 b1 t0 d0 b0
+  read -r t1 d1 b1 < <(elf_size "$1")
+  read -r t0 d0 b0 < <(elf_size "$2")
+  echo "$(( (t1 + d1) - (t0 + d0) )) $(( (d1 + b1) - (d0 + b0) ))"
+}
+# RAM of image $1 without its stack reserve: data + bss − (__stack_top__ − __stack_limit__) [B].
+ram_less_stack() {
+  local d b
+  read -r _ d b < <(elf_size "$1")
+  echo $(( d + b - (16#$(elf_symbol "$1" __stack_top__) - 16#$(elf_symbol "$1" __stack_limit__)) ))
+}
+# SysTick counts $2, less counts $4 (default 0), as instructions per tick over $3 ticks
+# (default 1), by the calibration among the JSON fields function $1 reads.
+instr_of() {
+  awk -v c="$2" -v n="${3:-1}" -v e="${4:-0}" -v ci="$($1 calib_instructions)" -v cc="$($1 calib_counts)" \
+    'BEGIN { printf "%.0f", (c - e) * ci / cc / n }'
+}
+# Instructions per tick of an image's step loop, its empty loop subtracted.
+loop_instr() { instr_of "$1" "$($1 counts_step_loop)" "$($1 ticks)" "$($1 counts_empty_loop)"; }
+# The JSON line of type $2 that image $1 prints; exits 2, naming it $3, when the image fails.
+image_json() {
+  fw "$1" --no-build | grep "\"type\":\"$2\"" || { echo "footprint.sh: $3 image failed" >&2; exit 2; }
+}
+# A reported (not gated) image's flash, image $1 less image $2 and $4 bytes (default 0), and
+# its RAM without the stack reserve; $3 says what the flash is.
+reported_sizes() {
+  local flash
+  read -r flash _ < <(size_less "$1" "$2")
+  printf "  %-44s %8s %-6s\n" "$3" "$(( flash - ${4:-0} ))" "B"
+  printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$(ram_less_stack "$1")" "B"
+}
+
 with_json="$(fw footprint "${no_build[@]}")" || { echo "footprint.sh: footprint image failed" >&2; exit 2; }
 fw footprint_empty --no-build >/dev/null || { echo "footprint.sh: empty image failed" >&2; exit 2; }
-field() { echo "$with_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+field() { json_field "$with_json" "$1"; }
 
-read -r t1 d1 b1 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint.elf" | awk 'NR==2{print $1,$2,$3}')
-read -r t0 d0 b0 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
-flash=$(( (t1 + d1) - (t0 + d0) ))
-ram=$(( (d1 + b1) - (d0 + b0) ))
+read -r flash ram < <(size_less "$build/bin/hstmon_fw_footprint.elf" "$build/bin/hstmon_fw_footprint_empty.elf")
 stack=$(field stack_bytes)
 su="$(find "$build" -path '*hstmon_c.dir*' -name '*.su' | head -1)"
 frame=$(awk -F'\t' '{ if ($2 > m) m = $2 } END { print m + 0 }' "$su")
-instr=$(awk -v s="$(field counts_step_loop)" -v e="$(field counts_empty_loop)" -v ci="$(field calib_instructions)" \
-  -v cc="$(field calib_counts)" -v n="$(field ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')
-to_instr() { awk -v c="$1" -v ci="$(field calib_instructions)" -v cc="$(field calib_counts)" 'BEGIN { printf "%.0f", c * ci / cc }'; }
-heap_syms=$(arm-none-eabi-nm "$build/bin/hstmon_fw_footprint.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+instr=$(loop_instr field)
+heap_syms=$(heap_symbols "$build/bin/hstmon_fw_footprint.elf")
 heap_probe="refused"
 fw heap_probe >/dev/null 2>&1 || heap_probe="LINKED"
 
@@ -77,9 +111,9 @@ row "stack, step (painting, incl. timing loop)" "$(field stack_step_bytes)" "B" 
 printf "  %-44s %8s %-6s\n" "  largest single frame (.su, C API object)" "$frame" "B"
 row "instructions per 1 ms tick (qemu icount)" "$instr" "instr" "$max_instr"
 printf "  %-44s %8s %-6s\n" "  RK4 substeps of the measured ticks" "$(field max_substeps)" ""
-printf "  %-44s %8s %-6s\n" "first step after reset/input change (bound)" "$(to_instr "$(field counts_bound_step)")" "instr"
+printf "  %-44s %8s %-6s\n" "first step after reset/input change (bound)" "$(instr_of field "$(field counts_bound_step)")" "instr"
 row "  its stack (painting)" "$(field stack_bound_bytes)" "B" "$max_stack"
-printf "  %-44s %8s %-6s\n" "costliest tick of a fault episode (±40)" "$(to_instr "$(field counts_episode_max)")" "instr"
+printf "  %-44s %8s %-6s\n" "costliest tick of a fault episode (±40)" "$(instr_of field "$(field counts_episode_max)")" "instr"
 row "  stack over the episode (painting)" "$(field stack_episode_bytes)" "B" "$max_stack"
 row "heap: malloc/_sbrk/new symbols in image" "$heap_syms" "" 0
 if [ "$heap_probe" != refused ]; then echo "  heap: an image calling malloc LINKED (must be refused)"; fail=1; fi
@@ -91,14 +125,11 @@ echo "  heap: an image that calls malloc: link $heap_probe"
 # methods and budgets as above.
 circ_json="$(fw circuit_footprint --no-build)" || { echo "footprint.sh: circuit footprint image failed" >&2; exit 2; }
 fw circuit_footprint_empty --no-build >/dev/null || { echo "footprint.sh: circuit empty image failed" >&2; exit 2; }
-cfield() { echo "$circ_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
-read -r t1 d1 b1 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_footprint.elf" | awk 'NR==2{print $1,$2,$3}')
-read -r t0 d0 b0 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
-c_flash=$(( (t1 + d1) - (t0 + d0) ))
-c_ram=$(( (d1 + b1) - (d0 + b0) ))
-c_instr=$(awk -v s="$(cfield counts_step_loop)" -v e="$(cfield counts_empty_loop)" -v ci="$(cfield calib_instructions)" \
-  -v cc="$(cfield calib_counts)" -v n="$(cfield ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')
-c_heap=$(arm-none-eabi-nm "$build/bin/hstmon_fw_circuit_footprint.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+cfield() { json_field "$circ_json" "$1"; }
+circuit_empty="$build/bin/hstmon_fw_circuit_footprint_empty.elf"
+read -r c_flash c_ram < <(size_less "$build/bin/hstmon_fw_circuit_footprint.elf" "$circuit_empty")
+c_instr=$(loop_instr cfield)
+c_heap=$(heap_symbols "$build/bin/hstmon_fw_circuit_footprint.elf")
 echo "circuit engine: Observer<CompiledModel<float>> on the generated circuit ($(cfield states) states, $(cfield stiff_nodes) stiff nodes), Cortex-M4F, -O2"
 row "flash (text+data, image with − without)" "$c_flash" "B" "$max_flash"
 row "RAM (data+bss, image with − without)" "$c_ram" "B" "$max_ram"
@@ -118,19 +149,11 @@ row "heap: malloc/_sbrk/new symbols in image" "$c_heap" "" 0
 # whole replay by painting, below main's frame; instructions: the whole replay (setup,
 # monitor, statistics and output included, so a bound on the monitor's) per tick, qemu
 # -icount as above.
-mon_json="$(fw circuit_monitor --no-build | grep '"type":"circuit_monitor_footprint"')" ||
-  { echo "footprint.sh: circuit monitor image failed" >&2; exit 2; }
-mfield() { echo "$mon_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+mon_json="$(image_json circuit_monitor circuit_monitor_footprint "circuit monitor")"
+mfield() { json_field "$mon_json" "$1"; }
 melf="$build/bin/hstmon_fw_circuit_monitor.elf"
-read -r t1 d1 b1 _ < <(arm-none-eabi-size "$melf" | awk 'NR==2{print $1,$2,$3}')
-sym() { arm-none-eabi-nm "$melf" | awk -v n="$1" '$3==n{print $1}'; }
-stack_reserve=$(( 16#$(sym __stack_top__) - 16#$(sym __stack_limit__) ))
-m_flash=$(( (t1 + d1) - (t0 + d0) - $(mfield log_bytes) ))
-m_ram=$(( d1 + b1 - stack_reserve ))
-m_heap=$(arm-none-eabi-nm "$melf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
 echo "circuit monitor: CompiledCircuitMonitor<float> + generated fault table, replaying the embedded log, Cortex-M4F, -O2 (reported)"
-printf "  %-44s %8s %-6s\n" "flash (image − empty − embedded log)" "$m_flash" "B"
-printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$m_ram" "B"
+reported_sizes "$melf" "$circuit_empty" "flash (image − empty − embedded log)" "$(mfield log_bytes)"
 printf "  %-44s %8s %-6s\n" "  of which the monitor object (static)" "$(mfield monitor_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "  and the setup's model scratch (static)" "$(mfield model_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "stack, whole replay (painting)" "$(mfield stack_bytes)" "B"
@@ -138,9 +161,8 @@ msu="$(find "$build" -path '*hstmon_fw_circuit_monitor.dir*' -name 'fw_circuit_m
 printf "  %-44s %8s %-6s\n" "  of which the replay loop's frame (.su)" \
   "$(awk -F'\t' '/circuit_monitor_replay/ { if ($2 > m) m = $2 } END { print m + 0 }' "$msu")" "B"
 printf "  %-44s %8s %-6s\n" "instructions per tick, whole replay (bound)" \
-  "$(awk -v s="$(mfield counts_replay)" -v ci="$(mfield calib_instructions)" -v cc="$(mfield calib_counts)" \
-    -v n="$(mfield ticks)" 'BEGIN { printf "%.0f", s * ci / cc / n }')" "instr"
-row "heap: malloc/_sbrk/new symbols in image" "$m_heap" "" 0
+  "$(instr_of mfield "$(mfield counts_replay)" "$(mfield ticks)")" "instr"
+row "heap: malloc/_sbrk/new symbols in image" "$(heap_symbols "$melf")" "" 0
 
 # A circuit's C API (ports/c_api hstmon_circuit_c.h; main_circuit_c_api.c): the paper's
 # monitor from a C main, one monitor in the library's static pool. Reported, not gated
@@ -149,24 +171,16 @@ row "heap: malloc/_sbrk/new symbols in image" "$m_heap" "" 0
 # reserve (the pool and the image's own statics); instructions per 5 ms step
 # at the steady state, stacks by painting; the image fails unless a fault episode is
 # detected.
-capi_json="$(fw circuit_c_api --no-build | grep '"type":"circuit_c_api"')" ||
-  { echo "footprint.sh: circuit C API image failed" >&2; exit 2; }
-afield() { echo "$capi_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
-read -r t1 d1 b1 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_c_api.elf" | awk 'NR==2{print $1,$2,$3}')
-read -r t0 d0 b0 _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
-a_heap=$(arm-none-eabi-nm "$build/bin/hstmon_fw_circuit_c_api.elf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
-echo "circuit C API: hstmon_circuit_c.h for paper.json ($(afield channels) channels, $(afield faults) rows) from C, Cortex-M4F, -O2 (reported)"
-printf "  %-44s %8s %-6s\n" "flash (image − C API empty image)" "$(( (t1 + d1) - (t0 + d0) ))" "B"
+capi_json="$(image_json circuit_c_api circuit_c_api "circuit C API")"
+afield() { json_field "$capi_json" "$1"; }
 aelf="$build/bin/hstmon_fw_circuit_c_api.elf"
-asym() { arm-none-eabi-nm "$aelf" | awk -v n="$1" '$3==n{print $1}'; }
-printf "  %-44s %8s %-6s\n" "RAM (data+bss − stack reserve)" "$(( d1 + b1 - (16#$(asym __stack_top__) - 16#$(asym __stack_limit__)) ))" "B"
+echo "circuit C API: hstmon_circuit_c.h for paper.json ($(afield channels) channels, $(afield faults) rows) from C, Cortex-M4F, -O2 (reported)"
+reported_sizes "$aelf" "$build/bin/hstmon_fw_footprint_empty.elf" "flash (image − C API empty image)"
 printf "  %-44s %8s %-6s\n" "  of which the monitor's buffer (static)" "$(afield monitor_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "stack, create + reset_steady (painting)" "$(afield stack_setup_bytes)" "B"
 printf "  %-44s %8s %-6s\n" "stack, step (painting)" "$(afield stack_step_bytes)" "B"
-printf "  %-44s %8s %-6s\n" "instructions per 5 ms step (qemu icount)" \
-  "$(awk -v s="$(afield counts_step_loop)" -v e="$(afield counts_empty_loop)" -v ci="$(afield calib_instructions)" \
-    -v cc="$(afield calib_counts)" -v n="$(afield ticks)" 'BEGIN { printf "%.0f", (s - e) * ci / cc / n }')" "instr"
-row "heap: malloc/_sbrk/new symbols in image" "$a_heap" "" 0
+printf "  %-44s %8s %-6s\n" "instructions per 5 ms step (qemu icount)" "$(loop_instr afield)" "instr"
+row "heap: malloc/_sbrk/new symbols in image" "$(heap_symbols "$aelf")" "" 0
 # A circuit's whole monitor on its compiled model at 1 ms (main_circuit_monitor_cost.cpp):
 # the usual tick at the steady state, and the ticks after an input change (the first
 # recomputes the model bound), for paper.json and closed_loop_hst.json. Flash: the image
@@ -175,31 +189,24 @@ row "heap: malloc/_sbrk/new symbols in image" "$a_heap" "" 0
 # 1 KiB stack), gated on the heap only.
 for c in paper closed_loop_hst; do
   cost_json="$(fw "monitor_cost_$c" --no-build)" || { echo "footprint.sh: monitor cost image ($c) failed" >&2; exit 2; }
-  kfield() { echo "$cost_json" | grep -o "\"$1\":[0-9]*" | head -1 | cut -d: -f2; }
+  kfield() { json_field "$cost_json" "$1"; }
   kelf="$build/bin/hstmon_fw_monitor_cost_$c.elf"
-  read -r t1 d1 b1 _ < <(arm-none-eabi-size "$kelf" | awk 'NR==2{print $1,$2,$3}')
-  read -r t0 d0 _ _ < <(arm-none-eabi-size "$build/bin/hstmon_fw_circuit_footprint_empty.elf" | awk 'NR==2{print $1,$2,$3}')
-  ksym() { arm-none-eabi-nm "$kelf" | awk -v n="$1" '$3==n{print $1}'; }
-  k_instr() {  # counts [per n ticks] → instructions
-    awk -v c="$1" -v n="${2:-1}" -v ci="$(kfield calib_instructions)" -v cc="$(kfield calib_counts)" \
-      'BEGIN { printf "%.0f", c * ci / cc / n }'
-  }
-  k_heap=$(arm-none-eabi-nm "$kelf" | grep -cwE 'malloc|_malloc_r|_sbrk|_Znwj' || true)
+  read -r k_flash _ < <(size_less "$kelf" "$circuit_empty")
+  k_heap=$(heap_symbols "$kelf")
   echo "circuit monitor cost: $c.json at 1 ms, compiled model ($(kfield states) states, $(kfield channels) channels), Cortex-M4F, -O2 (reported)"
-  printf "  %-44s %8s %-6s %8s\n" "flash (image − circuit empty image)" "$(( (t1 + d1) - (t0 + d0) ))" "B" "(32768)"
-  printf "  %-44s %8s %-6s %8s\n" "RAM (data+bss − stack reserve)" \
-    "$(( d1 + b1 - (16#$(ksym __stack_top__) - 16#$(ksym __stack_limit__)) ))" "B" "(2048)"
+  printf "  %-44s %8s %-6s %8s\n" "flash (image − circuit empty image)" "$k_flash" "B" "(32768)"
+  printf "  %-44s %8s %-6s %8s\n" "RAM (data+bss − stack reserve)" "$(ram_less_stack "$kelf")" "B" "(2048)"
   printf "  %-44s %8s %-6s\n" "  of which the monitor object" "$(kfield monitor_bytes)" "B"
   printf "  %-44s %8s %-6s %8s\n" "stack, configure, reset, first ticks (painting)" "$(kfield stack_setup_bytes)" "B" "(1024)"
   printf "  %-44s %8s %-6s %8s\n" "stack, usual steps (painting)" "$(kfield stack_usual_bytes)" "B" "(1024)"
   printf "  %-44s %8s %-6s %8s\n" "stack, steps after an input change (painting)" "$(kfield stack_change_bytes)" "B" "(1024)"
   printf "  %-44s %8s %-6s %8s\n" "instructions per usual tick (qemu icount)" \
-    "$(k_instr "$(( $(kfield counts_usual_loop) - $(kfield counts_empty_loop) ))" "$(kfield ticks)")" "instr" "(2000)"
+    "$(instr_of kfield "$(kfield counts_usual_loop)" "$(kfield ticks)" "$(kfield counts_empty_loop)")" "instr" "(2000)"
   printf "  %-44s %8s %-6s\n" "  RK4 substeps of the usual ticks" "$(kfield max_substeps)" ""
-  printf "  %-44s %8s %-6s\n" "first tick after an input change (bound)" "$(k_instr "$(kfield counts_change_first)")" "instr"
-  printf "  %-44s %8s %-6s\n" "costliest tick after it (of $(kfield after_ticks))" "$(k_instr "$(kfield counts_change_worst)")" "instr"
+  printf "  %-44s %8s %-6s\n" "first tick after an input change (bound)" "$(instr_of kfield "$(kfield counts_change_first)")" "instr"
+  printf "  %-44s %8s %-6s\n" "costliest tick after it (of $(kfield after_ticks))" "$(instr_of kfield "$(kfield counts_change_worst)")" "instr"
   printf "  %-44s %8s %-6s\n" "mean tick after it, the bound's tick included" \
-    "$(k_instr "$(kfield counts_change_total)" "$(kfield after_ticks)")" "instr"
+    "$(instr_of kfield "$(kfield counts_change_total)" "$(kfield after_ticks)")" "instr"
   row "heap: malloc/_sbrk/new symbols in image" "$k_heap" "" 0
 done
 exit $fail

@@ -2,9 +2,7 @@
 # Regenerates docs/isolability.md from the shipped circuits (hstmon-fdi isolability and
 # sensors). scripts/isolability_report.sh [BUILD_DIR]  (default build/host-release)
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bin="${1:-$root/build/host-release}/bin/hstmon-fdi"
-[ -x "$bin" ] || { echo "isolability_report.sh: $bin not built" >&2; exit 2; }
+source "$(dirname "${BASH_SOURCE[0]}")/fdi_report_setup.sh"
 out="$root/docs/isolability.md"
 {
   cat <<'HEAD'

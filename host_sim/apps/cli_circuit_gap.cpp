@@ -72,15 +72,8 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   }
   const gap::CircuitGapRun run{a.circuit, a.fit, a.check};
   const std::string text = gap::circuit_gap_text(run, c, r);
-  if (a.json) {
-    print_json(c, r);
-  } else {
-    fmt::print("{}", text);
-  }
-  if (!a.report.empty() && !report_written("gap", a.report, gap::circuit_gap_report(run, c, r, text))) {
-    return kExitBadInput;
-  }
-  return kExitOk;
+  return finish_circuit_command(
+      "gap", a, text, [&] { print_json(c, r); }, [&] { return gap::circuit_gap_report(run, c, r, text); });
 }
 
 }  // namespace hstmon::cli

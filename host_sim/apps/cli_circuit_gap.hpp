@@ -5,19 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "hstmon_host/log_reader.hpp"
+#include "cli_circuit_args.hpp"
 
 namespace hstmon::cli {
 
 /// The options of gap that apply with --circuit.
-struct CircuitGapArgs {
-  std::string circuit;
-  std::string params;  ///< "" = <stem>.params.json beside it
+struct CircuitGapArgs : CircuitCommonArgs {
   std::string fit, check;
-  bool json = false;
-  std::string report;      ///< report folder ("" = none): report.md, report.html, figure.svg
   std::vector<std::string> effects;  ///< --effects: candidate names or kinds ("" = all; circuit_gap.hpp)
-  host::ReadOptions read;  ///< --map, --separator, --lenient, --rate (cli_log_options.hpp)
 };
 
 /// Runs it and prints the result; errors as file:line:column on stderr.

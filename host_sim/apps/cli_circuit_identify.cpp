@@ -137,15 +137,8 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   }
   const ident::CircuitIdentifyRun run{a.circuit, a.logs, a.out, a.header};
   const std::string text = ident::circuit_identify_text(run, c, r);
-  if (a.json) {
-    print_json(c, r);
-  } else {
-    fmt::print("{}", text);
-  }
-  if (!a.report.empty() && !report_written("identify", a.report, ident::circuit_identify_report(run, c, r, text))) {
-    return kExitBadInput;
-  }
-  return kExitOk;
+  return finish_circuit_command(
+      "identify", a, text, [&] { print_json(c, r); }, [&] { return ident::circuit_identify_report(run, c, r, text); });
 }
 
 }  // namespace hstmon::cli

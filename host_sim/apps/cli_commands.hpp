@@ -5,8 +5,13 @@
 #include <fmt/format.h>
 
 #include <initializer_list>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
+#include "cli_circuit_args.hpp"
+#include "cli_log_options.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_plot/circuit_report.hpp"
 
@@ -18,6 +23,18 @@ enum ExitCode : int {
   kExitUsage = 1,      ///< bad command line
   kExitBadInput = 2,   ///< a log or parameter file could not be used (message names file:line:column)
 };
+
+/// Registers subcommand `name` (help text `description`) on app. Its options fill the
+/// returned Args, owned by its callback, which stores run(args, cmd)'s exit code in exit_code.
+/// @return the subcommand, for its options, and the arguments they fill
+template <class Args, class Run>
+std::pair<CLI::App*, Args*> add_command(CLI::App& app, int& exit_code, const std::string& name,
+                                        const std::string& description, Run run) {
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand(name, description);
+  cmd->callback([args, cmd, run, &exit_code]() { exit_code = run(*args, *cmd); });
+  return {cmd, args.get()};
+}
 
 /// Reads a command's parameter file option into pf. An empty path reads nothing (pf stays
 /// empty, the caller keeps its defaults). On an error prints it (file:line:column) and
@@ -48,6 +65,23 @@ inline bool refuse_with_circuit(const CLI::App& cmd, std::initializer_list<Thesi
   return true;
 }
 
+/// With --circuit: c from the command's arguments args (circuit, io, json, report), unless
+/// one of `thesis_only` was given on cmd or the log options are bad (after the message).
+/// @return false: the command then exits kExitUsage
+template <class Args>
+bool take_circuit_args(const CLI::App& cmd, std::initializer_list<ThesisOnlyOption> thesis_only, const Args& args,
+                       CircuitCommonArgs& c) {
+  if (!refuse_with_circuit(cmd, thesis_only)) return false;
+  const std::optional<host::ReadOptions> ro = to_read_options(args.io, cmd.get_name().c_str());
+  if (!ro) return false;
+  c.read = *ro;
+  c.circuit = args.circuit;
+  c.params = args.io.params;
+  c.json = args.json;
+  c.report = args.report;
+  return true;
+}
+
 /// sim::write_circuit_report for `hstmon <command> --circuit … --report dir`, saying on
 /// stderr why the figure is missing ("dir: note: no figure: …") or why the report could
 /// not be written ("hstmon <command>: error: …").
@@ -61,6 +95,21 @@ inline bool report_written(const char* command, const std::string& dir, const si
     return false;
   }
   return true;
+}
+
+/// The end of `hstmon <command> --circuit …`: prints the result, print_json() with --json
+/// or else text, then writes report() to a.report unless that is "" (report_written).
+/// @return kExitOk, or kExitBadInput when the report could not be written
+template <class PrintJson, class MakeReport>
+int finish_circuit_command(const char* command, const CircuitCommonArgs& a, const std::string& text,
+                           const PrintJson& print_json, const MakeReport& report) {
+  if (a.json) {
+    print_json();
+  } else {
+    fmt::print("{}", text);
+  }
+  if (!a.report.empty() && !report_written(command, a.report, report())) return kExitBadInput;
+  return kExitOk;
 }
 
 /// `hstmon replay LOG ...`

@@ -176,9 +176,10 @@ int run_fleet(const FleetArgs& a) {
 }  // namespace
 
 void add_fleet_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<FleetArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "fleet", "Which machines drift: per machine, residual RMS/noise of its last logs against its first (docs/fleet.md)");
+  const auto [cmd, args] = add_command<FleetArgs>(
+      app, exit_code, "fleet",
+      "Which machines drift: per machine, residual RMS/noise of its last logs against its first (docs/fleet.md)",
+      [](const FleetArgs& a, const CLI::App&) { return run_fleet(a); });
   cmd->add_option("SUMMARY", args->files, "Summary lines of `hstmon replay --summary` (JSON lines), one or more files")
       ->required();
   cmd->add_option("--baseline", args->baseline, "Logs at each end of a machine's history compared (default 2)")
@@ -186,7 +187,6 @@ void add_fleet_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--k", args->k, "Drift factor: last logs' RMS/noise above k times the first logs' (default 2)")
       ->check(positive_number());
   cmd->add_flag("--json", args->json, "One JSON line per machine, then a fleet line");
-  cmd->callback([args, &exit_code]() { exit_code = run_fleet(*args); });
 }
 
 }  // namespace hstmon::cli

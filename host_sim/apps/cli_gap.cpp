@@ -85,12 +85,30 @@ int run_gap_command(const GapArgs& a) {
   return kExitOk;
 }
 
+/// `hstmon gap`: the thesis rig's, or with --circuit the circuit's (cli_circuit_gap.hpp).
+int run_gap_or_circuit_gap(const GapArgs& a, const CLI::App& cmd) {
+  if (a.circuit.empty()) return run_gap_command(a);
+  CircuitGapArgs c{{}, a.fit, a.check, a.effects};
+  if (!take_circuit_args(
+          cmd,
+          {{"--refit-nominal",
+            "each of the circuit's parameters is a candidate of its own (parameter(NAME)); to refit them, run "
+            "`hstmon identify --circuit FILE --fit NAME --out P.json` on the fit log and give --params P.json"},
+           {"--max-step",
+            "the circuit gap compares steady operating points and simulates nothing, so there is no step to set"}},
+          a, c)) {
+    return kExitUsage;
+  }
+  return run_circuit_gap(c);
+}
+
 }  // namespace
 
 void add_gap_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<GapArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "gap", "Where model and machine disagree (channels, balance equations), which unmodelled effect explains it, how far the gap shrinks");
+  const auto [cmd, args] = add_command<GapArgs>(app, exit_code, "gap",
+                                                "Where model and machine disagree (channels, balance equations), which "
+                                                "unmodelled effect explains it, how far the gap shrinks",
+                                                run_gap_or_circuit_gap);
   cmd->add_option("--fit", args->fit,
                   "log to fit the effects on (CSV as for replay: the thesis rig's with p_sup and kp; with --circuit, "
                   "the circuit's input and sensor columns)")
@@ -114,37 +132,6 @@ void add_gap_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--circuit", args->circuit,
                   "the gap of this circuit file (docs/circuits.md): candidates derived from the circuit, judged on "
                   "steady operating points; --params is then its parameter file");
-  cmd->callback([args, cmd, &exit_code]() {
-    if (args->circuit.empty()) {
-      exit_code = run_gap_command(*args);
-      return;
-    }
-    if (!refuse_with_circuit(
-            *cmd, {{"--refit-nominal",
-                    "each of the circuit's parameters is a candidate of its own (parameter(NAME)); to refit them, run "
-                    "`hstmon identify --circuit FILE --fit NAME --out P.json` on the fit log and give --params P.json"},
-                   {"--max-step",
-                    "the circuit gap compares steady operating points and simulates nothing, so there is no step to "
-                    "set"}})) {
-      exit_code = kExitUsage;
-      return;
-    }
-    const std::optional<host::ReadOptions> ro = to_read_options(args->io, "gap");
-    if (!ro) {
-      exit_code = kExitUsage;
-      return;
-    }
-    CircuitGapArgs c;
-    c.read = *ro;
-    c.circuit = args->circuit;
-    c.params = args->io.params;
-    c.fit = args->fit;
-    c.check = args->check;
-    c.json = args->json;
-    c.report = args->report;
-    c.effects = args->effects;
-    exit_code = run_circuit_gap(c);
-  });
 }
 
 }  // namespace hstmon::cli

@@ -447,12 +447,50 @@ int run_identify(const IdentifyArgs& a) {
   return kExitOk;
 }
 
+/// `hstmon identify`: the thesis rig's, or with --circuit the circuit's (cli_circuit_identify.hpp).
+int run_identify_or_circuit_identify(const IdentifyArgs& a, const CLI::App& cmd) {
+  if (a.circuit.empty()) {
+    if (cmd.count("--fit") > 0) {
+      fmt::print(stderr, "hstmon identify: error: --fit goes with --circuit\n");
+      return kExitUsage;
+    }
+    return run_identify(a);
+  }
+  const char* const paper_alone =
+      "the paper rig's table analysis needs no model; run `hstmon identify --paper FILE.csv` (with --cd, --rho, "
+      "--studies) on its own";
+  CircuitIdentifyArgs c;
+  if (!take_circuit_args(cmd,
+                         {{"--setting-per-window",
+                           "a circuit's operating points are its held input settings; log the input that sets the "
+                           "load (or name it in the circuit file) so each window has its own"},
+                          {"--paper", paper_alone},
+                          {"--cd", paper_alone},
+                          {"--rho", paper_alone},
+                          {"--studies", paper_alone}},
+                         a, c)) {
+    return kExitUsage;
+  }
+  c.logs = a.logs;
+  c.fit = a.fit;
+  c.out = a.out;
+  if (cmd.count("--min-duration") > 0) c.min_duration = a.min_duration;
+  if (cmd.count("--min-samples") > 0) c.min_samples = a.min_samples;
+  if (cmd.count("--min-settings") > 0) c.min_settings = a.min_settings;
+  c.assume_steady = a.assume_steady;
+  c.noise_pressure = a.noise_pressure;
+  c.noise_speed = a.noise_speed;
+  c.header = a.header;
+  return run_circuit_identify(c);
+}
+
 }  // namespace
 
 void add_identify_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<IdentifyArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "identify", "Identify thesis-model parameters from steady states in logs; paper-rig pump curve and port areas");
+  const auto [cmd, args] = add_command<IdentifyArgs>(
+      app, exit_code, "identify",
+      "Identify thesis-model parameters from steady states in logs; paper-rig pump curve and port areas",
+      run_identify_or_circuit_identify);
   cmd->add_option("logs", args->logs, "thesis-rig logs (CSV as for replay) with steady operating points");
   cmd->add_option("--out", args->out, "parameter file to write (JSON, read by replay --params)");
   cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
@@ -482,53 +520,6 @@ void add_identify_command(CLI::App& app, int& exit_code) {
       ->expected(1)
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->callback([args, cmd, &exit_code]() {
-    if (args->circuit.empty()) {
-      if (cmd->count("--fit") > 0) {
-        fmt::print(stderr, "hstmon identify: error: --fit goes with --circuit\n");
-        exit_code = kExitUsage;
-        return;
-      }
-      exit_code = run_identify(*args);
-      return;
-    }
-    const char* const paper_alone =
-        "the paper rig's table analysis needs no model; run `hstmon identify --paper FILE.csv` (with --cd, --rho, "
-        "--studies) on its own";
-    if (!refuse_with_circuit(
-            *cmd, {{"--setting-per-window",
-                    "a circuit's operating points are its held input settings; log the input that sets the load "
-                    "(or name it in the circuit file) so each window has its own"},
-                   {"--paper", paper_alone},
-                   {"--cd", paper_alone},
-                   {"--rho", paper_alone},
-                   {"--studies", paper_alone}})) {
-      exit_code = kExitUsage;
-      return;
-    }
-    const std::optional<host::ReadOptions> ro = to_read_options(args->io, "identify");
-    if (!ro) {
-      exit_code = kExitUsage;
-      return;
-    }
-    CircuitIdentifyArgs c;
-    c.read = *ro;
-    c.logs = args->logs;
-    c.circuit = args->circuit;
-    c.params = args->io.params;
-    c.fit = args->fit;
-    c.out = args->out;
-    c.json = args->json;
-    c.report = args->report;
-    if (cmd->count("--min-duration") > 0) c.min_duration = args->min_duration;
-    if (cmd->count("--min-samples") > 0) c.min_samples = args->min_samples;
-    if (cmd->count("--min-settings") > 0) c.min_settings = args->min_settings;
-    c.assume_steady = args->assume_steady;
-    c.noise_pressure = args->noise_pressure;
-    c.noise_speed = args->noise_speed;
-    c.header = args->header;
-    exit_code = run_circuit_identify(c);
-  });
 }
 
 }  // namespace hstmon::cli

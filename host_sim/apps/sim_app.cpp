@@ -11,7 +11,8 @@
 ///   any circuit file (docs/circuits.md; sim_circuit.hpp):
 ///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--start rest|steady]
 ///              [--inputs LOG [--inputs-hold linear|step] [--compare]]
-///              [--duration S] [--rate HZ] [--seed N] [--no-noise] [--out FILE.csv]
+///              [--duration S] [--rate HZ] [--seed N] [--no-noise | --ideal] [--out FILE.csv]
+///              [--lag MS] [--quant BAR | --adc-bits N] [--param-error F --machine-seed N]
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -44,7 +45,7 @@ struct Options {
   std::string units = "bar";
   bool rpm = false;
   bool list = false;
-  // Rig conditions (thesis model).
+  // Rig conditions (the thesis model; lag, ADC and parameter error on a circuit too).
   double lag_ms = -1.0;       // < 0: the preset's
   double quant_bar = -1.0;    // < 0: the preset's; 0: none
   int adc_bits = 0;           // 0: the preset's
@@ -200,8 +201,10 @@ int main(int argc, char** argv) {
   app.add_option("--adc-bits", o.adc_bits, "pressure ADC bits over the transmitter range (instead of --quant)")
       ->check(CLI::Range(4, 24))
       ->excludes("--quant");
-  app.add_option("--param-error", o.param_error,
-                 "machine parameters (Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K) off Table 2.2 by uniform ±F, e.g. 0.02")
+  app.add_option(
+         "--param-error", o.param_error,
+         "machine parameters off by uniform ±F, e.g. 0.02: the thesis model's Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K "
+         "off Table 2.2; a circuit's every parameter its monitor treats as uncertain off the parameter file")
       ->check(CLI::Range(0.0, 0.5));
   app.add_option("--machine-seed", o.machine_seed, "seed of the parameter error");
   app.add_option("--start", o.start, "rig: rest (logger runs before the supply) | steady")
@@ -224,7 +227,8 @@ int main(int argc, char** argv) {
   app.add_option("--circuit", o.circuit,
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
-                 "(default steady), --no-noise, --params, --step, --fault, --inputs");
+                 "(default steady), --no-noise, --ideal, --lag, --quant, --adc-bits, --param-error, --machine-seed, "
+                 "--params, --step, --fault, --inputs");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
@@ -262,11 +266,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!o.circuit.empty()) {
-    for (const char* opt : {"--scenario", "--model", "--preset", "--ideal", "--units", "--rpm", "--lag", "--quant",
-                            "--adc-bits", "--param-error", "--machine-seed", "--supply-on", "--cycle", "--load",
+    // A circuit file names its own sensors, units and parameters: the thesis rig's scenarios,
+    // sensor presets and log units are the built-in thesis model's.
+    for (const char* opt : {"--scenario", "--model", "--preset", "--units", "--rpm", "--supply-on", "--cycle", "--load",
                             "--load-period", "--load-range", "--load-seed", "--blockage", "--list"}) {
       if (app.count(opt) > 0) {
-        std::cerr << "hstmon-sim: " << opt << " does not go with --circuit\n";
+        std::cerr << "hstmon-sim: " << opt
+                  << " belongs to the built-in thesis scenarios; with --circuit use --step, --fault or --inputs "
+                     "(the log's units are the circuit file's)\n";
         return 1;
       }
     }
@@ -279,6 +286,12 @@ int main(int argc, char** argv) {
     c.out = o.out;
     c.start = app.count("--start") > 0 ? o.start : "steady";
     c.no_noise = o.no_noise;
+    c.ideal = o.ideal;
+    c.lag = o.lag_ms > 0.0 ? o.lag_ms * 1e-3 : 0.0;
+    c.pressure_step = o.quant_bar > 0.0 ? o.quant_bar * kPaPerBar : 0.0;
+    c.adc_bits = o.adc_bits;
+    c.param_error = o.param_error;
+    c.machine_seed = o.machine_seed;
     c.steps = o.steps;
     c.faults = o.faults;
     c.inputs = o.circuit_inputs;

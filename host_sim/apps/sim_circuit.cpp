@@ -4,16 +4,51 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <random>
+#include <string>
 
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_circuit/logged_run.hpp"
+#include "hstmon_circuit/machine_spread.hpp"
 #include "hstmon_host/number_text.hpp"
 #include "sim_compare.hpp"
 
 namespace hstmon::sim_app {
+
+namespace {
+
+// The log's comment on the transducers ("" when ideal).
+std::string transducer_note(const circuit_tools::TransducerOptions& t) {
+  std::string s;
+  if (t.lag > 0.0) s += "lag " + host::number_text(t.lag * 1e3) + " ms";
+  if (t.pressure_adc_bits > 0) {
+    s += (s.empty() ? "" : ", ") + std::string("pressure ADC ") + std::to_string(t.pressure_adc_bits) + " bits";
+  } else if (t.pressure_step > 0.0) {
+    s += (s.empty() ? "" : ", ") + std::string("pressure step ") + host::number_text(t.pressure_step * 1e-5) + " bar";
+  }
+  return s.empty() ? s : "transducers: " + s;
+}
+
+// Appends each of specs, read by parse (--step's or --fault's parser), to steps; false after
+// printing the first error.
+template <class Parse>
+bool parse_steps(const std::vector<std::string>& specs, Parse parse, const host::CircuitFile& file,
+                 std::vector<circuit_tools::InputStep>& steps) {
+  for (const std::string& s : specs) {
+    circuit_tools::InputStep st;
+    if (auto err = parse(s, file, st)) {
+      std::cerr << "hstmon-sim: " << *err << '\n';
+      return false;
+    }
+    steps.push_back(st);
+  }
+  return true;
+}
+
+}  // namespace
 
 int run_circuit_sim(const CircuitSimArgs& a) {
   circuit_tools::LoadedCircuit c;
@@ -58,26 +93,20 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   }
   o.seed = a.seed;
   o.from_rest = a.start == "rest";
-  o.noise = !a.no_noise;
-  for (const std::string& s : a.steps) {
-    circuit_tools::InputStep st;
-    if (auto err = circuit_tools::parse_input_step(s, c.file, st)) {
-      std::cerr << "hstmon-sim: " << *err << '\n';
-      return 1;
-    }
-    o.steps.push_back(st);
+  o.noise = !a.no_noise && !a.ideal;
+  if (!a.ideal) {
+    o.transducers.lag = a.lag;
+    o.transducers.pressure_step = a.pressure_step;
+    o.transducers.pressure_adc_bits = a.adc_bits;
   }
-  for (const std::string& s : a.faults) {
-    circuit_tools::InputStep st;
-    if (auto err = circuit_tools::parse_param_fault(s, c.file, st)) {
-      std::cerr << "hstmon-sim: " << *err << '\n';
-      return 1;
-    }
-    o.steps.push_back(st);
+  if (!parse_steps(a.steps, circuit_tools::parse_input_step, c.file, o.steps) ||
+      !parse_steps(a.faults, circuit_tools::parse_param_fault, c.file, o.steps)) {
+    return 1;
   }
   circuit_tools::CircuitLog log;
   try {
-    log = circuit_tools::simulate_circuit(c, o);
+    std::mt19937_64 machine_rng(a.machine_seed);
+    log = circuit_tools::simulate_circuit(circuit_tools::spread_machine(c, a.param_error, machine_rng), o);
   } catch (const std::exception& e) {
     std::cerr << "hstmon-sim: " << e.what() << '\n';
     return 2;
@@ -92,6 +121,11 @@ int run_circuit_sim(const CircuitSimArgs& a) {
           (a.inputs.empty() || a.rate > 0.0 ? " at " + host::number_text(o.rate) + " Hz" : " on the log's rows") +
           ", seed " + std::to_string(o.seed) + (o.noise ? "" : ", no noise")};
   if (!profile_note.empty()) comments.push_back(profile_note);
+  if (const std::string t = transducer_note(o.transducers); !t.empty()) comments.push_back(t);
+  if (a.param_error > 0.0) {
+    comments.push_back("machine: every uncertain parameter off the file by uniform ±" +
+                       host::number_text(a.param_error) + " (machine seed " + std::to_string(a.machine_seed) + ")");
+  }
   for (const std::string& s : a.steps) comments.push_back("step " + s);
   for (const std::string& s : a.faults) comments.push_back("fault " + s);
   const std::string text = circuit_tools::circuit_log_text(c.file, log, comments);

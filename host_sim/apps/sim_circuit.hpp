@@ -18,6 +18,12 @@ struct CircuitSimArgs {
   std::string out = "-";
   std::string start;                ///< "rest" | "steady" ("" = steady)
   bool no_noise = false;
+  bool ideal = false;              ///< the reference solution itself: no noise, lag or ADC
+  double lag = 0.0;                ///< transducer time constant of every channel [s]; 0 = none
+  double pressure_step = 0.0;      ///< pressure channels' quantisation step [Pa]; 0 = none
+  int adc_bits = 0;                ///< ADC bits over each pressure channel's range; 0 = none
+  double param_error = 0.0;        ///< the machine: uncertain parameters off by uniform ±this [-] (machine_spread.hpp)
+  std::uint64_t machine_seed = 1;  ///< seed of that error
   std::vector<std::string> steps;   ///< "INPUT=VALUE@T"
   std::vector<std::string> faults;  ///< "PARAM=FACTOR@T"
   std::string inputs;               ///< a log whose input columns drive the run ("" = none; logged_run.hpp)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "../support/text_variant.hpp"
 #include "hstmon_host/circuit_file.hpp"
 #include "hstmon_host/circuit_values.hpp"
 
@@ -31,10 +32,7 @@ const char* const kStand = R"({
 
 /// kStand with the first `from` replaced by `to`.
 std::string variant(const std::string& from, const std::string& to) {
-  std::string s = kStand;
-  const std::size_t at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? s : s.replace(at, from.size(), to);
+  return hstmon_test::replace_first(kStand, from, to);
 }
 
 /// "file:line:column" of the first `token` in text, `skip` bytes on (ASCII: column = byte + 1).

@@ -25,12 +25,7 @@ long allocations(const circuit_test::Loaded& l) {
   o.configure(m, cfg);
   o.reset_steady(u);
   o.reset_rest(u);
-  typename hstmon::Observer<M, false>::Measurement y;
-  y.valid = 0x0f;
-  for (int k = 0; k < 500; ++k) {
-    y.y = o.estimate();
-    o.step(u, y);
-  }
+  step_on_own_estimate(o, u, 500);
   return g_allocs;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "../support/text_variant.hpp"
 #include "hstmon_host/circuit_file.hpp"
 #include "hstmon_host/circuit_values.hpp"
 
@@ -28,10 +29,7 @@ const char* const kGood = R"({
 
 /// Replaces the first `from` in kGood by `to`.
 std::string variant(const std::string& from, const std::string& to) {
-  std::string s = kGood;
-  const std::size_t at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return s.replace(at, from.size(), to);
+  return hstmon_test::replace_first(kGood, from, to);
 }
 
 /// The error of reading text, as "file:line:column: error: ...".

@@ -93,8 +93,20 @@ TEST(ConductanceRange, CompensatedPumpEveryRegion) {
   expect_range_holds(ElementKind::kCompPump, k, -2.5e7, -1.0e7, "all three");
 }
 
-double radius(const Eigen::Matrix2d& J) { return J.eigenvalues().cwiseAbs().maxCoeff(); }
-double radius(const Eigen::Matrix3d& J) { return J.eigenvalues().cwiseAbs().maxCoeff(); }
+/// Checks interval_radius_bound against `samples` random members of [lo, hi] (u: uniform
+/// on [-1, 1]).
+template <int N>
+void expect_bound_above_members(const double (&lo)[N][N], const double (&hi)[N][N], int samples, std::mt19937& rng,
+                                std::uniform_real_distribution<double>& u, int trial) {
+  const double bound = circuit::interval_radius_bound(lo, hi, N);
+  for (int k = 0; k < samples; ++k) {
+    Eigen::Matrix<double, N, N> J;
+    for (int r = 0; r < N; ++r) {
+      for (int c = 0; c < N; ++c) J(r, c) = lo[r][c] + (hi[r][c] - lo[r][c]) * (0.5 + 0.5 * u(rng));
+    }
+    EXPECT_LE(J.eigenvalues().cwiseAbs().maxCoeff(), bound * (1.0 + 1e-12)) << "trial " << trial;
+  }
+}
 
 // Random interval matrices — some with the damped-oscillator sign pattern the 2-state
 // bound uses, some without — and random members of each.
@@ -116,14 +128,7 @@ TEST(IntervalRadiusBound, AboveEverySampledMember) {
         if (pattern && r == c && hi2[r][c] > 0.0) hi2[r][c] = 0.0;
       }
     }
-    const double bound = circuit::interval_radius_bound(lo2, hi2, 2);
-    for (int k = 0; k < 20; ++k) {
-      Eigen::Matrix2d J;
-      for (int r = 0; r < 2; ++r) {
-        for (int c = 0; c < 2; ++c) J(r, c) = lo2[r][c] + (hi2[r][c] - lo2[r][c]) * (0.5 + 0.5 * u(rng));
-      }
-      EXPECT_LE(radius(J), bound * (1.0 + 1e-12)) << "trial " << trial;
-    }
+    expect_bound_above_members(lo2, hi2, 20, rng, u, trial);
   }
   for (int trial = 0; trial < 100; ++trial) {
     double lo3[3][3], hi3[3][3];
@@ -134,14 +139,7 @@ TEST(IntervalRadiusBound, AboveEverySampledMember) {
         hi3[r][c] = m + half;
       }
     }
-    const double bound = circuit::interval_radius_bound(lo3, hi3, 3);
-    for (int k = 0; k < 10; ++k) {
-      Eigen::Matrix3d J;
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) J(r, c) = lo3[r][c] + (hi3[r][c] - lo3[r][c]) * (0.5 + 0.5 * u(rng));
-      }
-      EXPECT_LE(radius(J), bound * (1.0 + 1e-12)) << "trial " << trial;
-    }
+    expect_bound_above_members(lo3, hi3, 10, rng, u, trial);
   }
 }
 

@@ -48,6 +48,13 @@ CliRun run(const std::string& args) {
   return r;
 }
 
+/// `hstmon replay --circuit` of an example circuit (examples/circuits/NAME.json) on one of
+/// the logs beside it (LOG.csv), with more options.
+CliRun replay_circuit(const std::string& name, const std::string& log, const std::string& options) {
+  const std::string examples = std::string(HSTMON_SOURCE_DIR) + "/examples/circuits/";
+  return run("replay --circuit '" + examples + name + ".json' '" + examples + log + ".csv' " + options);
+}
+
 std::string read(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -164,9 +171,7 @@ TEST(Plots, FailedPlotIsOneLineNamingTheFile) {
 TEST(Plots, CircuitReplayDrawsTheCircuitsSensorsInTheirUnits) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const fs::path svg = dir() / "test_stand.svg";
-  const std::string src = HSTMON_SOURCE_DIR;
-  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/test_stand.json' '" + src +
-                       "/examples/circuits/test_stand.csv' --no-diagnosis --plot '" + svg.string() + "'");
+  const CliRun r = replay_circuit("test_stand", "test_stand", "--no-diagnosis --plot '" + svg.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const std::string text = read(svg);
@@ -181,9 +186,7 @@ TEST(Plots, CircuitReplayDrawsTheCircuitsSensorsInTheirUnits) {
 TEST(Plots, CircuitReplayReportNamesTheCircuitAndItsVerdict) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const fs::path out = dir() / "circuit_report";
-  const std::string src = HSTMON_SOURCE_DIR;
-  const CliRun r = run("replay --circuit '" + src + "/examples/circuits/paper.json' '" + src +
-                       "/examples/circuits/paper_dm_fault.csv' --report '" + out.string() + "'");
+  const CliRun r = replay_circuit("paper", "paper_dm_fault", "--report '" + out.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string md = read(out / "report.md");
   // A step at held inputs is detected at 4.110 s; the fit of the first steady window after

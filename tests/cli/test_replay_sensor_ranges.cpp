@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/params_errors.hpp"
 #include "hstmon_host/log_reader.hpp"
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_host/replay.hpp"
@@ -23,17 +24,10 @@ constexpr double kBar = 1e5;                // [Pa]
 constexpr double kRpm = M_PI / 30.0;        // [rad/s]
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-hh::ParamsFileResult parse(std::string_view text) { return hh::parse_params_json(text, "p.json"); }
+using hstmon_test::parse;
 
-void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part) {
-  const auto r = parse(text);
-  ASSERT_FALSE(r.ok()) << "accepted: " << text;
-  EXPECT_FALSE(r.sensors.has_value());
-  EXPECT_FALSE(r.params.has_value());
-  EXPECT_EQ(r.error->line, line) << r.error->to_string();
-  EXPECT_EQ(r.error->column, column) << r.error->to_string();
-  EXPECT_NE(r.error->message.find(part), std::string::npos) << r.error->to_string();
-}
+/// A thesis parameter file with `section` as its "sensors" section.
+std::string with_sensors(const std::string& section) { return R"({"model": "thesis", "sensors": )" + section + "}"; }
 
 TEST(SensorRanges, ThesisDefaults) {
   const hh::SensorRanges d = hh::thesis_sensor_ranges();
@@ -73,24 +67,30 @@ TEST(SensorRanges, ParamsFileSection) {
   }
 }
 
-TEST(SensorRanges, ParamsFileRefusals) {
-  expect_error("{\"model\": \"thesis\",\n \"sensr\": {}}", 2, 2, "or 'sensors' (transmitter ranges)");
-  expect_error("{\"model\": \"thesis\", \"sensors\": [0, 1]}", 1, 32, "'sensors' must be an object");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_sup\": [0, 1]}}", 1, 33,
-               "unknown key 'p_sup' in 'sensors' (known: p_mi, p_mo, p_pp, w_m)");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_mi\": 2e7}}", 1, 41, "sensors.p_mi must be a range [low, high]");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_mi\": [0, 1, 2]}}", 1, 41, "must be a range [low, high]");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_mi\": [\"200 bar\", \"0 bar\"]}}", 1, 41,
-               "sensors.p_mi: the low end must be below the high end, got [20000000, 0] Pa");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_mi\": [0, 0]}}", 1, 41, "the low end must be below");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_pp\": [\"0 rpm\", \"250 bar\"]}}", 1, 41,
-               "sensors.p_pp low end: unknown pressure unit 'rpm'");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"w_m\": [0, \"3000 bar\"]}}", 1, 40,
-               "sensors.w_m high end: unknown speed unit 'bar'");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"w_m\": [true, 1]}}", 1, 40,
-               "sensors.w_m low end must be a number [rad/s], a string with a unit, or null, got boolean");
-  expect_error("{\"model\": \"thesis\", \"sensors\": {\"p_mo\": [0, \"1e308 bar\"]}}", 1, 41, "not finite");
-}
+// Each refused "sensors" section: one error at its line:column, and nothing kept.
+class SensorRangesRefusal : public testing::TestWithParam<hstmon_test::ErrorCase> {};
+
+TEST_P(SensorRangesRefusal, PointsAtTheMistake) { hstmon_test::expect_params_refused(GetParam()); }
+
+// One case a line.
+// clang-format off
+const hstmon_test::ErrorCase kRefused[] = {
+    {"SensorsSection", "{\"model\": \"thesis\",\n \"sensr\": {}}", 2, 2, "or 'sensors' (transmitter ranges)"},
+    {"SensorsSection", with_sensors("[0, 1]"), 1, 32, "'sensors' must be an object"},
+    {"SensorsSection", with_sensors(R"({"p_sup": [0, 1]})"), 1, 33, "unknown key 'p_sup' in 'sensors' (known: p_mi, p_mo, p_pp, w_m)"},
+    {"SensorsSection", with_sensors(R"({"p_mi": 2e7})"), 1, 41, "sensors.p_mi must be a range [low, high]"},
+    {"SensorsSection", with_sensors(R"({"p_mi": [0, 1, 2]})"), 1, 41, "must be a range [low, high]"},
+    {"SensorsSection", with_sensors(R"({"p_mi": ["200 bar", "0 bar"]})"), 1, 41, "sensors.p_mi: the low end must be below the high end, got [20000000, 0] Pa"},
+    {"SensorsSection", with_sensors(R"({"p_mi": [0, 0]})"), 1, 41, "the low end must be below"},
+    {"SensorsSection", with_sensors(R"({"p_pp": ["0 rpm", "250 bar"]})"), 1, 41, "sensors.p_pp low end: unknown pressure unit 'rpm'"},
+    {"SensorsSection", with_sensors(R"({"w_m": [0, "3000 bar"]})"), 1, 40, "sensors.w_m high end: unknown speed unit 'bar'"},
+    {"SensorsSection", with_sensors(R"({"w_m": [true, 1]})"), 1, 40, "sensors.w_m low end must be a number [rad/s], a string with a unit, or null, got boolean"},
+    {"SensorsSection", with_sensors(R"({"p_mo": [0, "1e308 bar"]})"), 1, 41, "not finite"},
+};
+// clang-format on
+
+INSTANTIATE_TEST_SUITE_P(ParamsFileRefusals, SensorRangesRefusal, testing::ValuesIn(kRefused),
+                         hstmon_test::error_case_name);
 
 // A 100 Hz log with p_pp at 0 bar for 1 s: with the thesis rig's ranges it is out of range
 // on the first sample; with a file that puts the live zero lower (a −10 bar range start)

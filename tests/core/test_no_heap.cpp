@@ -26,12 +26,7 @@ long allocations_in_run() {
   c.gain(0, 0) = 0.1f;  // exercise the injection path too
   o.configure(Model{}, c);
   typename Model::Inputs u;
-  typename Obs::Measurement m;
-  m.valid = 0b1111;
-  for (int i = 0; i < 5000; ++i) {
-    m.y = o.estimate();
-    o.step(u, m);
-  }
+  step_on_own_estimate(o, u, 5000);
   return g_allocs;
 }
 

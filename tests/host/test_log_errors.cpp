@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/error_cases.hpp"
 #include "../support/mem_log.hpp"
 #include "hstmon_host/log_reader.hpp"
 
@@ -15,6 +16,7 @@ using hh::Signal;
 namespace {
 
 using hstmon_test::read;
+using namespace std::string_literals;  // a log with a NUL byte in it
 
 // read() with lenient = true: the valid part of a bad log is kept.
 hh::LogData read_lenient(std::string_view text) {
@@ -23,18 +25,18 @@ hh::LogData read_lenient(std::string_view text) {
   return read(text, opt);
 }
 
-/// Reads `text` strictly and checks the error position and that the message contains
-/// `part`; also checks that no rows are left.
-void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part,
-                  const hh::ReadOptions& opt = {}) {
-  const hh::LogData d = read(text, opt);
-  ASSERT_FALSE(d.ok()) << "accepted: " << testing::PrintToString(std::string(text));
-  EXPECT_EQ(d.error->file, "mem.csv");
-  EXPECT_EQ(d.error->line, line) << d.error->to_string();
-  EXPECT_EQ(d.error->column, column) << d.error->to_string();
-  EXPECT_NE(d.error->message.find(part), std::string::npos) << d.error->to_string();
+/// Reads `c.text` strictly and checks the error; also checks that no rows are left.
+void expect_refused(const hstmon_test::ErrorCase& c, const hh::ReadOptions& opt = {}) {
+  const hh::LogData d = read(c.text, opt);
+  hstmon_test::expect_error_at(d.error, "mem.csv", c);
   EXPECT_EQ(d.rows(), 0u);
   for (const auto& v : d.values) EXPECT_TRUE(v.empty());
+}
+
+/// expect_refused() for a text outside the table.
+void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part,
+                  const hh::ReadOptions& opt = {}) {
+  expect_refused({"", std::string(text), line, column, part}, opt);
 }
 
 }  // namespace
@@ -45,52 +47,80 @@ TEST(LogErrors, MessageFormat) {
   EXPECT_EQ(d.error->to_string(), "mem.csv:3:7: error: bad number '1.2.3' in column 'p_mi'");
 }
 
-TEST(LogErrors, BadNumbers) {
-  expect_error("t,p_mi\n0,1\n0.001,1.2.3\n", 3, 7, "bad number '1.2.3'");
-  expect_error("t,p_mi\n0,abc\n", 2, 3, "bad number 'abc' in column 'p_mi'");
-  expect_error("t,p_mi\nx,1\n", 2, 1, "bad number 'x' in column 't'");
-  expect_error("t,p_mi\n0,1.5x\n", 2, 3, "bad number '1.5x'");
-  expect_error("t,p_mi\n0,0x10\n", 2, 3, "bad number '0x10'");
-  expect_error("t,p_mi\n0,1 2\n", 2, 3, "bad number '1 2'");
-  expect_error("t,p_mi\n0,--1\n", 2, 3, "bad number '--1'");
-  expect_error("t,p_mi\n0,\"1\"\n", 2, 3, "bad number");
-  expect_error("t;p_mi\n0;1,2,3\n", 2, 3, "bad number '1,2,3'");
-  expect_error("t,p_mi\n0,1\r5\n", 2, 3, "bad number '1\\x0D5'");
-  expect_error("t;p_mi\n0;1,2345678901234567890123456789012345678901234567890123456789012345\n", 2, 3, "bad number");
-}
+// Each malformed log of the table, read strictly: one error at its line:column.
+class LogRefusal : public testing::TestWithParam<hstmon_test::ErrorCase> {};
 
-TEST(LogErrors, EmptyField) {
-  expect_error("t,p_mi\n0,\n", 2, 3, "empty field in column 'p_mi'");
-  expect_error("t,p_mi,p_mo\n0,,1\n", 2, 3, "empty field in column 'p_mi'");
-  expect_error("t\tp_mi\n\t1\n", 2, 1, "empty field in column 't'");
-}
+TEST_P(LogRefusal, PointsAtTheMistake) { expect_refused(GetParam()); }
 
-TEST(LogErrors, RaggedRows) {
-  expect_error("t,p_mi,p_mo\n0,1,2\n0.001,1\n", 3, 8, "row has 2 fields, header has 3");
-  expect_error("t,p_mi\n0,1,2\n", 2, 5, "row has more than 2 fields");
-  expect_error("t,p_mi\n0,1,5\n", 2, 5, "decimal comma needs ';' or tab");
-  expect_error("t;p_mi;x\n0;1\n", 2, 4, "row has 2 fields, header has 3");
-  expect_error("t\tp_mi\n0\t1\t\n", 2, 5, "row has more than 2 fields");
-}
+// One case a line.
+// clang-format off
+const hstmon_test::ErrorCase kRefused[] = {
+    {"BadNumbers", "t,p_mi\n0,1\n0.001,1.2.3\n", 3, 7, "bad number '1.2.3'"},
+    {"BadNumbers", "t,p_mi\n0,abc\n", 2, 3, "bad number 'abc' in column 'p_mi'"},
+    {"BadNumbers", "t,p_mi\nx,1\n", 2, 1, "bad number 'x' in column 't'"},
+    {"BadNumbers", "t,p_mi\n0,1.5x\n", 2, 3, "bad number '1.5x'"},
+    {"BadNumbers", "t,p_mi\n0,0x10\n", 2, 3, "bad number '0x10'"},
+    {"BadNumbers", "t,p_mi\n0,1 2\n", 2, 3, "bad number '1 2'"},
+    {"BadNumbers", "t,p_mi\n0,--1\n", 2, 3, "bad number '--1'"},
+    {"BadNumbers", "t,p_mi\n0,\"1\"\n", 2, 3, "bad number"},
+    {"BadNumbers", "t;p_mi\n0;1,2,3\n", 2, 3, "bad number '1,2,3'"},
+    {"BadNumbers", "t,p_mi\n0,1\r5\n", 2, 3, "bad number '1\\x0D5'"},
+    {"BadNumbers", "t;p_mi\n0;1,2345678901234567890123456789012345678901234567890123456789012345\n", 2, 3, "bad number"},
+    {"EmptyField", "t,p_mi\n0,\n", 2, 3, "empty field in column 'p_mi'"},
+    {"EmptyField", "t,p_mi,p_mo\n0,,1\n", 2, 3, "empty field in column 'p_mi'"},
+    {"EmptyField", "t\tp_mi\n\t1\n", 2, 1, "empty field in column 't'"},
+    {"RaggedRows", "t,p_mi,p_mo\n0,1,2\n0.001,1\n", 3, 8, "row has 2 fields, header has 3"},
+    {"RaggedRows", "t,p_mi\n0,1,2\n", 2, 5, "row has more than 2 fields"},
+    {"RaggedRows", "t,p_mi\n0,1,5\n", 2, 5, "decimal comma needs ';' or tab"},
+    {"RaggedRows", "t;p_mi;x\n0;1\n", 2, 4, "row has 2 fields, header has 3"},
+    {"RaggedRows", "t\tp_mi\n0\t1\t\n", 2, 5, "row has more than 2 fields"},
+    {"UnitsRefused", "t[s],p_mi[bars]\n0,1\n", 1, 11, "unknown pressure unit 'bars' (use"},
+    {"UnitsRefused", "t,p_mi[mpa]\n0,1\n", 1, 8, "ambiguous pressure unit 'mpa'"},
+    {"UnitsRefused", "t[us],p_mi\n0,1\n", 1, 3, "unknown time unit 'us'"},
+    {"UnitsRefused", "t,w_m[Hz]\n0,1\n", 1, 7, "unknown speed unit 'Hz'"},
+    {"UnitsRefused", "t,kp[l/min]\n0,1\n", 1, 6, "unknown orifice coefficient unit"},
+    {"UnitsRefused", "t\tp_mi\ns\tbars\n0\t1\n", 2, 3, "unknown pressure unit 'bars'"},
+    {"UnitsRefused", "t[s]\tp_mi[bar]\ns\tkPa\n0\t1\n", 2, 3, "differs from 'bar' in the header"},
+    {"UnitsRefused", "t\tp_mi\ns\n0\t1\n", 2, 2, "units row has 1 fields, header has 2"},
+    {"HeaderProblems", "t,p_mi,P_MI\n0,1,2\n", 1, 8, "duplicate column name 'P_MI' (also field 2)"},
+    {"HeaderProblems", "t,x,x\n0,1,2\n", 1, 5, "duplicate column name 'x'"},
+    {"HeaderProblems", "p_mi,p_mo\n1,2\n", 1, 1, "no time column 't'"},
+    {"HeaderProblems", "t,,p_mi\n0,1,2\n", 1, 3, "empty column name"},
+    {"HeaderProblems", "t[s,p_mi\n0,1\n", 1, 2, "must end with ']'"},
+    {"HeaderProblems", "t,p_mi (bar\n0,1\n", 1, 8, "must end with ')'"},
+    {"TimeNotStrictlyIncreasing", "t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "time not strictly increasing: 0.001 s after 0.001 s"},
+    {"TimeNotStrictlyIncreasing", "t,p_mi\n1,1\n0.5,1\n", 3, 1, "time not strictly increasing"},
+    {"TimeNotStrictlyIncreasing", "p_mi;t[ms]\n1;0\n1;-1\n", 3, 3, "time not strictly increasing: -0.001 s after 0 s"},
+    // The error for a time that does not increase names the fix for a rounded time column.
+    {"TimeNotStrictlyIncreasing", "t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "rebuild time from the row index with --rate HZ"},
+    {"NonFiniteValues", "t,p_mi\n0,nan\n", 2, 3, "non-finite value 'nan' in column 'p_mi'"},
+    {"NonFiniteValues", "t,p_mi\n0,NaN\n", 2, 3, "non-finite value 'NaN'"},
+    {"NonFiniteValues", "t,p_mi\n0,inf\n", 2, 3, "non-finite value 'inf'"},
+    {"NonFiniteValues", "t,p_mi\n0,-Infinity\n", 2, 3, "non-finite value '-Infinity'"},
+    {"NonFiniteValues", "t,p_mi\ninf,1\n", 2, 1, "non-finite value 'inf' in column 't'"},
+    {"NonFiniteValues", "t,p_mi\n0,1e999\n", 2, 3, "number out of range '1e999'"},
+    {"NonFiniteValues", "t,p_mi[bar]\n0,1e305\n", 2, 3, "value out of range after unit conversion '1e305'"},
+    {"EmptyAndHeaderOnly", "", 1, 1, "empty file"},
+    {"EmptyAndHeaderOnly", "\n\r\n  \n", 1, 1, "empty file"},
+    {"EmptyAndHeaderOnly", "\xEF\xBB\xBF", 1, 1, "empty file"},
+    {"EmptyAndHeaderOnly", "# a\n# b\n", 3, 1, "no header line"},
+    {"EmptyAndHeaderOnly", "t,p_mi\n", 2, 1, "no data rows"},
+    {"EmptyAndHeaderOnly", "t,p_mi", 1, 7, "no data rows"},
+    {"EmptyAndHeaderOnly", "t,p_mi\n# only a comment\n\n", 4, 1, "no data rows"},
+    {"EmptyAndHeaderOnly", "t\tp_mi\ns\tbar\n", 3, 1, "no data rows"},
+    {"BinaryJunk", "t,p_mi\n0,1\n0.001,1\0\x01\n"s, 3, 8, "NUL byte"},
+    {"BinaryJunk", "t,p_mi\n0,1\xff\n", 2, 4, "invalid UTF-8 byte 0xFF"},
+    {"BinaryJunk", "t,p\xC2\xB0\xff\n0,1\n", 1, 5, "invalid UTF-8 byte 0xFF"},
+    {"BinaryJunk", "t,p_mi\n0,1\xC3", 2, 4, "invalid UTF-8 byte 0xC3"},
+    {"BinaryJunk", "t,p_mi\n0,\xC0\x80\n", 2, 3, "invalid UTF-8 byte 0xC0"},
+    {"BinaryJunk", "t,p_mi\n0,\xED\xA0\x80\n", 2, 3, "invalid UTF-8 byte 0xED"},
+    {"BinaryJunk", "t,p_mi\n0,1\n# comment \x80\n1,2\n", 3, 11, "invalid UTF-8 byte 0x80"},
+};
+// clang-format on
 
-TEST(LogErrors, UnitsRefused) {
-  expect_error("t[s],p_mi[bars]\n0,1\n", 1, 11, "unknown pressure unit 'bars' (use");
-  expect_error("t,p_mi[mpa]\n0,1\n", 1, 8, "ambiguous pressure unit 'mpa'");
-  expect_error("t[us],p_mi\n0,1\n", 1, 3, "unknown time unit 'us'");
-  expect_error("t,w_m[Hz]\n0,1\n", 1, 7, "unknown speed unit 'Hz'");
-  expect_error("t,kp[l/min]\n0,1\n", 1, 6, "unknown orifice coefficient unit");
-  expect_error("t\tp_mi\ns\tbars\n0\t1\n", 2, 3, "unknown pressure unit 'bars'");
-  expect_error("t[s]\tp_mi[bar]\ns\tkPa\n0\t1\n", 2, 3, "differs from 'bar' in the header");
-  expect_error("t\tp_mi\ns\n0\t1\n", 2, 2, "units row has 1 fields, header has 2");
-}
+INSTANTIATE_TEST_SUITE_P(LogErrors, LogRefusal, testing::ValuesIn(kRefused), hstmon_test::error_case_name);
 
-TEST(LogErrors, HeaderProblems) {
-  expect_error("t,p_mi,P_MI\n0,1,2\n", 1, 8, "duplicate column name 'P_MI' (also field 2)");
-  expect_error("t,x,x\n0,1,2\n", 1, 5, "duplicate column name 'x'");
-  expect_error("p_mi,p_mo\n1,2\n", 1, 1, "no time column 't'");
-  expect_error("t,,p_mi\n0,1,2\n", 1, 3, "empty column name");
-  expect_error("t[s,p_mi\n0,1\n", 1, 2, "must end with ']'");
-  expect_error("t,p_mi (bar\n0,1\n", 1, 8, "must end with ')'");
+TEST(LogErrors, ColumnMapProblems) {
   hh::ReadOptions opt;
   opt.column_map = {{"a", "p_mi"}};
   expect_error("t,a,p_mi\n0,1,2\n", 1, 5, "gives signal 'p_mi', already given by field 2", opt);
@@ -98,42 +128,7 @@ TEST(LogErrors, HeaderProblems) {
   expect_error("t,a\n0,1\n", 1, 3, "column map sends 'a' to 'p_m', which is not a known signal", opt);
 }
 
-TEST(LogErrors, TimeNotStrictlyIncreasing) {
-  expect_error("t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "time not strictly increasing: 0.001 s after 0.001 s");
-  expect_error("t,p_mi\n1,1\n0.5,1\n", 3, 1, "time not strictly increasing");
-  expect_error("p_mi;t[ms]\n1;0\n1;-1\n", 3, 3, "time not strictly increasing: -0.001 s after 0 s");
-}
-
-TEST(LogErrors, NonFiniteValues) {
-  expect_error("t,p_mi\n0,nan\n", 2, 3, "non-finite value 'nan' in column 'p_mi'");
-  expect_error("t,p_mi\n0,NaN\n", 2, 3, "non-finite value 'NaN'");
-  expect_error("t,p_mi\n0,inf\n", 2, 3, "non-finite value 'inf'");
-  expect_error("t,p_mi\n0,-Infinity\n", 2, 3, "non-finite value '-Infinity'");
-  expect_error("t,p_mi\ninf,1\n", 2, 1, "non-finite value 'inf' in column 't'");
-  expect_error("t,p_mi\n0,1e999\n", 2, 3, "number out of range '1e999'");
-  expect_error("t,p_mi[bar]\n0,1e305\n", 2, 3, "value out of range after unit conversion '1e305'");
-}
-
-TEST(LogErrors, EmptyAndHeaderOnly) {
-  expect_error("", 1, 1, "empty file");
-  expect_error("\n\r\n  \n", 1, 1, "empty file");
-  expect_error("\xEF\xBB\xBF", 1, 1, "empty file");
-  expect_error("# a\n# b\n", 3, 1, "no header line");
-  expect_error("t,p_mi\n", 2, 1, "no data rows");
-  expect_error("t,p_mi", 1, 7, "no data rows");
-  expect_error("t,p_mi\n# only a comment\n\n", 4, 1, "no data rows");
-  expect_error("t\tp_mi\ns\tbar\n", 3, 1, "no data rows");
-}
-
 TEST(LogErrors, BinaryJunk) {
-  using namespace std::string_literals;
-  expect_error("t,p_mi\n0,1\n0.001,1\0\x01\n"s, 3, 8, "NUL byte");
-  expect_error("t,p_mi\n0,1\xff\n", 2, 4, "invalid UTF-8 byte 0xFF");
-  expect_error("t,p\xC2\xB0\xff\n0,1\n", 1, 5, "invalid UTF-8 byte 0xFF");
-  expect_error("t,p_mi\n0,1\xC3", 2, 4, "invalid UTF-8 byte 0xC3");
-  expect_error("t,p_mi\n0,\xC0\x80\n", 2, 3, "invalid UTF-8 byte 0xC0");
-  expect_error("t,p_mi\n0,\xED\xA0\x80\n", 2, 3, "invalid UTF-8 byte 0xED");
-  expect_error("t,p_mi\n0,1\n# comment \x80\n1,2\n", 3, 11, "invalid UTF-8 byte 0x80");
   std::string junk;
   for (int i = 0; i < 4096; ++i) junk += static_cast<char>((i * 37 + 11) & 0xFF);
   const auto d = read(junk);
@@ -274,12 +269,6 @@ TEST(LenientRead, RefusesToDropMoreThanAFewPerCent) {
   const auto f = read_lenient(few);
   ASSERT_TRUE(f.ok()) << f.error->to_string();
   EXPECT_EQ(f.skipped_rows, 10u);
-}
-
-// The strict error for a time that does not increase names the fix for a rounded
-// time column.
-TEST(LogErrors, TimeNotIncreasingNamesTheRateOption) {
-  expect_error("t,p_mi\n0,1\n0.001,1\n0.001,1\n", 4, 1, "rebuild time from the row index with --rate HZ");
 }
 
 TEST(LenientRead, HeaderErrorsStillGiveNoRows) {

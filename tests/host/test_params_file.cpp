@@ -6,24 +6,23 @@
 #include <fstream>
 #include <string>
 
+#include "../support/params_errors.hpp"
 #include "hstmon_host/params_file.hpp"
 
 namespace hh = hstmon::host;
 
 namespace {
 
-hh::ParamsFileResult parse(std::string_view text) { return hh::parse_params_json(text, "p.json"); }
+using hstmon_test::parse;
 
-void expect_error(std::string_view text, std::size_t line, std::size_t column, const std::string& part) {
-  const auto r = parse(text);
-  ASSERT_FALSE(r.ok()) << "accepted: " << text;
-  EXPECT_FALSE(r.params.has_value());
-  EXPECT_FALSE(r.inputs.has_value());
-  EXPECT_EQ(r.error->file, "p.json");
-  EXPECT_EQ(r.error->line, line) << r.error->to_string();
-  EXPECT_EQ(r.error->column, column) << r.error->to_string();
-  EXPECT_NE(r.error->message.find(part), std::string::npos) << r.error->to_string();
-}
+// A misspelt key on a line of its own: the error points at it.
+const char* const kMisspeltParam = R"({
+  "model": "thesis",
+  "params": {
+    "Dm": 7.96e-6,
+    "Dmm": 1
+  }
+})";
 
 }  // namespace
 
@@ -68,68 +67,56 @@ TEST(ParamsFile, IntegersAndZeroFriction) {
   EXPECT_EQ(r.inputs->kp, 0.0);
 }
 
-TEST(ParamsFile, UnknownKeys) {
-  const char* text = R"({
-  "model": "thesis",
-  "params": {
-    "Dm": 7.96e-6,
-    "Dmm": 1
-  }
-})";
-  expect_error(text, 5, 5, "unknown key 'Dmm' in 'params' (known: Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K, dp_t_dcv, dp_t_prv)");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Psup\": 1}}", 1, 32, "unknown key 'Psup' in 'inputs' (known: Psupl, Ps, Pbp, kp)");
-  expect_error("{\"model\": \"thesis\",\n \"param\": {}}", 2, 2, "unknown key 'param' (known: model, description, params, inputs)");
-  // Keys are case-sensitive, as in the C++ structs.
-  expect_error("{\"model\": \"thesis\", \"params\": {\"dm\": 1}}", 1, 32, "unknown key 'dm'");
-}
+// Each refused file of the table: one error at its line:column, and nothing kept.
+class ParamsRefusal : public testing::TestWithParam<hstmon_test::ErrorCase> {};
 
-TEST(ParamsFile, WrongTypes) {
-  expect_error("{\"model\": \"thesis\", \"params\": {\"Dm\": \"7.96e-6\"}}", 1, 38, "params.Dm must be a number [m3/rad], got string");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"J\": true}}", 1, 37, "params.J must be a number [kg*m2], got boolean");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"J\": null}}", 1, 37, "got null");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Psupl\": [35]}}", 1, 41, "inputs.Psupl must be a number [Pa] or a string with a unit, got array");
-  expect_error("{\"model\": \"thesis\", \"params\": [1, 2]}", 1, 31, "'params' must be an object");
-  expect_error("{\"model\": \"thesis\", \"description\": 3}", 1, 36, "'description' must be a string");
-  expect_error("[1, 2]", 1, 1, "the top level must be an object");
-  expect_error("  \"thesis\"", 1, 3, "the top level must be an object");
-}
+TEST_P(ParamsRefusal, PointsAtTheMistake) { hstmon_test::expect_params_refused(GetParam()); }
 
-TEST(ParamsFile, UnitsInStrings) {
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Psupl\": \"35 bars\"}}", 1, 41, "inputs.Psupl: unknown pressure unit 'bars'");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Pbp\": \"10 mpa\"}}", 1, 39, "ambiguous pressure unit");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"kp\": \"4e-8 l/min\"}}", 1, 38, "unknown orifice coefficient unit");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Ps\": \"bar\"}}", 1, 38, "expected a number");
-}
+// One case a line.
+// clang-format off
+const hstmon_test::ErrorCase kRefused[] = {
+    {"UnknownKeys", kMisspeltParam, 5, 5, "unknown key 'Dmm' in 'params' (known: Dm, Dp, Rlkg, Ripl, Rf, Rbl, kf, J, K, dp_t_dcv, dp_t_prv)"},
+    {"UnknownKeys", "{\"model\": \"thesis\", \"inputs\": {\"Psup\": 1}}", 1, 32, "unknown key 'Psup' in 'inputs' (known: Psupl, Ps, Pbp, kp)"},
+    {"UnknownKeys", "{\"model\": \"thesis\",\n \"param\": {}}", 2, 2, "unknown key 'param' (known: model, description, params, inputs)"},
+    // Keys are case-sensitive, as in the C++ structs.
+    {"UnknownKeys", "{\"model\": \"thesis\", \"params\": {\"dm\": 1}}", 1, 32, "unknown key 'dm'"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"params\": {\"Dm\": \"7.96e-6\"}}", 1, 38, "params.Dm must be a number [m3/rad], got string"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"params\": {\"J\": true}}", 1, 37, "params.J must be a number [kg*m2], got boolean"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"params\": {\"J\": null}}", 1, 37, "got null"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"inputs\": {\"Psupl\": [35]}}", 1, 41, "inputs.Psupl must be a number [Pa] or a string with a unit, got array"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"params\": [1, 2]}", 1, 31, "'params' must be an object"},
+    {"WrongTypes", "{\"model\": \"thesis\", \"description\": 3}", 1, 36, "'description' must be a string"},
+    {"WrongTypes", "[1, 2]", 1, 1, "the top level must be an object"},
+    {"WrongTypes", "  \"thesis\"", 1, 3, "the top level must be an object"},
+    {"UnitsInStrings", "{\"model\": \"thesis\", \"inputs\": {\"Psupl\": \"35 bars\"}}", 1, 41, "inputs.Psupl: unknown pressure unit 'bars'"},
+    {"UnitsInStrings", "{\"model\": \"thesis\", \"inputs\": {\"Pbp\": \"10 mpa\"}}", 1, 39, "ambiguous pressure unit"},
+    {"UnitsInStrings", "{\"model\": \"thesis\", \"inputs\": {\"kp\": \"4e-8 l/min\"}}", 1, 38, "unknown orifice coefficient unit"},
+    {"UnitsInStrings", "{\"model\": \"thesis\", \"inputs\": {\"Ps\": \"bar\"}}", 1, 38, "expected a number"},
+    {"InvalidValues", "{\"model\": \"thesis\",\n \"params\": {\"Dm\": -7.96e-6}}", 2, 19, "params.Dm must be finite and > 0 [m3/rad], got -7.96e-06"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"params\": {\"J\": 0}}", 1, 37, "params.J must be finite and > 0"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"params\": {\"Rf\": -0.1}}", 1, 38, "params.Rf must be finite and >= 0"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"params\": {\"dp_t_dcv\": \"0 bar\"}}", 1, 44, "params.dp_t_dcv must be finite and > 0 [Pa], got 0"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"inputs\": {\"kp\": -1e-8}}", 1, 38, "inputs.kp must be finite and >= 0"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"params\": {\"Rf\": 0, \"Rbl\": 0}}", 1, 31, "Rf + Rbl must be > 0"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"params\": {\"K\": 1e400}}", 1, 37, "number overflow"},
+    {"InvalidValues", "{\"model\": \"thesis\", \"inputs\": {\"Psupl\": \"1e308 bar\"}}", 1, 41, "not finite"},
+    {"ModelKey", "{\"params\": {}}", 1, 1, "missing key 'model'"},
+    {"ModelKey", "{\"model\": \"paper\"}", 1, 11, "'model' must be \"thesis\""},
+    {"ModelKey", "{\"model\": 1}", 1, 11, "'model' must be \"thesis\""},
+    {"DuplicateKeys", "{\"model\": \"thesis\", \"params\": {\"Dm\": 1e-6,\n \"Dm\": 2e-6}}", 2, 2, "duplicate key 'Dm' in 'params'"},
+    {"DuplicateKeys", "{\"model\": \"thesis\", \"model\": \"thesis\"}", 1, 21, "duplicate key 'model' in the top level"},
+    {"SyntaxErrors", "{\n  \"model\": \"thesis\",\n  \"params\" {}\n}", 3, 12, "JSON: syntax error while parsing object separator"},
+    {"SyntaxErrors", "{\"model\": \"thesis\",}", 1, 20, "JSON: syntax error"},
+    {"SyntaxErrors", "", 1, 1, "unexpected end of input"},
+    {"SyntaxErrors", "{\"model\": \"the\xffsis\"}", 1, 15, "ill-formed UTF-8"},
+    {"SyntaxErrors", "{\"model\": \"thesis\"} x", 1, 21, "JSON: syntax error"},
+    {"SyntaxErrors", std::string("{\"model\": \"thesis\"\0}", 20), 1, 19, "JSON: syntax error"},
+};
+// clang-format on
 
-TEST(ParamsFile, InvalidValues) {
-  expect_error("{\"model\": \"thesis\",\n \"params\": {\"Dm\": -7.96e-6}}", 2, 19, "params.Dm must be finite and > 0 [m3/rad], got -7.96e-06");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"J\": 0}}", 1, 37, "params.J must be finite and > 0");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"Rf\": -0.1}}", 1, 38, "params.Rf must be finite and >= 0");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"dp_t_dcv\": \"0 bar\"}}", 1, 44, "params.dp_t_dcv must be finite and > 0 [Pa], got 0");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"kp\": -1e-8}}", 1, 38, "inputs.kp must be finite and >= 0");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"Rf\": 0, \"Rbl\": 0}}", 1, 31, "Rf + Rbl must be > 0");
-  expect_error("{\"model\": \"thesis\", \"params\": {\"K\": 1e400}}", 1, 37, "number overflow");
-  expect_error("{\"model\": \"thesis\", \"inputs\": {\"Psupl\": \"1e308 bar\"}}", 1, 41, "not finite");
-}
-
-TEST(ParamsFile, ModelKey) {
-  expect_error("{\"params\": {}}", 1, 1, "missing key 'model'");
-  expect_error("{\"model\": \"paper\"}", 1, 11, "'model' must be \"thesis\"");
-  expect_error("{\"model\": 1}", 1, 11, "'model' must be \"thesis\"");
-}
-
-TEST(ParamsFile, DuplicateKeys) {
-  expect_error("{\"model\": \"thesis\", \"params\": {\"Dm\": 1e-6,\n \"Dm\": 2e-6}}", 2, 2, "duplicate key 'Dm' in 'params'");
-  expect_error("{\"model\": \"thesis\", \"model\": \"thesis\"}", 1, 21, "duplicate key 'model' in the top level");
-}
+INSTANTIATE_TEST_SUITE_P(ParamsFile, ParamsRefusal, testing::ValuesIn(kRefused), hstmon_test::error_case_name);
 
 TEST(ParamsFile, SyntaxErrors) {
-  expect_error("{\n  \"model\": \"thesis\",\n  \"params\" {}\n}", 3, 12, "JSON: syntax error while parsing object separator");
-  expect_error("{\"model\": \"thesis\",}", 1, 20, "JSON: syntax error");
-  expect_error("", 1, 1, "unexpected end of input");
-  expect_error("{\"model\": \"the\xffsis\"}", 1, 15, "ill-formed UTF-8");
-  expect_error("{\"model\": \"thesis\"} x", 1, 21, "JSON: syntax error");
-  expect_error(std::string("{\"model\": \"thesis\"\0}", 20), 1, 19, "JSON: syntax error");
   std::string deep(100000, '[');
   const auto r = parse(deep);  // must not overflow the stack
   EXPECT_FALSE(r.ok());

@@ -90,24 +90,29 @@ TEST(IdentErrors, NoSteadyWindow) {
   EXPECT_NE(run.out.find("ramp.csv: error: no steady window"), std::string::npos) << run.out;
 }
 
-TEST(IdentErrors, SingularDesign) {
-  // Only Ppp and ωm measured, every window at the same operating point, each its own kp:
-  // kf and Rf + Rbl enter only through one combination.
+/// Fits `count` windows at the nominal operating point, only Ppp and ωm measured, each
+/// window its own kp; `noise` scales their sums of squares. kf and Rf + Rbl enter only
+/// through one combination: the design is singular.
+ThesisFitResult fit_windows_at_one_point(int count, double noise) {
+  std::array<double, 4> y{};
+  EXPECT_TRUE(thesis_steady_outputs(ThesisParams<double>{}, ThesisInputs<double>{}, y));
   std::vector<OperatingPoint> pts;
   std::vector<std::string> settings;
-  std::array<double, 4> y{};
-  ASSERT_TRUE(thesis_steady_outputs(ThesisParams<double>{}, ThesisInputs<double>{}, y));
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < count; ++k) {
     OperatingPoint p;
     p.source = "mem window " + std::to_string(k);
     p.setting = static_cast<std::size_t>(k);
     p.y = {NAN, NAN, y[2], y[3]};
     p.n = 10;
-    p.ss = {0, 0, 9 * 25e6, 9 * 0.0036};
+    p.ss = {0, 0, 9 * 25e6 * noise, 9 * 0.0036 * noise};
     pts.push_back(p);
     settings.push_back(p.source);
   }
-  const auto r = fit_thesis_steady(pts, settings);
+  return fit_thesis_steady(pts, settings);
+}
+
+TEST(IdentErrors, SingularDesign) {
+  const auto r = fit_windows_at_one_point(3, 1.0);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error->find("singular design"), std::string::npos) << *r.error;
 }
@@ -115,21 +120,7 @@ TEST(IdentErrors, SingularDesign) {
 // Issue 16: with a kp per window there can be hundreds of parameters; the message names
 // a few and counts the rest (it was 77,774 characters long).
 TEST(IdentErrors, SingularDesignMessageStaysShort) {
-  std::vector<OperatingPoint> pts;
-  std::vector<std::string> settings;
-  std::array<double, 4> y{};
-  ASSERT_TRUE(thesis_steady_outputs(ThesisParams<double>{}, ThesisInputs<double>{}, y));
-  for (int k = 0; k < 300; ++k) {
-    OperatingPoint p;
-    p.source = "mem window " + std::to_string(k);
-    p.setting = static_cast<std::size_t>(k);
-    p.y = {NAN, NAN, y[2], y[3]};
-    p.n = 10;
-    p.ss = {0, 0, 9 * 25e6 * 1e12, 9 * 0.0036 * 1e12};  // noise so large no kp is determined
-    pts.push_back(p);
-    settings.push_back(p.source);
-  }
-  const auto r = fit_thesis_steady(pts, settings);
+  const auto r = fit_windows_at_one_point(300, 1e12);  // noise so large no kp is determined
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error->find("singular design"), std::string::npos) << *r.error;
   EXPECT_LT(r.error->size(), 700u) << *r.error;

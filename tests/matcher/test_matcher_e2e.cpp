@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/thesis_inputs_as.hpp"
 #include "hstmon/hstmon.hpp"
 #include "hstmon_sim/measure.hpp"
 #include "test_table.hpp"
@@ -34,15 +35,7 @@ RunResult run(const hstmon::sim::ThesisMeasurements& log, const hstmon::sim::Sen
   typename hstmon::Observer<Model>::Config oc;
   oc.tick = tick;
   EXPECT_EQ(obs.configure(Model{}, oc), hstmon::Status::kOk);
-  auto inputs = [](const hstmon::ThesisInputs<double>& u) {
-    hstmon::ThesisInputs<T> v;
-    v.Psupl = static_cast<T>(u.Psupl);
-    v.Ps = static_cast<T>(u.Ps);
-    v.Pbp = static_cast<T>(u.Pbp);
-    v.kp = static_cast<T>(u.kp);
-    return v;
-  };
-  EXPECT_EQ(obs.reset_steady(inputs(log.front().u)), hstmon::Status::kOk);
+  EXPECT_EQ(obs.reset_steady(hstmon_test::thesis_inputs_as<T>(log.front().u)), hstmon::Status::kOk);
 
   hstmon::ResidualEvaluator<T> ev;
   typename hstmon::ResidualEvaluator<T>::Config ec;
@@ -69,7 +62,7 @@ RunResult run(const hstmon::sim::ThesisMeasurements& log, const hstmon::sim::Sen
   T y[4];
   for (const auto& s : log) {
     for (int i = 0; i < 4; ++i) y[i] = meas.y[i] = static_cast<T>(s.y[static_cast<std::size_t>(i)]);
-    obs.step(inputs(s.u), meas);
+    obs.step(hstmon_test::thesis_inputs_as<T>(s.u), meas);
     ev.update(obs.residual().data(), obs.residual_valid());
     if (ev.alarm() != 0) {
       ++res.alarm_ticks;

@@ -115,6 +115,17 @@ struct Rig {
   }
   MatchStatus status() const { return mon.matcher().status(); }
 
+  /// Where a fault (or none) must end: the matcher nominal and the state plausible.
+  void expect_back_to_nominal() const {
+    EXPECT_EQ(status(), MatchStatus::kNominal) << dump();
+    EXPECT_TRUE(state_ok);
+  }
+  /// As expect_back_to_nominal(), with no event raised on the way.
+  void expect_quiet() const {
+    EXPECT_TRUE(events.empty()) << dump();
+    expect_back_to_nominal();
+  }
+
   /// Events (isolated, ambiguous, unexplained) that name a parameter fault as the best
   /// candidate, or call the episode unexplained.
   std::vector<std::string> parameter_verdicts() const {
@@ -148,9 +159,7 @@ struct Rig {
 TEST(SensorFaults, CleanStreamRaisesNothing) {
   Rig rig;
   rig.run(5000);
-  EXPECT_TRUE(rig.events.empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal);
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_quiet();
 }
 
 // ---- dropouts -----------------------------------------------------------------------
@@ -162,9 +171,7 @@ TEST(SensorFaults, DropoutOfAllChannelsKeepsTickingWithoutAlarm) {
   rig.run(200, [](std::uint64_t, Mon::Measurement& s) { s.valid = 0; });
   EXPECT_EQ(rig.mon.observer().ticks(), 1200u);
   rig.run(1000);
-  EXPECT_TRUE(rig.events.empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal);
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_quiet();
 }
 
 TEST(SensorFaults, DropoutOfOneChannelIsNotAParameterFault) {
@@ -173,8 +180,7 @@ TEST(SensorFaults, DropoutOfOneChannelIsNotAParameterFault) {
   rig.run(500, [](std::uint64_t, Mon::Measurement& s) { s.valid = 0x0B; });  // p_pp missing
   rig.run(1000);
   EXPECT_TRUE(rig.parameter_verdicts().empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal);
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_back_to_nominal();
 }
 
 // ---- spikes -------------------------------------------------------------------------
@@ -189,9 +195,7 @@ TEST(SensorFaults, SingleSampleSpikesRaiseNoAlarm) {
     rig.run(100);
   }
   rig.run(1000);
-  EXPECT_TRUE(rig.events.empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal);
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_quiet();
 }
 
 TEST(SensorFaults, NonFiniteSpikeIsASensorFaultAndClears) {
@@ -202,8 +206,7 @@ TEST(SensorFaults, NonFiniteSpikeIsASensorFaultAndClears) {
   rig.run(2000);
   EXPECT_TRUE(rig.parameter_verdicts().empty()) << rig.dump();
   EXPECT_TRUE(rig.any_candidate("sensor_p_pp")) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal) << rig.dump();
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_back_to_nominal();
 }
 
 TEST(SensorFaults, OutOfRangeSpikeIsASensorFaultAndClears) {
@@ -230,8 +233,7 @@ TEST(SensorFaults, StuckSpeedSensorIsSensorWmAndRecovers) {
   EXPECT_TRUE(rig.any_candidate("sensor_w_m")) << rig.dump();
   rig.run(2000);
   EXPECT_TRUE(rig.parameter_verdicts().empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal) << rig.dump();
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_back_to_nominal();
 }
 
 // ---- 4–20 mA loop break -------------------------------------------------------------
@@ -253,8 +255,7 @@ void loop_break_pinned(double pinned, bool ranges) {
   rig.run(3000);  // the loop is repaired
   std::printf("loop break pinned at %g bar, events:\n%s", pinned / kBar, rig.dump().c_str());
   EXPECT_TRUE(rig.parameter_verdicts().empty()) << "pinned " << pinned / kBar << " bar:\n" << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal) << rig.dump();
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_back_to_nominal();
 }
 
 // The first 100 ms of a pinned reading, before the stuck check can fire, the residual
@@ -276,8 +277,7 @@ TEST(SensorFaults, LoopBreakBelowRangeIsSensorPppAtOnce) {
   EXPECT_TRUE(rig.any_candidate("sensor_p_pp")) << rig.dump();
   rig.run(3000);
   EXPECT_TRUE(rig.parameter_verdicts().empty()) << rig.dump();
-  EXPECT_EQ(rig.status(), MatchStatus::kNominal) << rig.dump();
-  EXPECT_TRUE(rig.state_ok);
+  rig.expect_back_to_nominal();
 }
 
 // ---- absurd but finite inputs ------------------------------------------------------

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/thesis_inputs_as.hpp"
 #include "hstmon/generated/thesis_signatures.hpp"
 #include "hstmon/monitor.hpp"
 #include "hstmon_sim/machine_error.hpp"
@@ -105,16 +106,6 @@ __attribute__((noinline)) void tick(Mon<T>& mon, T t, const hstmon::ThesisInputs
   mon.step(t, u, m);
 }
 
-template <typename T>
-hstmon::ThesisInputs<T> to_t(const hstmon::ThesisInputs<double>& d) {
-  hstmon::ThesisInputs<T> u;
-  u.Psupl = static_cast<T>(d.Psupl);
-  u.Ps = static_cast<T>(d.Ps);
-  u.Pbp = static_cast<T>(d.Pbp);
-  u.kp = static_cast<T>(d.kp);
-  return u;
-}
-
 /// One monitor of the soak, fed row by row.
 template <typename T>
 struct Soaked {
@@ -139,7 +130,7 @@ struct Soaked {
     typename Mon<T>::Measurement m;
     m.valid = 0x0F;
     for (int i = 0; i < 4; ++i) m.y[i] = static_cast<T>(row.y[static_cast<std::size_t>(i)]);
-    const hstmon::ThesisInputs<T> u = to_t<T>(row.u);
+    const hstmon::ThesisInputs<T> u = hstmon_test::thesis_inputs_as<T>(row.u);
     const auto c0 = std::chrono::steady_clock::now();
     if (!started) {  // the monitor starts from the first sample, as replay does
       if (mon.reset_measured(u, m) != hstmon::Status::kOk) {
@@ -277,23 +268,27 @@ void slice() {
   typename Mon<T>::Measurement m;
   m.valid = 0x0F;
   double y[4];
-  for (int k = 0; k < 2000; ++k) {
+  // The generator's next sample into m.
+  const auto sample = [&] {
     gen.advance(y);
     for (int i = 0; i < 4; ++i) m.y[i] = static_cast<T>(y[i]);
+  };
+  // Tick k with only the tick itself collected (not the sample's generation).
+  const auto collected_tick = [&](int k) {
+    CALLGRIND_TOGGLE_COLLECT;
+    tick<T>(mon, static_cast<T>(k * kTick), u, m);
+    CALLGRIND_TOGGLE_COLLECT;
+  };
+  for (int k = 0; k < 2000; ++k) {
+    sample();
     tick<T>(mon, static_cast<T>(k * kTick), u, m);
   }
-  gen.advance(y);
-  for (int i = 0; i < 4; ++i) m.y[i] = static_cast<T>(y[i]);
-  CALLGRIND_TOGGLE_COLLECT;
-  tick<T>(mon, static_cast<T>(2000 * kTick), u, m);
-  CALLGRIND_TOGGLE_COLLECT;
+  sample();
+  collected_tick(2000);
   CALLGRIND_DUMP_STATS_AT("ordinary tick");
   u.kp = static_cast<T>(u.kp * T(1.001));  // a 0.1 % setpoint change: bound recomputed
-  gen.advance(y);
-  for (int i = 0; i < 4; ++i) m.y[i] = static_cast<T>(y[i]);
-  CALLGRIND_TOGGLE_COLLECT;
-  tick<T>(mon, static_cast<T>(2001 * kTick), u, m);
-  CALLGRIND_TOGGLE_COLLECT;
+  sample();
+  collected_tick(2001);
   CALLGRIND_DUMP_STATS_AT("load-change tick");
   std::printf("slice done (Monitor<%s>)\n", sizeof(T) == 4 ? "float" : "double");
 }

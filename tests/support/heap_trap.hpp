@@ -82,4 +82,16 @@ inline long allocations_of_one_malloc() {
   return g_allocs;
 }
 
+/// The workload armed around an observer: `ticks` steps of a configured observer, each on
+/// its own estimate as the measurement (every channel valid), as on a quiet machine.
+template <typename Obs, typename Inputs>
+void step_on_own_estimate(Obs& o, const Inputs& u, int ticks) {
+  typename Obs::Measurement y;
+  y.valid = 0x0f;
+  for (int k = 0; k < ticks; ++k) {
+    y.y = o.estimate();
+    o.step(u, y);
+  }
+}
+
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <string>
 
 #include "hstmon/circuit/stiffness.hpp"
@@ -35,27 +36,24 @@ std::string ref(circuit::Ref r) {
   }
 }
 
+// The name of enumerator k, from the names of an enum numbered 0, 1, … in order; "?" past them.
+template <class Enum, std::size_t N>
+const char* enumerator(Enum k, const char* const (&names)[N]) {
+  const auto i = static_cast<std::size_t>(k);
+  return i < N ? names[i] : "?";
+}
+
 const char* element_kind(circuit::ElementKind k) {
-  switch (k) {
-    case circuit::ElementKind::kOrifice: return "kOrifice";
-    case circuit::ElementKind::kLaminar: return "kLaminar";
-    case circuit::ElementKind::kFlowSource: return "kFlowSource";
-    case circuit::ElementKind::kMachine: return "kMachine";
-    case circuit::ElementKind::kCompPump: return "kCompPump";
-    case circuit::ElementKind::kPoppet: return "kPoppet";
-    case circuit::ElementKind::kTorque: return "kTorque";
-    case circuit::ElementKind::kFriction: return "kFriction";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"kOrifice",  "kLaminar", "kFlowSource", "kMachine",
+                                           "kCompPump", "kPoppet",  "kTorque",     "kFriction"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(circuit::ElementKind::kFriction) + 1);
+  return enumerator(k, kNames);
 }
 
 const char* channel_kind(circuit::ChannelKind k) {
-  switch (k) {
-    case circuit::ChannelKind::kPressure: return "kPressure";
-    case circuit::ChannelKind::kSpeed: return "kSpeed";
-    case circuit::ChannelKind::kFlow: return "kFlow";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"kPressure", "kSpeed", "kFlow"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(circuit::ChannelKind::kFlow) + 1);
+  return enumerator(k, kNames);
 }
 
 // A C string literal of s (names are identifiers and dots; escape the rest anyway).
@@ -200,14 +198,27 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
     const host::UnitResult u = host::parse_circuit_unit(q, unit);
     return u.ok() ? u.conversion.factor : 1.0;
   };
-  line("/// Log column of each input (matched without regard to case, as the host reader does).");
-  names("kInputColumns", n_in, cap_in, [&](std::size_t i) { return f.inputs[i].column; });
-  line("/// SI factor of each input column whose log header states no unit (the circuit file's unit).");
-  line("inline constexpr double kInputUnitScale[" + std::to_string(cap_in) + "] = " +
-       list(n_in, [&](int i) {
-         const auto& in = f.inputs[static_cast<std::size_t>(i)];
-         return num(default_scale(in.quantity, in.unit));
-       }, cap_in - n_in) + ";");
+  // The log columns of items (the inputs or the sensors, n of cap) and the SI factor of a
+  // column whose log header states no unit (the circuit file's unit), with their comments.
+  auto column_tables = [&](const auto& items, int n, int cap, const char* columns, const std::string& columns_doc,
+                           const char* scales, const std::string& scales_doc) {
+    line(columns_doc);
+    names(columns, n, cap, [&](std::size_t i) { return items[i].column; });
+    line(scales_doc);
+    line("inline constexpr double " + std::string(scales) + "[" + std::to_string(cap) + "] = " +
+         list(
+             n,
+             [&](int i) {
+               const auto& item = items[static_cast<std::size_t>(i)];
+               return num(default_scale(item.quantity, item.unit));
+             },
+             cap - n) +
+         ";");
+  };
+  column_tables(f.inputs, n_in, cap_in, "kInputColumns",
+                "/// Log column of each input (matched without regard to case, as the host reader does).",
+                "kInputUnitScale",
+                "/// SI factor of each input column whose log header states no unit (the circuit file's unit).");
   line("/// Sensor noise standard deviation per channel [SI]; 0 where the file gives none.");
   line("inline constexpr double kNoiseSigma[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].noise); }) + ";");
@@ -217,14 +228,9 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("inline constexpr double kRangeHi[" + std::to_string(n_ch) + "] = " +
        list(n_ch, [&](int i) { return num(f.sensors[static_cast<std::size_t>(i)].hi); }) + ";");
   names("kChannelNames", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].name; });
-  line("/// Log column of each channel (matched without regard to case).");
-  names("kChannelColumns", n_ch, n_ch, [&](std::size_t i) { return f.sensors[i].column; });
-  line("/// SI factor of each channel column whose log header states no unit (the circuit file's unit).");
-  line("inline constexpr double kChannelUnitScale[" + std::to_string(n_ch) + "] = " +
-       list(n_ch, [&](int i) {
-         const auto& sn = f.sensors[static_cast<std::size_t>(i)];
-         return num(default_scale(sn.quantity, sn.unit));
-       }) + ";");
+  column_tables(f.sensors, n_ch, n_ch, "kChannelColumns",
+                "/// Log column of each channel (matched without regard to case).", "kChannelUnitScale",
+                "/// SI factor of each channel column whose log header states no unit (the circuit file's unit).");
   line("");
   line("}  // namespace hstmon::generated::" + o.name);
   return h;

@@ -291,26 +291,26 @@ std::optional<SourceError> read_header(std::string_view line, std::size_t line_n
       tg.conv = u.conversion;
       continue;
     }
-    for (std::size_t i = 0; i < c.inputs.size() && tg.kind == Target::kIgnored; ++i) {
-      if (!same_name(name, c.inputs[i].column)) continue;
-      if (in_seen[i]) return SourceError{log.path, line_no, col, "duplicated column '" + std::string(name) + "'"};
-      in_seen[i] = true;
-      const host::UnitResult u =
-          host::parse_circuit_unit(c.inputs[i].quantity, has_unit ? unit : std::string_view(c.inputs[i].unit));
-      if (!u.ok())
-        return SourceError{log.path, unit_line_no, unit_col, u.error + " in column '" + std::string(header_name) + "'"};
-      tg = Target{Target::kInput, static_cast<int>(i), u.conversion, std::string(header_name)};
-    }
-    for (std::size_t i = 0; i < c.sensors.size() && tg.kind == Target::kIgnored; ++i) {
-      if (!same_name(name, c.sensors[i].column)) continue;
-      if (s_seen[i]) return SourceError{log.path, line_no, col, "duplicated column '" + std::string(name) + "'"};
-      s_seen[i] = true;
-      const host::UnitResult u =
-          host::parse_circuit_unit(c.sensors[i].quantity, has_unit ? unit : std::string_view(c.sensors[i].unit));
-      if (!u.ok())
-        return SourceError{log.path, unit_line_no, unit_col, u.error + " in column '" + std::string(header_name) + "'"};
-      tg = Target{Target::kSensor, static_cast<int>(i), u.conversion, std::string(header_name)};
-    }
+    // The first of channels (c's inputs or sensors, targets of `kind`) whose column this is;
+    // seen: the channels that have theirs already.
+    auto take_channel = [&](const auto& channels, std::vector<bool>& seen,
+                            Target::Kind kind) -> std::optional<SourceError> {
+      for (std::size_t i = 0; i < channels.size() && tg.kind == Target::kIgnored; ++i) {
+        if (!same_name(name, channels[i].column)) continue;
+        if (seen[i]) return SourceError{log.path, line_no, col, "duplicated column '" + std::string(name) + "'"};
+        seen[i] = true;
+        const host::UnitResult u =
+            host::parse_circuit_unit(channels[i].quantity, has_unit ? unit : std::string_view(channels[i].unit));
+        if (!u.ok()) {
+          return SourceError{log.path, unit_line_no, unit_col,
+                             u.error + " in column '" + std::string(header_name) + "'"};
+        }
+        tg = Target{kind, static_cast<int>(i), u.conversion, std::string(header_name)};
+      }
+      return std::nullopt;
+    };
+    if (auto bad = take_channel(c.inputs, in_seen, Target::kInput)) return bad;
+    if (auto bad = take_channel(c.sensors, s_seen, Target::kSensor)) return bad;
     // A wide export would list every column: the first few, then a count.
     if (tg.kind == Target::kIgnored && ++ignored <= host::LogNoteRules::kMaxColumnNotes) {
       log.notes.push_back(log.path + ":" + std::to_string(line_no) + ":" + std::to_string(col) + ": note: column '" +

@@ -13,12 +13,34 @@ namespace {
 
 using host::detail::trim;
 
+/// True when text is a number and nothing else (no blanks, no unit), read into v.
+bool whole_number(std::string_view text, double& v) {
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  return r.ec == std::errc() && r.ptr == text.data() + text.size();
+}
+
 /// True when a value's text is a number alone, with no unit after it ("2.5", not "2.5 mm2").
 bool bare_number(std::string_view value) {
-  value = trim(value);
   double v = 0.0;
-  const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
-  return r.ec == std::errc() && r.ptr == value.data() + value.size();
+  return whole_number(trim(value), v);
+}
+
+/// True when text is a time in seconds >= 0, read into t.
+bool step_time(std::string_view text, double& t) { return whole_number(text, t) && std::isfinite(t) && t >= 0.0; }
+
+/// "NAME=VALUE@T" cut at the first '=' and the last '@'.
+struct TimedAssignment {
+  std::string name;
+  std::string_view value;  ///< between '=' and '@'
+  std::string_view time;   ///< after '@'
+};
+
+/// Nothing when text has no '=' before a '@', or no name before the '='.
+std::optional<TimedAssignment> split_timed_assignment(std::string_view text) {
+  const std::size_t eq = text.find('=');
+  const std::size_t at = text.rfind('@');
+  if (eq == std::string_view::npos || at == std::string_view::npos || at < eq || eq == 0) return std::nullopt;
+  return TimedAssignment{std::string(text.substr(0, eq)), text.substr(eq + 1, at - eq - 1), text.substr(at + 1)};
 }
 
 /// Quantities an engineer rarely writes in SI (bar, rpm, L/min, cc/rev, mm², L): a bare
@@ -33,12 +55,9 @@ bool needs_unit(host::CircuitQuantity q) {
 }  // namespace
 
 std::optional<std::string> parse_input_step(std::string_view text, const host::CircuitFile& c, InputStep& out) {
-  const std::size_t eq = text.find('=');
-  const std::size_t at = text.rfind('@');
-  if (eq == std::string_view::npos || at == std::string_view::npos || at < eq || eq == 0) {
-    return "--step takes INPUT=VALUE@T (e.g. throttle=0.7@5), got '" + std::string(text) + "'";
-  }
-  const std::string name(text.substr(0, eq));
+  const std::optional<TimedAssignment> parts = split_timed_assignment(text);
+  if (!parts) return "--step takes INPUT=VALUE@T (e.g. throttle=0.7@5), got '" + std::string(text) + "'";
+  const std::string& name = parts->name;
   const int i = c.input_index(name);
   if (i < 0) {
     std::string known;
@@ -46,32 +65,25 @@ std::optional<std::string> parse_input_step(std::string_view text, const host::C
     return "--step: circuit " + c.name + " has no input '" + name + "' (inputs: " + known + ")";
   }
   const host::CircuitInput& in = c.inputs[static_cast<std::size_t>(i)];
-  const std::string_view value_text = text.substr(eq + 1, at - eq - 1);
+  const std::string_view value_text = parts->value;
   if (needs_unit(in.quantity) && bare_number(value_text)) {
     const std::string unit = in.unit.empty() ? host::circuit_si_unit(in.quantity) : in.unit;
-    return "--step " + std::string(text) + ": give the unit of " + name + " (" + host::circuit_quantity_name(in.quantity) +
-           "), e.g. '" + name + "=" + std::string(trim(value_text)) + " " + unit + "@" +
-           std::string(text.substr(at + 1)) + "'";
+    return "--step " + std::string(text) + ": give the unit of " + name + " (" +
+           host::circuit_quantity_name(in.quantity) + "), e.g. '" + name + "=" + std::string(trim(value_text)) + " " +
+           unit + "@" + std::string(parts->time) + "'";
   }
   const host::ValueResult v = host::parse_circuit_value(in.quantity, value_text);
   if (!v.ok()) return "--step " + std::string(text) + ": " + v.error;
-  const std::string_view ts = text.substr(at + 1);
   double t = 0.0;
-  const auto r = std::from_chars(ts.data(), ts.data() + ts.size(), t);
-  if (r.ec != std::errc() || r.ptr != ts.data() + ts.size() || !std::isfinite(t) || t < 0.0) {
-    return "--step " + std::string(text) + ": the time after '@' must be seconds >= 0";
-  }
+  if (!step_time(parts->time, t)) return "--step " + std::string(text) + ": the time after '@' must be seconds >= 0";
   out = InputStep{t, i, v.value};
   return std::nullopt;
 }
 
 std::optional<std::string> parse_param_fault(std::string_view text, const host::CircuitFile& c, InputStep& out) {
-  const std::size_t eq = text.find('=');
-  const std::size_t at = text.rfind('@');
-  if (eq == std::string_view::npos || at == std::string_view::npos || at < eq || eq == 0) {
-    return "--fault takes PARAM=FACTOR@T (e.g. Rmlkg=0.5@3), got '" + std::string(text) + "'";
-  }
-  const std::string name(text.substr(0, eq));
+  const std::optional<TimedAssignment> parts = split_timed_assignment(text);
+  if (!parts) return "--fault takes PARAM=FACTOR@T (e.g. Rmlkg=0.5@3), got '" + std::string(text) + "'";
+  const std::string& name = parts->name;
   const int i = c.param_index(name);
   if (i < 0 || c.params[static_cast<std::size_t>(i)].literal) {
     std::string known;
@@ -81,16 +93,10 @@ std::optional<std::string> parse_param_fault(std::string_view text, const host::
     return "--fault: circuit " + c.name + " has no parameter '" + name + "' (parameters: " + known + ")";
   }
   double f = 0.0, t = 0.0;
-  const std::string_view fs = text.substr(eq + 1, at - eq - 1);
-  const std::string_view ts = text.substr(at + 1);
-  const auto rf = std::from_chars(fs.data(), fs.data() + fs.size(), f);
-  if (rf.ec != std::errc() || rf.ptr != fs.data() + fs.size() || !std::isfinite(f) || f <= 0.0) {
+  if (!(whole_number(parts->value, f) && std::isfinite(f) && f > 0.0)) {
     return "--fault " + std::string(text) + ": the factor between '=' and '@' must be a number > 0";
   }
-  const auto rt = std::from_chars(ts.data(), ts.data() + ts.size(), t);
-  if (rt.ec != std::errc() || rt.ptr != ts.data() + ts.size() || !std::isfinite(t) || t < 0.0) {
-    return "--fault " + std::string(text) + ": the time after '@' must be seconds >= 0";
-  }
+  if (!step_time(parts->time, t)) return "--fault " + std::string(text) + ": the time after '@' must be seconds >= 0";
   out = InputStep{t, -1, 0.0, i, f};
   return std::nullopt;
 }

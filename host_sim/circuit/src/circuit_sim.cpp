@@ -364,8 +364,12 @@ class Trajectory {
   bool sloped_ = false;
 };
 
-// The sensors section as a sensor chain: white noise (when asked) and range clipping.
-std::vector<sim::ChannelSpec> channel_specs(const LoadedCircuit& c, bool noise) {
+// The sensors section as a sensor chain: white noise (when asked), range clipping, and the
+// transducers' lag and ADC (when asked).
+std::vector<sim::ChannelSpec> channel_specs(const LoadedCircuit& c, bool noise, const TransducerOptions& t) {
+  if (!(t.lag >= 0.0) || !(t.pressure_step >= 0.0) || t.pressure_adc_bits < 0 || t.pressure_adc_bits > 52) {
+    throw std::runtime_error("transducers: the lag and the pressure step are >= 0, the pressure ADC has 1 to 52 bits");
+  }
   std::vector<sim::ChannelSpec> specs;
   for (const host::CircuitSensor& s : c.file.sensors) {
     sim::ChannelSpec ch;
@@ -373,6 +377,15 @@ std::vector<sim::ChannelSpec> channel_specs(const LoadedCircuit& c, bool noise) 
     ch.noise_std = noise ? s.noise : 0.0;
     ch.range_lo = s.lo;
     ch.range_hi = s.hi;
+    ch.tau = t.lag;
+    const bool ranged = std::isfinite(s.lo) && std::isfinite(s.hi) && s.hi > s.lo;
+    if (s.quantity == host::CircuitQuantity::kPressure) {  // speed and flow: counters and meters, not an ADC
+      if (t.pressure_adc_bits == 0) {
+        ch.quant_step = t.pressure_step;
+      } else if (ranged) {
+        ch.quant_step = sim::adc_step(s.lo, s.hi, t.pressure_adc_bits);
+      }
+    }
     specs.push_back(ch);
   }
   return specs;
@@ -384,7 +397,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   const std::vector<double> sample_times = sample_times_of(o);
   Stimulus stim(c, o);
   Trajectory run(c, o, stim);
-  const std::vector<sim::ChannelSpec> specs = channel_specs(c, o.noise);
+  const std::vector<sim::ChannelSpec> specs = channel_specs(c, o.noise, o.transducers);
   sim::SensorChain chain(specs, o.seed);
   const std::size_t channels = specs.size();
 

@@ -17,6 +17,34 @@ using CKind = circuit::ElementKind;
 using circuit::Ref;
 using circuit::RefKind;
 
+/// The core element of a hydraulic element's bond graph: a resistance, a transformer
+/// (machine displacement) or a flow source.
+struct HydraulicCore {
+  CKind element;
+  const char* prefix;  ///< of the core's name, before the element's
+  ElementKind kind;
+  const char* meaning;  ///< what it stands for, before the element's name
+  circuit::Slot slot;   ///< the number it is given by (an orifice's or valve's: k or area)
+};
+
+constexpr HydraulicCore kHydraulicCores[] = {
+    {CKind::kOrifice, "R_", ElementKind::kR, "orifice", circuit::kK},
+    {CKind::kPoppet, "R_", ElementKind::kR, "relief or check valve", circuit::kK},
+    {CKind::kLaminar, "R_", ElementKind::kR, "laminar leakage", circuit::kR},
+    {CKind::kCompPump, "R_", ElementKind::kR, "pressure-compensated pump (flow falls with its pressure rise)",
+     circuit::kQ0},
+    {CKind::kMachine, "TF_", ElementKind::kTF, "pump or motor displacement", circuit::kD},
+    {CKind::kFlowSource, "Sf_", ElementKind::kSf, "flow source", circuit::kQ},
+};
+
+/// The core of element kind k; nullptr for a kind with none (friction, torque).
+const HydraulicCore* hydraulic_core(CKind k) {
+  for (const HydraulicCore& hc : kHydraulicCores) {
+    if (hc.element == k) return &hc;
+  }
+  return nullptr;
+}
+
 /// The first of refs given (kind ≠ none), or a none Ref.
 Ref first_given(std::initializer_list<Ref> refs) {
   for (Ref r : refs) {
@@ -145,46 +173,14 @@ class Builder {
     const std::string& ja = node_junction_[el.a];
     const std::string& jb = node_junction_[el.b];
     if (ja.empty() && jb.empty()) return;  // between two held pressures: no state sees it
-    std::string core;
-    ElementKind kind = ElementKind::kR;
-    std::string meaning;
-    switch (el.kind) {
-      case CKind::kOrifice:
-        src.ref = first_given({el.r[circuit::kK], el.r[circuit::kArea]});
-        core = "R_" + name;
-        meaning = "orifice";
-        break;
-      case CKind::kPoppet:
-        src.ref = first_given({el.r[circuit::kK], el.r[circuit::kArea]});
-        core = "R_" + name;
-        meaning = "relief or check valve";
-        break;
-      case CKind::kLaminar:
-        src.ref = el.r[circuit::kR];
-        core = "R_" + name;
-        meaning = "laminar leakage";
-        break;
-      case CKind::kCompPump:
-        src.ref = el.r[circuit::kQ0];
-        core = "R_" + name;
-        meaning = "pressure-compensated pump (flow falls with its pressure rise)";
-        break;
-      case CKind::kMachine:
-        src.ref = el.r[circuit::kD];
-        core = "TF_" + name;
-        kind = ElementKind::kTF;
-        meaning = "pump or motor displacement";
-        break;
-      case CKind::kFlowSource:
-        src.ref = el.r[circuit::kQ];
-        core = "Sf_" + name;
-        kind = ElementKind::kSf;
-        meaning = "flow source";
-        break;
-      default:
-        return;
-    }
+    const HydraulicCore* hc = hydraulic_core(el.kind);
+    if (hc == nullptr) return;
     const bool orifice_like = el.kind == CKind::kOrifice || el.kind == CKind::kPoppet;
+    // An orifice or valve is given by k, else by its area (with Cd and rho).
+    src.ref = orifice_like ? first_given({el.r[circuit::kK], el.r[circuit::kArea]}) : el.r[hc->slot];
+    const std::string core = hc->prefix + name;
+    const ElementKind kind = hc->kind;
+    const std::string meaning = hc->meaning;
     if (orifice_like) {
       if (el.r[circuit::kK].kind == RefKind::kNone) {
         add_extra(src, name, "Cd", el.r[circuit::kCd]);

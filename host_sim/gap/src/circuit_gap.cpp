@@ -147,6 +147,30 @@ std::vector<CircuitEffect> circuit_effects(const circuit_tools::LoadedCircuit& c
   return out;
 }
 
+namespace {
+
+/// The element an effect adds to the circuit and its one new parameter.
+struct EffectElement {
+  ElementKind kind;
+  circuit::Slot slot;              ///< the parameter's place in the element
+  const char* param;               ///< the parameter's name in the circuit file
+  host::CircuitQuantity quantity;  ///< what the parameter measures
+};
+
+/// For a leak (a laminar path to the tank), a friction or a torque loss on a shaft.
+EffectElement effect_element(CircuitEffect::Kind k) {
+  switch (k) {
+    case CircuitEffect::Kind::kLeak:
+      return {ElementKind::kLaminar, circuit::kR, "gap_leak_R", host::CircuitQuantity::kResistance};
+    case CircuitEffect::Kind::kFriction:
+      return {ElementKind::kFriction, circuit::kC, "gap_friction", host::CircuitQuantity::kDamping};
+    default:
+      return {ElementKind::kTorque, circuit::kTau, "gap_torque", host::CircuitQuantity::kTorque};
+  }
+}
+
+}  // namespace
+
 circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, double m) {
   circuit_tools::LoadedCircuit a = c;
   if (e.kind == CircuitEffect::Kind::kOffset) return a;
@@ -157,50 +181,35 @@ circuit_tools::LoadedCircuit with_effect(const circuit_tools::LoadedCircuit& c, 
   host::HostCircuit& d = a.file.circuit;
   if (d.n_params >= host::CircuitCap::kParams || d.n_elements >= host::CircuitCap::kElements) return a;
   const int p = d.n_params++;
+  const EffectElement how = effect_element(e.kind);
   circuit::Element el;
-  switch (e.kind) {
-    case CircuitEffect::Kind::kLeak: {
-      // To the boundary of lowest pressure (the tank).
-      int tank = -1;
-      double lowest = HUGE_VAL;
-      for (int i = 0; i < d.n_nodes; ++i) {
-        if (d.nodes[i].kind != circuit::NodeKind::kBoundary) continue;
-        const double pb = value_of(c, d.nodes[i].pressure, 0.0);
-        if (pb < lowest) {
-          lowest = pb;
-          tank = i;
-        }
+  el.kind = how.kind;
+  double value = m;
+  if (e.kind == CircuitEffect::Kind::kLeak) {
+    // To the boundary of lowest pressure (the tank).
+    int tank = -1;
+    double lowest = HUGE_VAL;
+    for (int i = 0; i < d.n_nodes; ++i) {
+      if (d.nodes[i].kind != circuit::NodeKind::kBoundary) continue;
+      const double pb = value_of(c, d.nodes[i].pressure, 0.0);
+      if (pb < lowest) {
+        lowest = pb;
+        tank = i;
       }
-      if (tank < 0) {
-        --d.n_params;
-        return a;
-      }
-      el.kind = ElementKind::kLaminar;
-      el.a = static_cast<std::uint8_t>(e.index);
-      el.b = static_cast<std::uint8_t>(tank);
-      el.r[circuit::kR] = circuit::param_ref(p);
-      a.values.params.v[p] = 1.0 / m;
-      a.file.params.push_back({"gap_leak_R", host::CircuitQuantity::kResistance, 1.0 / m, false, e.name});
-      break;
     }
-    case CircuitEffect::Kind::kFriction:
-      el.kind = ElementKind::kFriction;
-      el.shaft = static_cast<std::int8_t>(e.index);
-      el.r[circuit::kC] = circuit::param_ref(p);
-      a.values.params.v[p] = m;
-      a.file.params.push_back({"gap_friction", host::CircuitQuantity::kDamping, m, false, e.name});
-      break;
-    case CircuitEffect::Kind::kTorqueLoss:
-      el.kind = ElementKind::kTorque;
-      el.shaft = static_cast<std::int8_t>(e.index);
-      el.r[circuit::kTau] = circuit::param_ref(p);
-      a.values.params.v[p] = m;
-      a.file.params.push_back({"gap_torque", host::CircuitQuantity::kTorque, m, false, e.name});
-      break;
-    case CircuitEffect::Kind::kOffset:
-    case CircuitEffect::Kind::kParam:
-      break;
+    if (tank < 0) {
+      --d.n_params;
+      return a;
+    }
+    el.a = static_cast<std::uint8_t>(e.index);
+    el.b = static_cast<std::uint8_t>(tank);
+    value = 1.0 / m;  // a conductance's resistance
+  } else {
+    el.shaft = static_cast<std::int8_t>(e.index);
   }
+  el.r[how.slot] = circuit::param_ref(p);
+  a.values.params.v[p] = value;
+  a.file.params.push_back({how.param, how.quantity, value, false, e.name});
   d.elements[d.n_elements++] = el;
   a.file.elements.push_back(e.name);
   return a;

@@ -16,8 +16,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
-#include <utility>
+
+#include "hstmon/model_concept.hpp"  // model_detail::HasStateCount
 
 namespace hstmon {
 
@@ -33,18 +33,11 @@ constexpr const char* to_string(InitialState k) noexcept {
   return k == InitialState::kMeasured ? "measured" : (k == InitialState::kRest ? "rest" : "steady");
 }
 
-namespace initial_detail {
-template <typename M, typename = void>
-struct HasStateCount : std::false_type {};
-template <typename M>
-struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
-}  // namespace initial_detail
-
 /// States a model uses: n_states() where the model has it (a circuit model's kStates is
 /// its capacity), else kStates.
 template <typename Model>
 int used_states(const Model& model) noexcept {
-  if constexpr (initial_detail::HasStateCount<Model>::value) {
+  if constexpr (model_detail::HasStateCount<Model>::value) {
     return model.n_states();
   } else {
     return Model::kStates;

@@ -19,6 +19,10 @@
 ///  - State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok):
 ///    derivative(x) with y = outputs(x), rho = spectral radius of ∂f/∂x [1/s] (or 0 when
 ///    it is ≤ rho_max), alg_ok = the model's algebraic solve contracts at x.
+/// It may also provide (model_detail::HasStateCount, HasStateEnvelope):
+///  - int n_states(): the states in use, when its State is padded to a larger capacity
+///    (the circuit interpreter);
+///  - State state_envelope(): each state's largest plausible magnitude [state units].
 /// Nothing here allocates or runs code: it is checked at compile time only.
 
 #include <type_traits>
@@ -68,6 +72,18 @@ struct HasDerivatives<
                    decltype(state_t<M>{std::declval<const M&>().tick_derivative(
                        std::declval<const state_t<M>&>(), std::declval<scalar_t<M>>(), std::declval<output_t<M>&>(),
                        std::declval<scalar_t<M>&>(), std::declval<bool&>())})>> : std::true_type {};
+
+/// True when M offers `int n_states() const` (optional; see the file comment).
+template <typename M, typename = void>
+struct HasStateCount : std::false_type {};
+template <typename M>
+struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
+
+/// True when M offers `State state_envelope() const` (optional; see the file comment).
+template <typename M, typename = void>
+struct HasStateEnvelope : std::false_type {};
+template <typename M>
+struct HasStateEnvelope<M, std::void_t<decltype(std::declval<const M&>().state_envelope())>> : std::true_type {};
 
 }  // namespace model_detail
 

@@ -148,20 +148,6 @@ struct ImplicitState {
 };
 template <typename M>
 struct ImplicitState<M, false> {};
-
-/// True when M offers `int n_states() const`: the states in use, when its State is padded
-/// to a larger capacity (the circuit interpreter).
-template <typename M, typename = void>
-struct HasStateCount : std::false_type {};
-template <typename M>
-struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
-
-/// True when M offers `State state_envelope() const`: each state's largest plausible
-/// magnitude [state units].
-template <typename M, typename = void>
-struct HasStateEnvelope : std::false_type {};
-template <typename M>
-struct HasStateEnvelope<M, std::void_t<decltype(std::declval<const M&>().state_envelope())>> : std::true_type {};
 }  // namespace observer_detail
 
 /// One sample of a model's measured channels, for Observer::step.
@@ -277,7 +263,7 @@ class Observer
       this->implicit_level = 0;
       this->implicit_last = false;
       this->implicit_peak = x0.cwiseAbs();
-      if constexpr (observer_detail::HasStateEnvelope<Model>::value) {
+      if constexpr (model_detail::HasStateEnvelope<Model>::value) {
         // A state that starts at 0 (a shaft at rest) is judged against a small part of its
         // envelope, not against its own vanishing magnitude.
         this->implicit_peak = this->implicit_peak.cwiseMax(kImplicitFloor * model_.state_envelope());
@@ -559,8 +545,7 @@ class Observer
   /// @return false (state untouched) if the tick could not be taken that way
   bool implicit_step(const State& k1, std::uint32_t& flags) noexcept {
     if constexpr (kImplicit) {
-      int used = kStates;
-      if constexpr (observer_detail::HasStateCount<Model>::value) used = model_.n_states();
+      const int used = used_states(model_);
       const RosenbrockTick r = rosenbrock_tick(model_, s_, cfg_.tick, k1, this->implicit_peak, cfg_.implicit_rtol,
                                                static_cast<int>(cfg_.implicit_max_level), this->implicit_level, used);
       if (!r.ok) return false;

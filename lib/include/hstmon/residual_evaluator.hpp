@@ -27,20 +27,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL, HSTMON_NOINLINE
 #include "hstmon/cusum.hpp"
 #include "hstmon/status.hpp"
-
-/// Out of line (GCC, Clang): the rare per-channel path, so the nominal loop stays small
-/// enough to unroll (HSTMON_UNROLL, GCC: the per-channel loop overhead is ~1/4 of the
-/// nominal tick outside the observer on the Cortex-M4F).
-#ifndef HSTMON_NOINLINE
-#if defined(__GNUC__)
-#define HSTMON_NOINLINE __attribute__((noinline))
-#else
-#define HSTMON_NOINLINE
-#endif
-#endif
 
 namespace hstmon {
 

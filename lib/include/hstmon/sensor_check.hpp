@@ -26,19 +26,9 @@
 #include <limits>
 #include <type_traits>
 
-#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL, HSTMON_NOINLINE
 #include "hstmon/status.hpp"
 
-/// Out of line (GCC, Clang): the rare per-channel path, so the nominal loop stays small
-/// enough to unroll (HSTMON_UNROLL, GCC: the per-channel loop overhead is ~1/4 of the
-/// nominal tick outside the observer on the Cortex-M4F).
-#ifndef HSTMON_NOINLINE
-#if defined(__GNUC__)
-#define HSTMON_NOINLINE __attribute__((noinline))
-#else
-#define HSTMON_NOINLINE
-#endif
-#endif
 /// Out of line and optimised for size (GCC, Clang): the checks that run only for a channel
 /// off the fast path — flagged, repeating or not sampled (flash on the Cortex-M4F).
 #if defined(__GNUC__)

@@ -40,4 +40,15 @@ void copy_event(const Event& e, hstmon_event* out) noexcept {
   }
 }
 
+/// Removes the oldest event queued in `mon` into out.
+/// @return 1 if an event was written, 0 if the queue is empty (or out is NULL)
+template <class Monitor>
+int pop_event(Monitor& mon, hstmon_event* out) noexcept {
+  if (out == nullptr) return 0;
+  typename Monitor::Event e;
+  if (!mon.pop_event(e)) return 0;
+  copy_event(e, out);
+  return 1;
+}
+
 }  // namespace hstmon::c_api

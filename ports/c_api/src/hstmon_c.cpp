@@ -15,6 +15,7 @@
 // A circuit's C API on the engine is hstmon_circuit_c.h.
 #include "hstmon_c.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <new>
 
@@ -47,6 +48,15 @@ using Mon = hstmon::ModelMonitor<ThesisModel, HSTMON_MAX_FAULTS, HSTMON_EVENT_QU
 using Model = Mon::Model;
 using Obs = Mon::Obs;
 
+// True when each core enumerator has the value of the C constant in the same place.
+template <class Core, std::size_t N>
+constexpr bool same_values(const Core (&core)[N], const int (&c)[N]) noexcept {
+  for (std::size_t i = 0; i < N; ++i) {
+    if (static_cast<int>(core[i]) != c[i]) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // The object behind the opaque handle.
@@ -55,18 +65,25 @@ struct hstmon_monitor {
 };
 
 static_assert(hstmon::kThesisSignatureCount <= HSTMON_MAX_FAULTS, "the table must fit: raise HSTMON_MAX_FAULTS");
-static_assert(static_cast<int>(hstmon::MatchStatus::kNominal) == HSTMON_MATCH_NOMINAL &&
-                  static_cast<int>(hstmon::MatchStatus::kDetected) == HSTMON_MATCH_DETECTED &&
-                  static_cast<int>(hstmon::MatchStatus::kIsolated) == HSTMON_MATCH_ISOLATED &&
-                  static_cast<int>(hstmon::MatchStatus::kAmbiguous) == HSTMON_MATCH_AMBIGUOUS &&
-                  static_cast<int>(hstmon::MatchStatus::kUnexplained) == HSTMON_MATCH_UNEXPLAINED,
+// The C enums mirror the core's; a renumbering there must fail here.
+static_assert(same_values({hstmon::MatchStatus::kNominal, hstmon::MatchStatus::kDetected,
+                           hstmon::MatchStatus::kIsolated, hstmon::MatchStatus::kAmbiguous,
+                           hstmon::MatchStatus::kUnexplained},
+                          {HSTMON_MATCH_NOMINAL, HSTMON_MATCH_DETECTED, HSTMON_MATCH_ISOLATED, HSTMON_MATCH_AMBIGUOUS,
+                           HSTMON_MATCH_UNEXPLAINED}),
               "hstmon_match differs from hstmon::MatchStatus");
-static_assert(static_cast<int>(hstmon::MatchEventKind::kDetected) == HSTMON_EVENT_DETECTED &&
-                  static_cast<int>(hstmon::MatchEventKind::kIsolated) == HSTMON_EVENT_ISOLATED &&
-                  static_cast<int>(hstmon::MatchEventKind::kAmbiguous) == HSTMON_EVENT_AMBIGUOUS &&
-                  static_cast<int>(hstmon::MatchEventKind::kUnexplained) == HSTMON_EVENT_UNEXPLAINED &&
-                  static_cast<int>(hstmon::MatchEventKind::kCleared) == HSTMON_EVENT_CLEARED,
+static_assert(same_values({hstmon::MatchEventKind::kDetected, hstmon::MatchEventKind::kIsolated,
+                           hstmon::MatchEventKind::kAmbiguous, hstmon::MatchEventKind::kUnexplained,
+                           hstmon::MatchEventKind::kCleared},
+                          {HSTMON_EVENT_DETECTED, HSTMON_EVENT_ISOLATED, HSTMON_EVENT_AMBIGUOUS,
+                           HSTMON_EVENT_UNEXPLAINED, HSTMON_EVENT_CLEARED}),
               "hstmon_event_kind differs from hstmon::MatchEventKind");
+static_assert(
+    same_values({hstmon::kHealthInputNonFinite, hstmon::kHealthMeasNonFinite, hstmon::kHealthSubstepsClipped,
+                 hstmon::kHealthStateNonFinite, hstmon::kHealthStateOutOfBounds, hstmon::kHealthAlgebraicDiverged},
+                {HSTMON_HEALTH_INPUT_NON_FINITE, HSTMON_HEALTH_MEAS_NON_FINITE, HSTMON_HEALTH_SUBSTEPS_CLIPPED,
+                 HSTMON_HEALTH_STATE_NON_FINITE, HSTMON_HEALTH_STATE_OUT_OF_BOUNDS, HSTMON_HEALTH_ALGEBRAIC_DIVERGED}),
+    "health bits differ from hstmon::HealthFlag");
 
 static_assert(sizeof(hstmon_monitor) <= HSTMON_MONITOR_STORAGE_BYTES,
               "raise HSTMON_MONITOR_STORAGE_BYTES in hstmon_c.h");
@@ -74,14 +91,6 @@ static_assert(alignof(hstmon_monitor) <= HSTMON_MONITOR_ALIGN, "raise HSTMON_MON
 static_assert(sizeof(hstmon_monitor_storage) >= HSTMON_MONITOR_STORAGE_BYTES &&
                   alignof(hstmon_monitor_storage) >= alignof(hstmon_monitor),
               "hstmon_monitor_storage must hold a monitor");
-// The C enums mirror the core's; a renumbering there must fail here.
-static_assert(HSTMON_HEALTH_INPUT_NON_FINITE == static_cast<int>(hstmon::kHealthInputNonFinite) &&
-                  HSTMON_HEALTH_MEAS_NON_FINITE == static_cast<int>(hstmon::kHealthMeasNonFinite) &&
-                  HSTMON_HEALTH_SUBSTEPS_CLIPPED == static_cast<int>(hstmon::kHealthSubstepsClipped) &&
-                  HSTMON_HEALTH_STATE_NON_FINITE == static_cast<int>(hstmon::kHealthStateNonFinite) &&
-                  HSTMON_HEALTH_STATE_OUT_OF_BOUNDS == static_cast<int>(hstmon::kHealthStateOutOfBounds) &&
-                  HSTMON_HEALTH_ALGEBRAIC_DIVERGED == static_cast<int>(hstmon::kHealthAlgebraicDiverged),
-              "health bits differ from hstmon::HealthFlag");
 static_assert(HSTMON_CH_PMI == static_cast<int>(hstmon::kChPmi) && HSTMON_CH_PMO == static_cast<int>(hstmon::kChPmo) && HSTMON_CH_PPP == static_cast<int>(hstmon::kChPpp) &&
                   HSTMON_CH_WM == static_cast<int>(hstmon::kChWm) && HSTMON_CHANNELS == Model::kOutputs,
               "channel order differs from hstmon::ThesisChannel");
@@ -247,11 +256,7 @@ HSTMON_C_RARE int hstmon_candidates(const hstmon_monitor* m, hstmon_candidate* o
 }
 
 HSTMON_C_RARE int hstmon_pop_event(hstmon_monitor* m, hstmon_event* out) {
-  if (m == nullptr || out == nullptr) return 0;
-  Mon::Event e;
-  if (!m->mon.pop_event(e)) return 0;
-  hstmon::c_api::copy_event(e, out);
-  return 1;
+  return m != nullptr ? hstmon::c_api::pop_event(m->mon, out) : 0;
 }
 
 uint32_t hstmon_events_dropped(const hstmon_monitor* m) {

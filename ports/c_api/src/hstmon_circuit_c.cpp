@@ -201,11 +201,7 @@ int hstmon_circuit_candidates(const hstmon_circuit_monitor* m, hstmon_candidate*
 }
 
 int hstmon_circuit_pop_event(hstmon_circuit_monitor* m, hstmon_event* out) {
-  if (m == nullptr || out == nullptr) return 0;
-  Mon::Event e;
-  if (!m->mon.pop_event(e)) return 0;
-  hstmon::c_api::copy_event(e, out);
-  return 1;
+  return m != nullptr ? hstmon::c_api::pop_event(m->mon, out) : 0;
 }
 
 uint32_t hstmon_circuit_events_dropped(const hstmon_circuit_monitor* m) {

@@ -183,15 +183,8 @@ void write_replay_line(Line& line, const LogView& log, const CircuitFwMonitor& m
       .uint("fault_table_rows", static_cast<std::uint64_t>(sig::kSignatureCount))
       .uint("states", static_cast<std::uint64_t>(g_model.n_states()))
       .uint("stiff_nodes", static_cast<std::uint64_t>(g_model.n_stiff()));
-  line.key("health").raw("[");
-  bool first = true;
-  for (int bit = 0; bit < kHealthNameCount; ++bit) {
-    if (tot.health & (1u << bit)) {
-      line.raw(first ? "\"" : ",\"").raw(kHealthNames[bit]).raw("\"");
-      first = false;
-    }
-  }
-  line.raw("]").uint("unhealthy_rows", tot.unhealthy).uint("max_substeps", tot.max_substeps).end();
+  write_health(line, tot.health);
+  line.uint("unhealthy_rows", tot.unhealthy).uint("max_substeps", tot.max_substeps).end();
 }
 
 // One residual line per channel: its statistics over the rows compared.

@@ -68,6 +68,20 @@ class Line {
   bool first_ = true;
 };
 
+/// Writes the key "health" and the names of the bits set in `health` as a JSON array, as
+/// host::health_names lists them (both replays' header lines carry it).
+inline void write_health(Line& line, std::uint32_t health) noexcept {
+  line.key("health").raw("[");
+  bool first = true;
+  for (int bit = 0; bit < kHealthNameCount; ++bit) {
+    if (health & (1u << bit)) {
+      line.raw(first ? "\"" : ",\"").raw(kHealthNames[bit]).raw("\"");
+      first = false;
+    }
+  }
+  line.raw("]");
+}
+
 /// Residual statistics of one channel, as the host replay counts them (host::ChannelStats).
 using Stats = ResidualStats<double>;
 

@@ -310,17 +310,10 @@ void print_replay_line(Line& line, const LogView& log, const SignalColumns& sc, 
                        double t_last, double tick, const ReplayTotals& tot) noexcept {
   line.begin().str("type", "replay").str("log", log.name).uint("rows", rows).num("t_first", t_first)
       .num("t_last", t_last).num("tick_s", tick).uint("ticks", tot.rep.ticks).str("start", tot.start == HSTMON_START_MEASURED ? "measured" : (tot.start == HSTMON_START_STEADY ? "steady" : "rest"));
-  line.key("health").raw("[");
-  bool first = true;
-  for (int b = 0; b < kHealthNameCount; ++b) {
-    if (tot.health & (1u << b)) {
-      line.raw(first ? "\"" : ",\"").raw(kHealthNames[b]).raw("\"");
-      first = false;
-    }
-  }
-  line.raw("]").uint("unhealthy_rows", tot.unhealthy).uint("max_substeps", tot.max_substeps);
+  write_health(line, tot.health);
+  line.uint("unhealthy_rows", tot.unhealthy).uint("max_substeps", tot.max_substeps);
   line.key("notes").raw("[");
-  first = true;
+  bool first = true;
   for (int i = 0; i < 4; ++i) {
     if (sc.col[kSigPSup + i] < 0) {
       line.raw(first ? "\"" : ",\"").raw(kInputNote[i]).raw(" not in log: held at the parameter value\"");

@@ -22,6 +22,7 @@
 
 #if HSTMON_FW_WITH_ENGINE
 #include "fw_circuit.hpp"
+#include "timed_ticks.hpp"
 #endif
 
 namespace {
@@ -68,23 +69,9 @@ __attribute__((noinline)) std::uint32_t time_evaluations(bool with_jacobian) {
   return cycles_elapsed(a, cycles_now());
 }
 
-// SysTick counts for kTicks calls of f; each channel alternates around the nominal
-// outputs by 50 Pa (pressures, flows) or 0.05 rad/s (speeds), as main_footprint.c.
-__attribute__((noinline)) std::uint32_t time_ticks(StepFn f, const Inputs& u, Meas& m) {
-  namespace gen = hstmon::fw::gen;
-  const Meas base = m;
-  const std::uint32_t a = cycles_now();
-  for (int k = 0; k < kTicks; ++k) {
-    const float d = (k & 1) ? 1.0f : -1.0f;
-    for (int c = 0; c < CircuitFwObserver::kOutputs; ++c) {
-      const bool speed = gen::kCircuit.channels[c].kind == hstmon::circuit::ChannelKind::kSpeed;
-      m.y[c] = base.y[c] + (speed ? 0.05f : 50.0f) * d;
-    }
-    sink = f(u, m);
-  }
-  const std::uint32_t b = cycles_now();
-  m = base;
-  return cycles_elapsed(a, b);
+// SysTick counts for kTicks calls of f around the nominal outputs m.
+__attribute__((noinline)) std::uint32_t time_ticks(StepFn f, const Inputs& u, const Meas& m) {
+  return hstmon::fw::time_alternating(f, u, m, CircuitFwObserver::kOutputs, kTicks, sink);
 }
 #endif
 
@@ -92,14 +79,9 @@ __attribute__((noinline)) std::uint32_t time_ticks(StepFn f, const Inputs& u, Me
 
 int main() {
   cycles_start();
-  // Two loop lengths: the difference removes the fixed cost of the call and reads.
-  const std::uint32_t c1 = cycles_known_loop(kCalibLoop);
-  const std::uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
   report_begin("circuit_footprint");
   report_uint("with_engine", HSTMON_FW_WITH_ENGINE);
-  report_uint("calib_instructions", 2u * kCalibLoop);
-  report_uint("calib_counts", c2 - c1);
-  sink = c2 - c1;
+  sink = report_calibration(kCalibLoop);
 #if HSTMON_FW_WITH_ENGINE
   std::uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));

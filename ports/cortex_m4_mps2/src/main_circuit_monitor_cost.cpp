@@ -22,6 +22,7 @@
 #include "hstmon_mps2/report_line.h"
 #include "hstmon_mps2/semihosting.h"
 #include "hstmon_mps2/stack_paint.h"
+#include "timed_ticks.hpp"
 
 namespace {
 
@@ -52,18 +53,7 @@ using StepFn = std::uint32_t (*)(const Inputs&, const Meas&);
 
 // SysTick counts for kTicks calls of f around the measurement `base`.
 __attribute__((noinline)) std::uint32_t time_usual(StepFn f, const Inputs& u, const Meas& base) {
-  namespace gen = hstmon::fw::gen;
-  Meas m = base;
-  const std::uint32_t a = cycles_now();
-  for (int k = 0; k < kTicks; ++k) {
-    const float d = (k & 1) ? 1.0f : -1.0f;
-    for (int c = 0; c < CircuitFwMonitor::kChannels; ++c) {
-      const bool speed = gen::kCircuit.channels[c].kind == hstmon::circuit::ChannelKind::kSpeed;
-      m.y[c] = base.y[c] + (speed ? 0.05f : 50.0f) * d;
-    }
-    sink = f(u, m);
-  }
-  return cycles_elapsed(a, cycles_now());
+  return hstmon::fw::time_alternating(f, u, base, CircuitFwMonitor::kChannels, kTicks, sink);
 }
 
 // The model's outputs as a measurement of every channel.
@@ -78,11 +68,8 @@ Meas following_the_model() {
 
 int main() {
   cycles_start();
-  const std::uint32_t c1 = cycles_known_loop(kCalibLoop);
-  const std::uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
   report_begin("circuit_monitor_cost");
-  report_uint("calib_instructions", 2u * kCalibLoop);
-  report_uint("calib_counts", c2 - c1);
+  (void)report_calibration(kCalibLoop);
   std::uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));
   stack_paint();

@@ -62,17 +62,9 @@ __attribute__((noinline)) static uint32_t time_ticks(step_fn f, hstmon_monitor* 
 
 int main(void) {
   cycles_start();
-  /* Two loop lengths: the difference removes the fixed cost of the call and reads. */
-  const uint32_t c1 = cycles_known_loop(kCalibLoop);
-  const uint32_t c2 = cycles_known_loop(2u * kCalibLoop);
-  /* instructions per SysTick count = 2·kCalibLoop / (c2 − c1), as a ratio */
-  const uint32_t calib_instr = 2u * kCalibLoop;
-  const uint32_t calib_counts = c2 - c1;
   report_begin("footprint");
   report_uint("with_monitor", HSTMON_FW_WITH_MONITOR);
-  report_uint("calib_instructions", calib_instr);
-  report_uint("calib_counts", calib_counts);
-  sink = calib_counts;
+  sink = report_calibration(kCalibLoop);
 #if HSTMON_FW_WITH_MONITOR
   uintptr_t sp_main;
   __asm volatile("mov %0, sp" : "=r"(sp_main));

@@ -1,6 +1,7 @@
 /* The footprint images' JSON line (hstmon_mps2/report_line.h). */
 #include "hstmon_mps2/report_line.h"
 
+#include "hstmon_mps2/cycles.h"
 #include "hstmon_mps2/semihosting.h"
 
 static char line[768];
@@ -32,6 +33,14 @@ void report_uint(const char* key, uint32_t v) {
     const char c[2] = {tmp[--n], '\0'};
     put(c);
   }
+}
+
+uint32_t report_calibration(uint32_t n) {
+  const uint32_t c1 = cycles_known_loop(n);
+  const uint32_t c2 = cycles_known_loop(2u * n);
+  report_uint("calib_instructions", 2u * n);
+  report_uint("calib_counts", c2 - c1);
+  return c2 - c1;
 }
 
 void report_end(void) {

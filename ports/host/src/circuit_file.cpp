@@ -6,6 +6,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <system_error>
+#include <vector>
 
 #include "circuit_checks.hpp"
 #include "hstmon/circuit/validate.hpp"
@@ -34,6 +35,69 @@ int index_of(const V& v, std::string_view n) {
     if (v[i] == n) return static_cast<int>(i);
   }
   return -1;
+}
+
+/// A number of a component: its slot, its key, the quantity it is, whether it must be given.
+struct ComponentField {
+  circuit::Slot slot;
+  const char* key;
+  CircuitQuantity q;
+  bool required;
+};
+
+/// A component type that is its ports ("from", "to") or shaft and a few numbers, read alike.
+struct PlainComponent {
+  const char* type;
+  const char* alias;  ///< another name of the type, or nullptr
+  ElementKind kind;
+  bool ports, shaft;
+  ComponentField fields[5];  ///< in the order they are read; unused ones have no key
+};
+
+constexpr PlainComponent kPlainComponents[] = {
+    {"laminar_leakage",
+     nullptr,
+     ElementKind::kLaminar,
+     true,
+     false,
+     {{circuit::kR, "R", CircuitQuantity::kResistance, true}}},
+    {"flow_source",
+     nullptr,
+     ElementKind::kFlowSource,
+     true,
+     false,
+     {{circuit::kQ, "flow", CircuitQuantity::kFlow, true}}},
+    {"pump",
+     "motor",
+     ElementKind::kMachine,
+     true,
+     true,
+     {{circuit::kD, "displacement", CircuitQuantity::kDisplacement, true},
+      {circuit::kFraction, "fraction", CircuitQuantity::kFraction, false}}},
+    {"compensated_pump",
+     nullptr,
+     ElementKind::kCompPump,
+     true,
+     false,
+     {{circuit::kQ0, "Q0", CircuitQuantity::kFlow, true},
+      {circuit::kRleak, "R", CircuitQuantity::kResistance, true},
+      {circuit::kPc, "Pc", CircuitQuantity::kPressure, true},
+      {circuit::kPk, "Pk", CircuitQuantity::kPressure, true},
+      {circuit::kPmax, "Pmax", CircuitQuantity::kPressure, true}}},
+    {"load_torque",
+     nullptr,
+     ElementKind::kTorque,
+     false,
+     true,
+     {{circuit::kTau, "torque", CircuitQuantity::kTorque, true}}},
+    {"friction", nullptr, ElementKind::kFriction, false, true, {{circuit::kC, "c", CircuitQuantity::kDamping, true}}},
+};
+
+const PlainComponent* plain_component(const std::string& type) {
+  for (const PlainComponent& p : kPlainComponents) {
+    if (type == p.type || (p.alias != nullptr && type == p.alias)) return &p;
+  }
+  return nullptr;
 }
 
 class Reader {
@@ -85,15 +149,9 @@ class Reader {
  private:
   // ---- JSON and positions ----
   bool parse(Json& j) {
-    try {
-      j = Json::parse(text_.begin(), text_.end());
-      return true;
-    } catch (const Json::parse_error& e) {
-      record(e.byte > 0 ? e.byte - 1 : 0, detail::json_error_text(e.what()));
-    } catch (const Json::exception& e) {
-      record(text_.size(), detail::json_error_text(e.what()));
-    }
-    return false;
+    auto e = detail::parse_json(text_, j, [this](const std::string&) { return text_.size(); });
+    if (e) record(e->offset, std::move(e->message));
+    return !e;
   }
 
   std::size_t first_non_blank() const { return detail::first_non_blank(text_); }
@@ -134,7 +192,7 @@ class Reader {
     }
   }
 
-  void check_keys(const Json& obj, const std::string& base, std::initializer_list<const char*> known) {
+  void check_keys(const Json& obj, const std::string& base, const std::vector<const char*>& known) {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool ok = false;
       for (const char* k : known) ok = ok || it.key() == k;
@@ -275,13 +333,19 @@ class Reader {
       CircuitParam p;
       p.name = it.key();
       p.quantity = quantity(*it, base);
-      if (const auto v = it->find("value"); v != it->end()) {
-        p.value = number(*v, base + "/value", p.quantity, p.name);
-        at(base + "/value", p.value_line, p.value_column);
-      }
+      declared_value(*it, base, p);
       p.description = string_field(*it, base, "description", false);
       if (f_.params.size() >= static_cast<std::size_t>(CircuitCap::kParams)) fail_key(base, "too many parameters");
       f_.params.push_back(p);
+    }
+  }
+
+  /// The optional "value" of parameter or input d declared at base, and where it is written.
+  template <class Declared>
+  void declared_value(const Json& obj, const std::string& base, Declared& d) {
+    if (const auto v = obj.find("value"); v != obj.end()) {
+      d.value = number(*v, base + "/value", d.quantity, d.name);
+      at(base + "/value", d.value_line, d.value_column);
     }
   }
 
@@ -302,10 +366,7 @@ class Reader {
         const UnitResult r = parse_circuit_unit(u.quantity, u.unit);
         if (!r.ok()) fail_value(base + "/unit", u.name + ": " + r.error);
       }
-      if (const auto v = it->find("value"); v != it->end()) {
-        u.value = number(*v, base + "/value", u.quantity, u.name);
-        at(base + "/value", u.value_line, u.value_column);
-      }
+      declared_value(*it, base, u);
       (void)string_field(*it, base, "description", false);
       if (f_.inputs.size() >= static_cast<std::size_t>(CircuitCap::kInputs)) fail_key(base, "too many inputs");
       f_.inputs.push_back(u);
@@ -437,6 +498,7 @@ class Reader {
   }
 
   void read_component(const Json& c, const std::string& base, const std::string& name, const std::string& type) {
+    if (const PlainComponent* p = plain_component(type)) return read_plain_component(c, base, name, *p);
     circuit::Element e;
     using Q = CircuitQuantity;
     if (type == "orifice") {
@@ -484,48 +546,6 @@ class Reader {
       e.r[circuit::kFull] = req_ref(c, base, relief ? "setting" : "full_open", Q::kPressure, name);
       e.r[circuit::kCrack] = relief ? req_ref(c, base, "cracking", Q::kPressure, name) : opt_ref(c, base, "cracking", Q::kPressure, name);
       add_element(e, name, base);
-    } else if (type == "laminar_leakage") {
-      check_keys(c, base, {"type", "from", "to", "R", "description"});
-      e.kind = ElementKind::kLaminar;
-      ports(c, base, name, e);
-      e.r[circuit::kR] = req_ref(c, base, "R", Q::kResistance, name);
-      add_element(e, name, base);
-    } else if (type == "flow_source") {
-      check_keys(c, base, {"type", "from", "to", "flow", "description"});
-      e.kind = ElementKind::kFlowSource;
-      ports(c, base, name, e);
-      e.r[circuit::kQ] = req_ref(c, base, "flow", Q::kFlow, name);
-      add_element(e, name, base);
-    } else if (type == "pump" || type == "motor") {
-      check_keys(c, base, {"type", "from", "to", "shaft", "displacement", "fraction", "description"});
-      e.kind = ElementKind::kMachine;
-      ports(c, base, name, e);
-      e.shaft = static_cast<std::int8_t>(shaft(c, base, name));
-      e.r[circuit::kD] = req_ref(c, base, "displacement", Q::kDisplacement, name);
-      e.r[circuit::kFraction] = opt_ref(c, base, "fraction", Q::kFraction, name);
-      add_element(e, name, base);
-    } else if (type == "compensated_pump") {
-      check_keys(c, base, {"type", "from", "to", "Q0", "R", "Pc", "Pk", "Pmax", "description"});
-      e.kind = ElementKind::kCompPump;
-      ports(c, base, name, e);
-      e.r[circuit::kQ0] = req_ref(c, base, "Q0", Q::kFlow, name);
-      e.r[circuit::kRleak] = req_ref(c, base, "R", Q::kResistance, name);
-      e.r[circuit::kPc] = req_ref(c, base, "Pc", Q::kPressure, name);
-      e.r[circuit::kPk] = req_ref(c, base, "Pk", Q::kPressure, name);
-      e.r[circuit::kPmax] = req_ref(c, base, "Pmax", Q::kPressure, name);
-      add_element(e, name, base);
-    } else if (type == "load_torque") {
-      check_keys(c, base, {"type", "shaft", "torque", "description"});
-      e.kind = ElementKind::kTorque;
-      e.shaft = static_cast<std::int8_t>(shaft(c, base, name));
-      e.r[circuit::kTau] = req_ref(c, base, "torque", Q::kTorque, name);
-      add_element(e, name, base);
-    } else if (type == "friction") {
-      check_keys(c, base, {"type", "shaft", "c", "description"});
-      e.kind = ElementKind::kFriction;
-      e.shaft = static_cast<std::int8_t>(shaft(c, base, name));
-      e.r[circuit::kC] = req_ref(c, base, "c", Q::kDamping, name);
-      add_element(e, name, base);
     } else if (type == "pressure_source") {
       check_keys(c, base, {"type", "node", "pressure", "description"});
       const int n = node(c, base, "node", name);
@@ -543,6 +563,26 @@ class Reader {
                                      "' (known: orifice, directional_valve, relief_valve, check_valve, laminar_leakage, "
                                      "flow_source, pump, motor, compensated_pump, load_torque, friction, pressure_source)");
     }
+  }
+
+  void read_plain_component(const Json& c, const std::string& base, const std::string& name, const PlainComponent& p) {
+    std::vector<const char*> known{"type"};
+    if (p.ports) known.insert(known.end(), {"from", "to"});
+    if (p.shaft) known.push_back("shaft");
+    for (const ComponentField& f : p.fields) {
+      if (f.key != nullptr) known.push_back(f.key);
+    }
+    known.push_back("description");
+    check_keys(c, base, known);
+    circuit::Element e;
+    e.kind = p.kind;
+    if (p.ports) ports(c, base, name, e);
+    if (p.shaft) e.shaft = static_cast<std::int8_t>(shaft(c, base, name));
+    for (const ComponentField& f : p.fields) {
+      if (f.key == nullptr) break;
+      e.r[f.slot] = f.required ? req_ref(c, base, f.key, f.q, name) : opt_ref(c, base, f.key, f.q, name);
+    }
+    add_element(e, name, base);
   }
 
   void ports(const Json& c, const std::string& base, const std::string& name, circuit::Element& e) {

@@ -13,29 +13,39 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+/// A quantity's name in circuit files, its SI unit, and the unit it is shown in.
 struct Named {
   CircuitQuantity q;
   const char* name;
   const char* si;
+  const char* engineering;
 };
 
 const Named kQuantities[] = {
-    {CircuitQuantity::kPressure, "pressure", "Pa"},
-    {CircuitQuantity::kSpeed, "speed", "rad/s"},
-    {CircuitQuantity::kFlow, "flow", "m3/s"},
-    {CircuitQuantity::kDisplacement, "displacement", "m3/rad"},
-    {CircuitQuantity::kResistance, "resistance", "Pa*s/m3"},
-    {CircuitQuantity::kOrifice, "orifice", "m3/(s*Pa^0.5)"},
-    {CircuitQuantity::kArea, "area", "m2"},
-    {CircuitQuantity::kStiffness, "stiffness", "Pa/m3"},
-    {CircuitQuantity::kVolume, "volume", "m3"},
-    {CircuitQuantity::kInertia, "inertia", "kg*m2"},
-    {CircuitQuantity::kDamping, "damping", "N*m*s/rad"},
-    {CircuitQuantity::kTorque, "torque", "N*m"},
-    {CircuitQuantity::kDensity, "density", "kg/m3"},
-    {CircuitQuantity::kFraction, "fraction", "-"},
-    {CircuitQuantity::kConductance, "conductance", "m3/(s*Pa)"},
+    {CircuitQuantity::kPressure, "pressure", "Pa", "bar"},
+    {CircuitQuantity::kSpeed, "speed", "rad/s", "rpm"},
+    {CircuitQuantity::kFlow, "flow", "m3/s", "L/min"},
+    {CircuitQuantity::kDisplacement, "displacement", "m3/rad", "cc/rev"},
+    {CircuitQuantity::kResistance, "resistance", "Pa*s/m3", "bar/(L/min)"},
+    {CircuitQuantity::kOrifice, "orifice", "m3/(s*Pa^0.5)", "m3/(s*Pa^0.5)"},
+    {CircuitQuantity::kArea, "area", "m2", "mm2"},
+    {CircuitQuantity::kStiffness, "stiffness", "Pa/m3", "bar/L"},
+    {CircuitQuantity::kVolume, "volume", "m3", "L"},
+    {CircuitQuantity::kInertia, "inertia", "kg*m2", "kg*m2"},
+    {CircuitQuantity::kDamping, "damping", "N*m*s/rad", "N*m*s/rad"},
+    {CircuitQuantity::kTorque, "torque", "N*m", "N*m"},
+    {CircuitQuantity::kDensity, "density", "kg/m3", "kg/m3"},
+    {CircuitQuantity::kFraction, "fraction", "-", "%"},
+    {CircuitQuantity::kConductance, "conductance", "m3/(s*Pa)", "(L/min)/bar"},
 };
+
+/// The row of q, or nullptr for a value outside the enumeration.
+const Named* named(CircuitQuantity q) noexcept {
+  for (const auto& n : kQuantities) {
+    if (n.q == q) return &n;
+  }
+  return nullptr;
+}
 
 /// Units of the quantities units.hpp does not know: name (compared ignoring ASCII case)
 /// and SI per unit.
@@ -87,35 +97,18 @@ const UnitRow kUnits[] = {
 }  // namespace
 
 const char* circuit_quantity_name(CircuitQuantity q) noexcept {
-  for (const auto& n : kQuantities) {
-    if (n.q == q) return n.name;
-  }
-  return "?";
+  const Named* n = named(q);
+  return n != nullptr ? n->name : "?";
 }
 
 const char* circuit_si_unit(CircuitQuantity q) noexcept {
-  for (const auto& n : kQuantities) {
-    if (n.q == q) return n.si;
-  }
-  return "?";
+  const Named* n = named(q);
+  return n != nullptr ? n->si : "?";
 }
 
 const char* engineering_unit(CircuitQuantity q) noexcept {
-  switch (q) {
-    case CircuitQuantity::kPressure: return "bar";
-    case CircuitQuantity::kSpeed: return "rpm";
-    case CircuitQuantity::kFlow: return "L/min";
-    case CircuitQuantity::kDisplacement: return "cc/rev";
-    case CircuitQuantity::kResistance: return "bar/(L/min)";
-    case CircuitQuantity::kArea: return "mm2";
-    case CircuitQuantity::kStiffness: return "bar/L";
-    case CircuitQuantity::kVolume: return "L";
-    case CircuitQuantity::kTorque: return "N*m";
-    case CircuitQuantity::kFraction: return "%";
-    case CircuitQuantity::kConductance:
-      return "(L/min)/bar";
-    default: return circuit_si_unit(q);
-  }
+  const Named* n = named(q);
+  return n != nullptr ? n->engineering : "?";
 }
 
 std::string engineering_text(CircuitQuantity q, double si, int digits) { return display_unit(q).text(si, digits); }

@@ -134,18 +134,11 @@ class Reader {
  private:
   bool section(const Json& obj, const char* name, bool params, CircuitValues& v, std::vector<bool>& set) {
     const std::string base = std::string("/") + name;
-    if (!obj.is_object()) {
-      fail_value(base, std::string("'") + name + "' must be an object of name: value pairs");
-      return false;
-    }
+    if (!is_object(obj, base, std::string("'") + name + "' must be an object of name: value pairs")) return false;
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       const std::string ptr = base + "/" + detail::json_pointer_token(it.key());
       const int i = params ? cf_.param_index(it.key()) : cf_.input_index(it.key());
-      if (i < 0) {
-        fail_key(ptr, std::string("no ") + (params ? "parameter" : "input") + " '" + detail::printable(it.key()) +
-                          "' in circuit '" + cf_.name + "'");
-        return false;
-      }
+      if (!known(i, params ? "parameter" : "input", it.key(), ptr)) return false;
       const CircuitQuantity q = params ? cf_.params[static_cast<std::size_t>(i)].quantity : cf_.inputs[static_cast<std::size_t>(i)].quantity;
       double x;
       if (!quantity_value(*it, q, ptr, it.key(),
@@ -161,6 +154,20 @@ class Reader {
       (params ? p_ptr_ : u_ptr_)[static_cast<std::size_t>(i)] = ptr;
     }
     return true;
+  }
+
+  /// Whether section `obj` at ptr is an object; else fails there with `message`.
+  bool is_object(const Json& obj, const std::string& ptr, const std::string& message) {
+    if (!obj.is_object()) fail_value(ptr, message);
+    return obj.is_object();
+  }
+
+  /// Whether `key` at ptr names a `what` of the circuit (its index is >= 0); else fails there.
+  bool known(int index, const char* what, const std::string& key, const std::string& ptr) {
+    if (index < 0) {
+      fail_key(ptr, std::string("no ") + what + " '" + detail::printable(key) + "' in circuit '" + cf_.name + "'");
+    }
+    return index >= 0;
   }
 
   /// A value of quantity q: an SI number, or a string with a unit ("35 bar"). Else fails at
@@ -188,17 +195,13 @@ class Reader {
   /// The "uncertainty" section: parameter name → relative uncertainty, a fraction or a
   /// string with a fraction unit ("5 %"), read as any value of that quantity.
   bool uncertainty(const Json& obj, CircuitValues& v) {
-    if (!obj.is_object()) {
-      fail_value("/uncertainty", "'uncertainty' must be an object of parameter: relative uncertainty pairs");
+    if (!is_object(obj, "/uncertainty", "'uncertainty' must be an object of parameter: relative uncertainty pairs")) {
       return false;
     }
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       const std::string ptr = "/uncertainty/" + detail::json_pointer_token(it.key());
       const int i = cf_.param_index(it.key());
-      if (i < 0) {
-        fail_key(ptr, "no parameter '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
-        return false;
-      }
+      if (!known(i, "parameter", it.key(), ptr)) return false;
       double x;
       if (!quantity_value(*it, CircuitQuantity::kFraction, ptr, it.key(),
                           it.key() + " must be a fraction (0.05) or a percentage (\"5 %\")", x)) {
@@ -216,18 +219,12 @@ class Reader {
   /// The "sensors" section: sensor name → transmitter range [low end, high end], each an
   /// SI number, a string with a unit of the sensor's quantity, or null for no end.
   bool sensors(const Json& obj, CircuitValues& v) {
-    if (!obj.is_object()) {
-      fail_value("/sensors", "'sensors' must be an object of sensor: [low end, high end] pairs");
-      return false;
-    }
+    if (!is_object(obj, "/sensors", "'sensors' must be an object of sensor: [low end, high end] pairs")) return false;
     v.ranges.assign(cf_.sensors.size(), std::nullopt);
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       const std::string ptr = "/sensors/" + detail::json_pointer_token(it.key());
       const int index = cf_.sensor_index(it.key());
-      if (index < 0) {
-        fail_key(ptr, "no sensor '" + detail::printable(it.key()) + "' in circuit '" + cf_.name + "'");
-        return false;
-      }
+      if (!known(index, "sensor", it.key(), ptr)) return false;
       const auto i = static_cast<std::size_t>(index);
       const CircuitQuantity q = cf_.sensors[i].quantity;
       if (!it->is_array() || it->size() != 2) {

@@ -137,24 +137,20 @@ class Reader {
 
  private:
   bool parse(Json& j) {
-    try {
-      j = Json::parse(text_.begin(), text_.end());
-      return true;
-    } catch (const Json::parse_error& e) {
-      fail(e.byte > 0 ? e.byte - 1 : 0, detail::json_error_text(e.what()));
-    } catch (const Json::exception& e) {
-      // Number overflow (out_of_range.406) has no position: find the quoted token.
-      const std::string what = e.what();
-      std::size_t at = text_.size();
-      const std::size_t q1 = what.find('\'');
-      const std::size_t q2 = what.rfind('\'');
-      if (q1 != std::string::npos && q2 > q1 + 1) {
-        const std::size_t found = text_.find(what.substr(q1 + 1, q2 - q1 - 1));
-        if (found != std::string_view::npos) at = found;
-      }
-      fail(at, detail::json_error_text(what));
+    auto e = detail::parse_json(text_, j, [this](const std::string& what) { return quoted_token(what); });
+    if (e) fail(e->offset, std::move(e->message));
+    return !e;
+  }
+
+  // Number overflow (out_of_range.406) has no position: where the token quoted in `what` is.
+  std::size_t quoted_token(const std::string& what) const {
+    const std::size_t q1 = what.find('\'');
+    const std::size_t q2 = what.rfind('\'');
+    if (q1 != std::string::npos && q2 > q1 + 1) {
+      const std::size_t found = text_.find(what.substr(q1 + 1, q2 - q1 - 1));
+      if (found != std::string_view::npos) return found;
     }
-    return false;
+    return text_.size();
   }
 
   template <typename S, std::size_t N>

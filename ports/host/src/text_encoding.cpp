@@ -79,25 +79,38 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i) noexcept {
   return n;
 }
 
+/// The names of the encodings, lower case; each encoding's own name first.
+struct EncodingName {
+  const char* name;
+  TextEncoding encoding;
+};
+constexpr EncodingName kEncodingNames[] = {
+    {"utf-8", TextEncoding::kUtf8},
+    {"utf8", TextEncoding::kUtf8},
+    {"windows-1250", TextEncoding::kWindows1250},
+    {"cp1250", TextEncoding::kWindows1250},
+    {"windows-1252", TextEncoding::kWindows1252},
+    {"cp1252", TextEncoding::kWindows1252},
+    {"latin-1", TextEncoding::kLatin1},
+    {"latin1", TextEncoding::kLatin1},
+    {"iso-8859-1", TextEncoding::kLatin1},
+};
+
 }  // namespace
 
 std::optional<TextEncoding> text_encoding_from_name(std::string_view name) noexcept {
   const std::string n = detail::ascii_lower(name);
-  if (n == "utf-8" || n == "utf8") return TextEncoding::kUtf8;
-  if (n == "windows-1250" || n == "cp1250") return TextEncoding::kWindows1250;
-  if (n == "windows-1252" || n == "cp1252") return TextEncoding::kWindows1252;
-  if (n == "latin-1" || n == "latin1" || n == "iso-8859-1") return TextEncoding::kLatin1;
+  for (const EncodingName& e : kEncodingNames) {
+    if (n == e.name) return e.encoding;
+  }
   return std::nullopt;
 }
 
 const char* text_encoding_name(TextEncoding e) noexcept {
-  switch (e) {
-    case TextEncoding::kUtf8: return "utf-8";
-    case TextEncoding::kWindows1250: return "windows-1250";
-    case TextEncoding::kWindows1252: return "windows-1252";
-    case TextEncoding::kLatin1: return "latin-1";
-    default: return "detect";
+  for (const EncodingName& n : kEncodingNames) {
+    if (n.encoding == e) return n.name;  // the first, the encoding's own name
   }
+  return "detect";
 }
 
 std::size_t log_head_size(std::string_view text) noexcept {

@@ -46,28 +46,32 @@ constexpr Spelling kArea[] = {
 };
 constexpr Spelling kNoneUnits[] = {{"-", 1.0, true}};
 
+/// What a quantity accepts and how messages name it.
 struct Table {
   const Spelling* begin;
   const Spelling* end;
-  const char* hint;
+  const char* name;  ///< quantity_name
+  const char* si;    ///< si_unit
+  const char* hint;  ///< the spellings an error suggests
 };
 
 Table table_for(Quantity q) noexcept {
   switch (q) {
     case Quantity::kPressure:
-      return {std::begin(kPressure), std::end(kPressure), "Pa, hPa, kPa, MPa, bar, mbar, psi, N/m2"};
+      return {std::begin(kPressure), std::end(kPressure), "pressure", "Pa", "Pa, hPa, kPa, MPa, bar, mbar, psi, N/m2"};
     case Quantity::kSpeed:
-      return {std::begin(kSpeed), std::end(kSpeed), "rad/s, rpm, 1/min, U/min, min-1"};
+      return {std::begin(kSpeed), std::end(kSpeed), "speed", "rad/s", "rad/s, rpm, 1/min, U/min, min-1"};
     case Quantity::kTime:
-      return {std::begin(kTime), std::end(kTime), "s, ms, min, h"};
+      return {std::begin(kTime), std::end(kTime), "time", "s", "s, ms, min, h"};
     case Quantity::kKp:
-      return {std::begin(kKpUnits), std::end(kKpUnits), "m3/(s*Pa^0.5) or no unit"};
+      return {std::begin(kKpUnits), std::end(kKpUnits), "orifice coefficient", "m3/(s*Pa^0.5)",
+              "m3/(s*Pa^0.5) or no unit"};
     case Quantity::kArea:
-      return {std::begin(kArea), std::end(kArea), "m2, mm2"};
+      return {std::begin(kArea), std::end(kArea), "area", "m2", "m2, mm2"};
     case Quantity::kNone:
       break;
   }
-  return {std::begin(kNoneUnits), std::end(kNoneUnits), "no unit"};
+  return {std::begin(kNoneUnits), std::end(kNoneUnits), "dimensionless", "", "no unit"};
 }
 
 /// `s` without any blanks (so "rad / s" matches "rad/s").
@@ -82,29 +86,9 @@ std::string squeeze(std::string_view s) {
 
 }  // namespace
 
-const char* quantity_name(Quantity q) noexcept {
-  switch (q) {
-    case Quantity::kPressure: return "pressure";
-    case Quantity::kSpeed: return "speed";
-    case Quantity::kTime: return "time";
-    case Quantity::kKp: return "orifice coefficient";
-    case Quantity::kArea: return "area";
-    case Quantity::kNone: break;
-  }
-  return "dimensionless";
-}
+const char* quantity_name(Quantity q) noexcept { return table_for(q).name; }
 
-const char* si_unit(Quantity q) noexcept {
-  switch (q) {
-    case Quantity::kPressure: return "Pa";
-    case Quantity::kSpeed: return "rad/s";
-    case Quantity::kTime: return "s";
-    case Quantity::kKp: return "m3/(s*Pa^0.5)";
-    case Quantity::kArea: return "m2";
-    case Quantity::kNone: break;
-  }
-  return "";
-}
+const char* si_unit(Quantity q) noexcept { return table_for(q).si; }
 
 UnitResult parse_unit(Quantity q, std::string_view unit) {
   unit = detail::trim(unit);

@@ -54,8 +54,9 @@ def _only_read_options(options: Dict[str, Any], function: str) -> Dict[str, Any]
     return read_kw
 
 
-class IdentifyResult:
-    """The result of hstmon.identify: fitted values [SI] and residuals in sensor σ."""
+class _ToolResult:
+    """What the results of identify and gap share: the circuit, the C++ outcome (whose text
+    and report are the CLI's) and its dict ``raw``."""
 
     def __init__(self, circuit: Circuit, outcome: Any) -> None:
         self.circuit = circuit
@@ -64,8 +65,12 @@ class IdentifyResult:
 
     @property
     def text(self) -> str:
-        """What ``hstmon identify --circuit`` prints for the same fit."""
+        """What ``hstmon identify --circuit`` or ``hstmon gap --circuit`` prints for the same run."""
         return self._outcome.text
+
+
+class IdentifyResult(_ToolResult):
+    """The result of hstmon.identify: fitted values [SI] and residuals in sensor σ."""
 
     @property
     def parameters(self) -> pd.DataFrame:
@@ -137,20 +142,13 @@ def identify(logs: Union[LogLike, Sequence[LogLike]], fit: Union[str, Sequence[s
     return IdentifyResult(c, _core.identify(c._core, data, names, float(min_duration), labels))
 
 
-class GapResult:
+class GapResult(_ToolResult):
     """The result of hstmon.gap: the verdict, where the gap lies, and the candidates ranked."""
 
     def __init__(self, circuit: Circuit, outcome: Any, fit_log: str, check_log: str) -> None:
-        self.circuit = circuit
-        self._outcome = outcome
-        self.raw = outcome.as_dict()
+        super().__init__(circuit, outcome)
         self.fit_log = fit_log
         self.check_log = check_log
-
-    @property
-    def text(self) -> str:
-        """What ``hstmon gap --circuit`` prints for the same logs."""
-        return self._outcome.text
 
     @property
     def verdict_text(self) -> str:

@@ -23,6 +23,8 @@ struct IdentifyOutcome {
   ident::CircuitIdentifyRun run;
   std::string values;  // the fitted parameter file
   py::dict as_dict() const;
+  std::string text() const { return ident::circuit_identify_text(run, circuit->loaded(), result); }
+  sim::CircuitReport report() const { return ident::circuit_identify_report(run, circuit->loaded(), result, text()); }
 };
 
 // One gap run.
@@ -31,15 +33,20 @@ struct GapOutcome {
   gap::CircuitGapResult result;
   gap::CircuitGapRun run;
   py::dict as_dict() const;
+  std::string text() const { return gap::circuit_gap_text(run, circuit->loaded(), result); }
+  sim::CircuitReport report() const { return gap::circuit_gap_report(run, circuit->loaded(), result, text()); }
 };
 
-// Writes a report folder; returns why the figure is missing ("" when drawn).
-std::string write_report(const std::string& folder, const sim::CircuitReport& report) {
+// Writes the outcome's report folder; returns why the figure is missing ("" when drawn).
+template <class Outcome>
+std::string write_report(const Outcome& o, const std::string& folder) {
   std::string warning;
-  const std::string err = sim::write_circuit_report(folder, report, warning);
+  const std::string err = sim::write_circuit_report(folder, o.report(), warning);
   if (!err.empty()) throw py::value_error(err);
   return warning;
 }
+
+constexpr const char* kReportDoc = "writes the CLI's report folder; returns why the figure is missing ('' when drawn)";
 
 std::shared_ptr<IdentifyOutcome> identify(const std::shared_ptr<Circuit>& c, const std::vector<std::shared_ptr<Log>>& logs,
                                           const std::vector<std::string>& fit, double min_duration,
@@ -82,26 +89,17 @@ py::dict IdentifyOutcome::as_dict() const {
     p["unit"] = host::circuit_si_unit(c->loaded().file.params[static_cast<std::size_t>(k)].quantity);
     params.append(p);
   }
+  using P = ident::CircuitOperatingPoint;
   py::list points;
-  for (const auto& pt : r.points) {
-    py::dict p;
-    p["log"] = pt.log;
-    p["t0"] = pt.t0;
-    p["t1"] = pt.t1;
-    p["rows"] = pt.n;
-    p["inputs"] = pt.inputs;
-    p["mean"] = pt.mean;
-    p["before"] = pt.before;
-    p["after"] = pt.after;
-    points.append(p);
+  for (const P& pt : r.points) {
+    points.append(dict_of(pt, "log", &P::log, "t0", &P::t0, "t1", &P::t1, "rows", &P::n, "inputs", &P::inputs, "mean",
+                          &P::mean, "before", &P::before, "after", &P::after));
   }
+  using R = ident::CircuitFitResult;
   py::dict d;
   d["parameters"] = params;
   d["points"] = points;
-  d["rms_before"] = r.rms_before;
-  d["rms_after"] = r.rms_after;
-  d["status"] = r.status;
-  d["notes"] = r.notes;
+  put_fields(d, r, "rms_before", &R::rms_before, "rms_after", &R::rms_after, "status", &R::status, "notes", &R::notes);
   d["values_json"] = values;
   return d;
 }
@@ -134,21 +132,13 @@ py::dict GapOutcome::as_dict() const {
     d["z_check"] = e.z_check;
     ranked.append(d);
   }
-  py::dict d;
-  d["fit_points"] = r.fit_points;
-  d["check_points"] = r.check_points;
-  d["rms_fit"] = r.rms_fit;
-  d["rms_check"] = r.rms_check;
-  d["channels"] = r.channels;
-  d["mean_fit"] = r.mean_fit;
-  d["noise_fit"] = r.noise_fit;
-  d["noise_check"] = r.noise_check;
-  d["z_fit"] = r.z_fit;
-  d["z_check"] = r.z_check;
-  d["evidence_missing"] = r.evidence_missing;
+  using R = gap::CircuitGapResult;
+  py::dict d = dict_of(r, "fit_points", &R::fit_points, "check_points", &R::check_points, "rms_fit", &R::rms_fit,
+                       "rms_check", &R::rms_check, "channels", &R::channels, "mean_fit", &R::mean_fit, "noise_fit",
+                       &R::noise_fit, "noise_check", &R::noise_check, "z_fit", &R::z_fit, "z_check", &R::z_check,
+                       "evidence_missing", &R::evidence_missing);
   d["ranked"] = ranked;
-  d["verdict"] = r.verdict;
-  d["notes"] = r.notes;
+  put_fields(d, r, "verdict", &R::verdict, "notes", &R::notes);
   return d;
 }
 
@@ -157,30 +147,15 @@ py::dict GapOutcome::as_dict() const {
 void bind_identify_gap(py::module_& m) {
   py::class_<IdentifyOutcome, std::shared_ptr<IdentifyOutcome>>(m, "IdentifyOutcome")
       .def("as_dict", &IdentifyOutcome::as_dict, "the result as a dict (SI units, residuals in sensor sigma)")
-      .def_property_readonly(
-          "text", [](const IdentifyOutcome& o) { return ident::circuit_identify_text(o.run, o.circuit->loaded(), o.result); },
-          "what `hstmon identify --circuit` prints")
-      .def(
-          "report",
-          [](const IdentifyOutcome& o, const std::string& folder) {
-            const std::string text = ident::circuit_identify_text(o.run, o.circuit->loaded(), o.result);
-            return write_report(folder, ident::circuit_identify_report(o.run, o.circuit->loaded(), o.result, text));
-          },
-          py::arg("folder"), "writes the CLI's report folder; returns why the figure is missing ('' when drawn)");
+      .def_property_readonly("text", &IdentifyOutcome::text, "what `hstmon identify --circuit` prints")
+      .def("report", &write_report<IdentifyOutcome>, py::arg("folder"), kReportDoc);
   py::class_<GapOutcome, std::shared_ptr<GapOutcome>>(m, "GapOutcome")
       .def("as_dict", &GapOutcome::as_dict, "the result as a dict (SI units, residuals in sigma)")
+      .def_property_readonly("text", &GapOutcome::text, "what `hstmon gap --circuit` prints")
       .def_property_readonly(
-          "text", [](const GapOutcome& o) { return gap::circuit_gap_text(o.run, o.circuit->loaded(), o.result); },
-          "what `hstmon gap --circuit` prints")
-      .def_property_readonly(
-          "verdict_text", [](const GapOutcome& o) { return gap::circuit_gap_verdict(o.result); }, "the verdict in words")
-      .def(
-          "report",
-          [](const GapOutcome& o, const std::string& folder) {
-            const std::string text = gap::circuit_gap_text(o.run, o.circuit->loaded(), o.result);
-            return write_report(folder, gap::circuit_gap_report(o.run, o.circuit->loaded(), o.result, text));
-          },
-          py::arg("folder"), "writes the CLI's report folder; returns why the figure is missing ('' when drawn)");
+          "verdict_text", [](const GapOutcome& o) { return gap::circuit_gap_verdict(o.result); },
+          "the verdict in words")
+      .def("report", &write_report<GapOutcome>, py::arg("folder"), kReportDoc);
   m.def("identify", &identify, py::arg("circuit"), py::arg("logs"), py::arg("fit"), py::arg("min_duration") = 0.2,
         py::arg("labels") = std::vector<std::string>{},
         "Fits named parameters to the logs' steady operating points; labels name the logs in the text and report");

@@ -19,34 +19,24 @@ namespace {
 using circuit_tools::CircuitReplayResult;
 
 py::dict stats_of(const host::ChannelStats& s) {
+  using S = host::ChannelStats;
   py::dict d;
   d["n"] = s.n;
   if (s.n == 0) return d;  // as the CLI: no statistics without samples
-  d["mean"] = s.mean();
-  d["rms"] = s.rms();
-  d["max_abs"] = s.max_abs;
-  d["max"] = s.max_signed;
-  d["t_max"] = s.t_max;
-  d["noise"] = s.noise();
+  put_fields(d, s, "mean", &S::mean, "rms", &S::rms, "max_abs", &S::max_abs, "max", &S::max_signed, "t_max", &S::t_max,
+             "noise", &S::noise);
   return d;
 }
 
 py::dict event_of(const host::ReplayEvent& e) {
+  using C = host::ReplayCandidate;
   py::list cands;
-  for (const host::ReplayCandidate& c : e.candidates) {
-    py::dict d;
-    d["fault"] = c.fault;
-    d["score"] = c.score;
-    d["size"] = c.size;
-    d["size_lo"] = c.size_lo;
-    d["size_hi"] = c.size_hi;
-    d["size_text"] = c.size_text;
-    cands.append(d);
+  for (const C& c : e.candidates) {
+    cands.append(dict_of(c, "fault", &C::fault, "score", &C::score, "size", &C::size, "size_lo", &C::size_lo, "size_hi",
+                         &C::size_hi, "size_text", &C::size_text));
   }
-  py::dict d;
-  d["t"] = e.t;
-  d["event"] = e.event;
-  d["consistent"] = e.consistent;
+  using E = host::ReplayEvent;
+  py::dict d = dict_of(e, "t", &E::t, "event", &E::event, "consistent", &E::consistent);
   d["candidates"] = cands;
   d["why"] = e.why;
   return d;
@@ -89,22 +79,14 @@ py::dict trace_of(const CircuitReplayResult& r, std::size_t channels) {
 // verdict's class reads too.
 py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayResult& r, bool keep_trace,
                    const circuit_tools::CircuitFaultTable* table) {
-  py::dict d;
-  d["rows"] = r.rows;
-  d["ticks"] = r.ticks;
-  d["tick"] = r.tick;
-  d["t_first"] = r.t_first;
-  d["t_last"] = r.t_last;
-  d["states"] = r.states;
-  d["stiff_nodes"] = r.stiff_nodes;
+  using R = CircuitReplayResult;
+  py::dict d = dict_of(r, "rows", &R::rows, "ticks", &R::ticks, "tick", &R::tick, "t_first", &R::t_first, "t_last",
+                       &R::t_last, "states", &R::states, "stiff_nodes", &R::stiff_nodes);
   d["start"] = to_string(r.start);
   d["startup_hold"] = r.startup_hold;
   d["health"] = host::health_names(r.health);
-  d["unhealthy_rows"] = r.unhealthy_rows;
-  d["max_substeps"] = r.max_substeps;
-  d["implicit_ticks"] = r.implicit_ticks;
-  d["table_rows"] = r.table_rows;
-  d["undetectable"] = r.undetectable;
+  put_fields(d, r, "unhealthy_rows", &R::unhealthy_rows, "max_substeps", &R::max_substeps, "implicit_ticks",
+             &R::implicit_ticks, "table_rows", &R::table_rows, "undetectable", &R::undetectable);
   // As the CLI: a replay without a fault table has no diagnosis to report.
   d["status"] = r.table_rows > 0 ? r.final_status : std::string("not_run");
   // As the CLI's diagnosis line: the final candidates' class and what would split them
@@ -139,14 +121,9 @@ py::dict result_of(const circuit_tools::LoadedCircuit& c, const CircuitReplayRes
   py::list events;
   for (const host::ReplayEvent& e : r.events) events.append(event_of(e));
   d["events"] = events;
-  py::dict env;
-  env["checked"] = r.envelope.checked;
-  env["out"] = r.envelope.out;
-  env["unverified"] = r.envelope.unverified;
-  env["t0"] = r.envelope.t0;
-  env["t1"] = r.envelope.t1;
-  env["text"] = r.envelope.text;
-  d["envelope"] = env;
+  using Env = decltype(r.envelope);
+  d["envelope"] = dict_of(r.envelope, "checked", &Env::checked, "out", &Env::out, "unverified", &Env::unverified, "t0",
+                          &Env::t0, "t1", &Env::t1, "text", &Env::text);
   py::list leads;  // per channel, what leads its model bound at the last row's inputs
   for (std::size_t ch = 0; ch < r.bound_lead.size(); ++ch) {
     const auto& l = r.bound_lead[ch];

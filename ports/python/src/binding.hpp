@@ -4,6 +4,7 @@
 // hstmon.SourceError, or ValueError/RuntimeError).
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -60,6 +61,24 @@ host::ReadOptions read_options(const std::string& separator, bool lenient, doubl
 
 /// Throws LocatedError when the log failed and is not a lenient read with rows left.
 void raise_if_unusable(const circuit_tools::CircuitLog& log, bool lenient);
+
+/// Adds fields of x to d: keys and members alternate ("t", &Row::t, "mean", &Stats::mean, …);
+/// a member function is called (it takes no argument). The results' dicts are made so.
+template <class T>
+void put_fields(py::dict&, const T&) {}
+template <class T, class Member, class... Rest>
+void put_fields(py::dict& d, const T& x, const char* key, Member member, Rest... rest) {
+  d[key] = std::invoke(member, x);
+  put_fields(d, x, rest...);
+}
+
+/// A dict of fields of x (put_fields).
+template <class T, class... KeysAndMembers>
+py::dict dict_of(const T& x, KeysAndMembers... fields) {
+  py::dict d;
+  put_fields(d, x, fields...);
+  return d;
+}
 
 void bind_circuit(py::module_& m);
 void bind_log(py::module_& m);

@@ -4,7 +4,8 @@
 /// (no node taken quasi-steady) integrated by host_sim's Rosenbrock-4 (StiffIntegrator,
 /// the reference of tests/circuit), inputs piecewise constant and met exactly at their
 /// steps, every sample a hard stop; the outputs go through the sensor chain (white noise
-/// and range clipping from the circuit's sensors section, no lag, no ADC). A sample that
+/// and range clipping from the circuit's sensors section; a transducer lag and an ADC
+/// when asked: TransducerOptions). A sample that
 /// falls on a step reads the volumes far faster than the sampling (those an observer at
 /// this period takes quasi-steady) settled: no transducer follows their microseconds.
 /// Logged inputs (input_profile.hpp) drive the run from a logged run's rows: each row a
@@ -22,6 +23,15 @@
 
 namespace hstmon::circuit_tools {
 
+/// What every channel's transducer adds to the sensors section's noise and range (off by
+/// default: the ideal transducer).
+struct TransducerOptions {
+  double lag = 0.0;            ///< first-order time constant of every channel [s]; 0 = none
+  int pressure_adc_bits = 0;   ///< ADC bits over each pressure channel's declared range, 1..52; 0 = none (so is
+                               ///< a channel without a finite range)
+  double pressure_step = 0.0;  ///< quantisation step of the pressure channels [Pa]; 0 = none (the ADC wins)
+};
+
 /// What to simulate.
 struct CircuitSimOptions {
   double duration = 10.0;          ///< run length [s] > 0
@@ -35,11 +45,13 @@ struct CircuitSimOptions {
   std::vector<double> sample_times;  ///< the rows written [s], rising, >= start_time; empty: start_time + k/rate,
                                      ///< k < duration·rate (rate then also sets which volumes read settled)
   InputProfile profile;            ///< logged inputs driving the run (none: no input follows it)
+  TransducerOptions transducers;   ///< lag and ADC of every channel (none by default)
 };
 
 /// Simulates c and returns the log: every input column and every sensor column, SI.
 /// @throws std::runtime_error for more than 1e7 samples, sample times not rising from start_time (or a profile's
-///         first row after it), when the circuit's values are not physical, there is no
+///         first row after it), pressure_adc_bits outside 1..52, a negative lag or step, when the circuit's values are not
+///         physical, there is no
 ///         steady state to start from, or the integration fails
 CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o);
 

@@ -6,23 +6,17 @@
 /// constant: each change of inputs restarts the integrator at the change time, so the
 /// discontinuity falls on a step boundary. ∂f/∂t = 0 within a segment.
 
-#include <functional>
-#include <vector>
-
 #include "hstmon/thesis_params.hpp"
 #include "hstmon_sim/reference_tolerances.hpp"
-#include "hstmon_sim/stiff_integrator.hpp"
+#include "hstmon_sim/segmented_reference.hpp"
 
 namespace hstmon::sim {
 
-/// Full thesis model integrated with Rosenbrock-4. Not copyable; movable.
-class ThesisReference {
+/// Full thesis model integrated with Rosenbrock-4: inputs Psupl, Ps, Pbp [Pa],
+/// kp [m³/(s·√Pa)]; state Pmi, Pmo, Ppp [Pa], ωm [rad/s]. Not copyable; movable.
+class ThesisReference : public SegmentedReference<ThesisReference, ThesisState<double>, ThesisInputs<double>> {
  public:
   using Params = ThesisParams<double>;  ///< Table 2.2 by default
-  using Inputs = ThesisInputs<double>;  ///< Psupl, Ps, Pbp [Pa], kp [m³/(s·√Pa)]
-  using State = ThesisState<double>;    ///< Pmi, Pmo, Ppp [Pa], ωm [rad/s]
-  /// Receives one sample: time [s] and state.
-  using Sampler = std::function<void(double t, const State& x)>;
 
   /// @param p    model parameters (must satisfy ThesisCircuitModel::params_valid)
   /// @param x0   state at t0
@@ -32,38 +26,19 @@ class ThesisReference {
   explicit ThesisReference(const Params& p = Params{}, const State& x0 = State{}, double t0 = 0.0,
                            const ReferenceTolerances& tol = ReferenceTolerances{});
 
-  /// Integrates from time() to t_end [s] with inputs u held constant. If u differs from the
-  /// inputs of the previous call (or on the first call) the integrator restarts at time().
-  /// @throws std::invalid_argument on non-finite inputs, kp < 0 or t_end < time();
-  ///         std::runtime_error if the integration fails
-  void advance_to(double t_end, const Inputs& u);
-
-  /// As advance_to(t_end, u), also calling on_sample for every time ts in sample_times
-  /// (ascending) with time() < ts ≤ t_end, with the dense-output state at ts.
-  void advance_to(double t_end, const Inputs& u, const std::vector<double>& sample_times,
-                  const Sampler& on_sample);
-
-  /// Replaces the state at time t [s]; the next advance_to() restarts the integrator.
-  void reset(const State& x, double t);
-
-  /// Current state.
-  State state() const;
-  /// Current time [s].
-  double time() const noexcept;
   /// Parameters in use.
   const Params& params() const noexcept { return p_; }
-  /// Step statistics of the integrator.
-  const IntegratorStats& stats() const noexcept { return integ_.stats(); }
 
  private:
+  friend SegmentedReference;
+  static constexpr const char* kName = "ThesisReference";
+  static void to_array(const State& x, double* out) noexcept;
+  static State from_array(const double* v) noexcept;
+  /// Invalid inputs: non-finite, or kp < 0.
   void begin_segment(const Inputs& u);
 
   Params p_;
-  Inputs u_{};
-  bool segment_open_ = false;  // true once the integrator runs with inputs u_
-  State x_pending_{};          // state to restart from when !segment_open_
-  double t_pending_ = 0.0;
-  StiffIntegrator integ_;
+  Inputs u_{};  // the inputs of the open segment
 };
 
 /// Copies a thesis state to an array in channel order (Pmi, Pmo, Ppp [Pa], ωm [rad/s]).

@@ -8,20 +8,21 @@
 namespace hstmon::fdi {
 
 const std::vector<FaultParameter>& fault_parameters() {
+  // The usual parameter: a 10 % cross-check step, and a fault either way (the defaults).
   // Leakage resistances only fall (wear); an increase is not a fault of a real motor.
   static const std::vector<FaultParameter> kAll = {
-      {"kp", "PRV orifice coefficient (blockage: kp-)", 0.5, true, true},
-      {"kf", "DCV orifice coefficient, inlet and outlet", 0.1, true, true},
-      {"Psupl", "supply pressure", 0.1, true, true},
-      {"Pbp", "booster-pump pressure", 0.1, true, true},
-      {"Rbl", "fluid friction of the flow-control valves, Rbl1 + Rbl2", 0.1, true, true},
-      {"Rf", "shaft friction", 0.1, true, true},
-      {"Dp", "loading-pump displacement", 0.1, true, true},
-      {"Dm", "motor displacement", 0.1, true, true},
-      {"Rlkg", "motor port leakage resistance, Rlkg1 = Rlkg2", 0.1, false, true},
-      {"Ripl", "motor cross-port leakage resistance", 0.1, false, true},
-      {"J", "inertia of motor + loading pump", 0.1, true, true},
-      {"K", "bulk stiffness of every volume, Kpmi = Kpmo = Kpp", 0.1, true, true},
+      {"kp", "PRV orifice coefficient (blockage: kp-)", 0.5},
+      {"kf", "DCV orifice coefficient, inlet and outlet"},
+      {"Psupl", "supply pressure"},
+      {"Pbp", "booster-pump pressure"},
+      {"Rbl", "fluid friction of the flow-control valves, Rbl1 + Rbl2"},
+      {"Rf", "shaft friction"},
+      {"Dp", "loading-pump displacement"},
+      {"Dm", "motor displacement"},
+      {"Rlkg", "motor port leakage resistance, Rlkg1 = Rlkg2", 0.1, false},
+      {"Ripl", "motor cross-port leakage resistance", 0.1, false},
+      {"J", "inertia of motor + loading pump"},
+      {"K", "bulk stiffness of every volume, Kpmi = Kpmo = Kpp"},
   };
   return kAll;
 }

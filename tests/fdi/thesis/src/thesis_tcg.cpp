@@ -39,6 +39,18 @@ class Builder {
     g_.add_edge(Edge{g_.at(from), g_.at(to), 1, type, p, p_sign, element, relation, gain, injection});
   }
 
+  /// A valve's flow f from its pressure drop e: linearised (lin), f = e/R with the
+  /// parameter `r_name` = r; else the orifice law f = k*sq(e) with the parameter `k_name`
+  /// and g its slope at the operating point. q: the valve's steady flow.
+  void valve(bool lin, const char* f, const char* e, const char* element, const char* r_name, double r,
+             const char* k_name, double g, double q) {
+    if (lin) {
+      param(f, e, EdgeType::kInstant, r_name, -1, 1.0 / r, -q, element, std::string(f) + " = " + e + "/" + r_name);
+    } else {
+      param(f, e, EdgeType::kInstant, k_name, 1, g, q, element, std::string(f) + " = " + k_name + "*sq(" + e + ")");
+    }
+  }
+
  private:
   CausalGraph& g_;
 };
@@ -73,6 +85,21 @@ SteadyValues steady_values(const OperatingPoint& op) {
 // a change of K or J injects nothing: they only shape transients (docs/fdi.md).
 constexpr double kNet = 0.0;
 
+// One side of the motor, bonds n to n + 3: the port (pressure P), the displacement's
+// torque, the side's valve friction Rbl and the side's 1-junction, whose torque is the
+// displacement's with the friction added (friction_sign 1) or taken off (-1).
+void add_motor_side(Builder& b, int n, const std::string& side, double P, const char* torque, int friction_sign,
+                    double Dm, double Rbl, double w) {
+  b.effort(n, P);
+  b.flow(n, Dm * w, ("motor swept flow, " + side).c_str());
+  b.effort(n + 1, Dm * P, torque);
+  b.flow(n + 1, w);
+  b.effort(n + 2, Rbl * w, (side + " valve friction torque").c_str());
+  b.flow(n + 2, w);
+  b.effort(n + 3, Dm * P + friction_sign * Rbl * w);
+  b.flow(n + 3, w);
+}
+
 // Every effort and flow of the bond graph, the sources and the measurements, valued at the operating point.
 void add_nodes(Builder& b, const OperatingPoint& op, const SteadyValues& v) {
   const ThesisParams<double>& p = op.p;
@@ -91,14 +118,7 @@ void add_nodes(Builder& b, const OperatingPoint& op, const SteadyValues& v) {
   b.flow(4, 0.0, "net flow into the motor inlet volume");
   b.effort(6, Pmi);
   b.flow(6, Pmi / p.Rlkg, "inlet leakage flow");
-  b.effort(7, Pmi);
-  b.flow(7, p.Dm * w, "motor swept flow, inlet");
-  b.effort(8, p.Dm * Pmi, "motor torque from Pmi");
-  b.flow(8, w);
-  b.effort(9, Rbl1 * w, "inlet valve friction torque");
-  b.flow(9, w);
-  b.effort(10, p.Dm * Pmi - Rbl1 * w);
-  b.flow(10, w);
+  add_motor_side(b, 7, "inlet", Pmi, "motor torque from Pmi", -1, p.Dm, Rbl1, w);
   b.effort(11, Pmi);
   b.flow(11, q_ipl);
   b.effort(12, Pmo);
@@ -114,14 +134,7 @@ void add_nodes(Builder& b, const OperatingPoint& op, const SteadyValues& v) {
   b.flow(17, Pmo / p.Rlkg, "outlet leakage flow");
   b.effort(18, Pmo, "Pmo, motor outlet pressure");
   b.flow(18, 0.0, "net flow into the motor outlet volume");
-  b.effort(20, Pmo);
-  b.flow(20, p.Dm * w, "motor swept flow, outlet");
-  b.effort(21, p.Dm * Pmo, "motor counter-torque from Pmo");
-  b.flow(21, w);
-  b.effort(22, Rbl2 * w, "outlet valve friction torque");
-  b.flow(22, w);
-  b.effort(23, p.Dm * Pmo + Rbl2 * w);
-  b.flow(23, w);
+  add_motor_side(b, 20, "outlet", Pmo, "motor counter-torque from Pmo", 1, p.Dm, Rbl2, w);
   b.effort(24, 0.0, "net shaft torque");
   b.flow(24, w, "ωm, shaft speed");
   b.effort(25, p.Rf * w, "shaft friction torque");
@@ -161,11 +174,7 @@ void add_hydraulic_edges(Builder& b, const OperatingPoint& op, const SteadyValue
   // DCV inlet.
   b.link("e2", "e1", 1, "1_in", "e2 = e1 - e3");
   b.link("e2", "e3", -1, "1_in", "e2 = e1 - e3");
-  if (lin) {
-    b.param("f2", "e2", kI, "Rin", -1, 1.0 / op.Rin, -q_in, "R2", "f2 = e2/Rin");
-  } else {
-    b.param("f2", "e2", kI, "kfi", 1, op.g_in, q_in, "R2", "f2 = kfi*sq(e2)");
-  }
+  b.valve(lin, "f2", "e2", "R2", "Rin", op.Rin, "kfi", op.g_in, q_in);
   b.link("f3", "f2", 1, "1_in", "f3 = f2");
   // Motor inlet volume.
   for (const char* e : {"e3", "e6", "e7", "e11"}) b.link(e, "e4", 1, "0_mi", "common pressure Pmi");
@@ -200,11 +209,7 @@ void add_hydraulic_edges(Builder& b, const OperatingPoint& op, const SteadyValue
   // DCV outlet.
   b.link("e15", "e16", 1, "1_out", "e15 = e16 - e14");
   b.link("e15", "e14", -1, "1_out", "e15 = e16 - e14");
-  if (lin) {
-    b.param("f15", "e15", kI, "Rout", -1, 1.0 / op.Rout, -q_out, "R15", "f15 = e15/Rout");
-  } else {
-    b.param("f15", "e15", kI, "kfo", 1, op.g_out, q_out, "R15", "f15 = kfo*sq(e15)");
-  }
+  b.valve(lin, "f15", "e15", "R15", "Rout", op.Rout, "kfo", op.g_out, q_out);
   b.link("f16", "f15", 1, "1_out", "f16 = f15");
   // Motor, outlet side.
   b.param("e21", "e20", kI, "Dm", 1, p.Dm, p.Dm * Pmo, "TF20/21", "e21 = Dm*e20");
@@ -243,11 +248,7 @@ void add_shaft_pump_and_sensor_edges(Builder& b, const OperatingPoint& op, const
   // PRV and booster line.
   b.link("e33", "e32", 1, "1_prv", "e33 = e32 - e34");
   b.link("e33", "e34", -1, "1_prv", "e33 = e32 - e34");
-  if (lin) {
-    b.param("f33", "e33", kI, "Rpl", -1, 1.0 / op.Rpl, -q_prv, "R33", "f33 = e33/Rpl");
-  } else {
-    b.param("f33", "e33", kI, "kp", 1, op.g_prv, q_prv, "R33", "f33 = kp*sq(e33)");
-  }
+  b.valve(lin, "f33", "e33", "R33", "Rpl", op.Rpl, "kp", op.g_prv, q_prv);
   b.link("f32", "f33", 1, "1_prv", "f32 = f33");
   b.link("e34", "e28", 1, "0_bp", "common pressure Pbp");
   b.link("e35", "e28", 1, "0_bp", "common pressure Pbp");

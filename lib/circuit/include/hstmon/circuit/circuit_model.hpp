@@ -36,6 +36,17 @@
 
 namespace hstmon::circuit {
 
+/// Spectral radius of ∂f/∂x at x [1/s] of a circuit model (CircuitModel, CompiledModel):
+/// its tick_derivative's rho with rho_max = 0.
+template <class Model>
+typename Model::Scalar tick_spectral_radius(const Model& m, const typename Model::State& x) noexcept {
+  typename Model::Output y;
+  typename Model::Scalar rho;
+  bool ok;
+  (void)m.tick_derivative(x, typename Model::Scalar(0), y, rho, ok);
+  return rho;
+}
+
 template <typename T, class Cap = HostCapacity>
 class CircuitModel {
  public:
@@ -256,13 +267,7 @@ class CircuitModel {
   }
 
   /// Spectral radius of ∂f/∂x at x (tick_derivative's rho with rho_max = 0) [1/s].
-  T spectral_radius(const State& x) const noexcept {
-    Output y;
-    T rho;
-    bool ok;
-    (void)tick_derivative(x, T(0), y, rho, ok);
-    return rho;
-  }
+  T spectral_radius(const State& x) const noexcept { return tick_spectral_radius(*this, x); }
 
   /// Jacobian ∂f/∂x of the (reduced) state equations at x [1/s in state units]; the
   /// stiff nodes enter through the Schur complement of their block.

@@ -47,11 +47,11 @@ class CompiledModel {
   using Engine = CircuitModel<T, Cap>;
   using Scalar = T;
   using Description = Circuit<Cap>;
-  using Params = typename Engine::Params;
-  using Inputs = typename Engine::Inputs;
-  using State = typename Engine::State;
-  using Output = typename Engine::Output;
-  using StateMatrix = typename Engine::StateMatrix;
+  using Params = typename Engine::Params;            ///< parameter values by index [SI]
+  using Inputs = typename Engine::Inputs;            ///< input values by index [SI]
+  using State = typename Engine::State;              ///< the states: node pressures [Pa], shaft speeds [rad/s]
+  using Output = typename Engine::Output;            ///< the sensor channels [Pa, rad/s or m³/s]
+  using StateMatrix = typename Engine::StateMatrix;  ///< ∂f/∂x [1/s in the state units]
   static constexpr int kStates = Engine::kStates;
   static constexpr int kOutputs = Engine::kOutputs;
   static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
@@ -336,13 +336,7 @@ class CompiledModel {
   }
 
   /// Spectral radius of ∂f/∂x at x (tick_derivative's rho with rho_max = 0) [1/s].
-  T spectral_radius(const State& x) const noexcept {
-    Output y;
-    T rho;
-    bool ok;
-    (void)tick_derivative(x, T(0), y, rho, ok);
-    return rho;
-  }
+  T spectral_radius(const State& x) const noexcept { return tick_spectral_radius(*this, x); }
 
  private:
   /// The warm start and the states' inverse masses from the engine (after it resolved).

@@ -19,9 +19,9 @@ namespace hstmon::fdi {
 struct FaultParameter {
   std::string name;        ///< seed name: "kp", "kf", "Psupl", "Pbp", "Rbl", "Rf", "Dp", "Dm", "Rlkg", "Ripl", "J", "K"
   std::string meaning;     ///< what it is
-  double crosscheck_step;  ///< relative step of the nonlinear cross-check (0.1; 0.5 for kp) [-]
-  bool up_in_table;        ///< the increase is a physical fault and gets a table row
-  bool down_in_table;      ///< the decrease is a physical fault and gets a table row
+  double crosscheck_step = 0.1;  ///< relative step of the nonlinear cross-check (0.1; 0.5 for kp) [-]
+  bool up_in_table = true;       ///< the increase is a physical fault and gets a table row
+  bool down_in_table = true;     ///< the decrease is a physical fault and gets a table row
 };
 
 /// The catalogue, in table order.
