@@ -14,6 +14,7 @@
 #include "hstmon_circuit/logged_run.hpp"
 #include "hstmon_circuit/machine_spread.hpp"
 #include "hstmon_host/number_text.hpp"
+#include "hstmon_sensors/sensor_presets.hpp"  // kPaPerBar
 #include "sim_compare.hpp"
 
 namespace hstmon::sim_app {
@@ -27,7 +28,8 @@ std::string transducer_note(const circuit_tools::TransducerOptions& t) {
   if (t.pressure_adc_bits > 0) {
     s += (s.empty() ? "" : ", ") + std::string("pressure ADC ") + std::to_string(t.pressure_adc_bits) + " bits";
   } else if (t.pressure_step > 0.0) {
-    s += (s.empty() ? "" : ", ") + std::string("pressure step ") + host::number_text(t.pressure_step * 1e-5) + " bar";
+    s += (s.empty() ? "" : ", ") + std::string("pressure step ") + host::number_text(t.pressure_step / sim::kPaPerBar) +
+         " bar";
   }
   return s.empty() ? s : "transducers: " + s;
 }
