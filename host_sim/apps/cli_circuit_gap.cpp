@@ -18,6 +18,42 @@ namespace hstmon::cli {
 
 namespace {
 
+// "equations": per balance equation its availability and statistics (SI), the located one,
+// and the discovered terms (null when none).
+void put_equations(const gap::CircuitGapResult& r, nlohmann::json& j) {
+  nlohmann::json eqs = nlohmann::json::array();
+  for (std::size_t e = 0; e < r.equations_fit.size(); ++e) {
+    const gap::EquationStats& f = r.equations_fit[e];
+    const bool check = e < r.equations_check.size() && r.equations_check[e].available;
+    eqs.push_back({{"equation", f.equation},
+                   {"unit", f.unit},
+                   {"available", f.available && check},
+                   {"missing", e < r.equations_missing.size() ? r.equations_missing[e] : ""},
+                   {"mean_fit", f.available ? number_or_null(f.mean) : nlohmann::json(nullptr)},
+                   {"rms_w_fit", f.available ? number_or_null(f.rms_w) : nlohmann::json(nullptr)},
+                   {"rms_w_check", check ? number_or_null(r.equations_check[e].rms_w) : nlohmann::json(nullptr)}});
+  }
+  j["equations"] = eqs;
+  j["located_equation"] = r.located_equation.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.located_equation);
+  if (!r.discovery) {
+    j["discovery"] = nullptr;
+    return;
+  }
+  const gap::CircuitDiscovery& d = *r.discovery;
+  nlohmann::json terms = nlohmann::json::array();
+  for (const auto& t : d.terms) {
+    terms.push_back({{"form", t.form},
+                     {"unit", t.unit},
+                     {"coefficient", number_or_null(t.coefficient)},
+                     {"std_error", number_or_null(t.std_error)}});
+  }
+  j["discovery"] = {{"equation", d.equation},
+                    {"terms", terms},
+                    {"shrink_fit", number_or_null(d.shrink_fit)},
+                    {"shrink_check", number_or_null(d.shrink_check)},
+                    {"reading", d.reading}};
+}
+
 void print_json(const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResult& r) {
   nlohmann::json noise = nlohmann::json::object();
   for (std::size_t ch = 0; ch < r.noise_fit.size() && ch < c.file.sensors.size(); ++ch) {
@@ -31,11 +67,21 @@ void print_json(const circuit_tools::LoadedCircuit& c, const gap::CircuitGapResu
                       {"rms_fit", number_or_null(e.rms_fit)}, {"rms_check", number_or_null(e.rms_check)},
                       {"z_check", number_or_null(e.z_check)}});
   }
-  const nlohmann::json j = {{"type", "gap"},           {"circuit", c.file.name},     {"fit_points", r.fit_points},
-                            {"check_points", r.check_points}, {"rms_fit", r.rms_fit}, {"rms_check", number_or_null(r.rms_check)},
-                            {"mean_residual_fit", where}, {"ranked", ranked},         {"verdict", r.verdict},
-                            {"z_fit", number_or_null(r.z_fit)}, {"z_check", number_or_null(r.z_check)},
-                            {"noise", noise}, {"evidence_missing", r.evidence_missing}, {"notes", r.notes}};
+  nlohmann::json j = {{"type", "gap"},
+                      {"circuit", c.file.name},
+                      {"fit_points", r.fit_points},
+                      {"check_points", r.check_points},
+                      {"rms_fit", r.rms_fit},
+                      {"rms_check", number_or_null(r.rms_check)},
+                      {"mean_residual_fit", where},
+                      {"ranked", ranked},
+                      {"verdict", r.verdict},
+                      {"z_fit", number_or_null(r.z_fit)},
+                      {"z_check", number_or_null(r.z_check)},
+                      {"noise", noise},
+                      {"evidence_missing", r.evidence_missing},
+                      {"notes", r.notes}};
+  put_equations(r, j);
   fmt::print("{}\n", j.dump());
 }
 

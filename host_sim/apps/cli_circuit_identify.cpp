@@ -23,7 +23,8 @@ namespace hstmon::cli {
 
 namespace {
 
-void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
+// The fit as the JSON object's fields (parameters, points with their window inputs, RMS).
+nlohmann::json fit_json(const ident::CircuitFitResult& r) {
   nlohmann::json params = nlohmann::json::array();
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     params.push_back({{"name", r.names[j]},
@@ -40,14 +41,61 @@ void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitRe
     nlohmann::json before = nlohmann::json::array(), after = nlohmann::json::array();
     for (double v : p.before) before.push_back(number_or_null(v));
     for (double v : p.after) after.push_back(number_or_null(v));
-    points.push_back({{"log", p.log}, {"t0", p.t0}, {"t1", p.t1}, {"rows", p.n}, {"before", before}, {"after", after}});
+    nlohmann::json jp = {{"log", p.log}, {"t0", p.t0},       {"t1", p.t1},
+                         {"rows", p.n},  {"before", before}, {"after", after}};
+    if (!r.window_inputs.empty()) {
+      nlohmann::json w = nlohmann::json::object();
+      for (std::size_t k = 0; k < r.window_inputs.size() && k < p.window_value.size(); ++k) {
+        w[r.window_inputs[k]] = {{"start", number_or_null(p.window_start[k])},
+                                 {"value", number_or_null(p.window_value[k])},
+                                 {"se", number_or_null(p.window_se[k])}};
+      }
+      jp["window_inputs"] = w;
+    }
+    points.push_back(jp);
   }
-  const nlohmann::json j = {{"type", "identify"},   {"circuit", c.file.name},  {"parameters", params},
-                            {"points", points},     {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
-                            {"status", r.status},   {"notes", r.notes}};
+  nlohmann::json j = {{"parameters", params},     {"points", points},   {"rms_before", r.rms_before},
+                      {"rms_after", r.rms_after}, {"status", r.status}, {"notes", r.notes}};
+  if (!r.window_inputs.empty()) j["window_inputs"] = r.window_inputs;
+  return j;
+}
+
+// One JSON object: the fit's fields (when there were logs) and the sections' keys.
+void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult* r, const IdentifySections& s) {
+  nlohmann::json j = {{"type", "identify"}, {"circuit", c.file.name}};
+  if (r != nullptr) j.update(fit_json(*r));
+  j.update(s.json);
   fmt::print("{}\n", j.dump());
 }
 
+// The window inputs fitted per operating point, as text and as a report table.
+std::string window_inputs_text(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r,
+                               sim::ReportTable& t) {
+  if (r.window_inputs.empty()) return {};
+  t = {"Window inputs fitted per operating point (setting per window)", {"#", "t [s]"}, {}};
+  std::string s = "\n  window inputs fitted per operating point (start → fitted ± standard error):\n";
+  std::vector<host::DisplayUnit> unit;
+  for (const auto& name : r.window_inputs) {
+    const int i = c.file.input_index(name);
+    unit.push_back(host::display_unit(c.file.inputs[static_cast<std::size_t>(i)].quantity));
+    t.header.push_back(name + " [" + unit.back().unit + "]");
+  }
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const auto& p = r.points[k];
+    std::vector<std::string> row{std::to_string(k + 1), fmt::format("{:.3f} … {:.3f}", p.t0, p.t1)};
+    s += fmt::format("  {:>3}  t = {:>8.3f} … {:<8.3f} s", k + 1, p.t0, p.t1);
+    for (std::size_t q = 0; q < r.window_inputs.size() && q < p.window_value.size(); ++q) {
+      const host::DisplayUnit& d = unit[q];
+      const std::string cell = fmt::format("{:.5g} → {:.5g} ± {:.2g}", d.of(p.window_start[q]), d.of(p.window_value[q]),
+                                           std::fabs(d.of(p.window_se[q])));
+      s += fmt::format("   {} {} {}", r.window_inputs[q], cell, d.unit);
+      row.push_back(cell);
+    }
+    s += "\n";
+    t.rows.push_back(std::move(row));
+  }
+  return s;
+}
 
 // --noise-pressure / --noise-speed: c with the weights' σ for every sensor of that quantity
 // (the fit weighs with it; the header keeps the circuit file's sensors).
@@ -90,16 +138,25 @@ std::string write_header(const CircuitIdentifyArgs& a, const circuit_tools::Load
 
 }  // namespace
 
-int run_circuit_identify(const CircuitIdentifyArgs& a) {
-  if (a.logs.empty() || a.fit.empty()) {
-    fmt::print(stderr, "hstmon identify --circuit: give LOG files and --fit PARAM[,PARAM...]\n");
-    return kExitUsage;
+namespace {
+
+// Usage errors of the option combination; kExitOk when it is runnable.
+int check_usage(const CircuitIdentifyArgs& a) {
+  const char* why = nullptr;
+  if (a.logs.empty() && !a.sections) {
+    why = "give LOG files and --fit PARAM[,PARAM...], or --paper FILE.csv / --studies";
+  } else if (!a.logs.empty() && a.fit.empty()) {
+    why = "--fit PARAM[,PARAM...] names the parameters to fit to the LOG files";
+  } else if (a.logs.empty() && (!a.fit.empty() || !a.out.empty() || !a.header.empty() || a.setting_per_window)) {
+    why = "--fit, --out, --header and --setting-per-window are about the fit to LOG files: give them";
   }
-  circuit_tools::LoadedCircuit c;
-  if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
-    fmt::print(stderr, "{}\n", err->to_string());
-    return kExitBadInput;
-  }
+  if (why == nullptr) return kExitOk;
+  fmt::print(stderr, "hstmon identify --circuit: {}\n", why);
+  return kExitUsage;
+}
+
+// Reads the logs and fits; kExitOk, or the exit code after the message.
+int fit_logs(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c, ident::CircuitFitResult& r) {
   std::vector<circuit_tools::CircuitLog> logs;
   for (const std::string& path : a.logs) {
     circuit_tools::CircuitLog log = circuit_tools::read_circuit_log(path, c.file, a.read);
@@ -116,7 +173,9 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   o.min_samples = a.min_samples;
   o.assume_steady = a.assume_steady;
   o.min_settings = a.min_settings;
-  const ident::CircuitFitResult r = ident::fit_circuit(with_noise(a, c), logs, o);
+  o.setting_per_window = a.setting_per_window;
+  o.window_inputs = a.window_inputs;
+  r = ident::fit_circuit(with_noise(a, c), logs, o);
   if (r.error) {
     fmt::print(stderr, "hstmon identify --circuit {}: {}\n", a.circuit, *r.error);
     return kExitBadInput;
@@ -135,10 +194,63 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
       return kExitBadInput;
     }
   }
+  return kExitOk;
+}
+
+// The report: the fit's (when there were logs) with the window inputs and the sections
+// after it, one figure for all panels.
+sim::CircuitReport make_report(const ident::CircuitIdentifyRun& run, const circuit_tools::LoadedCircuit& c,
+                               const ident::CircuitFitResult* r, const sim::ReportTable& windows,
+                               const IdentifySections& s, const std::string& text) {
+  sim::CircuitReport rep;
+  if (r != nullptr) {
+    rep = ident::circuit_identify_report(run, c, *r, text);
+    if (!windows.rows.empty()) rep.tables.insert(rep.tables.begin() + 1, windows);
+  } else {
+    rep.title = "hstmon identify --circuit report: " + c.file.name;
+    rep.tone = sim::VerdictTone::kNeutral;
+    rep.text = text;
+  }
+  if (!s.verdict.empty()) rep.verdict += (rep.verdict.empty() ? "" : "; ") + s.verdict;
+  rep.tables.insert(rep.tables.end(), s.tables.begin(), s.tables.end());
+  if (!s.panels.empty()) {
+    rep.figure_caption += std::string(rep.panels.empty() ? "" : "; then ") +
+                          "the paper table's fits and the parameter studies";
+    rep.panels.insert(rep.panels.end(), s.panels.begin(), s.panels.end());
+  }
+  return rep;
+}
+
+}  // namespace
+
+int run_circuit_identify(const CircuitIdentifyArgs& a) {
+  if (const int rc = check_usage(a); rc != kExitOk) return rc;
+  circuit_tools::LoadedCircuit c;
+  if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
+    fmt::print(stderr, "{}\n", err->to_string());
+    return kExitBadInput;
+  }
+  // The sections first: a bad table stops the command before any file is written.
+  IdentifySections sections;
+  if (a.sections) {
+    if (const int rc = a.sections(c, !a.report.empty(), sections); rc != kExitOk) return rc;
+  }
+  ident::CircuitFitResult fit;
+  const bool fitted = !a.logs.empty();
+  if (fitted) {
+    if (const int rc = fit_logs(a, c, fit); rc != kExitOk) return rc;
+  }
   const ident::CircuitIdentifyRun run{a.circuit, a.logs, a.out, a.header};
-  const std::string text = ident::circuit_identify_text(run, c, r);
+  sim::ReportTable windows;
+  const std::string text =
+      (fitted ? ident::circuit_identify_text(run, c, fit) + window_inputs_text(c, fit, windows)
+              : fmt::format("hstmon identify --circuit {}: no LOG files, no fit: the paper rig's analyses only\n",
+                            a.circuit)) +
+      sections.text;
+  const ident::CircuitFitResult* r = fitted ? &fit : nullptr;
   return finish_circuit_command(
-      "identify", a, text, [&] { print_json(c, r); }, [&] { return ident::circuit_identify_report(run, c, r, text); });
+      "identify", a, text, [&] { print_json(c, r, sections); },
+      [&] { return make_report(run, c, r, windows, sections, text); });
 }
 
 }  // namespace hstmon::cli

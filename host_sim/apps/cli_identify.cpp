@@ -2,10 +2,13 @@
 // windows → steady-state regression of the thesis model → estimates with intervals,
 // correlations, identifiability and the Table 2.3 validation; writes the parameter file and
 // optionally a generated C++ header. `--paper FILE.csv` fits pump B's curve and the valve
-// port areas of the paper rig; `--studies` runs its parameter studies (Figs. 7–9).
+// port areas of the paper rig; `--studies` runs its parameter studies (Figs. 7–9). With
+// `--circuit FILE` the fit is the circuit's (cli_circuit_identify.hpp) and the paper
+// table's estimates join its output, beside the circuit's own values.
 // docs/identification.md describes the method and the formats.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +25,7 @@
 #include "hstmon_host/params_file.hpp"
 #include "hstmon_ident/identified_outputs.hpp"
 #include "hstmon_ident/operating_points.hpp"
+#include "hstmon_ident/paper_circuit.hpp"
 #include "hstmon_ident/paper_studies.hpp"
 #include "hstmon_ident/paper_tables.hpp"
 #include "hstmon_ident/plots.hpp"
@@ -54,6 +58,8 @@ struct IdentifyArgs {
   double cd = 0.61;
   double rho = 870.0;
   bool studies = false;
+  bool cd_given = false, rho_given = false;  // --cd, --rho on the command line (else a circuit's own)
+  std::vector<std::string> window_inputs;    // --window-input: inputs fitted per steady window (--circuit)
   std::string circuit;             // --circuit: run_circuit_identify instead (cli_circuit_identify.hpp)
   std::vector<std::string> fit;
 };
@@ -61,17 +67,24 @@ struct IdentifyArgs {
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // Appends to the report text and echoes it to stdout unless JSON is on; collects the plots
-// for report.html.
+// for report.html. With --circuit (`panels` set) the plots become panels of the circuit
+// report's one figure and the tables join its tables: one report folder, one page.
 struct Report {
   bool quiet = false;
   std::string text;
   std::vector<ReportFigure> figures;
+  std::string dir;                                  // the report folder ("" = no plots)
+  std::vector<sim::ReportPanel>* panels = nullptr;  // --circuit: plots go here, not to SVG files
+  std::vector<sim::ReportTable> tables;             // --circuit: the report's tables
   template <typename... A>
   void operator()(fmt::format_string<A...> f, A&&... a) {
     const std::string s = fmt::format(f, std::forward<A>(a)...);
     text += s;
     if (!quiet) fmt::print("{}", s);
   }
+  bool plots() const { return !dir.empty(); }
+  void plot(const std::string& stem, const std::string& title, const std::string& xlabel, const std::string& ylabel,
+            const std::vector<id::PlotSeries>& series);
 };
 
 void plot_or_warn(Report& rep, const std::string& file, const std::string& caption, const std::string& err) {
@@ -80,6 +93,52 @@ void plot_or_warn(Report& rep, const std::string& file, const std::string& capti
   } else {
     fmt::print(stderr, "hstmon identify: warning: {}\n", err);
   }
+}
+
+// y of a line series at x (its x ascending): linear between its points, NaN outside them.
+double line_at(const id::PlotSeries& s, double x) {
+  const auto it = std::lower_bound(s.x.begin(), s.x.end(), x);
+  if (it == s.x.end()) return std::nan("");
+  const auto i = static_cast<std::size_t>(it - s.x.begin());
+  if (*it == x) return s.y[i];
+  if (i == 0) return std::nan("");
+  return s.y[i - 1] + (s.y[i] - s.y[i - 1]) * (x - s.x[i - 1]) / (s.x[i] - s.x[i - 1]);
+}
+
+// A plot as one panel of the circuit report's figure: the panel's x are every series' x
+// (sorted, once each); a data series has NaN where it has no point, a line is interpolated
+// (gnuplot leaves NaN out, so a line would otherwise break at another series' x).
+sim::ReportPanel panel_of(const std::string& title, const std::string& xlabel, const std::string& ylabel,
+                          const std::vector<id::PlotSeries>& series) {
+  sim::ReportPanel p{title, xlabel, ylabel, {}, {}};
+  for (const auto& s : series) p.x.insert(p.x.end(), s.x.begin(), s.x.end());
+  std::sort(p.x.begin(), p.x.end());
+  p.x.erase(std::unique(p.x.begin(), p.x.end()), p.x.end());
+  for (const auto& s : series) {
+    sim::ReportSeries out{s.label, {}, s.points ? "points pt 7 ps 0.6" : "lines lw 2"};
+    out.y.reserve(p.x.size());
+    for (double x : p.x) {
+      if (!s.points) {
+        out.y.push_back(line_at(s, x));
+        continue;
+      }
+      const auto it = std::find(s.x.begin(), s.x.end(), x);
+      out.y.push_back(it == s.x.end() ? std::nan("") : s.y[static_cast<std::size_t>(it - s.x.begin())]);
+    }
+    p.series.push_back(std::move(out));
+  }
+  return p;
+}
+
+void Report::plot(const std::string& stem, const std::string& title, const std::string& xlabel,
+                  const std::string& ylabel, const std::vector<id::PlotSeries>& series) {
+  if (!plots()) return;
+  if (panels != nullptr) {
+    panels->push_back(panel_of(title, xlabel, ylabel, series));
+    return;
+  }
+  const std::string file = dir + "/" + stem + ".svg";
+  plot_or_warn(*this, file, title, id::plot_xy(file, title, xlabel, ylabel, series));
 }
 
 const char* const kThesisChannel[4] = {"Pmi", "Pmo", "Ppp", "ωm"};
@@ -287,94 +346,237 @@ int run_thesis(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   return kExitOk;
 }
 
-int run_paper(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+// The circuit's pump-curve parameters beside the fitted ones (paper_circuit.hpp): text,
+// a table row per parameter and JSON; the largest |difference| [%] goes to `worst`.
+nlohmann::json compare_pump_with_circuit(const id::PumpCurveFit& f, const std::array<double, 5>& v,
+                                         const circuit_tools::LoadedCircuit& c, Report& rep, double& worst) {
+  nlohmann::json out = nlohmann::json::array();
+  const auto pumps = id::circuit_pump_curves(c);
+  if (pumps.empty()) {
+    rep("  circuit {}: no compensated_pump element to compare the curve with\n", c.file.name);
+    return out;
+  }
+  for (const auto& p : pumps) {
+    rep("\n  beside circuit {}'s {} (difference = (fitted − circuit)/circuit):\n", c.file.name, p.element);
+    rep("  {:<5} {:<16} {:>12} {:>12} {:>11}  {}\n", "", "circuit value of", "circuit", "fitted", "difference",
+        "circuit inside the 95 % interval");
+    sim::ReportTable t{
+        "Pump curve beside circuit " + c.file.name + "'s " + p.element,
+        {"parameter", "circuit value of", "circuit", "fitted", "difference", "circuit inside the 95 % interval"},
+        {}};
+    nlohmann::json jp = nlohmann::json::array();
+    for (std::size_t k = 0; k < 5; ++k) {
+      const id::CircuitNumber& n = p.params[k];
+      if (!n.given()) continue;
+      const double d = id::percent_difference(v[k], n.value);
+      const bool inside = f.ci_lo[k] <= n.value && n.value <= f.ci_hi[k];
+      if (std::isfinite(d)) worst = std::max(worst, std::fabs(d));
+      const std::string of = n.name + (n.input ? " (input)" : "");
+      rep("  {:<5} {:<16} {:>12.6g} {:>12.6g} {:>+10.3g}%  {}\n", id::pump_curve_param_names()[k], of, n.value, v[k], d,
+          inside ? "yes" : "no");
+      t.rows.push_back({id::pump_curve_param_names()[k], of, fmt::format("{:.6g}", n.value),
+                        fmt::format("{:.6g}", v[k]), fmt::format("{:+.3g} %", d), inside ? "yes" : "no"});
+      jp.push_back({{"name", id::pump_curve_param_names()[k]},
+                    {"circuit_name", n.name},
+                    {"input", n.input},
+                    {"circuit", num(n.value)},
+                    {"fitted", num(v[k])},
+                    {"difference_pct", num(d)},
+                    {"inside_ci", inside}});
+    }
+    rep.tables.push_back(std::move(t));
+    out.push_back({{"element", p.element}, {"parameters", jp}});
+  }
+  return out;
+}
+
+// Pump B's curve from the table's pump rows: text, plot, JSON into jpaper["pump_curve"]
+// (and ["circuit"]["pump"] beside the circuit's compensated pump).
+int report_pump_curve(const IdentifyArgs& a, const id::PaperTables& t, const circuit_tools::LoadedCircuit* circuit,
+                      Report& rep, nlohmann::json& jpaper, double& worst) {
+  const id::PumpCurveFit f = id::fit_pump_curve(t.pump);
+  if (!f.ok()) {
+    fmt::print(stderr, "{}: error: {}\n", a.paper, *f.error);
+    return kExitBadInput;
+  }
+  rep("\npump B flow–pressure curve ({} samples, RMS residual {:.4g} l/min, condition {:.3g}):\n", f.n, f.rms * 6e4,
+      f.condition);
+  const std::array<double, 5> v{f.params.Q0, f.params.R, f.params.Pc, f.params.Pk, f.params.Pmax};
+  const std::array<const char*, 5> unit{"m^3/s", "Pa*s/m^3", "Pa", "Pa", "Pa"};
+  sim::ReportTable tab{"Pump curve (paper table)", {"parameter", "estimate", "SE", "95 % interval", "unit"}, {}};
+  nlohmann::json jp = nlohmann::json::array();
+  for (std::size_t k = 0; k < 5; ++k) {
+    const char* name = id::pump_curve_param_names()[k];
+    rep("  {:<5} {:>12.6g} ± {:<10.3g} [{:>12.6g}, {:>12.6g}] {}{}\n", name, v[k], f.se[k], f.ci_lo[k], f.ci_hi[k],
+        unit[k], f.identifiable[k] ? "" : "  NOT IDENTIFIABLE from these data");
+    tab.rows.push_back({name, fmt::format("{:.6g}", v[k]), fmt::format("{:.3g}", f.se[k]),
+                        fmt::format("[{:.6g}, {:.6g}]", f.ci_lo[k], f.ci_hi[k]),
+                        std::string(unit[k]) + (f.identifiable[k] ? "" : " (not identifiable)")});
+    jp.push_back({{"name", name},
+                  {"value", num(v[k])},
+                  {"se", num(f.se[k])},
+                  {"ci", {num(f.ci_lo[k]), num(f.ci_hi[k])}},
+                  {"unit", unit[k]},
+                  {"identifiable", f.identifiable[k]}});
+  }
+  rep.tables.push_back(std::move(tab));
+  jpaper["pump_curve"] = {{"parameters", jp}, {"rms", num(f.rms)}, {"samples", f.n}};
+  if (circuit != nullptr) jpaper["circuit"]["pump"] = compare_pump_with_circuit(f, v, *circuit, rep, worst);
+  if (rep.plots()) {
+    PumpCurve<double> c;
+    c.make(f.params);
+    id::PlotSeries data{"data", {}, {}, true}, model{"fitted 3-region curve", {}, {}, false};
+    double pmax = 0.0;
+    for (const auto& s : t.pump) {
+      data.x.push_back(s.p * 1e-5);
+      data.y.push_back(s.q * 6e4);
+      pmax = std::max(pmax, s.p);
+    }
+    for (int i = 0; i <= 400; ++i) {
+      const double p = pmax * i / 400.0;
+      model.x.push_back(p * 1e-5);
+      model.y.push_back(c.flow(p) * 6e4);
+    }
+    rep.plot("pump_curve", "Pump B flow vs pressure (Fig. 3/4)", "P [bar]", "Q [l/min]", {data, model});
+  }
+  return kExitOk;
+}
+
+// Cd and ρ for one kind's port areas: --cd / --rho when given, else (with a circuit) the
+// first orifice of that name's, else the defaults. `said`: where they came from.
+void port_cd_rho(const IdentifyArgs& a, const std::vector<id::CircuitOrificeValues>& orifices, double& cd, double& rho,
+                 std::string& said) {
+  cd = a.cd;
+  rho = a.rho;
+  said.clear();
+  if (orifices.empty()) return;
+  const id::CircuitOrificeValues& o = orifices.front();
+  if (!a.cd_given && o.cd.given() && std::isfinite(o.cd.value)) {
+    cd = o.cd.value;
+    said += fmt::format("Cd from {}'s {}", o.element, o.cd.name);
+  }
+  if (!a.rho_given && o.rho.given() && std::isfinite(o.rho.value)) {
+    rho = o.rho.value;
+    said += fmt::format("{}ρ from {}'s {}", said.empty() ? "" : ", ", o.element, o.rho.name);
+  }
+}
+
+// One fitted opening beside the circuit's orifices of that kind: "" when there is none,
+// else the text cell; JSON rows into jc. The circuit's value is its nominal opening: the
+// differences say which table opening that is (if any).
+std::string compare_port_with_circuit(const id::PortAreaFit& f, double rho,
+                                      const std::vector<id::CircuitOrificeValues>& orifices, nlohmann::json& jc) {
+  std::string cell;
+  for (const auto& o : orifices) {
+    const bool by_k = o.k.given();
+    const double fitted = by_k ? f.cd_area * std::sqrt(2.0 / rho) : f.area;
+    const id::CircuitNumber& n = by_k ? o.k : o.area;
+    if (!n.given()) continue;
+    const double d = id::percent_difference(fitted, n.value);
+    cell += fmt::format("{}{} {}: {:+.3g} %", cell.empty() ? "" : "; ", o.element, by_k ? "k" : "A", d);
+    jc.push_back({{"opening", f.label},
+                  {"element", o.element},
+                  {"quantity", by_k ? "k" : "area"},
+                  {"circuit_name", n.name},
+                  {"input", n.input},
+                  {"circuit", num(n.value)},
+                  {"fitted", num(fitted)},
+                  {"difference_pct", num(d)}});
+  }
+  return cell;
+}
+
+// One kind's port areas ("dcv" or "prv"): text, plot, JSON into jpaper[kind] (and
+// ["circuit"][kind] beside the circuit's orifices of that name).
+int report_port_areas(const IdentifyArgs& a, const std::string& kind, const id::PaperTables& t,
+                      const circuit_tools::LoadedCircuit* circuit, Report& rep, nlohmann::json& jpaper) {
+  const auto& groups = kind == "dcv" ? t.dcv : t.prv;
+  if (groups.empty()) return kExitOk;
+  const std::string name = kind == "dcv" ? "DCV" : "PRV";
+  const auto orifices = circuit != nullptr ? id::circuit_orifices_named(*circuit, kind)
+                                           : std::vector<id::CircuitOrificeValues>{};
+  double cd = a.cd, rho = a.rho;
+  std::string said;
+  port_cd_rho(a, orifices, cd, rho, said);
+  rep("\n{} port areas from Q = Cd·A·√(2|ΔP|/ρ) (line through the origin; Cd = {:g}, ρ = {:g} kg/m³{}):\n", name, cd,
+      rho, said.empty() ? "" : ": " + said);
+  for (const auto& o : orifices) {
+    const id::CircuitNumber& n = o.k.given() ? o.k : o.area;
+    rep("  circuit {}'s {}: {} = {:.5g} {}{}\n", circuit->file.name, o.element, n.name, n.value,
+        o.k.given() ? "m³/(s·√Pa)" : "m²", n.input ? " (the input's nominal value)" : "");
+  }
+  if (circuit != nullptr && orifices.empty())
+    rep("  circuit {}: no orifice named {} to compare with\n", circuit->file.name, kind);
+  const bool compare = !orifices.empty();
+  rep("  {:<8} {:>4} {:>12} {:>10} {:>27} {:>8}{}\n", "opening", "n", "A [m²]", "SE", "95 % interval", "R²",
+      compare ? "  beside the circuit" : "");
+  sim::ReportTable tab{name + " port areas (paper table)", {"opening", "n", "A [m²]", "SE", "95 % interval", "R²"}, {}};
+  if (compare) tab.header.push_back("difference from the circuit");
+  nlohmann::json ja = nlohmann::json::array(), jc = nlohmann::json::array();
+  std::vector<id::PlotSeries> series;
+  for (const auto& [label, samples] : groups) {
+    const id::PortAreaFit f = id::fit_port_area(label, samples, cd, rho);
+    if (!f.ok()) {
+      fmt::print(stderr, "{}: error: {} {}\n", a.paper, name, *f.error);
+      return kExitBadInput;
+    }
+    const std::string cmp = compare ? compare_port_with_circuit(f, rho, orifices, jc) : "";
+    rep("  {:<8} {:>4} {:>12.5g} {:>10.3g} [{:>12.5g}, {:>12.5g}] {:>8.5f}{}{}\n", label, f.n, f.area, f.area_se,
+        f.ci_lo, f.ci_hi, f.r2, compare ? "  " : "", cmp);
+    tab.rows.push_back({label, std::to_string(f.n), fmt::format("{:.5g}", f.area), fmt::format("{:.3g}", f.area_se),
+                        fmt::format("[{:.5g}, {:.5g}]", f.ci_lo, f.ci_hi), fmt::format("{:.5f}", f.r2), cmp});
+    ja.push_back({{"opening", label},
+                  {"n", f.n},
+                  {"area", num(f.area)},
+                  {"se", num(f.area_se)},
+                  {"ci", {num(f.ci_lo), num(f.ci_hi)}},
+                  {"cd_area", num(f.cd_area)},
+                  {"r2", num(f.r2)}});
+    id::PlotSeries d{label + " data", {}, {}, true}, l{label + " fit", {}, {}, false};
+    double xmax = 0.0;
+    for (const auto& s : samples) {
+      const double x = std::copysign(std::sqrt(2.0 * std::fabs(s.dp) / rho), s.dp);
+      d.x.push_back(x);
+      d.y.push_back(s.q * 6e4);
+      xmax = std::max(xmax, std::fabs(x));
+    }
+    l.x = {0.0, xmax};
+    l.y = {0.0, f.cd_area * xmax * 6e4};
+    series.push_back(d);
+    series.push_back(l);
+  }
+  rep.tables.push_back(std::move(tab));
+  jpaper[kind] = ja;
+  if (compare) jpaper["circuit"][kind] = jc;
+  rep.plot(kind + "_port_areas", fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == "dcv" ? 5 : 6),
+           "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series);
+  return kExitOk;
+}
+
+// --paper: the table's pump curve and port areas into js["paper"]; with a circuit each
+// beside the circuit's values. `worst`: the pump curve's largest difference from the
+// circuit's compensated pump [%] (the port areas are openings, the circuit's one setting).
+int run_paper(const IdentifyArgs& a, const circuit_tools::LoadedCircuit* circuit, Report& rep, nlohmann::json& js,
+              double& worst) {
   const id::PaperTables t = id::read_paper_tables(a.paper);
   if (t.error) {
     fmt::print(stderr, "{}\n", t.error->to_string());
     return kExitBadInput;
   }
-  rep("\nhstmon identify --paper {} — seed 001 §IV estimates (Cd = {:g}, ρ = {:g} kg/m³)\n", a.paper, a.cd, a.rho);
-  nlohmann::json jpaper;
+  rep("\nhstmon identify --paper {} — seed 001 §IV estimates{}\n", a.paper,
+      circuit != nullptr ? " beside circuit " + circuit->file.name + "'s values" : "");
+  nlohmann::json jpaper = nlohmann::json::object();
   if (!t.pump.empty()) {
-    const id::PumpCurveFit f = id::fit_pump_curve(t.pump);
-    if (!f.ok()) {
-      fmt::print(stderr, "{}: error: {}\n", a.paper, *f.error);
-      return kExitBadInput;
-    }
-    rep("\npump B flow–pressure curve ({} samples, RMS residual {:.4g} l/min, condition {:.3g}):\n", f.n,
-        f.rms * 6e4, f.condition);
-    const std::array<double, 5> v{f.params.Q0, f.params.R, f.params.Pc, f.params.Pk, f.params.Pmax};
-    const std::array<const char*, 5> unit{"m^3/s", "Pa*s/m^3", "Pa", "Pa", "Pa"};
-    nlohmann::json jp = nlohmann::json::array();
-    for (std::size_t k = 0; k < 5; ++k) {
-      rep("  {:<5} {:>12.6g} ± {:<10.3g} [{:>12.6g}, {:>12.6g}] {}{}\n", id::pump_curve_param_names()[k], v[k], f.se[k],
-          f.ci_lo[k], f.ci_hi[k], unit[k], f.identifiable[k] ? "" : "  NOT IDENTIFIABLE from these data");
-      jp.push_back({{"name", id::pump_curve_param_names()[k]}, {"value", num(v[k])}, {"se", num(f.se[k])},
-                    {"ci", {num(f.ci_lo[k]), num(f.ci_hi[k])}}, {"unit", unit[k]}, {"identifiable", f.identifiable[k]}});
-    }
-    jpaper["pump_curve"] = {{"parameters", jp}, {"rms", num(f.rms)}, {"samples", f.n}};
-    if (!a.report.empty()) {
-      PumpCurve<double> c;
-      c.make(f.params);
-      id::PlotSeries data{"data", {}, {}, true}, model{"fitted 3-region curve", {}, {}, false};
-      for (const auto& s : t.pump) {
-        data.x.push_back(s.p * 1e-5);
-        data.y.push_back(s.q * 6e4);
-      }
-      double pmax = 0.0;
-      for (const auto& s : t.pump) pmax = std::max(pmax, s.p);
-      for (int i = 0; i <= 400; ++i) {
-        const double p = pmax * i / 400.0;
-        model.x.push_back(p * 1e-5);
-        model.y.push_back(c.flow(p) * 6e4);
-      }
-      const std::string file = a.report + "/pump_curve.svg", title = "Pump B flow vs pressure (Fig. 3/4)";
-      plot_or_warn(rep, file, title, id::plot_xy(file, title, "P [bar]", "Q [l/min]", {data, model}));
-    }
+    if (const int rc = report_pump_curve(a, t, circuit, rep, jpaper, worst); rc != kExitOk) return rc;
   }
-  for (int kind = 0; kind < 2; ++kind) {
-    const auto& groups = kind == 0 ? t.dcv : t.prv;
-    if (groups.empty()) continue;
-    const char* name = kind == 0 ? "DCV" : "PRV";
-    rep("\n{} port areas from Q = Cd·A·√(2|ΔP|/ρ) (line through the origin):\n", name);
-    rep("  {:<8} {:>4} {:>12} {:>10} {:>27} {:>8}\n", "opening", "n", "A [m²]", "SE", "95 % interval", "R²");
-    nlohmann::json ja = nlohmann::json::array();
-    std::vector<id::PlotSeries> series;
-    for (const auto& [label, samples] : groups) {
-      const id::PortAreaFit f = id::fit_port_area(label, samples, a.cd, a.rho);
-      if (!f.ok()) {
-        fmt::print(stderr, "{}: error: {} {}\n", a.paper, name, *f.error);
-        return kExitBadInput;
-      }
-      rep("  {:<8} {:>4} {:>12.5g} {:>10.3g} [{:>12.5g}, {:>12.5g}] {:>8.5f}\n", label, f.n, f.area, f.area_se, f.ci_lo,
-          f.ci_hi, f.r2);
-      ja.push_back({{"opening", label}, {"n", f.n}, {"area", num(f.area)}, {"se", num(f.area_se)},
-                    {"ci", {num(f.ci_lo), num(f.ci_hi)}}, {"cd_area", num(f.cd_area)}, {"r2", num(f.r2)}});
-      id::PlotSeries d{label + " data", {}, {}, true}, l{label + " fit", {}, {}, false};
-      double xmax = 0.0;
-      for (const auto& s : samples) {
-        const double x = std::copysign(std::sqrt(2.0 * std::fabs(s.dp) / a.rho), s.dp);
-        d.x.push_back(x);
-        d.y.push_back(s.q * 6e4);
-        xmax = std::max(xmax, std::fabs(x));
-      }
-      l.x = {0.0, xmax};
-      l.y = {0.0, f.cd_area * xmax * 6e4};
-      series.push_back(d);
-      series.push_back(l);
-    }
-    jpaper[kind == 0 ? "dcv" : "prv"] = ja;
-    if (!a.report.empty()) {
-      const std::string file = a.report + (kind == 0 ? "/dcv_port_areas.svg" : "/prv_port_areas.svg");
-      const std::string title = fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == 0 ? 5 : 6);
-      plot_or_warn(rep, file, title, id::plot_xy(file, title, "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series));
-    }
+  for (const char* kind : {"dcv", "prv"}) {
+    if (const int rc = report_port_areas(a, kind, t, circuit, rep, jpaper); rc != kExitOk) return rc;
   }
   js["paper"] = jpaper;
   return kExitOk;
 }
 
-void run_studies(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
+void run_studies(Report& rep, nlohmann::json& js) {
   const std::vector<double> K{3e10, 1e11, 3e11, 1e12};
   const std::vector<double> A{3.86e-6, 4.29e-6, 4.43e-6, 4.77e-6, 5e-6};
   // Long enough for the softest K to settle (the last sample is taken as the final value).
@@ -386,22 +588,28 @@ void run_studies(const IdentifyArgs& a, Report& rep, nlohmann::json& js) {
   for (const auto& s : studies) {
     rep("  {}\n  {:<24} {:>10} {:>10} {:>10} {:>12} {:>12}\n", s.title, "value", "final", "peak", "t_peak [s]",
         "t_90% [s]", "settle 2% [s]");
+    sim::ReportTable tab{
+        "Parameter study: " + s.title,
+        {"value", "final [" + s.unit + "]", "peak [" + s.unit + "]", "t_peak [s]", "t_90% [s]", "settle 2% [s]"},
+        {}};
     nlohmann::json jc = nlohmann::json::array();
     std::vector<id::PlotSeries> series;
     for (const auto& c : s.curves) {
       rep("  {:<24} {:>10.5g} {:>10.5g} {:>10.4g} {:>12.4g} {:>12.4g}   [{}]\n", c.label, c.final_value * s.scale,
           c.peak * s.scale, c.t_peak, c.rise_time, c.settling_time, s.unit);
+      tab.rows.push_back({c.label, fmt::format("{:.5g}", c.final_value * s.scale),
+                          fmt::format("{:.5g}", c.peak * s.scale), fmt::format("{:.4g}", c.t_peak),
+                          fmt::format("{:.4g}", c.rise_time), fmt::format("{:.4g}", c.settling_time)});
       jc.push_back({{"label", c.label}, {"value", c.value}, {"final", c.final_value}, {"peak", c.peak},
                     {"t_peak", c.t_peak}, {"rise_time", c.rise_time}, {"settling_time", c.settling_time}});
       id::PlotSeries ps{c.label, c.t, {}, false};
       for (double y : c.y) ps.y.push_back(y * s.scale);
       series.push_back(std::move(ps));
     }
+    rep.tables.push_back(std::move(tab));
     jst.push_back({{"name", s.name}, {"output", s.output}, {"curves", jc}});
-    const std::string file = a.report + "/" + s.name + ".svg";
-    plot_or_warn(rep, file, s.title,
-                 id::plot_xy(file, s.title, "t [s]",
-                             fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series));
+    rep.plot(s.name, s.title, "t [s]",
+             fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series);
   }
   js["studies"] = jst;
 }
@@ -415,10 +623,6 @@ int run_identify(const IdentifyArgs& a) {
     fmt::print(stderr, "hstmon identify: error: --out FILE is required with LOG files\n");
     return kExitUsage;
   }
-  if (a.studies && a.report.empty()) {
-    fmt::print(stderr, "hstmon identify: error: --studies needs --report DIR for its plots\n");
-    return kExitUsage;
-  }
   if (!a.report.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(a.report, ec);
@@ -429,11 +633,13 @@ int run_identify(const IdentifyArgs& a) {
   }
   Report rep;
   rep.quiet = a.json;
+  rep.dir = a.report;
   nlohmann::json js = {{"type", "identify"}};
   int rc = kExitOk;
+  double worst = 0.0;  // no circuit: nothing to compare with
   if (!a.logs.empty()) rc = run_thesis(a, rep, js);
-  if (rc == kExitOk && !a.paper.empty()) rc = run_paper(a, rep, js);
-  if (rc == kExitOk && a.studies) run_studies(a, rep, js);
+  if (rc == kExitOk && !a.paper.empty()) rc = run_paper(a, nullptr, rep, js, worst);
+  if (rc == kExitOk && a.studies) run_studies(rep, js);
   if (rc != kExitOk) return rc;
   if (a.json) fmt::print("{}\n", js.dump(2));
   if (!a.report.empty()) {
@@ -447,30 +653,53 @@ int run_identify(const IdentifyArgs& a) {
   return kExitOk;
 }
 
+// With --circuit: --paper and --studies as sections of the circuit's output (text, JSON
+// keys "paper" and "studies", tables and panels of its report), the table's estimates
+// beside the circuit's values.
+int circuit_paper_sections(const IdentifyArgs& a, const circuit_tools::LoadedCircuit& c, bool panels,
+                           IdentifySections& out) {
+  Report rep;
+  rep.quiet = true;  // the circuit command prints everything at its end
+  rep.dir = panels ? a.report : std::string();
+  rep.panels = &out.panels;
+  double worst = 0.0;
+  std::string verdict;
+  if (!a.paper.empty()) {
+    if (const int rc = run_paper(a, &c, rep, out.json, worst); rc != kExitOk) return rc;
+    const bool compared = out.json["paper"].contains("circuit") && out.json["paper"]["circuit"].contains("pump");
+    verdict = fmt::format(
+        "paper table {} analysed{}", std::filesystem::path(a.paper).filename().string(),
+        compared ? fmt::format(" (pump curve: largest difference from the circuit file's {:.3g} %)", worst) : "");
+  }
+  if (a.studies) {
+    run_studies(rep, out.json);
+    verdict += std::string(verdict.empty() ? "" : "; ") + "the paper's parameter studies (Figs. 7–9) run";
+  }
+  out.text = rep.text;
+  out.tables = std::move(rep.tables);
+  out.verdict = verdict;
+  return kExitOk;
+}
+
 /// `hstmon identify`: the thesis rig's, or with --circuit the circuit's (cli_circuit_identify.hpp).
-int run_identify_or_circuit_identify(const IdentifyArgs& a, const CLI::App& cmd) {
+int run_identify_or_circuit_identify(IdentifyArgs a, const CLI::App& cmd) {
+  a.cd_given = cmd.count("--cd") > 0;
+  a.rho_given = cmd.count("--rho") > 0;
+  if (a.studies && a.report.empty()) {
+    fmt::print(stderr, "hstmon identify: error: --studies needs --report DIR for its plots\n");
+    return kExitUsage;
+  }
   if (a.circuit.empty()) {
-    if (cmd.count("--fit") > 0) {
-      fmt::print(stderr, "hstmon identify: error: --fit goes with --circuit\n");
-      return kExitUsage;
+    for (const char* opt : {"--fit", "--window-input"}) {
+      if (cmd.count(opt) > 0) {
+        fmt::print(stderr, "hstmon identify: error: {} goes with --circuit\n", opt);
+        return kExitUsage;
+      }
     }
     return run_identify(a);
   }
-  const char* const paper_alone =
-      "the paper rig's table analysis needs no model; run `hstmon identify --paper FILE.csv` (with --cd, --rho, "
-      "--studies) on its own";
   CircuitIdentifyArgs c;
-  if (!take_circuit_args(cmd,
-                         {{"--setting-per-window",
-                           "a circuit's operating points are its held input settings; log the input that sets the "
-                           "load (or name it in the circuit file) so each window has its own"},
-                          {"--paper", paper_alone},
-                          {"--cd", paper_alone},
-                          {"--rho", paper_alone},
-                          {"--studies", paper_alone}},
-                         a, c)) {
-    return kExitUsage;
-  }
+  if (!take_circuit_args(cmd, {}, a, c)) return kExitUsage;
   c.logs = a.logs;
   c.fit = a.fit;
   c.out = a.out;
@@ -481,7 +710,24 @@ int run_identify_or_circuit_identify(const IdentifyArgs& a, const CLI::App& cmd)
   c.noise_pressure = a.noise_pressure;
   c.noise_speed = a.noise_speed;
   c.header = a.header;
+  c.setting_per_window = a.setting_per_window || !a.window_inputs.empty();
+  c.window_inputs = a.window_inputs;
+  if (!a.paper.empty() || a.studies) {
+    c.sections = [&a](const circuit_tools::LoadedCircuit& lc, bool panels, IdentifySections& out) {
+      return circuit_paper_sections(a, lc, panels, out);
+    };
+  }
   return run_circuit_identify(c);
+}
+
+// An option of names, comma separated or repeated (`--fit A,B --fit C`), that never takes
+// the positional logs after it.
+void add_name_list(CLI::App& cmd, const std::string& name, std::vector<std::string>& out, const std::string& help) {
+  cmd.add_option(name, out, help)
+      ->delimiter(',')
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 }  // namespace
@@ -489,37 +735,62 @@ int run_identify_or_circuit_identify(const IdentifyArgs& a, const CLI::App& cmd)
 void add_identify_command(CLI::App& app, int& exit_code) {
   const auto [cmd, args] = add_command<IdentifyArgs>(
       app, exit_code, "identify",
-      "Identify thesis-model parameters from steady states in logs; paper-rig pump curve and port areas",
+      "Fit model parameters to the steady states in logs (the thesis rig, or with --circuit any circuit); "
+      "paper-rig pump curve, port areas and parameter studies",
       run_identify_or_circuit_identify);
-  cmd->add_option("logs", args->logs, "thesis-rig logs (CSV as for replay) with steady operating points");
-  cmd->add_option("--out", args->out, "parameter file to write (JSON, read by replay --params)");
-  cmd->add_option("--header", args->header, "also write a generated C++ header (constexpr ThesisParams)");
+  cmd->add_option("logs", args->logs,
+                  "logs (CSV as for replay) with steady operating points: the thesis rig's, or with --circuit the "
+                  "circuit's");
+  cmd->add_option("--out", args->out,
+                  "parameter file to write (JSON, read by replay --params); with --circuit the circuit's parameter "
+                  "file at the fitted values");
+  cmd->add_option("--header", args->header,
+                  "also write a generated C++ header (constexpr ThesisParams; with --circuit the circuit at the "
+                  "fitted values)");
   cmd->add_flag("--json", args->json, "print the results as JSON instead of the human report");
-  cmd->add_option("--report", args->report, "directory for the report: report.html (one self-contained page) and SVG plots; the thesis rig adds report.txt and report.json, a circuit report.md, figure.svg and plots.gp");
-  add_log_options(*cmd, args->io, "parameter file with the known Dm, Dp and start/prior values (default Table 2.2)",
+  cmd->add_option("--report", args->report,
+                  "directory for the report: report.html (one self-contained page) and the plots; the thesis rig "
+                  "adds report.txt, report.json and SVG files, a circuit report.md, figure.svg and plots.gp");
+  add_log_options(*cmd, args->io,
+                  "parameter file: the thesis rig's known Dm, Dp and start values (default Table 2.2); with --circuit "
+                  "the circuit's (default <stem>.params.json beside it)",
                   "--params,--prior");
-  cmd->add_option("--min-duration", args->min_duration, "shortest steady window [s]")->capture_default_str();
-  cmd->add_option("--min-samples", args->min_samples, "fewest samples in a steady window")->capture_default_str();
+  cmd->add_option("--min-duration", args->min_duration,
+                  "shortest steady window [s] (default 1; with --circuit 0.2, after the settle time)");
+  cmd->add_option("--min-samples", args->min_samples,
+                  "fewest samples in a steady window (default 3; with --circuit 1)");
   cmd->add_flag("--assume-steady", args->assume_steady,
                 "accept windows of one sample (DAS logs recorded only at steady state)");
   cmd->add_flag("--setting-per-window", args->setting_per_window,
-                "give every steady window its own kp, even when the log has a kp column");
-  cmd->add_option("--min-settings", args->min_settings, "fewest PRV settings (loads) accepted")->capture_default_str();
+                "give every steady window its own load setting: the thesis rig's own kp, even when the log has a "
+                "kp column; with --circuit its own value of each input the logs lack (or of --window-input), "
+                "fitted with --fit");
+  add_name_list(*cmd, "--window-input", args->window_inputs,
+                "with --circuit: an input fitted per steady window (repeatable; implies --setting-per-window); "
+                "its logged values only start the fit");
+  cmd->add_option("--min-settings", args->min_settings,
+                  "fewest PRV settings (loads) accepted (default 3; with --circuit: distinct held input settings, "
+                  "default what the fit needs)");
   cmd->add_option("--noise-pressure", args->noise_pressure,
-                  "pressure noise σ [Pa] for the weights (default: from the window scatter)");
-  cmd->add_option("--noise-speed", args->noise_speed, "speed noise σ [rad/s] for the weights (default: from the window scatter)");
-  cmd->add_option("--paper", args->paper, "paper-rig table (kind,label,p,q): pump curve and DCV/PRV port areas");
-  cmd->add_option("--cd", args->cd, "discharge coefficient for the port areas")->capture_default_str();
-  cmd->add_option("--rho", args->rho, "oil density [kg/m^3] for the port areas")->capture_default_str();
-  cmd->add_flag("--studies", args->studies, "run the paper's parameter studies (Figs. 7-9) into --report DIR");
+                  "pressure noise σ [Pa] for the weights (default: from the window scatter; with --circuit the "
+                  "sensors' noise)");
+  cmd->add_option("--noise-speed", args->noise_speed,
+                  "speed noise σ [rad/s] for the weights (default: from the window scatter; with --circuit the "
+                  "sensors' noise)");
+  cmd->add_option("--paper", args->paper,
+                  "paper-rig table (kind,label,p,q): pump curve and DCV/PRV port areas; with --circuit also beside "
+                  "the circuit's compensated pump and its orifices named dcv/prv");
+  cmd->add_option("--cd", args->cd,
+                  "discharge coefficient for the port areas (with --circuit: the orifice's Cd unless given)")
+      ->capture_default_str();
+  cmd->add_option("--rho", args->rho,
+                  "oil density [kg/m^3] for the port areas (with --circuit: the orifice's rho unless given)")
+      ->capture_default_str();
+  cmd->add_flag("--studies", args->studies,
+                "run the paper's parameter studies (Figs. 7-9, Table I model) into --report DIR");
   cmd->add_option("--circuit", args->circuit,
-                  "fit parameters of this circuit file (docs/circuits.md) to the logs' steady operating points; "
-                  "--params is then its parameter file (default <stem>.params.json beside it)");
-  cmd->add_option("--fit", args->fit, "with --circuit: parameters to fit, by name (comma separated, repeatable)")
-      ->delimiter(',')
-      ->expected(1)
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+                  "fit parameters of this circuit file (docs/circuits.md) to the logs' steady operating points");
+  add_name_list(*cmd, "--fit", args->fit, "with --circuit: parameters to fit, by name (comma separated, repeatable)");
 }
 
 }  // namespace hstmon::cli

@@ -369,11 +369,11 @@ TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
   r = run(ident + " --min-settings 50 2>&1");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("fewer than the 50 asked for (--min-settings)"), std::string::npos) << r.out;
+  // Every input is logged: the flag asks which one sets the load (a data condition, not a
+  // refusal of the option; test_ident_circuit fits per-window inputs).
   r = run(ident + " --setting-per-window 2>&1");
-  EXPECT_EQ(r.exit_code, 1) << r.out;
-  EXPECT_NE(r.out.find("--setting-per-window does not go with --circuit: a circuit's operating points"),
-            std::string::npos)
-      << r.out;
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("name the one(s) that set the load with --window-input NAME"), std::string::npos) << r.out;
 
   const std::string gap = std::string(HSTMON_CLI) + " gap --circuit " + v + "circuit.json --fit " + v +
                           "logs/gap_offset_fit.csv.gz --check " + v + "logs/gap_offset_check.csv.gz --json";

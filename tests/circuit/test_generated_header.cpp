@@ -5,6 +5,7 @@
 // as the engine on the loaded file at the host's capacity.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <tuple>
@@ -35,6 +36,26 @@ struct Fixture {
     desc.stiff_mask = circuit::auto_stiff_mask<double>(desc, c.values.params, c.values.inputs, gen::kTick);
   }
 };
+
+// The header serves any tick in [kTickMin, kTickMax]: the mask is the same at both ends and
+// changes a quarter octave beyond (where the scan did not stop at its 2^±10 limit).
+TEST(GeneratedHeader, TickRangeKeepsTheMask) {
+  const Fixture f;
+  ASSERT_TRUE(f.ok);
+  ASSERT_LE(gen::kTickMin, gen::kTick);
+  ASSERT_GE(gen::kTickMax, gen::kTick);
+  const auto mask_at = [&](double tick) {
+    return circuit::auto_stiff_mask<double>(f.c.file.circuit, f.c.values.params, f.c.values.inputs, tick);
+  };
+  EXPECT_EQ(mask_at(gen::kTickMin), f.desc.stiff_mask);
+  EXPECT_EQ(mask_at(gen::kTickMax), f.desc.stiff_mask);
+  if (gen::kTickMin > gen::kTick / 1024.0 * 1.0001) {
+    EXPECT_NE(mask_at(gen::kTickMin / std::exp2(0.25)), f.desc.stiff_mask);
+  }
+  if (gen::kTickMax < gen::kTick * 1024.0 / 1.0001) {
+    EXPECT_NE(mask_at(gen::kTickMax * std::exp2(0.25)), f.desc.stiff_mask);
+  }
+}
 
 TEST(GeneratedHeader, IsTheCircuitFile) {
   const Fixture f;

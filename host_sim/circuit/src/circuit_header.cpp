@@ -1,6 +1,7 @@
 #include "hstmon_circuit/circuit_header.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iterator>
 #include <string>
@@ -85,6 +86,38 @@ host::HostCircuit header_description(const LoadedCircuit& c, double tick, int* s
   return desc;
 }
 
+TickRange same_mask_ticks(const LoadedCircuit& c, double tick) {
+  const std::uint32_t mask = header_description(c, tick).stiff_mask;
+  // Quarter octaves out to 2^±10 × tick, each way until the mask changes (a node turns
+  // stiff as K·G_min·h grows, so the mask only changes at a threshold of the tick).
+  constexpr int kSteps = 40;
+  const auto at = [tick](int k) { return tick * std::exp2(0.25 * k); };
+  TickRange r{tick, tick};
+  for (int k = 1; k <= kSteps && header_description(c, at(-k)).stiff_mask == mask; ++k) r.lo = at(-k);
+  for (int k = 1; k <= kSteps && header_description(c, at(k)).stiff_mask == mask; ++k) r.hi = at(k);
+  return r;
+}
+
+namespace {
+
+// kTick and the ticks the header's stiff mask holds for (same_mask_ticks).
+std::string tick_lines(const LoadedCircuit& c, double tick) {
+  const TickRange same = same_mask_ticks(c, tick);
+  return "/// Observer tick the stiff mask was chosen for [s].\n"
+         "inline constexpr double kTick = " +
+         num(tick) +
+         ";\n"
+         "/// Ticks at which auto_stiff_mask picks this same mask, so this header serves an observer\n"
+         "/// at any tick in [kTickMin, kTickMax] (quarter octaves from kTick, out to 2^±10 × kTick) [s].\n"
+         "inline constexpr double kTickMin = " +
+         num(same.lo) +
+         ";\n"
+         "inline constexpr double kTickMax = " +
+         num(same.hi) + ";\n";
+}
+
+}  // namespace
+
 std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o, std::string& error) {
   error.clear();
   const host::CircuitFile& f = c.file;
@@ -121,8 +154,7 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
   line("");
   line("inline constexpr double kInf = std::numeric_limits<double>::infinity();");
   line("");
-  line("/// Observer tick the stiff mask was chosen for [s].");
-  line("inline constexpr double kTick = " + num(o.tick) + ";");
+  h += tick_lines(c, o.tick);
   line("");
   line("/// Capacity: " + std::to_string(desc.n_nodes) + " nodes, " + std::to_string(desc.n_shafts) + " shafts, " +
        std::to_string(desc.n_elements) + " elements, " + std::to_string(n_ch) + " channels, " + std::to_string(cap_in) +

@@ -304,6 +304,24 @@ void decide(CircuitGapResult& r) {
   }
 }
 
+// Where, by balance equation: the circuit's equations on both logs, the located one and
+// its missing term (circuit_equations.hpp, circuit_discover.hpp).
+void where_by_equation(CircuitGapResult& r, const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& fit,
+                       const circuit_tools::CircuitLog& check, const detail::PointSet& F, const detail::PointSet& C) {
+  const CircuitArrData a = evaluate_circuit_arrs(c, fit, F.sigma);
+  const CircuitArrData b = evaluate_circuit_arrs(c, check, C.sigma);
+  r.equations_fit = circuit_equation_stats(a);
+  r.equations_check = circuit_equation_stats(b);
+  for (std::size_t e = 0; e < a.equations.size(); ++e) {
+    r.equations_missing.push_back(!a.missing[e].empty() ? a.missing[e] : b.missing[e]);
+  }
+  int eq = located_equation(r.equations_fit);
+  if (eq < 0) eq = located_equation(r.equations_check);
+  if (eq < 0) return;
+  r.located_equation = a.equations[static_cast<std::size_t>(eq)].name;
+  r.discovery = discover_circuit(c, a, b, eq);
+}
+
 }  // namespace
 
 std::vector<CircuitEffect> chosen_effects(const circuit_tools::LoadedCircuit& c, const std::vector<std::string>& effects,
@@ -347,6 +365,7 @@ CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circui
   r.check_points = C.points.size();
   r.noise_fit = F.sigma;
   r.noise_check = C.sigma;
+  where_by_equation(r, c, fit, check, F, C);
   r.evidence_missing = detail::circuit_evidence("fit", F);
   if (r.evidence_missing.empty()) r.evidence_missing = detail::circuit_evidence("check", C);
   if (!r.evidence_missing.empty()) {

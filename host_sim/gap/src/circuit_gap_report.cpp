@@ -88,6 +88,77 @@ sim::ReportPanel candidate_panel(const CircuitGapResult& r) {
   return p;
 }
 
+// "where, by balance equation": per equation its mean on the fit log and RMS/noise on
+// both logs, the located one marked; then the equations a log lacks signals for.
+std::string equations_text(const CircuitGapResult& r) {
+  if (r.equations_fit.empty()) return "";
+  std::string t =
+      "\n  where, by balance equation (the model's net inflow or torque at the measured signals − accumulation;\n"
+      "  a loss the model lacks is > 0; RMS over the propagated noise):\n";
+  t += fmt::format("  {:<22} {:>6} {:>12} {:>15} {:>17}\n", "equation", "unit", "mean fit", "RMS/noise fit",
+                   "RMS/noise check");
+  std::string unavailable;
+  for (std::size_t e = 0; e < r.equations_fit.size(); ++e) {
+    const EquationStats& f = r.equations_fit[e];
+    const bool has_check = e < r.equations_check.size() && r.equations_check[e].available;
+    if (!f.available && !has_check) {
+      unavailable +=
+          fmt::format("    {}: lacks {}\n", f.equation, e < r.equations_missing.size() ? r.equations_missing[e] : "");
+      continue;
+    }
+    t += fmt::format("  {:<22} {:>6} {:>12} {:>15} {:>17}{}\n", f.equation, f.unit,
+                     f.available ? fmt::format("{:.3g}", f.mean) : "—",
+                     f.available ? fmt::format("{:.3g}", f.rms_w) : "—",
+                     has_check ? fmt::format("{:.3g}", r.equations_check[e].rms_w) : "—",
+                     f.equation == r.located_equation ? "  <- located" : "");
+  }
+  if (r.located_equation.empty()) t += "  located: none (no equation beyond 3x its noise)\n";
+  if (!unavailable.empty()) t += "  not available (a signal it reads is not measured):\n" + unavailable;
+  return t;
+}
+
+// "discovered terms": the located equation's missing term.
+std::string discovery_text(const CircuitGapResult& r) {
+  if (!r.discovery) return "";
+  const CircuitDiscovery& d = *r.discovery;
+  std::string t =
+      fmt::format("\n  discovered terms ({}, STLSQ fitted on the fit log, judged on the check log):\n", d.equation);
+  for (const auto& x : d.terms)
+    t += fmt::format("    {:+.4g} * {}  (+- {:.2g} {})\n", x.coefficient, x.form, x.std_error, x.unit);
+  t += fmt::format(
+      "    {}\n    shrinks the imbalance above noise by {:.0f} % on the check log (RMS/noise {:.3g} -> {:.3g}), "
+      "{:.0f} % on the fit log\n",
+      d.reading, 100.0 * d.shrink_check, d.rms_w_before_check, d.rms_w_after_check, 100.0 * d.shrink_fit);
+  return t;
+}
+
+sim::ReportTable equation_table(const CircuitGapResult& r) {
+  sim::ReportTable t{"Where, by balance equation (imbalance: a loss the model lacks > 0)",
+                     {"equation", "unit", "mean fit log", "RMS/noise fit log", "RMS/noise check log", ""},
+                     {}};
+  for (std::size_t e = 0; e < r.equations_fit.size(); ++e) {
+    const EquationStats& f = r.equations_fit[e];
+    const bool has_check = e < r.equations_check.size() && r.equations_check[e].available;
+    const std::string missing = e < r.equations_missing.size() ? r.equations_missing[e] : "";
+    t.rows.push_back({f.equation, f.unit, f.available ? fmt::format("{:.3g}", f.mean) : "—",
+                      f.available ? fmt::format("{:.3g}", f.rms_w) : "—",
+                      has_check ? fmt::format("{:.3g}", r.equations_check[e].rms_w) : "—",
+                      f.equation == r.located_equation ? "located" : (missing.empty() ? "" : "lacks " + missing)});
+  }
+  return t;
+}
+
+sim::ReportTable discovery_table(const CircuitDiscovery& d) {
+  sim::ReportTable t{"Discovered terms in " + d.equation + " (check log shrinks by " +
+                         fmt::format("{:.0f} %", 100.0 * d.shrink_check) + "): " + d.reading,
+                     {"term", "coefficient", "std error", "unit"},
+                     {}};
+  for (const auto& x : d.terms) {
+    t.rows.push_back({x.form, fmt::format("{:+.4g}", x.coefficient), fmt::format("{:.2g}", x.std_error), x.unit});
+  }
+  return t;
+}
+
 sim::VerdictTone tone_of(const CircuitGapResult& r) {
   if (r.verdict == "none") return sim::VerdictTone::kGood;
   if (r.verdict == "insufficient_data" || r.verdict == "unexplained") return sim::VerdictTone::kWarning;
@@ -113,7 +184,7 @@ std::string circuit_gap_text(const CircuitGapRun& a, const circuit_tools::Loaded
                               r.fit_points, a.check, r.check_points);
   t += fmt::format("\n  verdict: {}\n", circuit_gap_verdict(r));
   for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
-  if (r.verdict == "insufficient_data") return t;
+  if (r.verdict == "insufficient_data") return t + equations_text(r) + discovery_text(r);
   t += fmt::format("\n  beyond noise and parameter uncertainty: fit {:.3g}, check {:.3g} [σ] (no gap at 2 or less)\n",
                    r.z_fit, r.z_check);
   t += "\n  where the gap lies (mean of measured − model over the fit log's points, in sensor σ):\n   ";
@@ -125,7 +196,7 @@ std::string circuit_gap_text(const CircuitGapRun& a, const circuit_tools::Loaded
     t += fmt::format("  {:<26} {:>22} {:>16} {:>16} {:>8}\n", e.effect.name, magnitude_text(c, e), rms_text(e.rms_fit),
                      rms_text(e.rms_check), shrink_text(e.rms_check, r.rms_check));
   }
-  return t;
+  return t + equations_text(r) + discovery_text(r);
 }
 
 sim::CircuitReport circuit_gap_report(const CircuitGapRun& a, const circuit_tools::LoadedCircuit& c,
@@ -143,9 +214,13 @@ sim::CircuitReport circuit_gap_report(const CircuitGapRun& a, const circuit_tool
                           fmt::format("{:.3g}", r.z_fit)},
                          {"check", a.check, std::to_string(r.check_points), fmt::format("{:.3g}", r.rms_check),
                           fmt::format("{:.3g}", r.z_check)}}});
-  if (r.verdict == "insufficient_data") return rep;  // nothing was fitted
-  rep.tables.push_back(where_table(c, r));
-  rep.tables.push_back(candidate_table(c, r));
+  if (r.verdict != "insufficient_data") {  // else nothing was fitted
+    rep.tables.push_back(where_table(c, r));
+    rep.tables.push_back(candidate_table(c, r));
+  }
+  if (!r.equations_fit.empty()) rep.tables.push_back(equation_table(r));
+  if (r.discovery) rep.tables.push_back(discovery_table(*r.discovery));
+  if (r.verdict == "insufficient_data") return rep;
   if (!r.ranked.empty()) {
     rep.panels.push_back(candidate_panel(r));
     rep.figure_caption = "How far each candidate shrinks the withheld log's residual";

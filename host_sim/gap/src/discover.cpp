@@ -1,5 +1,6 @@
 /// @file discover.cpp
-/// STLSQ on the located equation's imbalance (see discover.hpp, docs/gap.md).
+/// STLSQ on the located equation's imbalance (see discover.hpp, docs/gap.md): the thesis
+/// rig's candidate terms; the regression itself is stlsq.hpp's.
 #include "hstmon_gap/discover.hpp"
 
 #include <Eigen/Dense>
@@ -8,8 +9,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "autocorr.hpp"
-#include "hstmon_gap/shrink.hpp"
+#include "stlsq.hpp"
 
 namespace hstmon::gap {
 
@@ -105,19 +105,6 @@ void design(const ArrData& a, int eq, const std::vector<Candidate>& c, Eigen::Ma
   }
 }
 
-Eigen::VectorXd solve(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<int>& active) {
-  Eigen::MatrixXd Xa(X.rows(), static_cast<Eigen::Index>(active.size()));
-  for (std::size_t j = 0; j < active.size(); ++j) Xa.col(static_cast<Eigen::Index>(j)) = X.col(active[j]);
-  return Xa.colPivHouseholderQr().solve(y);
-}
-
-double rms_after(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const std::vector<int>& active,
-                 const Eigen::VectorXd& beta) {
-  Eigen::VectorXd r = y;
-  for (std::size_t j = 0; j < active.size(); ++j) r -= beta[static_cast<Eigen::Index>(j)] * X.col(active[j]);
-  return std::sqrt(r.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, y.size())));
-}
-
 std::string node_name(int eq) {
   return eq == kEqFlowMi ? "motor-inlet" : (eq == kEqFlowMo ? "motor-outlet" : "loading-pump");
 }
@@ -181,100 +168,18 @@ std::optional<Discovery> discover(const ArrData& fit, const ArrData& check, int 
   const auto e = static_cast<std::size_t>(eq);
   if (!fit.available[e] || !check.available[e] || fit.rows.size() < 20 || check.rows.size() < 20) return std::nullopt;
   std::vector<Candidate> all = candidates(eq);
-  Eigen::MatrixXd X, Xc;
-  Eigen::VectorXd y, yc;
-  design(fit, eq, all, X, y);
-  design(check, eq, all, Xc, yc);
-  // Drop candidates (nearly) collinear with earlier ones on the fit log (Gram–Schmidt on
-  // the normalised columns): a constant Pbp makes p_pp - Pbp the constant plus p_pp.
-  std::vector<int> keep;
-  std::vector<Eigen::VectorXd> basis;
-  for (std::size_t j = 0; j < all.size(); ++j) {
-    Eigen::VectorXd v = X.col(static_cast<Eigen::Index>(j));
-    const double n0 = v.norm();
-    if (!(n0 > 0) || !std::isfinite(n0)) continue;
-    v /= n0;
-    for (const auto& q : basis) v -= q.dot(v) * q;
-    const double n1 = v.norm();
-    if (n1 < 1e-3) continue;
-    basis.push_back(v / n1);
-    keep.push_back(static_cast<int>(j));
-  }
-  if (keep.empty()) return std::nullopt;
-  // Normalised columns: STLSQ thresholds compare contributions.
-  Eigen::VectorXd scale(X.cols());
-  for (Eigen::Index j = 0; j < X.cols(); ++j) scale[j] = std::max(X.col(j).norm(), 1e-300);
-  const Eigen::MatrixXd Xn = X * scale.cwiseInverse().asDiagonal();
-  // Model pool: the STLSQ path over thresholds, and every single term.
-  std::vector<std::vector<int>> pool;
-  auto add = [&](std::vector<int> s) {
-    std::sort(s.begin(), s.end());
-    if (!s.empty() && std::find(pool.begin(), pool.end(), s) == pool.end()) pool.push_back(std::move(s));
-  };
-  for (int j : keep) add({j});
-  for (double lambda : {0.01, 0.03, 0.1, 0.2, 0.35, 0.5}) {
-    std::vector<int> act = keep;
-    for (int it = 0; it < 20; ++it) {
-      const Eigen::VectorXd xi = solve(Xn, y, act);
-      const double mx = xi.cwiseAbs().maxCoeff();
-      std::vector<int> next;
-      for (std::size_t j = 0; j < act.size(); ++j) {
-        if (std::fabs(xi[static_cast<Eigen::Index>(j)]) >= lambda * mx) next.push_back(act[j]);
-      }
-      if (next == act) break;
-      act = next;
-    }
-    add(act);
-  }
-  // Judge on the check log: the sparsest model within 10 % of the best achievable shrink.
-  const double before = std::sqrt(yc.squaredNorm() / static_cast<double>(yc.size()));
-  std::vector<double> after(pool.size());
-  std::vector<Eigen::VectorXd> betas(pool.size());
-  double best = before;
-  for (std::size_t m = 0; m < pool.size(); ++m) {
-    betas[m] = solve(X, y, pool[m]);
-    after[m] = rms_after(Xc, yc, pool[m], betas[m]);
-    best = std::min(best, after[m]);
-  }
-  if (!(best < before)) return std::nullopt;
-  std::size_t pick = pool.size();
-  for (std::size_t m = 0; m < pool.size(); ++m) {
-    if (after[m] > best + 0.1 * (before - best)) continue;
-    if (pick == pool.size() || pool[m].size() < pool[pick].size() ||
-        (pool[m].size() == pool[pick].size() && after[m] < after[pick])) {
-      pick = m;
-    }
-  }
-  const std::vector<int>& act = pool[pick];
-  const Eigen::VectorXd& beta = betas[pick];
-  // Standard errors: s²·(XᵀX)⁻¹ on the weighted rows, scaled by the residuals'
-  // autocorrelation time (effective sample size n/τ).
-  Eigen::MatrixXd Xa(X.rows(), static_cast<Eigen::Index>(act.size()));
-  for (std::size_t j = 0; j < act.size(); ++j) Xa.col(static_cast<Eigen::Index>(j)) = X.col(act[j]);
-  const Eigen::VectorXd res = y - Xa * beta;
-  const double dof = std::max(1.0, static_cast<double>(X.rows()) - static_cast<double>(act.size()));
-  const double tau = detail::autocorrelation_time(res.data(), static_cast<std::size_t>(res.size()));
-  const Eigen::MatrixXd cov = (Xa.transpose() * Xa).inverse() * (res.squaredNorm() / dof * tau);
+  const std::optional<detail::StlsqChoice> ch = detail::stlsq_choose_on(
+      fit, check, [&](const ArrData& a, Eigen::MatrixXd& X, Eigen::VectorXd& y) { design(a, eq, all, X, y); });
+  if (!ch) return std::nullopt;
   Discovery d;
   d.equation = equation_names()[e];
-  d.rms_w_before_check = before;
-  d.rms_w_after_check = after[pick];
-  d.shrink_check = shrink(before, after[pick]);
-  const double before_fit = std::sqrt(y.squaredNorm() / static_cast<double>(y.size()));
-  d.shrink_fit = shrink(before_fit, std::sqrt(res.squaredNorm() / static_cast<double>(y.size())));
-  std::vector<std::pair<double, std::size_t>> order;
-  for (std::size_t j = 0; j < act.size(); ++j) {
-    order.emplace_back(std::fabs(beta[static_cast<Eigen::Index>(j)]) * Xa.col(static_cast<Eigen::Index>(j)).norm(), j);
+  detail::take_judgement(*ch, d);
+  for (std::size_t j = 0; j < ch->active.size(); ++j) {
+    const Candidate& c = all[static_cast<std::size_t>(ch->active[j])];
+    d.terms.push_back({c.form, c.unit, ch->coefficient[j], ch->std_error[j]});
+    d.model_terms.push_back({eq, ch->coefficient[j], c.value, c.derivative});
   }
-  std::sort(order.rbegin(), order.rend());
-  for (const auto& [contrib, j] : order) {
-    const Candidate& c = all[static_cast<std::size_t>(act[j])];
-    const auto ji = static_cast<Eigen::Index>(j);
-    d.terms.push_back({c.form, c.unit, beta[ji], std::sqrt(std::max(0.0, cov(ji, ji)))});
-    d.model_terms.push_back({eq, beta[ji], c.value, c.derivative});
-  }
-  const Candidate& lead = all[static_cast<std::size_t>(act[order.front().second])];
-  d.reading = reading(eq, lead, d.terms.front().coefficient);
+  d.reading = reading(eq, all[static_cast<std::size_t>(ch->active.front())], d.terms.front().coefficient);
   return d;
 }
 

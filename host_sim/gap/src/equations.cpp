@@ -8,13 +8,12 @@
 
 #include "hstmon/signed_root.hpp"
 #include "load_bins.hpp"
+#include "local_fit.hpp"
 
 namespace hstmon::gap {
 
 namespace {
 
-constexpr double kSmoothTime = 5e-3;  // half-width of the smoothing window [s]: ≈ the ωm time constant
-constexpr int kMaxHalf = 25;
 constexpr double kLocateRatio = 3.0;  // an equation is out of balance beyond 3× its propagated noise
 // Channel indices (ThesisChannel order) as array indices.
 constexpr std::size_t kChPmi = 0, kChPmo = 1, kChPpp = 2, kChWm = 3;
@@ -37,11 +36,7 @@ ArrData evaluate_arrs(const ThesisParams<double>& p, const InputSeries& u,
   ArrData a;
   const std::size_t n = u.size();
   if (n < 3 || y.size() != n) return a;
-  std::vector<double> dts;
-  for (std::size_t k = 1; k < n; ++k) dts.push_back(u.t[k] - u.t[k - 1]);
-  std::nth_element(dts.begin(), dts.begin() + static_cast<std::ptrdiff_t>(dts.size() / 2), dts.end());
-  const double dt = dts[dts.size() / 2];
-  const int m = std::clamp(static_cast<int>(std::lround(kSmoothTime / dt)), 2, kMaxHalf);
+  const int m = detail::smoothing_half_width(u.t);
   a.half_window = m;
   // Input setting id per row: a window must not straddle a change (the smoothing of a step
   // is no signal of the model's).
@@ -50,39 +45,27 @@ ArrData evaluate_arrs(const ThesisParams<double>& p, const InputSeries& u,
   const bool has_mi = present[kChPmi], has_mo = present[kChPmo], has_pp = present[kChPpp], has_w = present[kChWm];
   a.available = {has_mi && has_w, has_mo && has_w, has_pp && has_w, has_mi && has_mo && has_pp && has_w};
   const auto mu = static_cast<std::size_t>(m);
-  const double N = 2.0 * m + 1.0;
   const double gl = 1.0 / p.Rlkg, gi = 1.0 / p.Ripl, R = p.Rf + p.Rbl;
   for (std::size_t k = mu + 1; k + mu < n; ++k) {  // the window leaves out row 0 (the initial condition)
     if (seg[k - mu] != seg[k + mu]) continue;
     // Local linear fit: mean (the smoothed value at the centre) and slope.
     std::array<double, kChannels> mean{}, slope{};
-    double tbar = 0;
-    for (std::size_t i = k - mu; i <= k + mu; ++i) tbar += u.t[i];
-    tbar /= N;
-    double stt = 0;
-    for (std::size_t i = k - mu; i <= k + mu; ++i) stt += (u.t[i] - tbar) * (u.t[i] - tbar);
+    const detail::Window win = detail::window_at(u.t, k, mu);
+    const double N = win.N, stt = win.stt;
     for (std::size_t c = 0; c < kChannels; ++c) {
       if (!present[c]) continue;
-      double s = 0, sty = 0;
-      for (std::size_t i = k - mu; i <= k + mu; ++i) {
-        s += y[i][c];
-        sty += (u.t[i] - tbar) * y[i][c];
-      }
-      mean[c] = s / N;
-      slope[c] = sty / stt;
+      detail::line_fit(
+          u.t, win, [&](std::size_t i) { return y[i][c]; }, mean[c], slope[c]);
     }
     // Where the signal bends within the window (a transient faster than the smoothing) the
-    // window mean and slope are biased: such rows are left out. Test: the local fit's
-    // residual χ²/dof beyond its 4σ band for white noise.
-    bool bends = false;
-    for (std::size_t c = 0; c < kChannels && !bends; ++c) {
+    // window mean and slope are biased: such rows are left out.
+    bool bent = false;
+    for (std::size_t c = 0; c < kChannels && !bent; ++c) {
       if (!present[c]) continue;
-      double chi = 0;
-      for (std::size_t i = k - mu; i <= k + mu; ++i) chi += std::pow(y[i][c] - mean[c] - slope[c] * (u.t[i] - tbar), 2);
-      chi /= noise[c] * noise[c] * (N - 2.0);
-      bends = chi > 1.0 + 4.0 * std::sqrt(2.0 / (N - 2.0));
+      bent = detail::bends(
+          u.t, win, [&](std::size_t i) { return y[i][c]; }, mean[c], slope[c], noise[c]);
     }
-    if (bends) continue;
+    if (bent) continue;
     a.rows.push_back(k);
     a.y.push_back(mean);
     a.dPpp.push_back(slope[kChPpp]);
@@ -140,6 +123,21 @@ ArrData evaluate_arrs(const ThesisParams<double>& p, const InputSeries& u,
   return a;
 }
 
+void imbalance_stats(const std::vector<double>& r, const std::vector<double>& sigma, EquationStats& s) {
+  const double n = static_cast<double>(r.size());
+  double s1 = 0, s2 = 0, sw = 0, sn = 0;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    s1 += r[k];
+    s2 += r[k] * r[k];
+    sw += std::pow(r[k] / sigma[k], 2);
+    sn += sigma[k] * sigma[k];
+  }
+  s.mean = s1 / n;
+  s.rms = std::sqrt(s2 / n);
+  s.noise = std::sqrt(sn / n);
+  s.rms_w = std::sqrt(sw / n);
+}
+
 std::vector<EquationStats> equation_stats(const ArrData& a) {
   std::vector<EquationStats> out;
   const auto bins = detail::load_bins(a.kp);
@@ -154,18 +152,7 @@ std::vector<EquationStats> equation_stats(const ArrData& a) {
     }
     const auto& r = a.r[e];
     const auto& sg = a.sigma[e];
-    const double n = static_cast<double>(r.size());
-    double s1 = 0, s2 = 0, sw = 0, sn = 0;
-    for (std::size_t k = 0; k < r.size(); ++k) {
-      s1 += r[k];
-      s2 += r[k] * r[k];
-      sw += std::pow(r[k] / sg[k], 2);
-      sn += sg[k] * sg[k];
-    }
-    s.mean = s1 / n;
-    s.rms = std::sqrt(s2 / n);
-    s.noise = std::sqrt(sn / n);
-    s.rms_w = std::sqrt(sw / n);
+    imbalance_stats(r, sg, s);
     const EquationStats::Part* hi = nullptr;
     const EquationStats::Part* lo = nullptr;
     for (const auto& b : bins) {

@@ -53,6 +53,221 @@ void judge_fitted_values(const circuit_tools::LoadedCircuit& c, const std::vecto
 
 }  // namespace
 
+namespace {
+
+constexpr double kLmStep = 1e-6;     // central-difference step of the solver's Jacobian [ln units]
+constexpr double kStatsStep = 1e-4;  // … and of the statistics' at the optimum (beyond the solver's noise)
+
+// The unknowns of a fit and the residuals they give: x = the fitted parameters'
+// ln(p/p₀), then per operating point its window inputs' ln(u/u₀) (or (u − u₀)/scale where
+// u₀ ≤ 0). Residuals run in point then channel order; row0[k] is point k's first.
+struct FitProblem {
+  const circuit_tools::LoadedCircuit& c;
+  host::HostCircuit desc;
+  std::vector<int> idx;                        // fitted parameters
+  std::vector<double> start;                   // their start values [SI]
+  std::vector<int> wi;                         // window inputs
+  std::vector<double> wscale;                  // per window input: the step unit where u₀ ≤ 0 [SI]
+  std::vector<CircuitOperatingPoint>& points;  // with window_start filled
+  std::vector<std::size_t> row0;
+
+  std::size_t m() const { return row0.back(); }
+  std::size_t n() const { return idx.size() + points.size() * wi.size(); }
+  std::size_t col(std::size_t point, std::size_t k) const { return idx.size() + point * wi.size() + k; }
+
+  Model::Params params(const std::vector<double>& x) const {
+    Model::Params p = c.values.params;
+    for (std::size_t j = 0; j < idx.size(); ++j) p.v[idx[j]] = start[j] * std::exp(x[j]);
+    return p;
+  }
+  double window_value(std::size_t point, std::size_t k, double xk) const {
+    const double u0 = points[point].window_start[k];
+    return u0 > 0.0 ? u0 * std::exp(xk) : u0 + xk * wscale[k];
+  }
+  // Point `point`'s residuals into out[0 …]; false when it has no steady state.
+  bool point_residuals(const Model::Params& p, std::size_t point, const std::vector<double>& x, double* out) const {
+    const CircuitOperatingPoint& pt = points[point];
+    Model::Inputs u = c.values.inputs;
+    for (std::size_t i = 0; i < pt.inputs.size(); ++i) u.v[i] = pt.inputs[i];
+    for (std::size_t k = 0; k < wi.size(); ++k) u.v[wi[k]] = window_value(point, k, x[col(point, k)]);
+    const Model model(desc, p, u);
+    Model::Output y;
+    if (!model.valid() || !circuit::steady_outputs(model, y)) return false;
+    for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+      if (!std::isfinite(pt.mean[ch])) continue;
+      *out++ = (pt.mean[ch] - y[static_cast<int>(ch)]) / circuit_tools::sensor_sigma(c.file.sensors[ch]);
+    }
+    return true;
+  }
+  bool residuals(const std::vector<double>& x, std::vector<double>& res) const {
+    res.resize(m());
+    const Model::Params p = params(x);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (!point_residuals(p, k, x, res.data() + row0[k])) return false;
+    }
+    return true;
+  }
+  // Central differences by block: a parameter's column from whole residuals, a window
+  // input's from its own point's rows only (the rest of its column is 0).
+  bool jacobian(const std::vector<double>& x, double h, DenseMatrix& jac) const {
+    jac = DenseMatrix(m(), n());
+    std::vector<double> rp, rm, xs = x;
+    for (std::size_t j = 0; j < idx.size(); ++j) {
+      xs[j] = x[j] + h;
+      if (!residuals(xs, rp)) return false;
+      xs[j] = x[j] - h;
+      if (!residuals(xs, rm)) return false;
+      xs[j] = x[j];
+      for (std::size_t i = 0; i < m(); ++i) jac(i, j) = (rp[i] - rm[i]) / (2.0 * h);
+    }
+    const Model::Params p = params(x);
+    rp.resize(c.file.sensors.size());
+    rm.resize(c.file.sensors.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      for (std::size_t q = 0; q < wi.size(); ++q) {
+        const std::size_t j = col(k, q);
+        xs[j] = x[j] + h;
+        if (!point_residuals(p, k, xs, rp.data())) return false;
+        xs[j] = x[j] - h;
+        if (!point_residuals(p, k, xs, rm.data())) return false;
+        xs[j] = x[j];
+        for (std::size_t i = row0[k]; i < row0[k + 1]; ++i) jac(i, j) = (rp[i - row0[k]] - rm[i - row0[k]]) / (2.0 * h);
+      }
+    }
+    for (double v : jac.data) {
+      if (!std::isfinite(v)) return false;
+    }
+    return true;
+  }
+  // The residuals spread back per point and channel into `field` (NaN where not logged).
+  void per_point(const std::vector<double>& res, std::vector<double> CircuitOperatingPoint::*field) const {
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      std::vector<double> per(c.file.sensors.size(), std::nan(""));
+      std::size_t r = row0[k];
+      for (std::size_t ch = 0; ch < per.size(); ++ch) {
+        if (std::isfinite(points[k].mean[ch])) per[ch] = res[r++];
+      }
+      points[k].*field = std::move(per);
+    }
+  }
+};
+
+// The fitted parameters' indices and start values into idx and r; false with r.error.
+bool resolve_fitted(const circuit_tools::LoadedCircuit& c, const CircuitFitOptions& o, std::vector<int>& idx,
+                    CircuitFitResult& r) {
+  for (const std::string& name : o.fit) {
+    const int k = c.file.param_index(name);
+    if (k < 0 || c.file.params[static_cast<std::size_t>(k)].literal) {
+      r.error = "circuit " + c.file.name + " has no named parameter '" + name + "'";
+      return false;
+    }
+    if (!(c.values.params.v[k] > 0.0)) {
+      r.error = "parameter " + name + " is not positive: it cannot be fitted as a logarithm";
+      return false;
+    }
+    idx.push_back(k);
+    r.names.push_back(name);
+    r.start.push_back(c.values.params.v[k]);
+  }
+  if (idx.empty()) r.error = "nothing to fit: name the parameters with --fit";
+  return !idx.empty();
+}
+
+// The window inputs (CircuitFitOptions::window_inputs) into wi and r.window_inputs;
+// false with r.error.
+bool resolve_window_inputs(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
+                           const CircuitFitOptions& o, std::vector<int>& wi, CircuitFitResult& r) {
+  if (!o.setting_per_window) return true;
+  std::string all;
+  for (const auto& in : c.file.inputs) all += (all.empty() ? "" : ", ") + in.name;
+  for (const std::string& name : o.window_inputs) {
+    const int k = c.file.input_index(name);
+    if (k < 0) {
+      r.error = "circuit " + c.file.name + " has no input '" + name + "' to fit per window (its inputs: " + all + ")";
+      return false;
+    }
+    if (std::find(wi.begin(), wi.end(), k) == wi.end()) wi.push_back(k);
+  }
+  for (std::size_t i = 0; o.window_inputs.empty() && i < c.file.inputs.size(); ++i) {
+    const bool logged = std::any_of(logs.begin(), logs.end(), [&](const circuit_tools::CircuitLog& l) {
+      return i < l.inputs.size() && l.rows() > 0 && l.inputs[i].size() == l.rows();
+    });
+    if (!logged) wi.push_back(static_cast<int>(i));
+  }
+  if (wi.empty()) {
+    r.error = "--setting-per-window: the logs have a column for every input of circuit " + c.file.name + " (" + all +
+              "): name the one(s) that set the load with --window-input NAME (their logged values then only start "
+              "the fit)";
+    return false;
+  }
+  for (int k : wi) r.window_inputs.push_back(c.file.inputs[static_cast<std::size_t>(k)].name);
+  return true;
+}
+
+// Too few points or measured values for the unknowns: r.error, and false.
+bool enough_points(const CircuitFitOptions& o, const FitProblem& fp, CircuitFitResult& r) {
+  if (o.min_settings > 0) {
+    // Per window every point is a setting of its own; else count the held input settings.
+    const std::size_t settings = fp.wi.empty() ? distinct_settings(r.points) : r.points.size();
+    if (settings < o.min_settings) {
+      r.error = std::to_string(settings) + " distinct operating point(s) (held input settings) in the logs, fewer than "
+                "the " + std::to_string(o.min_settings) + " asked for (--min-settings): log more settings";
+      return false;
+    }
+  }
+  if (fp.m() >= fp.n()) return true;
+  char rule[160];
+  std::snprintf(rule, sizeof rule,
+                " (a point is a stretch of held inputs, steady after the settle, of at least %g s and %zu rows: "
+                "--min-duration, --min-samples)",
+                o.assume_steady ? 0.0 : o.min_duration,
+                o.assume_steady ? std::size_t{1} : std::max<std::size_t>(1, o.min_samples));
+  const std::string unknowns = fp.wi.empty() ? std::to_string(fp.n()) + " parameters to fit"
+                                             : std::to_string(fp.n()) + " unknowns (" + std::to_string(fp.idx.size()) +
+                                                   " parameters and " + std::to_string(fp.wi.size()) +
+                                                   " window input(s) per point)";
+  r.error = std::to_string(r.points.size()) + " operating point(s), " + std::to_string(fp.m()) +
+            " measured values: fewer than the " + unknowns + rule;
+  return false;
+}
+
+// The solution x into r: values, standard errors (from the Jacobian at x), the window
+// inputs per point, notes. `determined`: the Jacobian has full rank and a sane condition.
+void take_solution(const FitProblem& fp, const LmResult& lm, CircuitFitResult& r, bool& determined) {
+  const std::size_t n = fp.n(), m = fp.m();
+  for (std::size_t j = 0; j < fp.idx.size(); ++j) r.value.push_back(r.start[j] * std::exp(lm.x[j]));
+  std::vector<double> se(n, std::nan(""));
+  determined = false;
+  DenseMatrix jac;
+  if (m > n && fp.jacobian(lm.x, kStatsStep, jac)) {
+    const LinearStats st = linear_stats(jac, lm.ssr / static_cast<double>(m - n));
+    se = st.se;
+    // A condition beyond 1e6 (of the column-scaled Jacobian) is a direction the points
+    // do not see: the central differences leave its singular value at rounding, not 0.
+    determined = st.rank == n && st.condition <= 1e6;
+    if (!determined) {
+      char cond[32];
+      std::snprintf(cond, sizeof cond, "%.3g", st.condition);
+      r.notes.push_back("the operating points do not tell the fitted " +
+                        std::string(fp.wi.empty() ? "parameters" : "parameters and window inputs") +
+                        " apart (condition " + cond +
+                        "): add operating points or fit fewer; the values along that direction are not determined");
+    }
+  }
+  for (std::size_t j = 0; j < fp.idx.size(); ++j) r.rel_se.push_back(se[j]);  // d ln p = dp/p
+  for (std::size_t k = 0; k < fp.points.size(); ++k) {
+    CircuitOperatingPoint& pt = fp.points[k];
+    for (std::size_t q = 0; q < fp.wi.size(); ++q) {
+      const std::size_t j = fp.col(k, q);
+      const double u = fp.window_value(k, q, lm.x[j]);
+      pt.window_value.push_back(u);
+      pt.window_se.push_back(pt.window_start[q] > 0.0 ? u * se[j] : fp.wscale[q] * se[j]);
+    }
+  }
+}
+
+}  // namespace
+
 bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
                              const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res) {
   host::HostCircuit desc = c.file.circuit;
@@ -75,109 +290,53 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o) {
   CircuitFitResult r;
-  std::vector<int> idx;
-  for (const std::string& name : o.fit) {
-    const int k = c.file.param_index(name);
-    if (k < 0 || c.file.params[static_cast<std::size_t>(k)].literal) {
-      r.error = "circuit " + c.file.name + " has no named parameter '" + name + "'";
-      return r;
-    }
-    if (!(c.values.params.v[k] > 0.0)) {
-      r.error = "parameter " + name + " is not positive: it cannot be fitted as a logarithm";
-      return r;
-    }
-    idx.push_back(k);
-    r.names.push_back(name);
-    r.start.push_back(c.values.params.v[k]);
-  }
-  if (idx.empty()) {
-    r.error = "nothing to fit: name the parameters with --fit";
-    return r;
-  }
+  std::vector<int> idx, wi;
+  if (!resolve_fitted(c, o, idx, r) || !resolve_window_inputs(c, logs, o, wi, r)) return r;
   CircuitPointRules rules;
   rules.min_duration = o.min_duration;
   rules.min_samples = o.min_samples;
   rules.assume_steady = o.assume_steady;
+  rules.steps_are_settings = !wi.empty();
   r.points = circuit_operating_points(c, logs, rules, &r.notes);
-  if (o.min_settings > 0) {
-    const std::size_t settings = distinct_settings(r.points);
-    if (settings < o.min_settings) {
-      r.error = std::to_string(settings) + " distinct operating point(s) (held input settings) in the logs, fewer than "
-                "the " + std::to_string(o.min_settings) + " asked for (--min-settings): log more settings";
-      return r;
-    }
+  FitProblem fp{c, c.file.circuit, idx, r.start, wi, {}, r.points, {0}};
+  fp.desc.stiff_mask = 0;
+  for (int k : wi) {
+    const double nominal = std::fabs(c.values.inputs.v[k]);
+    fp.wscale.push_back(nominal > 0.0 ? nominal : 1.0);
   }
-  const std::size_t channels = c.file.sensors.size();
-  std::size_t m = 0;
-  for (const auto& p : r.points) {
-    for (double v : p.mean) m += std::isfinite(v) ? 1u : 0u;
+  for (auto& p : r.points) {
+    for (int k : wi) p.window_start.push_back(p.inputs[static_cast<std::size_t>(k)]);
+    std::size_t measured = 0;
+    for (double v : p.mean) measured += std::isfinite(v) ? 1u : 0u;
+    fp.row0.push_back(fp.row0.back() + measured);
   }
-  if (m < idx.size()) {
-    char rule[160];
-    std::snprintf(rule, sizeof rule,
-                  " (a point is a stretch of held inputs, steady after the settle, of at least %g s and %zu rows: "
-                  "--min-duration, --min-samples)",
-                  o.assume_steady ? 0.0 : o.min_duration, o.assume_steady ? std::size_t{1} : std::max<std::size_t>(1, o.min_samples));
-    r.error = std::to_string(r.points.size()) + " operating point(s), " + std::to_string(m) +
-              " measured values: fewer than the " + std::to_string(idx.size()) + " parameters to fit" + rule;
-    return r;
-  }
-  // Residuals (mean − model)/σ at every point and measured channel for the fitted
-  // ln(p/p₀) x (circuit_point_residuals), and the same spread back per point and channel.
-  auto residuals = [&](const std::vector<double>& x, std::vector<double>& res) {
-    Model::Params p = c.values.params;
-    for (std::size_t j = 0; j < idx.size(); ++j) p.v[idx[j]] = r.start[j] * std::exp(x[j]);
-    return circuit_point_residuals(c, p, r.points, res);
-  };
-  auto per_point = [&](const std::vector<double>& res, std::vector<double> CircuitOperatingPoint::*field) {
-    std::size_t k = 0;
-    for (auto& pt : r.points) {
-      std::vector<double> per(channels, std::nan(""));
-      for (std::size_t ch = 0; ch < channels; ++ch) {
-        if (std::isfinite(pt.mean[ch])) per[ch] = res[k++];
-      }
-      pt.*field = std::move(per);
-    }
-  };
-  const std::vector<double> x0(idx.size(), 0.0);
-  std::vector<double> res(m);
-  if (!residuals(x0, res)) {
+  if (!enough_points(o, fp, r)) return r;
+  const std::size_t m = fp.m();
+  const std::vector<double> x0(fp.n(), 0.0);
+  std::vector<double> res;
+  if (!fp.residuals(x0, res)) {
     r.error = "no steady state at some operating point with the starting values";
     return r;
   }
-  per_point(res, &CircuitOperatingPoint::before);
+  fp.per_point(res, &CircuitOperatingPoint::before);
   double ss = 0.0;
   for (double v : res) ss += v * v;
   r.rms_before = std::sqrt(ss / static_cast<double>(m));
-  const ResidualFn f = [&](const std::vector<double>& x, std::vector<double>& out) { return residuals(x, out); };
-  const LmResult lm = levenberg_marquardt(f, m, x0);
+  const ResidualFn f = [&](const std::vector<double>& x, std::vector<double>& out) { return fp.residuals(x, out); };
+  const JacobianFn df = [&](const std::vector<double>& x, DenseMatrix& jac) { return fp.jacobian(x, kLmStep, jac); };
+  const LmResult lm = levenberg_marquardt(f, df, m, x0);
   r.status = lm.status_text;
   if (!lm.finite) {
     r.error = "the fit did not reach finite values (" + lm.status_text + ")";
     return r;
   }
-  if (residuals(lm.x, res)) per_point(res, &CircuitOperatingPoint::after);
+  if (fp.residuals(lm.x, res)) fp.per_point(res, &CircuitOperatingPoint::after);
   r.rms_after = std::sqrt(lm.ssr / static_cast<double>(m));
-  for (std::size_t j = 0; j < idx.size(); ++j) r.value.push_back(r.start[j] * std::exp(lm.x[j]));
-  DenseMatrix jac;
-  const std::vector<double> steps(idx.size(), 1e-4);
-  r.rel_se.assign(idx.size(), std::nan(""));
   bool determined = false;
-  if (m > idx.size() && central_jacobian(f, m, lm.x, steps, jac)) {
-    const LinearStats st = linear_stats(jac, lm.ssr / static_cast<double>(m - idx.size()));
-    for (std::size_t j = 0; j < idx.size(); ++j) r.rel_se[j] = st.se[j];  // d ln p = dp/p
-    // A condition beyond 1e6 (of the column-scaled Jacobian) is a direction the points
-    // do not see: the central differences leave its singular value at rounding, not 0.
-    determined = st.rank == idx.size() && st.condition <= 1e6;
-    if (!determined) {
-      char cond[32];
-      std::snprintf(cond, sizeof cond, "%.3g", st.condition);
-      r.notes.push_back("the operating points do not tell the fitted parameters apart (condition " + std::string(cond) +
-                        "): add operating points or fit fewer; the values along that direction are not determined");
-    }
-  }
+  take_solution(fp, lm, r, determined);
   if (!lm.converged) r.notes.push_back("the solver stopped without converging: " + lm.status_text);
-  judge_fitted_values(c, idx, determined && lm.converged, m, r);
+  // The window inputs use degrees of freedom as parameters do: judge on what is left.
+  judge_fitted_values(c, idx, determined && lm.converged, m - (fp.n() - idx.size()), r);
   return r;
 }
 

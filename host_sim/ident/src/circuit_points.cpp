@@ -218,12 +218,14 @@ void find_points(const circuit_tools::LoadedCircuit& c, const host::HostCircuit&
         notes.emplace_back(text);
         continue;
       }
-      char text[240];
-      std::snprintf(text, sizeof text,
-                    "%s: %s steps by %s at t = %.4g s while the inputs hold (an event the log does not "
-                    "record, or a start still settling): the stretch is split there and each side judged alone",
-                    log.path.c_str(), channel.c_str(), sensor_text(c, channel, size).c_str(), log.t[at]);
-      notes.emplace_back(text);
+      if (!rules.steps_are_settings) {
+        char text[240];
+        std::snprintf(text, sizeof text,
+                      "%s: %s steps by %s at t = %.4g s while the inputs hold (an event the log does not "
+                      "record, or a start still settling): the stretch is split there and each side judged alone",
+                      log.path.c_str(), channel.c_str(), sensor_text(c, channel, size).c_str(), log.t[at]);
+        notes.emplace_back(text);
+      }
       todo.push_back({s.a, at});
       todo.push_back({row_at(log, at, s.b, log.t[at] + settle), s.b});
     }

@@ -60,25 +60,31 @@ const char* status_text(int s) {
 
 }  // namespace
 
-LmResult levenberg_marquardt(const ResidualFn& f, std::size_t m, std::vector<double> x0, const LmOptions& options) {
-  LmResult res;
-  res.x = x0;
-  Functor fun;
-  fun.f = &f;
-  fun.n = static_cast<Eigen::Index>(x0.size());
-  fun.m = static_cast<Eigen::Index>(m);
-  fun.evaluations = &res.evaluations;
-  if (x0.empty() || m < x0.size()) {
-    res.status = Eigen::LevenbergMarquardtSpace::ImproperInputParameters;
-    res.status_text = "fewer residuals than parameters";
-    return res;
+namespace {
+
+// Eigen functor with the caller's Jacobian (JacobianFn) instead of numerical differences.
+struct JacobianFunctor : Functor {
+  const JacobianFn* df_fn = nullptr;
+  int df(const Eigen::VectorXd& x, Eigen::MatrixXd& fjac) const {
+    std::vector<double> xv(x.data(), x.data() + x.size());
+    DenseMatrix jac;
+    if (!(*df_fn)(xv, jac) || jac.rows != static_cast<std::size_t>(m) || jac.cols != static_cast<std::size_t>(n)) {
+      return -1;  // Eigen stops with UserAsked: no step without a Jacobian
+    }
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (Eigen::Index j = 0; j < n; ++j) fjac(i, j) = jac(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+    }
+    return 0;
   }
-  Eigen::NumericalDiff<Functor, Eigen::Central> diff(fun);
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Functor, Eigen::Central>, double> lm(diff);
+};
+
+// The LM run shared by both drivers: x0 → res, with Eigen's stop reason in words.
+template <class Lm>
+void run_lm(Lm& lm, const ResidualFn& f, std::size_t m, const LmOptions& options, LmResult& res) {
   lm.parameters.maxfev = options.max_evaluations;
   lm.parameters.ftol = options.tolerance;
   lm.parameters.xtol = options.tolerance;
-  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x0.data(), fun.n);
+  Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(res.x.data(), static_cast<Eigen::Index>(res.x.size()));
   const auto status = lm.minimize(x);
   res.status = static_cast<int>(status);
   res.status_text = status_text(res.status);
@@ -105,6 +111,45 @@ LmResult levenberg_marquardt(const ResidualFn& f, std::size_t m, std::vector<dou
     res.finite = res.finite && std::isfinite(v);
     res.ssr += v * v;
   }
+}
+
+// False (with res saying why) when there are fewer residuals than parameters.
+bool proper(std::size_t m, const std::vector<double>& x0, LmResult& res) {
+  res.x = x0;
+  if (!x0.empty() && m >= x0.size()) return true;
+  res.status = Eigen::LevenbergMarquardtSpace::ImproperInputParameters;
+  res.status_text = "fewer residuals than parameters";
+  return false;
+}
+
+}  // namespace
+
+LmResult levenberg_marquardt(const ResidualFn& f, std::size_t m, std::vector<double> x0, const LmOptions& options) {
+  LmResult res;
+  if (!proper(m, x0, res)) return res;
+  Functor fun;
+  fun.f = &f;
+  fun.n = static_cast<Eigen::Index>(x0.size());
+  fun.m = static_cast<Eigen::Index>(m);
+  fun.evaluations = &res.evaluations;
+  Eigen::NumericalDiff<Functor, Eigen::Central> diff(fun);
+  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Functor, Eigen::Central>, double> lm(diff);
+  run_lm(lm, f, m, options, res);
+  return res;
+}
+
+LmResult levenberg_marquardt(const ResidualFn& f, const JacobianFn& df, std::size_t m, std::vector<double> x0,
+                             const LmOptions& options) {
+  LmResult res;
+  if (!proper(m, x0, res)) return res;
+  JacobianFunctor fun;
+  fun.f = &f;
+  fun.df_fn = &df;
+  fun.n = static_cast<Eigen::Index>(x0.size());
+  fun.m = static_cast<Eigen::Index>(m);
+  fun.evaluations = &res.evaluations;
+  Eigen::LevenbergMarquardt<JacobianFunctor, double> lm(fun);
+  run_lm(lm, f, m, options, res);
   return res;
 }
 

@@ -17,7 +17,7 @@ CircuitFwModel::Inputs circuit_inputs() noexcept {
 
 Status configure_circuit_observer(CircuitFwObserver& obs) noexcept {
   CircuitFwObserver::Config cfg;
-  cfg.tick = static_cast<float>(gen::kTick);
+  cfg.tick = static_cast<float>(kTick);
   return obs.configure(gen::kCircuit, circuit_params(), cfg);
 }
 

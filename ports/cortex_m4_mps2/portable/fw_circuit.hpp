@@ -42,6 +42,18 @@ namespace hstmon::fw {
 /// The generated circuit's namespace (description, capacity, values).
 namespace gen = ::hstmon::generated::HSTMON_FW_CIRCUIT;
 
+/// The observer's tick [s]: HSTMON_FW_TICK where the build sets one (an image at another
+/// rate than the header was generated for), else the header's kTick. Either way within the
+/// ticks the header's stiff mask holds for (gen::kTickMin … kTickMax).
+#ifdef HSTMON_FW_TICK
+inline constexpr double kTick = HSTMON_FW_TICK;
+#else
+inline constexpr double kTick = gen::kTick;
+#endif
+static_assert(kTick >= gen::kTickMin && kTick <= gen::kTickMax,
+              "HSTMON_FW_TICK lies outside the ticks the generated header's stiff mask holds for; regenerate the "
+              "header at this tick");
+
 /// The engine's model of the generated circuit, in float, sized by its tight capacity:
 /// compiled (HSTMON_FW_COMPILED) or interpreted.
 #if HSTMON_FW_COMPILED
@@ -60,11 +72,11 @@ CircuitFwModel::Params circuit_params() noexcept;
 CircuitFwModel::Inputs circuit_inputs() noexcept;
 
 /// Configures obs with the generated circuit (bound in place: no model copy on the
-/// stack) at tick gen::kTick and no output injection.
+/// stack) at tick kTick and no output injection.
 /// @return kOk, or why not (kInvalidParams when the description or values are rejected)
 Status configure_circuit_observer(CircuitFwObserver& obs) noexcept;
 
-/// Replays `log` through the circuit observer at gen::kTick — one tick per log row, plus
+/// Replays `log` through the circuit observer at kTick — one tick per log row, plus
 /// ticks with inputs held and no measurement until the model clock reaches the row —
 /// after a reset from the first row's measured states. Writes one line per row,
 /// `trace <row> <health> <r0> … <rN-1>` (residuals in %a hex, exact), then

@@ -48,7 +48,7 @@ int find_column(const LogView& log, const LogColumns& cols, const char* name) no
 
 // The generated header's values, as the shared setup takes them.
 circuit::GeneratedValues<gen::Cap> generated_values() noexcept {
-  return {&gen::kCircuit, gen::kParams, gen::kNoiseSigma, gen::kRangeLo, gen::kRangeHi, gen::kUncertainty, gen::kTick};
+  return {&gen::kCircuit, gen::kParams, gen::kNoiseSigma, gen::kRangeLo, gen::kRangeHi, gen::kUncertainty, kTick};
 }
 
 void error_line(Line& line, const char* what, const char* column, const char* unit) noexcept {
@@ -176,10 +176,17 @@ void write_trace(Line& line, std::size_t k, std::uint32_t flags, const float (&r
 // Header line: the fields of `hstmon replay --circuit --json` (those the firmware knows).
 void write_replay_line(Line& line, const LogView& log, const CircuitFwMonitor& mon, double t_first, double t_last,
                        InitialState start, const ReplayTotals& tot) noexcept {
-  line.begin().str("type", "replay").str("log", log.name).str("circuit", HSTMON_FW_STR(HSTMON_FW_CIRCUIT))
-      .uint("rows", log.rows).num("t_first", t_first).num("t_last", t_last).num("tick_s", gen::kTick)
+  line.begin()
+      .str("type", "replay")
+      .str("log", log.name)
+      .str("circuit", HSTMON_FW_STR(HSTMON_FW_CIRCUIT))
+      .uint("rows", log.rows)
+      .num("t_first", t_first)
+      .num("t_last", t_last)
+      .num("tick_s", kTick)
       .uint("ticks", mon.observer().ticks())
-      .str("start", to_string(start)).num("startup_hold_s", static_cast<double>(mon.startup_hold()))
+      .str("start", to_string(start))
+      .num("startup_hold_s", static_cast<double>(mon.startup_hold()))
       .uint("fault_table_rows", static_cast<std::uint64_t>(sig::kSignatureCount))
       .uint("states", static_cast<std::uint64_t>(g_model.n_states()))
       .uint("stiff_nodes", static_cast<std::uint64_t>(g_model.n_stiff()));
@@ -233,12 +240,14 @@ std::uint32_t circuit_monitor_replay(CircuitFwMonitor& mon, const LogView& log, 
   const std::size_t rows = log.rows;
   const double t_first = at(0, map.t);
   const double t_last = at(rows - 1, map.t);
-  // The stiff mask of the generated header was chosen for gen::kTick; the host replay
-  // chooses it for the log's interval. The two must be the same tick.
-  const double tick = gen::kTick;
+  // The host replay ticks at the log's interval: so must the image, to print the same.
+  const double tick = kTick;
   if (std::fabs(log_tick(log, map.t) - tick) > 1e-9) {
-    error_line(line, "the log's sampling interval is not the generated header's tick: regenerate the header with "
-                     "hstmon-circuit-header --tick <the log's interval>", nullptr, nullptr);
+    error_line(line,
+               "the log's sampling interval is not the image's tick: build it with HSTMON_FW_TICK=<the log's "
+               "interval> (within the header's kTickMin … kTickMax, else regenerate the header with "
+               "hstmon-circuit-header --tick <the log's interval>)",
+               nullptr, nullptr);
     return ~0u;
   }
 

@@ -53,14 +53,14 @@ struct LogColumns {
 /// generated values (sensor σ, ranges, parameter uncertainty; matcher windows from the
 /// slowest time constant at the first row's inputs, circuit::widen_matcher_windows),
 /// started from the first row's measurements or, within 3σ of the steady state, there
-/// (circuit::at_steady_within_noise), one tick per row at gen::kTick plus ticks with the
+/// (circuit::at_steady_within_noise), one tick per row at kTick (fw_circuit.hpp) plus ticks with the
 /// inputs held where the log is slower. Writes, in order: one line per row `trace <row>
 /// <health> <r0> … <rN-1>` (float residuals in %a, exact), the event lines as they
 /// happen, then the `{"type":"replay",…}` header, one `{"type":"residual",…}` line per
 /// channel, the `{"type":"diagnosis",…}` line and a `{"type":"firmware",…}` line (FNV-1a
 /// digest of every residual's bits and health, events dropped). A log the replay cannot
 /// take (no time column, a mapped column whose unit is unknown, a sampling interval other
-/// than gen::kTick) gives one `{"type":"error","message":…}` line instead.
+/// than kTick) gives one `{"type":"error","message":…}` line instead.
 /// Never allocates; the model scratch used for the setup is static.
 /// @param mon  the monitor (static storage: it is large for a stack)
 /// @return the observer's health bits OR-ed over the replay; ~0 on an error line

@@ -69,7 +69,7 @@ std::uint32_t circuit_replay_trace(CircuitFwObserver& obs, const LogView& log, S
     return m;
   };
   const std::size_t rows = col[kSigT] >= 0 ? log.rows : 0;
-  const double tick = gen::kTick;
+  const double tick = kTick;
   std::uint32_t health = 0;
   std::uint64_t digest = 0xcbf29ce484222325ull, ticks = 0;
   if (rows > 0) {

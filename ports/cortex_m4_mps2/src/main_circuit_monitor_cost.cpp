@@ -39,7 +39,7 @@ volatile std::uint32_t sink;
 float t_now = 0.0f;
 
 __attribute__((noinline)) std::uint32_t monitor_step(const Inputs& u, const Meas& m) {
-  t_now += static_cast<float>(hstmon::fw::gen::kTick);
+  t_now += static_cast<float>(hstmon::fw::kTick);
   (void)mon.step(t_now, u, m);
   return mon.health();
 }

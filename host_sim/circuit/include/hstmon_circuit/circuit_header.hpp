@@ -29,6 +29,15 @@ std::string circuit_header(const LoadedCircuit& c, const CircuitHeaderOptions& o
 /// circuit::auto_stiff_mask<double> picks at the tick (states: how many states that leaves).
 host::HostCircuit header_description(const LoadedCircuit& c, double tick, int* states = nullptr);
 
+/// A range of observer ticks [s].
+struct TickRange {
+  double lo = 0.0, hi = 0.0;
+};
+
+/// The ticks around `tick` at which header_description() picks the same stiff mask as at
+/// `tick` (and so the same header): scanned in quarter octaves, out to 2^±10 × tick.
+TickRange same_mask_ticks(const LoadedCircuit& c, double tick);
+
 /// The compiled model's header (`hstmon-circuit-header --compiled`): for the circuit of
 /// circuit_header() with the same options, a Kernel of straight-line code — the stiff
 /// nodes' balances and their Gauss–Seidel × Newton solve, the states' rates, the outputs

@@ -12,7 +12,6 @@
 
 #include "hstmon/circuit/same_circuit.hpp"
 #include "hstmon/generated/closed_loop_hst_circuit_compiled.hpp"
-#include "hstmon/generated/paper_circuit_1ms_compiled.hpp"
 #include "hstmon/generated/paper_circuit_compiled.hpp"
 #include "hstmon/generated/thesis_circuit_compiled.hpp"
 #include "hstmon_host/circuit_file.hpp"
@@ -48,8 +47,8 @@ bool first_match(const host::HostCircuit& d, F& f) {
 template <class F>
 bool with_compiled_kernel(const host::HostCircuit& d, F&& f) {
   return compiled_detail::first_match<std::remove_reference_t<F>, generated::thesis_circuit::Kernel,
-                                      generated::paper_circuit_1ms::Kernel, generated::paper_circuit::Kernel,
-                                      generated::closed_loop_hst_circuit::Kernel>(d, f);
+                                      generated::paper_circuit::Kernel, generated::closed_loop_hst_circuit::Kernel>(d,
+                                                                                                                    f);
 }
 
 }  // namespace hstmon::circuit_tools

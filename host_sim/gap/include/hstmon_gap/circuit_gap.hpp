@@ -21,6 +21,12 @@
 /// an effect only when it removes at least half of the check log's residual and clearly
 /// more than the runner-up; two close candidates are named "ambiguous" only when the best
 /// leaves the check log within noise and uncertainty, else no single candidate explains it.
+///
+/// Besides the candidates, and whatever the verdict: the circuit's balance equations on the
+/// measured signals (circuit_equations.hpp; imbalance = the model's net inflow or torque −
+/// accumulation, a loss the model lacks > 0), the located one (largest RMS/noise above 3,
+/// fit log, else check log), and the located equation's missing term found by STLSQ on
+/// candidate terms built from the circuit (circuit_discover.hpp).
 
 #include <optional>
 #include <string>
@@ -28,6 +34,8 @@
 
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_gap/circuit_discover.hpp"
+#include "hstmon_gap/equations.hpp"
 
 namespace hstmon::gap {
 
@@ -63,6 +71,14 @@ struct CircuitGapResult {
   std::string verdict;                      ///< the named effect, "none", "insufficient_data", "ambiguous: A or B" or "unexplained"
   std::vector<std::string> notes;
   std::optional<std::string> error;
+  /// Where, by balance equation: per equation of the circuit (circuit_equations() order)
+  /// its statistics on each log (SI; rms_w = RMS of imbalance/propagated noise).
+  std::vector<EquationStats> equations_fit, equations_check;
+  /// Per equation: what a log lacks for it ("p_mi (not in the log)", "pressure of Pmo (no
+  /// sensor)"; the fit log's, else the check log's), "" when available on both.
+  std::vector<std::string> equations_missing;
+  std::string located_equation;               ///< the located equation's name (fit log, else check log), or ""
+  std::optional<CircuitDiscovery> discovery;  ///< the located equation's missing term, if one shrinks the check log
 };
 
 /// The candidates of circuit c (see the file comment).

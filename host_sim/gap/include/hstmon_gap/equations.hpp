@@ -65,6 +65,10 @@ struct EquationStats {
   std::string dependence;        ///< one line: how the mean imbalance moves with the load
 };
 
+/// One equation's mean, RMS, noise (RMS of sigma) and RMS of r/sigma over its rows
+/// (r, sigma: imbalance and its propagated noise, SI, same length > 0) into s.
+void imbalance_stats(const std::vector<double>& r, const std::vector<double>& sigma, EquationStats& s);
+
 /// Per-equation statistics, in equation order.
 std::vector<EquationStats> equation_stats(const ArrData& a);
 

@@ -17,6 +17,15 @@
 /// noise (1 % of the span without one). Parameters are fitted as ln(p/p₀), so they stay
 /// positive and their steps are relative; standard errors come from the linearised
 /// covariance at the optimum.
+///
+/// Setting per window (`setting_per_window`): for logs that do not record the input that
+/// sets the load, each operating point gets its own value of that input ("window input"),
+/// fitted together with the named parameters. A point is then a stretch where the logged
+/// inputs hold, split where the outputs step (a new setting, said without a note). The
+/// window inputs are fitted as ln(u/u₀) (u₀ the logged mean, else the nominal value; an
+/// input whose u₀ is not positive in its own unit, u − u₀), from the same residuals; each moves only
+/// its own point's residuals, so the Jacobian is built per block: one steady state per
+/// point and window-input column (cost and memory linear in the points, not quadratic).
 
 #include <cstddef>
 #include <optional>
@@ -35,6 +44,9 @@ struct CircuitPointRules {
   /// Every held stretch is steady from its first row (a DAS log recorded only at steady
   /// state): no settle time, no shortest duration, stretches of one row accepted.
   bool assume_steady = false;
+  /// An output step inside a held stretch is a new setting of an input the log does not
+  /// record (setting per window): split there without a note.
+  bool steps_are_settings = false;
 };
 
 /// What to fit and how to find operating points.
@@ -46,6 +58,12 @@ struct CircuitFitOptions {
   /// Fewest distinct operating points (held input settings) the fit accepts; fewer is an
   /// error that says how many were found. 0: only the count the parameters need.
   std::size_t min_settings = 0;
+  /// Each operating point gets its own value of the window inputs, fitted with `fit`
+  /// (see the file comment).
+  bool setting_per_window = false;
+  /// The window inputs by name; empty: every input that no log has a column for (an
+  /// error when the logs have a column for each: then name the one(s) that set the load).
+  std::vector<std::string> window_inputs;
 };
 
 /// One operating point.
@@ -56,6 +74,9 @@ struct CircuitOperatingPoint {
   std::vector<double> inputs;         ///< the held inputs [SI], by input index
   std::vector<double> mean;           ///< mean reading per channel [SI] (NaN where not logged)
   std::vector<double> before, after;  ///< mean reading − model per channel, in σ, at the start and the fit
+  /// Per window input (CircuitFitResult::window_inputs): its start and fitted value [SI]
+  /// and the standard error of the fitted value [SI] (∞ where not determined).
+  std::vector<double> window_start, window_value, window_se;
 };
 
 /// Result of fit_circuit().
@@ -72,6 +93,9 @@ struct CircuitFitResult {
   /// Per fitted parameter: the move from the start lies beyond its 95 % interval (the data
   /// show it); false: the start is as consistent with the points as the fitted value.
   std::vector<bool> moved;
+  /// Inputs fitted per operating point (CircuitFitOptions::setting_per_window); their
+  /// values are in each point's window_value.
+  std::vector<std::string> window_inputs;
   double rms_before = 0.0, rms_after = 0.0;  ///< RMS of the residuals [σ]
   std::string status;                    ///< the solver's stop reason
   std::vector<std::string> notes;

@@ -60,6 +60,17 @@ struct LmResult {
 LmResult levenberg_marquardt(const ResidualFn& f, std::size_t m, std::vector<double> x0,
                              const LmOptions& options = {});
 
+/// Jacobian function: fills jac (m × n, ∂r_i/∂x_j) at x. Returns false where the model
+/// cannot be evaluated (the solver then stops).
+using JacobianFn = std::function<bool(const std::vector<double>& x, DenseMatrix& jac)>;
+
+/// As above with the caller's Jacobian: for problems whose structure makes it cheaper than
+/// n central differences of the whole residual (block-sparse ones, e.g. one unknown per
+/// operating point that moves only that point's residuals).
+/// @param df  Jacobian of f
+LmResult levenberg_marquardt(const ResidualFn& f, const JacobianFn& df, std::size_t m, std::vector<double> x0,
+                             const LmOptions& options = {});
+
 /// Central-difference Jacobian m × n of f at x, column j with step steps[j] (same units
 /// as x[j]). Returns false if f fails at any probe.
 bool central_jacobian(const ResidualFn& f, std::size_t m, const std::vector<double>& x,

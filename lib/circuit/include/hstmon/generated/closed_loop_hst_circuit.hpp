@@ -15,6 +15,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Observer tick the stiff mask was chosen for [s].
 inline constexpr double kTick = 0.001;
+/// Ticks at which auto_stiff_mask picks this same mask, so this header serves an observer
+/// at any tick in [kTickMin, kTickMax] (quarter octaves from kTick, out to 2^±10 × kTick) [s].
+inline constexpr double kTickMin = 9.7656250000000002e-07;
+inline constexpr double kTickMax = 1.024;
 
 /// Capacity: 4 nodes, 2 shafts, 12 elements, 4 channels, 4 inputs (3 used), 21 parameters, 4 states (0 stiff nodes quasi-steady), 4 unknowns.
 using Cap = circuit::Capacity<4, 2, 12, 4, 4, 21, 4, 4>;

@@ -15,6 +15,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Observer tick the stiff mask was chosen for [s].
 inline constexpr double kTick = 0.0050000000000000001;
+/// Ticks at which auto_stiff_mask picks this same mask, so this header serves an observer
+/// at any tick in [kTickMin, kTickMax] (quarter octaves from kTick, out to 2^±10 × kTick) [s].
+inline constexpr double kTickMin = 4.8828125000000001e-06;
+inline constexpr double kTickMax = 4.3053896460990186;
 
 /// Capacity: 4 nodes, 1 shafts, 8 elements, 4 channels, 2 inputs (2 used), 20 parameters, 4 states (0 stiff nodes quasi-steady), 4 unknowns.
 using Cap = circuit::Capacity<4, 1, 8, 4, 2, 20, 4, 4>;

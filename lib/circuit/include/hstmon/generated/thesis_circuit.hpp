@@ -15,6 +15,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Observer tick the stiff mask was chosen for [s].
 inline constexpr double kTick = 0.001;
+/// Ticks at which auto_stiff_mask picks this same mask, so this header serves an observer
+/// at any tick in [kTickMin, kTickMax] (quarter octaves from kTick, out to 2^±10 × kTick) [s].
+inline constexpr double kTickMin = 0.00035355339059327381;
+inline constexpr double kTickMax = 0.022627416997969524;
 
 /// Capacity: 7 nodes, 1 shafts, 10 elements, 4 channels, 4 inputs (4 used), 15 parameters, 2 states (2 stiff nodes quasi-steady), 4 unknowns.
 using Cap = circuit::Capacity<7, 1, 10, 4, 4, 15, 2, 4>;
