@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_circuit_identify.hpp"
@@ -771,12 +772,13 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--min-settings", args->min_settings,
                   "fewest PRV settings (loads) accepted (default 3; with --circuit: distinct held input settings, "
                   "default what the fit needs)");
-  cmd->add_option("--noise-pressure", args->noise_pressure,
-                  "pressure noise σ [Pa] for the weights (default: from the window scatter; with --circuit the "
-                  "sensors' noise)");
-  cmd->add_option("--noise-speed", args->noise_speed,
-                  "speed noise σ [rad/s] for the weights (default: from the window scatter; with --circuit the "
-                  "sensors' noise)");
+  for (const auto& [name, sigma, what] :
+       {std::tuple{"--noise-pressure", &args->noise_pressure, "pressure noise σ [Pa]"},
+        std::tuple{"--noise-speed", &args->noise_speed, "speed noise σ [rad/s]"}}) {
+    cmd->add_option(
+        name, *sigma,
+        std::string(what) + " for the weights (default: from the window scatter; with --circuit the sensors' noise)");
+  }
   cmd->add_option("--paper", args->paper,
                   "paper-rig table (kind,label,p,q): pump curve and DCV/PRV port areas; with --circuit also beside "
                   "the circuit's compensated pump and its orifices named dcv/prv");

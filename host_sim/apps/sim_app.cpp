@@ -12,6 +12,7 @@
 ///              --circuit FILE [--params FILE] [--step INPUT=VALUE@T ...] [--start rest|steady]
 ///              [--inputs LOG [--inputs-hold linear|step] [--compare]]
 ///              [--duration S] [--rate HZ] [--seed N] [--no-noise | --ideal] [--out FILE.csv]
+///              [--units bar|Pa] [--rpm] [--list]
 ///              [--lag MS] [--quant BAR | --adc-bits N] [--param-error F --machine-seed N]
 
 #include <CLI/CLI.hpp>
@@ -191,9 +192,11 @@ int main(int argc, char** argv) {
   app.add_option("--out", o.out, "output CSV file, - for stdout");
   app.add_flag("--no-noise", o.no_noise, "no sensor noise (lag and ADC kept)");
   app.add_flag("--ideal", o.ideal, "ideal sensors: the reference solution itself");
-  app.add_option("--units", o.units, "pressure unit: bar | Pa")->check(CLI::IsMember({"bar", "Pa"}));
-  app.add_flag("--rpm", o.rpm, "speed in rpm (default rad/s)");
-  app.add_flag("--list", o.list, "list scenarios and presets, then exit");
+  app.add_option("--units", o.units, "pressure unit: bar | Pa (with --circuit default: the circuit file's)")
+      ->check(CLI::IsMember({"bar", "Pa"}));
+  app.add_flag("--rpm", o.rpm, "speed in rpm (default rad/s; with --circuit the circuit file's unit)");
+  app.add_flag("--list", o.list,
+               "list scenarios and presets, then exit; with --circuit its inputs, parameters and sensors");
   app.add_option("--lag", o.lag_ms, "transducer time constant of every channel [ms], 0 = none (default: the preset's)")
       ->check(hstmon::cli::non_negative_number());
   app.add_option("--quant", o.quant_bar, "pressure ADC step [bar], 0 = none (default: the preset's)")
@@ -228,7 +231,7 @@ int main(int argc, char** argv) {
                  "simulate this circuit file (docs/circuits.md) instead of a scenario: full equations, its sensors' "
                  "noise and range; --duration (default 10 s), --rate (default 100 Hz), --seed, --out, --start "
                  "(default steady), --no-noise, --ideal, --lag, --quant, --adc-bits, --param-error, --machine-seed, "
-                 "--params, --step, --fault, --inputs");
+                 "--units, --rpm, --list, --params, --step, --fault, --inputs");
   app.add_option("--params", o.circuit_params,
                  "with --circuit: its parameter file (default: <stem>.params.json beside it, else the file's values)");
   app.add_option("--step", o.steps, "with --circuit: input step INPUT=VALUE@T, e.g. throttle=0.7@5 or \"A_prv=2.5 mm2@5\" (repeatable; a pressure, speed, flow, displacement, area or volume needs its unit)");
@@ -266,14 +269,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!o.circuit.empty()) {
-    // A circuit file names its own sensors, units and parameters: the thesis rig's scenarios,
-    // sensor presets and log units are the built-in thesis model's.
-    for (const char* opt : {"--scenario", "--model", "--preset", "--units", "--rpm", "--supply-on", "--cycle", "--load",
-                            "--load-period", "--load-range", "--load-seed", "--blockage", "--list"}) {
+    // A circuit file names its own inputs, sensors and parameters: the thesis rig's scenarios
+    // and sensor presets are the built-in thesis model's.
+    for (const char* opt : {"--scenario", "--model", "--preset", "--supply-on", "--cycle", "--load", "--load-period",
+                            "--load-range", "--load-seed", "--blockage"}) {
       if (app.count(opt) > 0) {
         std::cerr << "hstmon-sim: " << opt
                   << " belongs to the built-in thesis scenarios; with --circuit use --step, --fault or --inputs "
-                     "(the log's units are the circuit file's)\n";
+                     "(--list names what they take)\n";
         return 1;
       }
     }
@@ -297,6 +300,9 @@ int main(int argc, char** argv) {
     c.inputs = o.circuit_inputs;
     c.inputs_hold = o.inputs_hold;
     c.compare = o.compare;
+    if (app.count("--units") > 0) c.pressure_unit = o.units;
+    c.rpm = o.rpm;
+    c.list = o.list;
     return hstmon::sim_app::run_circuit_sim(c);
   }
   try {

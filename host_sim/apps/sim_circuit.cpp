@@ -13,6 +13,7 @@
 #include "hstmon_circuit/circuit_sim.hpp"
 #include "hstmon_circuit/logged_run.hpp"
 #include "hstmon_circuit/machine_spread.hpp"
+#include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/number_text.hpp"
 #include "hstmon_sensors/sensor_presets.hpp"  // kPaPerBar
 #include "sim_compare.hpp"
@@ -50,6 +51,45 @@ bool parse_steps(const std::vector<std::string>& specs, Parse parse, const host:
   return true;
 }
 
+// The log's units: pressure and speed columns in the units asked for (--units, --rpm).
+void override_units(const CircuitSimArgs& a, host::CircuitFile& f) {
+  const auto unit_for = [&a](host::CircuitQuantity q, std::string& unit) {
+    if (q == host::CircuitQuantity::kPressure && !a.pressure_unit.empty()) unit = a.pressure_unit;
+    if (q == host::CircuitQuantity::kSpeed && a.rpm) unit = "rpm";
+  };
+  for (auto& in : f.inputs) unit_for(in.quantity, in.unit);
+  for (auto& s : f.sensors) unit_for(s.quantity, s.unit);
+}
+
+// A value with its SI unit.
+std::string si_value(double v, host::CircuitQuantity q) {
+  return host::number_text(v) + " " + host::circuit_si_unit(q);
+}
+
+// --list: the names --step, --fault and the log's columns take, with their units and values.
+void print_circuit_list(const circuit_tools::LoadedCircuit& c) {
+  const host::CircuitFile& f = c.file;
+  std::cout << "circuit " << f.name << " (" << f.path << ")\n\ninputs (--step INPUT=VALUE@T; log columns):\n";
+  for (std::size_t i = 0; i < f.inputs.size(); ++i) {
+    const auto& in = f.inputs[i];
+    std::cout << "  " << in.name << "  " << host::circuit_quantity_name(in.quantity) << ", column " << in.column
+              << (in.unit.empty() ? "" : " [" + in.unit + "]") << ", nominal "
+              << si_value(c.values.inputs.v[static_cast<int>(i)], in.quantity) << '\n';
+  }
+  std::cout << "\nparameters (--fault PARAM=FACTOR@T):\n";
+  for (std::size_t i = 0; i < f.params.size(); ++i) {
+    if (f.params[i].literal) continue;
+    std::cout << "  " << f.params[i].name << "  "
+              << si_value(c.values.params.v[static_cast<int>(i)], f.params[i].quantity)
+              << (f.params[i].description.empty() ? "" : "  (" + f.params[i].description + ")") << '\n';
+  }
+  std::cout << "\nsensors (log columns):\n";
+  for (const auto& s : f.sensors) {
+    std::cout << "  " << s.name << "  " << host::circuit_quantity_name(s.quantity) << ", column " << s.column
+              << (s.unit.empty() ? "" : " [" + s.unit + "]") << ", noise σ " << si_value(s.noise, s.quantity) << '\n';
+  }
+}
+
 }  // namespace
 
 int run_circuit_sim(const CircuitSimArgs& a) {
@@ -57,6 +97,10 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   if (auto err = circuit_tools::load_circuit(a.circuit, a.params, c)) {
     std::cerr << err->to_string() << '\n';
     return 2;
+  }
+  if (a.list) {
+    print_circuit_list(c);
+    return 0;
   }
   circuit_tools::CircuitSimOptions o;
   std::string profile_note;
@@ -130,7 +174,9 @@ int run_circuit_sim(const CircuitSimArgs& a) {
   }
   for (const std::string& s : a.steps) comments.push_back("step " + s);
   for (const std::string& s : a.faults) comments.push_back("fault " + s);
-  const std::string text = circuit_tools::circuit_log_text(c.file, log, comments);
+  host::CircuitFile written = c.file;
+  override_units(a, written);
+  const std::string text = circuit_tools::circuit_log_text(written, log, comments);
   if (a.out == "-") {
     std::cout << text;
     std::cout.flush();

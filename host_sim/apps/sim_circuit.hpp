@@ -29,6 +29,9 @@ struct CircuitSimArgs {
   std::string inputs;               ///< a log whose input columns drive the run ("" = none; logged_run.hpp)
   std::string inputs_hold = "linear";  ///< "linear" | "step": the logged inputs between rows (input_profile.hpp)
   bool compare = false;             ///< with inputs: the residual measured − simulated per sensor channel
+  std::string pressure_unit;        ///< "bar" | "Pa": pressure columns in this unit ("" = the circuit file's)
+  bool rpm = false;                 ///< speed columns in rpm (else the circuit file's unit)
+  bool list = false;                ///< list what --step, --fault and the log name, then exit
 };
 
 /// Runs it. @return 0, 1 on a bad option, 2 on a bad circuit/parameter/input log (message

@@ -352,6 +352,13 @@ TEST(CircuitCli, IdentifyAndGapWriteAReportThatRedrawsFromItsFolder) {
 // the operating points, --noise-pressure sets the weights, --header writes the circuit
 // at the fitted values; gap's --effects picks candidates by name or kind. The options that
 // mean nothing for a circuit are refused with the reason and what to run instead.
+// `command` (stderr with stdout) exits with `code` and says `says`.
+void expect_error(const std::string& command, int code, const std::string& says) {
+  const CliRun r = run(command + " 2>&1");
+  EXPECT_EQ(r.exit_code, code) << command << "\n" << r.out;
+  EXPECT_NE(r.out.find(says), std::string::npos) << command << "\n" << r.out;
+}
+
 TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
   const std::string v = std::string(HSTMON_SOURCE_DIR) + "/tests/data/validation_circuits/";
   const std::string ident = std::string(HSTMON_CLI) + " identify --circuit " + v + "circuit.json --fit Dm " + v +
@@ -366,14 +373,10 @@ TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
   EXPECT_NE(text.find("namespace hstmon::generated::hstmon_fitted_"), std::string::npos);
   EXPECT_NE(text.find("hstmon identify --circuit"), std::string::npos) << "the header says where its values came from";
   std::filesystem::remove(header);
-  r = run(ident + " --min-settings 50 2>&1");
-  EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find("fewer than the 50 asked for (--min-settings)"), std::string::npos) << r.out;
+  expect_error(ident + " --min-settings 50", 2, "fewer than the 50 asked for (--min-settings)");
   // Every input is logged: the flag asks which one sets the load (a data condition, not a
   // refusal of the option; test_ident_circuit fits per-window inputs).
-  r = run(ident + " --setting-per-window 2>&1");
-  EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find("name the one(s) that set the load with --window-input NAME"), std::string::npos) << r.out;
+  expect_error(ident + " --setting-per-window", 2, "name the one(s) that set the load with --window-input NAME");
 
   const std::string gap = std::string(HSTMON_CLI) + " gap --circuit " + v + "circuit.json --fit " + v +
                           "logs/gap_offset_fit.csv.gz --check " + v + "logs/gap_offset_check.csv.gz --json";
@@ -385,12 +388,8 @@ TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"leak(B)", "offset(p_a)", "offset(p_b)", "offset(p_c)", "offset(w_m)"}));
   EXPECT_EQ(j.at("verdict").get<std::string>(), "offset(p_a)");
-  r = run(gap + " --effects 'leak(Q)' 2>&1");
-  EXPECT_EQ(r.exit_code, 1) << r.out;
-  EXPECT_NE(r.out.find("'leak(Q)' is none of"), std::string::npos) << r.out;
-  r = run(gap + " --max-step 1e-4 2>&1");
-  EXPECT_EQ(r.exit_code, 1) << r.out;
-  EXPECT_NE(r.out.find("simulates nothing"), std::string::npos) << r.out;
+  expect_error(gap + " --effects 'leak(Q)'", 1, "'leak(Q)' is none of");
+  expect_error(gap + " --max-step 1e-4", 1, "simulates nothing");
 }
 
 // hstmon-sim --inputs re-runs a logged profile with ramps: the independent simulator's

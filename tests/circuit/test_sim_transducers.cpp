@@ -147,4 +147,26 @@ TEST(SimTransducersCli, ThesisScenarioOptionsAreRefusedWithWhatToUseInstead) {
       << r.out;
 }
 
+// --units and --rpm choose the log's units on a circuit too; the replay reads them back.
+TEST(SimTransducersCli, UnitsAndRpmChooseTheLogsUnits) {
+  const hstmon_test::CliRun r =
+      hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --duration 0.05 --units Pa --rpm --out - 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("t[s],a_dcv[mm2],a_prv[mm2],p_s[Pa],p_mi[Pa],p_pp[Pa],w_m[rpm]"), std::string::npos) << r.out;
+  const hstmon_test::CliRun bar =
+      hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --duration 0.05 --units bar --out - 2>&1");
+  ASSERT_EQ(bar.exit_code, 0) << bar.out;
+  EXPECT_NE(bar.out.find(",p_s[bar],"), std::string::npos) << bar.out;
+}
+
+// --list names the inputs, parameters and sensors --step, --fault and a log take.
+TEST(SimTransducersCli, ListNamesWhatACircuitTakes) {
+  const hstmon_test::CliRun r = hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --list 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const char* want : {"A_prv  area, column a_prv [mm2], nominal 3.525e-06 m2", "Rmlkg  6e+11 Pa*s/m3",
+                           "w_m  speed, column w_m [rpm], noise σ"}) {
+    EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
+  }
+}
+
 }  // namespace
