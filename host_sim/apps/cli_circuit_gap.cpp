@@ -95,6 +95,7 @@ int run_circuit_gap(const CircuitGapArgs& a) {
   }
   gap::CircuitGapOptions o;
   o.effects = a.effects;
+  o.refit_nominal = a.refit_nominal;
   std::string effects_error;
   (void)gap::chosen_effects(c, o.effects, effects_error);
   if (!effects_error.empty()) {  // a usage error: said before the logs are read

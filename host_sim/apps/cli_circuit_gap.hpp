@@ -13,6 +13,7 @@ namespace hstmon::cli {
 struct CircuitGapArgs : CircuitCommonArgs {
   std::string fit, check;
   std::vector<std::string> effects;  ///< --effects: candidate names or kinds ("" = all; circuit_gap.hpp)
+  bool refit_nominal = false;        ///< --refit-nominal (CircuitGapOptions::refit_nominal)
 };
 
 /// Runs it and prints the result; errors as file:line:column on stderr.

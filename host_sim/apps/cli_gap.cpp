@@ -88,13 +88,10 @@ int run_gap_command(const GapArgs& a) {
 /// `hstmon gap`: the thesis rig's, or with --circuit the circuit's (cli_circuit_gap.hpp).
 int run_gap_or_circuit_gap(const GapArgs& a, const CLI::App& cmd) {
   if (a.circuit.empty()) return run_gap_command(a);
-  CircuitGapArgs c{{}, a.fit, a.check, a.effects};
+  CircuitGapArgs c{{}, a.fit, a.check, a.effects, a.refit};
   if (!take_circuit_args(
           cmd,
-          {{"--refit-nominal",
-            "each of the circuit's parameters is a candidate of its own (parameter(NAME)); to refit them, run "
-            "`hstmon identify --circuit FILE --fit NAME --out P.json` on the fit log and give --params P.json"},
-           {"--max-step",
+          {{"--max-step",
             "the circuit gap compares steady operating points and simulates nothing, so there is no step to set"}},
           a, c)) {
     return kExitUsage;
@@ -119,7 +116,9 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       "nominal parameter file (default Table 2.2; with --circuit the circuit's, default <stem>.params.json)");
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
   cmd->add_option("--report", args->report, "directory for report.md, report.html (one self-contained page) and PNG plots");
-  cmd->add_flag("--refit-nominal", args->refit, "re-fit kf and Rf + Rbl together with each effect");
+  cmd->add_flag("--refit-nominal", args->refit,
+                "re-fit kf and Rf + Rbl together with each effect; with --circuit every uncertain parameter, each "
+                "move charged against its stated uncertainty");
   cmd->add_option("--effects", args->effects,
                   "restrict the library to these effects (names; with --circuit a candidate's name, e.g. leak(p_b), or "
                   "a kind: leak, friction, torque_loss, offset, parameter)")

@@ -56,10 +56,22 @@ std::vector<double> effect_residuals(const circuit_tools::LoadedCircuit& c, cons
 
 double rms_or_inf(const std::vector<double>& r) { return r.empty() ? std::numeric_limits<double>::infinity() : rms(r); }
 
-// The magnitude a·reference minimising the fit RMS: a scan of log10 a over [−6, 1] by
+// How a candidate's fit residuals are scored: their RMS, or with the nominal parameters
+// refit (CircuitGapOptions::refit_nominal) the allowance's z against the fit log's columns.
+struct Scoring {
+  bool refit = false;
+  std::vector<std::vector<double>> columns;  ///< detail::allowance_columns on the fit log, at the file's values
+  double operator()(const std::vector<double>& r) const {
+    if (r.empty()) return std::numeric_limits<double>::infinity();
+    return refit ? detail::parameter_allowance(r, columns).z : rms(r);
+  }
+};
+
+// The magnitude a·reference minimising the fit score: a scan of log10 a over [−6, 1] by
 // halves, then golden section between the best scan point's neighbours.
-double fit_magnitude(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, const detail::PointSet& points) {
-  auto cost = [&](double lg) { return rms_or_inf(effect_residuals(c, e, e.reference * std::pow(10.0, lg), points)); };
+double fit_magnitude(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e, const detail::PointSet& points,
+                     const Scoring& score) {
+  auto cost = [&](double lg) { return score(effect_residuals(c, e, e.reference * std::pow(10.0, lg), points)); };
   double best_lg = -6.0, best = cost(best_lg);
   for (double lg = -5.5; lg <= 1.0 + 1e-9; lg += 0.5) {
     const double v = cost(lg);
@@ -275,6 +287,39 @@ std::vector<double> channel_means(const std::vector<double>& base, const detail:
   return mean;
 }
 
+// Candidate e fitted on the fit log's points F (base: their residuals at the file's values,
+// mean_fit: per channel [σ]) and judged on the check log's C, scored by `score`.
+CircuitEffectResult evaluate_candidate(const circuit_tools::LoadedCircuit& c, const CircuitEffect& e,
+                                       const detail::PointSet& F, const detail::PointSet& C,
+                                       const std::vector<double>& base, const std::vector<double>& mean_fit,
+                                       const Scoring& score) {
+  CircuitEffectResult er;
+  er.effect = e;
+  if (e.kind == CircuitEffect::Kind::kOffset) {
+    const double m = mean_fit[static_cast<std::size_t>(e.index)];
+    er.magnitude = std::isfinite(m) ? m * F.sigma[static_cast<std::size_t>(e.index)] : 0.0;
+  } else if (e.kind == CircuitEffect::Kind::kParam) {
+    er.magnitude = fit_parameter(c, e, F, base);
+  } else {
+    er.magnitude = fit_magnitude(c, e, F, score);
+  }
+  const std::vector<double> fitted = effect_residuals(c, e, er.magnitude, F);
+  // The check log at the fit's parameter values: the file's, or those refit with the effect.
+  circuit_tools::LoadedCircuit judged = c;
+  if (score.refit && !fitted.empty()) {
+    const detail::Allowance a = detail::parameter_allowance(fitted, score.columns);
+    er.rms_fit = rms(a.after);
+    judged.values.params = detail::moved_params(c, a.delta);
+  } else {
+    er.rms_fit = rms_or_inf(fitted);
+  }
+  const std::vector<double> after = effect_residuals(judged, e, er.magnitude, C);
+  er.rms_check = rms_or_inf(after);
+  er.z_check = after.empty() ? er.rms_check : detail::circuit_allowance(c, C, after).z;
+  er.ok = std::isfinite(er.rms_fit) && std::isfinite(er.rms_check);
+  return er;
+}
+
 constexpr double kWithin = 2.0;  // z at or below: within noise and parameter uncertainty
 
 // Verdict: no gap when both logs lie within noise and parameter uncertainty; an effect when
@@ -386,24 +431,21 @@ CircuitGapResult circuit_gap(const circuit_tools::LoadedCircuit& c, const circui
   r.mean_fit = channel_means(base, F, channels);
   for (std::size_t ch = 0; ch < channels; ++ch) r.channels.push_back(c.file.sensors[ch].name);
 
-  for (const CircuitEffect& e : candidates) {
-    CircuitEffectResult er;
-    er.effect = e;
-    if (e.kind == CircuitEffect::Kind::kOffset) {
-      const double m = r.mean_fit[static_cast<std::size_t>(e.index)];
-      er.magnitude = std::isfinite(m) ? m * F.sigma[static_cast<std::size_t>(e.index)] : 0.0;
-    } else if (e.kind == CircuitEffect::Kind::kParam) {
-      er.magnitude = fit_parameter(c, e, F, base);
-    } else {
-      er.magnitude = fit_magnitude(c, e, F);
-    }
-    er.rms_fit = rms_or_inf(effect_residuals(c, e, er.magnitude, F));
-    const std::vector<double> after = effect_residuals(c, e, er.magnitude, C);
-    er.rms_check = rms_or_inf(after);
-    er.z_check = after.empty() ? er.rms_check : detail::circuit_allowance(c, C, after).z;
-    er.ok = std::isfinite(er.rms_fit) && std::isfinite(er.rms_check);
-    r.ranked.push_back(er);
+  Scoring score;
+  if (o.refit_nominal) {
+    score = {true, detail::allowance_columns(c, F, base)};
+    // Without an effect: the parameters alone refit, the check log at their values.
+    const detail::Allowance a = detail::parameter_allowance(base, score.columns);
+    r.rms_fit = rms(a.after);
+    std::vector<double> moved_check;
+    r.rms_check = detail::point_residuals(c, detail::moved_params(c, a.delta), C, moved_check) ? rms(moved_check)
+                                                                                               : r.rms_check;
+    r.notes.push_back("--refit-nominal: each candidate fitted together with the " +
+                      std::to_string(score.columns.size()) +
+                      " uncertain parameters, each move charged against its stated uncertainty; the check log judged "
+                      "at the fit log's values");
   }
+  for (const CircuitEffect& e : candidates) r.ranked.push_back(evaluate_candidate(c, e, F, C, base, r.mean_fit, score));
   std::stable_sort(r.ranked.begin(), r.ranked.end(), [](const CircuitEffectResult& a, const CircuitEffectResult& b) {
     return a.ok != b.ok ? a.ok : a.rms_check < b.rms_check;
   });

@@ -77,7 +77,8 @@ std::vector<std::pair<int, double>> uncertain_params(const circuit_tools::Loaded
   return out;
 }
 
-Allowance circuit_allowance(const circuit_tools::LoadedCircuit& c, const PointSet& s, const std::vector<double>& r) {
+std::vector<std::vector<double>> allowance_columns(const circuit_tools::LoadedCircuit& c, const PointSet& s,
+                                                   const std::vector<double>& r) {
   std::vector<std::vector<double>> J;
   for (const auto& [k, e] : uncertain_params(c)) {
     auto p = c.values.params;
@@ -91,7 +92,21 @@ Allowance circuit_allowance(const circuit_tools::LoadedCircuit& c, const PointSe
     for (std::size_t i = 0; i < r.size(); ++i) rk[i] -= r[i];
     J.push_back(std::move(rk));
   }
-  return parameter_allowance(r, J);
+  return J;
+}
+
+Allowance circuit_allowance(const circuit_tools::LoadedCircuit& c, const PointSet& s, const std::vector<double>& r) {
+  return parameter_allowance(r, allowance_columns(c, s, r));
+}
+
+host::HostCircuitModel::Params moved_params(const circuit_tools::LoadedCircuit& c, const std::vector<double>& delta) {
+  host::HostCircuitModel::Params p = c.values.params;
+  std::size_t j = 0;
+  for (const auto& [k, e] : uncertain_params(c)) {
+    if (j < delta.size()) p.v[k] *= 1.0 + e * delta[j];
+    ++j;
+  }
+  return p;
 }
 
 std::string circuit_evidence(const std::string& which, const PointSet& s) {

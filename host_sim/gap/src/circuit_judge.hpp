@@ -33,8 +33,18 @@ bool point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCirc
 /// The parameters c holds uncertain (index, relative uncertainty ε > 0).
 std::vector<std::pair<int, double>> uncertain_params(const circuit_tools::LoadedCircuit& c);
 
+/// The columns parameter_allowance weighs r against: per uncertain parameter (in
+/// uncertain_params order), the change of r under +ε of it [noise units]; zeros where the
+/// move leaves some point without a steady state.
+std::vector<std::vector<double>> allowance_columns(const circuit_tools::LoadedCircuit& c, const PointSet& s,
+                                                   const std::vector<double>& r);
+
 /// The allowance of residuals r (point_residuals at c's values) for c's uncertain parameters.
 Allowance circuit_allowance(const circuit_tools::LoadedCircuit& c, const PointSet& s, const std::vector<double>& r);
+
+/// c's parameter values moved by δ (Allowance::delta: per uncertain parameter, in units of
+/// its ε): p_k·(1 + ε_k·δ_k).
+host::HostCircuitModel::Params moved_params(const circuit_tools::LoadedCircuit& c, const std::vector<double>& delta);
 
 /// What the log's points lack for a verdict (evidence.hpp), or "".
 std::string circuit_evidence(const std::string& which, const PointSet& s);

@@ -96,6 +96,10 @@ struct CircuitGapOptions {
   /// The candidates tried: each a candidate's name ("leak(p_b)") or a kind (leak, friction,
   /// torque_loss, offset, parameter); empty = all of them.
   std::vector<std::string> effects;
+  /// Each candidate fitted together with the circuit's uncertain parameters, each move
+  /// charged against its stated uncertainty (the allowance's δ*, param_allowance.hpp); the
+  /// check log is then judged at the fit log's parameter values (`--refit-nominal`).
+  bool refit_nominal = false;
 };
 
 /// The candidates of c that `effects` names (CircuitGapOptions::effects), in c's order.
