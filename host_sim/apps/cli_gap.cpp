@@ -115,7 +115,9 @@ void add_gap_command(CLI::App& app, int& exit_code) {
       *cmd, args->io,
       "nominal parameter file (default Table 2.2; with --circuit the circuit's, default <stem>.params.json)");
   cmd->add_flag("--json", args->json, "print one JSON object instead of the human report");
-  cmd->add_option("--report", args->report, "directory for report.md, report.html (one self-contained page) and PNG plots");
+  cmd->add_option(
+      "--report", args->report,
+      "directory for report.md, report.html (one self-contained page) and the plots (PNG; with --circuit figure.svg)");
   cmd->add_flag("--refit-nominal", args->refit,
                 "re-fit kf and Rf + Rbl together with each effect; with --circuit every uncertain parameter, each "
                 "move charged against its stated uncertainty");
@@ -123,7 +125,10 @@ void add_gap_command(CLI::App& app, int& exit_code) {
                   "restrict the library to these effects (names; with --circuit a candidate's name, e.g. leak(p_b), or "
                   "a kind: leak, friction, torque_loss, offset, parameter)")
       ->delimiter(',');
-  cmd->add_option("--max-step", args->max_step, "largest simulator step [s]")->capture_default_str();
+  cmd->add_option("--max-step", args->max_step,
+                  "largest simulator step [s] (the thesis rig's tool; the circuit gap compares steady operating "
+                  "points and simulates nothing)")
+      ->capture_default_str();
   cmd->add_option("--thesis-model", args->thesis_model,
                   "the thesis rig's equations: specialised (hand-written, the default: about 7x faster) or engine "
                   "(thesis.json compiled); docs/gap.md")
