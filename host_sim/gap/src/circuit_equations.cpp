@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hstmon_ident/input_hold.hpp"
 #include "local_fit.hpp"
 
 namespace hstmon::gap {
@@ -72,19 +73,15 @@ void row_inputs(const circuit_tools::LoadedCircuit& c, const circuit_tools::Circ
 
 // Input setting id per row: a logged input moves when it changes by more than 0.5 % of its
 // value and more than its floor — 500 Pa for a pressure (the thesis rig's rule) and 8 of
-// its own successive-difference σ (a measured input scatters on every row).
+// its own successive-difference σ (input_hold.hpp, the operating points' rule).
 std::vector<int> input_segments(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& log) {
   const std::size_t n = log.rows();
   std::vector<double> floor(log.inputs.size(), 0.0);
   for (std::size_t i = 0; i < log.inputs.size() && i < c.file.inputs.size(); ++i) {
     const auto& x = log.inputs[i];
-    if (x.size() != n || n < 2) continue;
-    std::vector<double> d;
-    for (std::size_t k = 1; k < n; ++k) d.push_back(std::fabs(x[k] - x[k - 1]));
-    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-    const double white = 1.4826 * d[d.size() / 2] / std::sqrt(2.0);
+    if (x.size() != n) continue;
     const bool pressure = c.file.inputs[i].quantity == host::CircuitQuantity::kPressure;
-    floor[i] = std::max(pressure ? 500.0 : 0.0, 8.0 * white);
+    floor[i] = std::max(pressure ? 500.0 : 0.0, ident::kInputNoise * ident::column_noise(x));
   }
   std::vector<int> seg(n, 0);
   for (std::size_t k = 1; k < n; ++k) {
@@ -93,7 +90,7 @@ std::vector<int> input_segments(const circuit_tools::LoadedCircuit& c, const cir
       const auto& x = log.inputs[i];
       if (x.size() != n) continue;
       const double a = x[k], b = x[k - 1];
-      moved = std::fabs(a - b) > std::max(5e-3 * std::max(std::fabs(a), std::fabs(b)), floor[i]);
+      moved = std::fabs(a - b) > std::max(ident::kInputRelative * std::max(std::fabs(a), std::fabs(b)), floor[i]);
     }
     seg[k] = seg[k - 1] + (moved ? 1 : 0);
   }

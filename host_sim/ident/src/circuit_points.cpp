@@ -12,6 +12,7 @@
 #include "hstmon_host/circuit_units.hpp"
 #include "hstmon_host/number_text.hpp"
 #include "hstmon_ident/circuit_fit.hpp"
+#include "hstmon_ident/input_hold.hpp"
 
 namespace hstmon::ident {
 
@@ -27,22 +28,9 @@ std::string sensor_text(const circuit_tools::LoadedCircuit& c, const std::string
   return host::number_text(si, 3) + " (SI)";
 }
 
-constexpr double kInputRelative = 0.005;  // an input within 0.5 % of its value holds…
-constexpr double kInputNoise = 8.0;       // … or within 8 of its own noise σ
 constexpr double kStepZ = 8.0;            // an output step, in standard errors of the block means
 constexpr double kBlock = 0.05;           // block length for the step search [s]
 constexpr double kStepSigmas = 3.0;       // … and in the sensor's σ (a drift of noise is not an event)
-
-// σ of a column's sample-to-sample noise: the median successive difference, robust to its
-// steps and ramps (1.4826 · median|Δ| / √2); 0 for a column held exactly.
-double column_noise(const std::vector<double>& v) {
-  if (v.size() < 3) return 0.0;
-  std::vector<double> d;
-  d.reserve(v.size() - 1);
-  for (std::size_t k = 1; k < v.size(); ++k) d.push_back(std::fabs(v[k] - v[k - 1]));
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return 1.4826 * d[d.size() / 2] / std::sqrt(2.0);
-}
 
 struct Stretch {
   std::size_t a = 0, b = 0;  // rows [a, b)
@@ -271,6 +259,15 @@ std::size_t distinct_settings(const std::vector<CircuitOperatingPoint>& points) 
     if (!known) seen.push_back(&p.inputs);
   }
   return seen.size();
+}
+
+double column_noise(const std::vector<double>& v) {
+  if (v.size() < 3) return 0.0;
+  std::vector<double> d;
+  d.reserve(v.size() - 1);
+  for (std::size_t k = 1; k < v.size(); ++k) d.push_back(std::fabs(v[k] - v[k - 1]));
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return 1.4826 * d[d.size() / 2] / std::sqrt(2.0);
 }
 
 }  // namespace hstmon::ident
