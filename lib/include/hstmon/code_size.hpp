@@ -45,6 +45,16 @@
 #endif
 #endif
 
+/// Out of line and cold (GCC, Clang): a path taken rarely enough that the usual tick's
+/// code should neither inline it nor lay it out beside the hot path.
+#ifndef HSTMON_COLD
+#if defined(__GNUC__)
+#define HSTMON_COLD __attribute__((noinline, cold))
+#else
+#define HSTMON_COLD
+#endif
+#endif
+
 /// Full unrolling of a loop whose trip count is a compile-time constant (GCC; elsewhere the
 /// compiler's choice): the per-channel and per-state loops of a tick, whose overhead is a
 /// large share of it on the Cortex-M4F. Override with -DHSTMON_UNROLL=.

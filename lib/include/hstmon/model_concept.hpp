@@ -21,7 +21,8 @@
 ///    it is ≤ rho_max), alg_ok = the model's algebraic solve contracts at x.
 /// It may also provide (model_detail::HasStateCount, HasStateEnvelope):
 ///  - int n_states(): the states in use, when its State is padded to a larger capacity
-///    (the circuit interpreter);
+///    (the circuit interpreter), and static constexpr int kUsedStates where that count is
+///    known at compile time (a compiled circuit; HasUsedStates);
 ///  - State state_envelope(): each state's largest plausible magnitude [state units].
 /// Nothing here allocates or runs code: it is checked at compile time only.
 
@@ -78,6 +79,13 @@ template <typename M, typename = void>
 struct HasStateCount : std::false_type {};
 template <typename M>
 struct HasStateCount<M, std::void_t<decltype(std::declval<const M&>().n_states())>> : std::true_type {};
+
+/// True when M states its states in use at compile time (static constexpr int
+/// kUsedStates: a compiled circuit, whose State may still be padded to a capacity).
+template <typename M, typename = void>
+struct HasUsedStates : std::false_type {};
+template <typename M>
+struct HasUsedStates<M, std::void_t<decltype(M::kUsedStates)>> : std::true_type {};
 
 /// True when M offers `State state_envelope() const` (optional; see the file comment).
 template <typename M, typename = void>

@@ -123,6 +123,16 @@ struct HasJacobian<M, std::void_t<decltype(std::declval<const M&>().jacobian(
                           std::declval<const typename M::State&>(), std::declval<typename M::StateMatrix&>()))>>
     : std::true_type {};
 
+/// True when M's tick_derivative takes a sixth argument rho_stiff (the radius above which
+/// the observer only needs to know the radius is above it: circuit models).
+template <typename M, typename = void>
+struct HasStiffCut : std::false_type {};
+template <typename M>
+struct HasStiffCut<M, std::void_t<decltype(std::declval<const M&>().tick_derivative(
+                          std::declval<const typename M::State&>(), typename M::Scalar(),
+                          std::declval<typename M::Output&>(), std::declval<typename M::Scalar&>(),
+                          std::declval<bool&>(), typename M::Scalar()))>> : std::true_type {};
+
 /// The linearly implicit ticks' settings (Observer::Config's), and nothing for a model
 /// without a Jacobian (an empty base: no bytes).
 template <typename T, bool>
@@ -175,6 +185,9 @@ class Observer
   /// the build has not compiled that out (HSTMON_IMPLICIT_TICKS=0: about 0.8 KiB of flash on
   /// a Cortex-M4F, for a circuit whose stiff ticks are start-ups that RK4 substeps cover).
   static constexpr bool kImplicit = HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value;
+  /// True when stiff ticks skip refining the radius bound (kImplicit and a model whose
+  /// tick_derivative takes rho_stiff).
+  static constexpr bool kStiffCut = kImplicit && observer_detail::HasStiffCut<Model>::value;
   static_assert(ObserverModelParts<Model>::kTypes,
                 "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
   static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
@@ -448,7 +461,7 @@ class Observer
     const State x_before = s_.x;  // finite: every tick ends on a finite state
     T rho;
     bool alg_ok;
-    State k1 = model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok);
+    State k1 = first_derivative(rho, alg_ok);
     flags |= take_residuals(m);
     if (has_gain_ && r_valid_ != 0) {
       s_.add(cfg_.gain * r_);  // masked channels carry r = 0
@@ -467,7 +480,12 @@ class Observer
     if constexpr (kImplicit) this->implicit_last = false;
     if (rho > T(0)) {
       n = substep_count(rho);
-      if (takes_implicit(n) && implicit_step(k1, flags)) return finish_implicit(x_before, flags);
+      if (takes_implicit(n)) {
+        if (implicit_step(k1, flags)) return finish_implicit(x_before, flags);
+        // Explicit after all: the substeps need the full bound where the stiff cut gave a
+        // looser one (the derivative is recomputed, as it would be, and then discarded).
+        if (kStiffCut && rho > stiff_cut()) n = substep_count(full_radius());
+      }
       if (n == 0) {
         n = cfg_.max_substeps;
         flags |= kHealthSubstepsClipped;
@@ -488,6 +506,40 @@ class Observer
     // state_plausible is false for non-finite states too: one test in the usual case.
     if (!model_.state_plausible(s_.x)) flags |= check_state(x_before);
     return finish(flags);
+  }
+
+  /// The tick's first model evaluation: k1 = f(s_.x), yhat_, rho and alg_ok; where the
+  /// model takes a stiff cut, radius bounds above stiff_cut() (a tick implicit whatever the
+  /// radius) are not refined (dense.hpp radius_bound).
+  HSTMON_TICK_PART State first_derivative(T& rho, bool& alg_ok) noexcept {
+    if constexpr (kStiffCut) {
+      return model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok, stiff_cut());
+    } else {
+      return model_.tick_derivative(s_.x, rho_one_, yhat_, rho, alg_ok);
+    }
+  }
+
+  /// A radius bound above this needs no refining: the tick is implicit (first_derivative)
+  /// [1/s]: one substep's radius above that at which takes_implicit holds (a margin of
+  /// 1/implicit_above over the rounding of substep_count and of the bound's
+  /// iterations, a few ε); +∞ where ticks are never implicit.
+  /// Computed per tick rather than stored (the observer's size is the C API's storage).
+  T stiff_cut() const noexcept {
+    if constexpr (kImplicit) {
+      return cfg_.implicit_above > 0 ? (static_cast<T>(cfg_.implicit_above) + T(1)) * rho_one_
+                                     : std::numeric_limits<T>::infinity();
+    } else {
+      return std::numeric_limits<T>::infinity();
+    }
+  }
+
+  /// The full radius bound at s_.x (the rare explicit tick after a refused implicit one).
+  HSTMON_COLD T full_radius() noexcept {
+    Output y;
+    T rho;
+    bool ok;
+    (void)model_.tick_derivative(s_.x, rho_one_, y, rho, ok);
+    return rho;
   }
 
   /// r_ = m.y − ŷ and r_valid_ on the channels marked valid and finite; r = 0 elsewhere.

@@ -24,6 +24,8 @@
 #include <cstddef>
 #include <limits>
 
+#include "hstmon/code_size.hpp"  // HSTMON_UNROLL
+#include "hstmon/model_concept.hpp"
 #include "hstmon/rk4.hpp"
 
 namespace hstmon {
@@ -86,15 +88,22 @@ constexpr T fmax_inline(T a, T b) noexcept {
 }
 
 /// LU factorisation with partial pivoting of the leading n×n block of the fixed-size
-/// matrix A in place (L unit lower, U upper), the row order in perm.
+/// matrix A in place (L unit lower, U upper), the row order in perm. n = K where K > 0
+/// (known at compile time: the loops unrolled, on a Cortex-M4F about half the
+/// instructions of run-time loops), else n = m; the same operations in the same order
+/// either way, so the same bits.
 /// @return false if a pivot is zero or not finite (A singular to working precision)
-template <typename Mat, typename Index>
-bool lu_factor(Mat& A, Index (&perm)[Mat::RowsAtCompileTime], int n) noexcept {
+template <int K, typename Mat, typename Index>
+bool lu_factor(Mat& A, Index (&perm)[Mat::RowsAtCompileTime], int m) noexcept {
   using T = typename Mat::Scalar;
+  const int n = K > 0 ? K : m;
+  HSTMON_UNROLL
   for (int i = 0; i < n; ++i) perm[i] = static_cast<Index>(i);
+  HSTMON_UNROLL
   for (int c = 0; c < n; ++c) {
     int p = c;
     T best = std::abs(A(c, c));
+    HSTMON_UNROLL
     for (int r = c + 1; r < n; ++r) {
       const T a = std::abs(A(r, c));
       if (a > best) {
@@ -110,32 +119,111 @@ bool lu_factor(Mat& A, Index (&perm)[Mat::RowsAtCompileTime], int n) noexcept {
       perm[c] = t;
     }
     const T inv = T(1) / A(c, c);
+    HSTMON_UNROLL
     for (int r = c + 1; r < n; ++r) {
       const T l = A(r, c) * inv;
       A(r, c) = l;
+      HSTMON_UNROLL
       for (int k = c + 1; k < n; ++k) A(r, k) -= l * A(c, k);
     }
   }
   return true;
 }
 
-/// Solves L·U·x = P·b on the leading n entries with lu_factor's output; b is overwritten
-/// by x there (entries beyond n are left as they are: the identity's solve).
-template <typename Mat, typename Vec, typename Index>
-void lu_solve(const Mat& LU, const Index (&perm)[Mat::RowsAtCompileTime], Vec& b, int n) noexcept {
+/// Solves L·U·x = P·b on the leading n entries (n as lu_factor's) with lu_factor's
+/// output; b is overwritten by x there (entries beyond n are left as they are: the
+/// identity's solve).
+template <int K, typename Mat, typename Vec, typename Index>
+void lu_solve(const Mat& LU, const Index (&perm)[Mat::RowsAtCompileTime], Vec& b, int m) noexcept {
   using T = typename Mat::Scalar;
+  const int n = K > 0 ? K : m;
   Vec y = b;
+  HSTMON_UNROLL
   for (int i = 0; i < n; ++i) {
     T s = b[perm[i]];
+    HSTMON_UNROLL
     for (int k = 0; k < i; ++k) s -= LU(i, k) * y[k];
     y[i] = s;
   }
+  HSTMON_UNROLL
   for (int i = n - 1; i >= 0; --i) {
     T s = y[i];
+    HSTMON_UNROLL
     for (int k = i + 1; k < n; ++k) s -= LU(i, k) * y[k];
     y[i] = s / LU(i, i);
   }
   b = y;
+}
+
+/// W = I − gh·J over the leading n×n block (n as lu_factor's).
+template <int K, typename Mat>
+void form_w(Mat& W, const Mat& J, typename Mat::Scalar gh, int m) noexcept {
+  using T = typename Mat::Scalar;
+  const int n = K > 0 ? K : m;
+  HSTMON_UNROLL
+  for (int r = 0; r < n; ++r) {
+    HSTMON_UNROLL
+    for (int c = 0; c < n; ++c) W(r, c) = (r == c ? T(1) : T(0)) - gh * J(r, c);
+  }
+}
+
+/// rhs += h·(J·coupled) over the leading n entries (n as lu_factor's), row by row in
+/// index order, not Eigen's blocked product: a model padded to a larger capacity (zeros
+/// beyond its states) then gets the same bits.
+template <int K, typename Mat, typename Vec>
+void add_coupling(Vec& rhs, const Mat& J, const Vec& coupled, typename Mat::Scalar h, int m) noexcept {
+  using T = typename Mat::Scalar;
+  const int n = K > 0 ? K : m;
+  HSTMON_UNROLL
+  for (int r = 0; r < n; ++r) {
+    T acc = T(0);
+    HSTMON_UNROLL
+    for (int c = 0; c < n; ++c) acc += J(r, c) * coupled[c];
+    rhs[r] += h * acc;
+  }
+}
+
+/// One ROS34PW2 increment (rosenbrock_increment) over the leading m states; K > 0: m = K
+/// known at compile time. Out of line: its stages and LU (over 0.5 KiB of frame on a
+/// Cortex-M4F) stay off the stack of a tick that is not implicit.
+template <int K, typename Model, typename StateMatrix>
+HSTMON_NOINLINE bool increment(const Model& model, const typename Model::State& x, typename Model::Scalar h,
+               const typename Model::State& f0, const StateMatrix& J, int m,
+               typename Model::State& step, typename Model::State& error) noexcept {
+  using T = typename Model::Scalar;
+  using State = typename Model::State;
+  using M = Ros34pw2;
+  constexpr int n = State::RowsAtCompileTime;
+  StateMatrix W;
+  const T gh = T(M::kGamma) * h;
+  form_w<K>(W, J, gh, m);
+  unsigned char perm[static_cast<std::size_t>(n)];
+  if (!lu_factor<K>(W, perm, m)) return false;
+
+  static constexpr Ros34pw2As<T> kC{};
+  State k[M::kStages];
+  step.setZero();
+  error.setZero();
+  for (int i = 0; i < M::kStages; ++i) {
+    State arg = x;
+    State coupled = State::Zero();
+    for (int j = 0; j < i; ++j) {
+      if (kC.alpha[i][j] != T(0)) arg += kC.alpha[i][j] * k[j];  // α_ij ≠ 0 exactly where T(α_ij) ≠ 0
+      coupled += kC.gamma_ij[i][j] * k[j];
+    }
+    State rhs = h * (i == 0 ? f0 : model.derivative(arg));
+    if (i > 0) add_coupling<K>(rhs, J, coupled, h, m);
+    lu_solve<K>(W, perm, rhs, m);
+    k[i] = rhs;
+    step += kC.b[i] * rhs;
+    error += kC.b_err[i] * rhs;
+  }
+  // The embedded solution is not L-stable, so the raw estimate of a component far off its
+  // fast manifold is about half its distance however exact the step is; filtered through
+  // W⁻¹ (Shampine's device, as Radau5 does) such a component's estimate shrinks by
+  // 1/(1 + γhλ) while a slow one's is unchanged to O(h).
+  lu_solve<K>(W, perm, error, m);
+  return true;
 }
 
 }  // namespace rosenbrock_detail
@@ -155,54 +243,23 @@ template <typename Model, typename StateMatrix>
 bool rosenbrock_increment(const Model& model, const typename Model::State& x, typename Model::Scalar h,
                           const typename Model::State& f0, const StateMatrix& J, int used,
                           typename Model::State& step, typename Model::State& error) noexcept {
-  using T = typename Model::Scalar;
-  using State = typename Model::State;
-  using M = Ros34pw2;
-  constexpr int n = State::RowsAtCompileTime;
+  constexpr int n = Model::State::RowsAtCompileTime;
   static_assert(StateMatrix::RowsAtCompileTime == n && StateMatrix::ColsAtCompileTime == n, "J is n x n");
   static_assert(n > 0 && n <= 255, "fixed-size states; pivot indices are bytes");
-
-  const int m = used < 0 || used > n ? n : used;
-  StateMatrix W;
-  const T gh = T(M::kGamma) * h;
-  for (int r = 0; r < m; ++r) {
-    for (int c = 0; c < m; ++c) W(r, c) = (r == c ? T(1) : T(0)) - gh * J(r, c);
+  // The size known at compile time where it is: a compiled circuit's kUsedStates, or every
+  // state of a model that is never padded (no n_states()). Only an interpreter padded to
+  // its capacity takes the run-time size (and only there is that code instantiated).
+  if constexpr (model_detail::HasUsedStates<Model>::value) {
+    static_cast<void>(used);
+    constexpr int k = Model::kUsedStates;
+    return rosenbrock_detail::increment<k>(model, x, h, f0, J, k, step, error);
+  } else if constexpr (!model_detail::HasStateCount<Model>::value) {
+    static_cast<void>(used);
+    return rosenbrock_detail::increment<n>(model, x, h, f0, J, n, step, error);
+  } else {
+    if (used < 0 || used >= n) return rosenbrock_detail::increment<n>(model, x, h, f0, J, n, step, error);
+    return rosenbrock_detail::increment<0>(model, x, h, f0, J, used, step, error);
   }
-  unsigned char perm[static_cast<std::size_t>(n)];
-  if (!rosenbrock_detail::lu_factor(W, perm, m)) return false;
-
-  static constexpr rosenbrock_detail::Ros34pw2As<T> kC{};
-  State k[M::kStages];
-  step.setZero();
-  error.setZero();
-  for (int i = 0; i < M::kStages; ++i) {
-    State arg = x;
-    State coupled = State::Zero();
-    for (int j = 0; j < i; ++j) {
-      if (kC.alpha[i][j] != T(0)) arg += kC.alpha[i][j] * k[j];  // α_ij ≠ 0 exactly where T(α_ij) ≠ 0
-      coupled += kC.gamma_ij[i][j] * k[j];
-    }
-    State rhs = h * (i == 0 ? f0 : model.derivative(arg));
-    if (i > 0) {
-      // J·coupled row by row in index order, not Eigen's blocked product: a model padded
-      // to a larger capacity (zeros beyond its states) then gets the same bits.
-      for (int r = 0; r < m; ++r) {
-        T acc = T(0);
-        for (int c = 0; c < m; ++c) acc += J(r, c) * coupled[c];
-        rhs[r] += h * acc;
-      }
-    }
-    rosenbrock_detail::lu_solve(W, perm, rhs, m);
-    k[i] = rhs;
-    step += kC.b[i] * rhs;
-    error += kC.b_err[i] * rhs;
-  }
-  // The embedded solution is not L-stable, so the raw estimate of a component far off its
-  // fast manifold is about half its distance however exact the step is; filtered through
-  // W⁻¹ (Shampine's device, as Radau5 does) such a component's estimate shrinks by
-  // 1/(1 + γhλ) while a slow one's is unchanged to O(h).
-  rosenbrock_detail::lu_solve(W, perm, error, m);
-  return true;
 }
 
 /// What rosenbrock_tick did.
@@ -227,8 +284,9 @@ struct RosenbrockTick {
 /// @param max_level  finest step tick/2^max_level, 0 … 15
 /// @param level      in: the level to start at (the last tick's, say); out: the last one
 /// @param used       the states in use (rosenbrock_increment)
+/// Out of line, as increment: a tick that is not implicit does not carry its frame.
 template <typename Model>
-RosenbrockTick rosenbrock_tick(const Model& model, CompensatedState<typename Model::State>& s,
+HSTMON_NOINLINE RosenbrockTick rosenbrock_tick(const Model& model, CompensatedState<typename Model::State>& s,
                                typename Model::Scalar tick, const typename Model::State& f0,
                                const typename Model::State& scale, typename Model::Scalar rtol, int max_level,
                                int& level, int used = Model::State::RowsAtCompileTime) noexcept {

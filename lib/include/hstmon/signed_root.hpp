@@ -15,6 +15,8 @@
 #include <cmath>
 #include <limits>
 
+#include "hstmon/code_size.hpp"  // HSTMON_COLD
+
 namespace hstmon {
 
 /// Regularised sign(x)·√|x|.
@@ -63,12 +65,6 @@ inline T signed_root(T x, T x_t, T& slope) noexcept {
 
 namespace detail {
 
-#if defined(__GNUC__)
-#define HSTMON_COLD __attribute__((noinline, cold))
-#else
-#define HSTMON_COLD
-#endif
-
 /// The laminar branch of signed_square (|y·|y|| < x_t): Newton on the cubic. Kept out of
 /// line so the turbulent fast path, taken at every normal operating point, stays a few
 /// instructions and the loops around it (DCV refinements, RK4 stages) can unroll.
@@ -88,8 +84,6 @@ HSTMON_COLD T signed_square_laminar(T y, T x_t) noexcept {
   }
   return x;
 }
-
-#undef HSTMON_COLD
 
 }  // namespace detail
 

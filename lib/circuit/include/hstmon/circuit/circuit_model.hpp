@@ -245,7 +245,9 @@ class CircuitModel {
   /// @param rho      out: spectral radius of ∂f/∂x [1/s] — exact for up to two states, an
   ///                 upper bound beyond (dense.hpp radius_bound) — or 0 if at most rho_max
   /// @param alg_ok   out: the quasi-steady solve converged and contracts at x by < 0.5
-  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+  /// @param rho_stiff the radius above which only "above" matters (radius_bound) [1/s]
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok,
+                        T rho_stiff = std::numeric_limits<T>::infinity()) const noexcept {
     T z[kExtent<kZ>];
     fill(x, z);
     const bool conv = solve_stiff(z);
@@ -253,7 +255,7 @@ class CircuitModel {
     T jr[kExtent<kStates>][kExtent<kStates>];
     T q = T(0);
     reduced_jacobian(z, jr, q);
-    rho = radius_bound(jr, n_states_, rho_max);
+    rho = radius_bound(jr, n_states_, rho_max, rho_stiff);
     alg_ok = conv && q < T(0.5);
     return rates(z);
   }

@@ -31,6 +31,8 @@
 /// stages in one function with the folded constants — the general tick's arithmetic, so
 /// its results bit for bit (docs/circuits.md, "The usual tick on hosts").
 
+#include <limits>
+
 #include "hstmon/circuit/circuit_model.hpp"
 #include "hstmon/circuit/dense.hpp"
 #include "hstmon/circuit/quasi_steady.hpp"
@@ -53,6 +55,8 @@ class CompiledModel {
   using Output = typename Engine::Output;            ///< the sensor channels [Pa, rad/s or m³/s]
   using StateMatrix = typename Engine::StateMatrix;  ///< ∂f/∂x [1/s in the state units]
   static constexpr int kStates = Engine::kStates;
+  /// The states in use, known at compile time: the kernel's (State is padded to kStates).
+  static constexpr int kUsedStates = Kernel::kN;
   static constexpr int kOutputs = Engine::kOutputs;
   static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
   static_assert(Kernel::kZ == Cap::kNodes + Cap::kShafts, "the kernel's full vector is the capacity's");
@@ -160,7 +164,9 @@ class CompiledModel {
   /// a Newton node's from its balance's last evaluation, at most 8ε (Newton's step test)
   /// and 16ε (the sweep's) relative from z — the interpreter's unknowns_jacobian at z to
   /// rounding, which is all a substep count needs.
-  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok) const noexcept {
+  /// rho_stiff: radius_bound's (the observer's: above it a tick is implicit anyway).
+  State tick_derivative(const State& x, T rho_max, Output& y, T& rho, bool& alg_ok,
+                        T rho_stiff = std::numeric_limits<T>::infinity()) const noexcept {
     T z[kExtent<Kernel::kZ>];
     Kernel::fill(engine_, x, z);
     T G[kExtent<Kernel::kU>][kExtent<Kernel::kU>];  // every row captured; schur assigns its fill-ins
@@ -172,7 +178,7 @@ class CompiledModel {
     T jr[kExtent<kStates>][kExtent<kStates>];
     T q = T(0);
     Kernel::schur(G, inv_mass_, jr, q);
-    rho = radius_bound_fixed<Kernel::kN>(jr, rho_max);
+    rho = radius_bound_fixed<Kernel::kN>(jr, rho_max, rho_stiff);
     alg_ok = conv && q < T(0.5);
     return d;
   }

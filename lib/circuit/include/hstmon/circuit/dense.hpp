@@ -86,8 +86,17 @@ T radius_2x2(T a, T b, T c, T d, T rho_max) noexcept {
 /// is finite or +∞ and ≥ +0 (the NaN test comes first), where the two agree bit for bit,
 /// and newlib's fmaxf/fminf are calls that classify both arguments (on the Cortex-M4F
 /// they were over a quarter of a circuit monitor's usual tick).
+///
+/// rho_stiff (default +∞): a radius above which the caller needs no more than to know it
+/// is above (the observer: a tick it integrates linearly implicit whatever the radius).
+/// Once a lower bound on ρ(|J|) (the bound's limit) exceeds it — the largest |J_ii|: a
+/// nonnegative matrix's radius is at least each diagonal entry, and a stiff node's
+/// self-conductance K·G is one — the bound so far is returned without the remaining power
+/// iterations: still an upper bound on ρ(J), only looser. With rho_stiff = +∞ the bits are
+/// those of the full iteration.
 template <typename T, std::size_t N>
-T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
+T radius_bound(const T (&J)[N][N], int n, T rho_max,
+               T rho_stiff = std::numeric_limits<T>::infinity()) noexcept {
   if (n <= 0) return T(0);
   if (n == 1) {
     const T r = std::fabs(J[0][0]);
@@ -99,6 +108,11 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
   }
   T v[N], w[N];
   for (int i = 0; i < n; ++i) v[i] = T(1);
+  T diag = T(0);
+  for (int i = 0; i < n; ++i) {
+    const T d = std::fabs(J[i][i]);
+    diag = d > diag ? d : diag;
+  }
   T best = std::numeric_limits<T>::infinity();
   for (int it = 0; it < 8; ++it) {
     T bound = T(0), wmax = T(0);
@@ -114,6 +128,7 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
     best = bound < best ? bound : best;
     if (best <= rho_max) return T(0);
     if (!(wmax > T(0))) return T(0);
+    if (diag > rho_stiff) return best;  // stiff anyway: the bound so far
     // Keep v strictly positive (a reducible |J| would zero entries and lose the bound).
     for (int i = 0; i < n; ++i) v[i] = w[i] / wmax + T(1e-3);
   }
@@ -129,12 +144,13 @@ T radius_bound(const T (&J)[N][N], int n, T rho_max) noexcept {
 /// @tparam K  states, 1 ≤ K ≤ N
 /// @param J        the reduced Jacobian [1/s], leading K×K block used
 /// @param rho_max  the radius below which 0 is returned [1/s]
+/// @param rho_stiff radius_bound's [1/s]
 /// @return         the bound [1/s]; 0 when it is at most rho_max; NaN for a non-finite J
 template <int K, typename T, std::size_t N>
-T radius_bound_fixed(const T (&J)[N][N], T rho_max) noexcept {
+T radius_bound_fixed(const T (&J)[N][N], T rho_max, T rho_stiff = std::numeric_limits<T>::infinity()) noexcept {
   static_assert(K >= 1 && static_cast<std::size_t>(K) <= N, "K states within the capacity");
   if constexpr (K <= 2 || K > 8) {
-    return radius_bound(J, K, rho_max);
+    return radius_bound(J, K, rho_max, rho_stiff);
   } else {
     constexpr std::size_t kK = static_cast<std::size_t>(K);  // an array extent
     T a[kK][kK];
@@ -146,6 +162,9 @@ T radius_bound_fixed(const T (&J)[N][N], T rho_max) noexcept {
     T v[kK], w[kK];
     HSTMON_UNROLL
     for (int i = 0; i < K; ++i) v[i] = T(1);
+    T diag = T(0);
+    HSTMON_UNROLL
+    for (int i = 0; i < K; ++i) diag = a[i][i] > diag ? a[i][i] : diag;
     T best = std::numeric_limits<T>::infinity();
     for (int it = 0; it < 8; ++it) {
       T bound = T(0), wmax = T(0);
@@ -158,11 +177,12 @@ T radius_bound_fixed(const T (&J)[N][N], T rho_max) noexcept {
         w[i] = s;
         const T r = s / v[i];
         bound = r > bound ? r : bound;
-        wmax = s > wmax ? s : wmax;
+          wmax = s > wmax ? s : wmax;
       }
-      best = bound < best ? bound : best;
+        best = bound < best ? bound : best;
       if (best <= rho_max) return T(0);
       if (!(wmax > T(0))) return T(0);
+      if (diag > rho_stiff) return best;  // radius_bound's shortcut
       HSTMON_UNROLL
       for (int i = 0; i < K; ++i) v[i] = w[i] / wmax + T(1e-3);
     }
