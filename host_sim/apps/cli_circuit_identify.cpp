@@ -1,5 +1,5 @@
-// `hstmon identify --circuit`: prints the operating points found, the fitted parameters
-// with their standard errors and the residuals before and after, in σ of each sensor.
+// `hstmon identify`: prints the operating points found, the fitted parameters with their
+// standard errors, those held, and the residuals before and after, in σ of each sensor.
 #include "cli_circuit_identify.hpp"
 
 #include <fmt/format.h>
@@ -24,7 +24,7 @@ namespace hstmon::cli {
 namespace {
 
 // The fit as the JSON object's fields (parameters, points with their window inputs, RMS).
-nlohmann::json fit_json(const ident::CircuitFitResult& r) {
+nlohmann::json fit_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult& r) {
   nlohmann::json params = nlohmann::json::array();
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     params.push_back({{"name", r.names[j]},
@@ -54,7 +54,20 @@ nlohmann::json fit_json(const ident::CircuitFitResult& r) {
     }
     points.push_back(jp);
   }
-  nlohmann::json j = {{"parameters", params},     {"points", points},   {"rms_before", r.rms_before},
+  nlohmann::json held = nlohmann::json::array();
+  for (const auto& h : r.held) held.push_back({{"name", h.name}, {"value", h.value}, {"why", h.why}});
+  nlohmann::json correlation = nlohmann::json::array();
+  for (const auto& row : r.correlation) {
+    nlohmann::json jr = nlohmann::json::array();
+    for (double v : row) jr.push_back(number_or_null(v));
+    correlation.push_back(jr);
+  }
+  nlohmann::json agreement = nlohmann::json::array();
+  for (const auto& g : ident::channel_agreement(c, r)) {
+    agreement.push_back({{"channel", g.channel}, {"points", g.points}, {"mean", g.mean}, {"rms", g.rms}});
+  }
+  nlohmann::json j = {{"parameters", params},     {"held", held},       {"correlation", correlation},
+                      {"agreement", agreement},   {"points", points},   {"rms_before", r.rms_before},
                       {"rms_after", r.rms_after}, {"status", r.status}, {"notes", r.notes}};
   if (!r.window_inputs.empty()) j["window_inputs"] = r.window_inputs;
   return j;
@@ -63,7 +76,7 @@ nlohmann::json fit_json(const ident::CircuitFitResult& r) {
 // One JSON object: the fit's fields (when there were logs) and the sections' keys.
 void print_json(const circuit_tools::LoadedCircuit& c, const ident::CircuitFitResult* r, const IdentifySections& s) {
   nlohmann::json j = {{"type", "identify"}, {"circuit", c.file.name}};
-  if (r != nullptr) j.update(fit_json(*r));
+  if (r != nullptr) j.update(fit_json(c, *r));
   j.update(s.json);
   fmt::print("{}\n", j.dump());
 }
@@ -126,7 +139,7 @@ std::string write_header(const CircuitIdentifyArgs& a, const circuit_tools::Load
   o.name = header_namespace(a.header);
   std::string fitted_names;
   for (const auto& n : r.names) fitted_names += (fitted_names.empty() ? "" : ",") + n;
-  o.source_note = "hstmon identify --circuit " + a.circuit + " --fit " + fitted_names + " (" +
+  o.source_note = "hstmon identify, " + c.file.path + ", --fit " + fitted_names + " (" +
                   std::to_string(r.points.size()) + " operating points)";
   std::string error;
   const std::string text = circuit_tools::circuit_header(ident::fitted_circuit(c, r), o, error);
@@ -144,14 +157,12 @@ namespace {
 int check_usage(const CircuitIdentifyArgs& a) {
   const char* why = nullptr;
   if (a.logs.empty() && !a.sections) {
-    why = "give LOG files and --fit PARAM[,PARAM...], or --paper FILE.csv / --studies";
-  } else if (!a.logs.empty() && a.fit.empty()) {
-    why = "--fit PARAM[,PARAM...] names the parameters to fit to the LOG files";
+    why = "give LOG files (and --fit PARAM[,PARAM...]), or --paper FILE.csv / --studies";
   } else if (a.logs.empty() && (!a.fit.empty() || !a.out.empty() || !a.header.empty() || a.setting_per_window)) {
     why = "--fit, --out, --header and --setting-per-window are about the fit to LOG files: give them";
   }
   if (why == nullptr) return kExitOk;
-  fmt::print(stderr, "hstmon identify --circuit: {}\n", why);
+  fmt::print(stderr, "hstmon identify: error: {}\n", why);
   return kExitUsage;
 }
 
@@ -177,7 +188,10 @@ int fit_logs(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c
   o.window_inputs = a.window_inputs;
   r = ident::fit_circuit(with_noise(a, c), logs, o);
   if (r.error) {
-    fmt::print(stderr, "hstmon identify --circuit {}: {}\n", a.circuit, *r.error);
+    // One log named: the fit is over all of them, and a list of many would fill the screen.
+    const std::string files =
+        a.logs.size() == 1 ? a.logs[0] : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
+    fmt::print(stderr, "{}: error: {}\n", files, *r.error);
     return kExitBadInput;
   }
   if (!a.out.empty()) {
@@ -207,7 +221,7 @@ sim::CircuitReport make_report(const ident::CircuitIdentifyRun& run, const circu
     rep = ident::circuit_identify_report(run, c, *r, text);
     if (!windows.rows.empty()) rep.tables.insert(rep.tables.begin() + 1, windows);
   } else {
-    rep.title = "hstmon identify --circuit report: " + c.file.name;
+    rep.title = "hstmon identify report: " + c.file.name;
     rep.tone = sim::VerdictTone::kNeutral;
     rep.text = text;
   }
@@ -244,8 +258,7 @@ int run_circuit_identify(const CircuitIdentifyArgs& a) {
   sim::ReportTable windows;
   const std::string text =
       (fitted ? ident::circuit_identify_text(run, c, fit) + window_inputs_text(c, fit, windows)
-              : fmt::format("hstmon identify --circuit {}: no LOG files, no fit: the paper rig's analyses only\n",
-                            a.circuit)) +
+              : std::string("hstmon identify: no LOG files, no fit: the paper rig's analyses only\n")) +
       sections.text;
   const ident::CircuitFitResult* r = fitted ? &fit : nullptr;
   return finish_circuit_command(

@@ -111,7 +111,7 @@ int report_pump_curve(const IdentifyArgs& a, const id::PaperTables& t, const cir
       model.x.push_back(p * 1e-5);
       model.y.push_back(c.flow(p) * 6e4);
     }
-    rep.plot("pump_curve", "Pump B flow vs pressure (Fig. 3/4)", "P [bar]", "Q [l/min]", {data, model});
+    rep.plot("Pump B flow vs pressure (Fig. 3/4)", "P [bar]", "Q [l/min]", {data, model});
   }
   return kExitOk;
 }
@@ -222,7 +222,7 @@ int report_port_areas(const IdentifyArgs& a, const std::string& kind, const id::
   rep.tables.push_back(std::move(tab));
   jpaper[kind] = ja;
   if (compare) jpaper["circuit"][kind] = jc;
-  rep.plot(kind + "_port_areas", fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == "dcv" ? 5 : 6),
+  rep.plot(fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == "dcv" ? 5 : 6),
            "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series);
   return kExitOk;
 }
@@ -287,7 +287,7 @@ void run_studies(Report& rep, nlohmann::json& js) {
     }
     rep.tables.push_back(std::move(tab));
     jst.push_back({{"name", s.name}, {"output", s.output}, {"curves", jc}});
-    rep.plot(s.name, s.title, "t [s]",
+    rep.plot(s.title, "t [s]",
              fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series);
   }
   js["studies"] = jst;

@@ -1,5 +1,5 @@
-// The report of `hstmon identify` (cli_identify_report.hpp): its plots as SVG files, or
-// with --circuit as panels of the circuit report's one figure.
+// The report of `hstmon identify` (cli_identify_report.hpp): the paper sections' plots as
+// panels of the circuit report's one figure.
 #include "cli_identify_report.hpp"
 
 #include <algorithm>
@@ -45,23 +45,9 @@ sim::ReportPanel panel_of(const std::string& title, const std::string& xlabel, c
 
 }  // namespace
 
-void plot_or_warn(Report& rep, const std::string& file, const std::string& caption, const std::string& err) {
-  if (err.empty()) {
-    rep.figures.push_back({file, caption});
-  } else {
-    fmt::print(stderr, "hstmon identify: warning: {}\n", err);
-  }
-}
-
-void Report::plot(const std::string& stem, const std::string& title, const std::string& xlabel,
+void Report::plot(const std::string& title, const std::string& xlabel,
                   const std::string& ylabel, const std::vector<id::PlotSeries>& series) {
-  if (!plots()) return;
-  if (panels != nullptr) {
-    panels->push_back(panel_of(title, xlabel, ylabel, series));
-    return;
-  }
-  const std::string file = dir + "/" + stem + ".svg";
-  plot_or_warn(*this, file, title, id::plot_xy(file, title, xlabel, ylabel, series));
+  if (plots() && panels != nullptr) panels->push_back(panel_of(title, xlabel, ylabel, series));
 }
 
 }  // namespace hstmon::cli::identify

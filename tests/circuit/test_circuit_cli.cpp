@@ -387,7 +387,7 @@ TEST(CircuitCli, IdentifyAndGapOptionsGoWithCircuit) {
   std::ifstream h(header);
   const std::string text((std::istreambuf_iterator<char>(h)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("namespace hstmon::generated::hstmon_fitted_"), std::string::npos);
-  EXPECT_NE(text.find("hstmon identify --circuit"), std::string::npos) << "the header says where its values came from";
+  EXPECT_NE(text.find("hstmon identify, "), std::string::npos) << "the header says where its values came from";
   std::filesystem::remove(header);
   expect_error(ident + " --min-settings 50", 2, "fewer than the 50 asked for (--min-settings)");
   // Every input is logged: the flag asks which one sets the load (a data condition, not a

@@ -62,21 +62,21 @@ TEST(CircuitIdentify, RecoversChangedParametersOfThePaperRig) {
   EXPECT_EQ(back.values->params.v[c.file.param_index("Dm")], c.values.params.v[c.file.param_index("Dm")]);
 }
 
-TEST(CircuitIdentify, SaysWhenThePointsCannotTellParametersApart) {
+TEST(CircuitIdentify, HoldsWhatThePointsCannotTellApart) {
   // Paper rig: both orifices' coefficient is Cd·A·√(2/ρ), so Cd and ρ enter only as Cd/√ρ.
+  // ρ moves the fit half as much as Cd: it is held, and Cd carries the pair's effect.
   const ct::LoadedCircuit c = hstmon_test::load_example("paper");
   const auto log = machine_log(c, {{"Cd", 0.95}}, {"A_prv=2.5 mm2@4", "A_prv=4 mm2@8"}, 12.0);
   id::CircuitFitOptions o;
   o.fit = {"Cd", "rho"};
   const id::CircuitFitResult r = id::fit_circuit(c, {log}, o);
   ASSERT_FALSE(r.error.has_value()) << *r.error;
-  bool said = false;
-  for (const auto& n : r.notes) said = said || n.find("do not tell") != std::string::npos;
-  EXPECT_TRUE(said);
-  // What the points do determine, Cd/√ρ, is right.
-  const double ratio = (r.value[0] / c.values.params.v[c.file.param_index("Cd")]) /
-                       std::sqrt(r.value[1] / c.values.params.v[c.file.param_index("rho")]);
-  EXPECT_NEAR(ratio, 0.95, 0.005);
+  ASSERT_EQ(r.held.size(), 1u);
+  EXPECT_EQ(r.held[0].name, "rho");
+  EXPECT_NE(r.held[0].why.find("only together with Cd"), std::string::npos) << r.held[0].why;
+  EXPECT_EQ(r.held[0].value, c.values.params.v[c.file.param_index("rho")]);
+  ASSERT_EQ(r.names, std::vector<std::string>{"Cd"});
+  EXPECT_NEAR(r.value[0] / c.values.params.v[c.file.param_index("Cd")], 0.95, 0.005);
 }
 
 TEST(CircuitIdentify, RefusesUnknownOrLiteralNames) {

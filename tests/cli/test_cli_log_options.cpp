@@ -80,9 +80,10 @@ TEST(CliLogOptions, ReplayWithoutRateNamesIt) {
 TEST(CliLogOptions, IdentifyTakesTheLogOptions) {
   const CliRun r = run_hstmon("identify " + spider8_path() + " " + spider8_options() + " --out " +
                        write_file("id.json", ""));
-  // The log is read whole (0.625 s holds no 1 s steady window: that, not the log, is the error).
+  // The log is read whole (0.625 s at one setting is one operating point, too few for the
+  // thesis rig's losses: that, not the log, is the error).
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.out.find(spider8_path() + ": error: no steady window (3000 rows;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(spider8_path() + ": error: 1 operating point(s)"), std::string::npos) << r.out;
   const CliRun no_rate = run_hstmon("identify " + spider8_path() + " --map '#1=t' --out " + write_file("id2.json", ""));
   EXPECT_EQ(no_rate.exit_code, 2) << no_rate.out;
   EXPECT_NE(no_rate.out.find(":4:1: error: time not strictly increasing"), std::string::npos) << no_rate.out;

@@ -5,6 +5,7 @@
 // like the thesis DAS. Generating steady samples directly replaces a full stiff simulation
 // per seed (the lags and transients settle in < 0.1 s, far below the 4 s DAS period).
 #include <cstdint>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,25 @@ inline host::LogData steady_staircase_log(std::uint64_t seed, const ThesisParams
     }
   }
   return log;
+}
+
+// The log as thesis CSV text (pressures in bar, speed in rad/s, kp in SI), as a rig writes it.
+inline std::string thesis_log_csv(const host::LogData& log) {
+  using host::Signal;
+  std::ostringstream f;
+  f.precision(10);
+  f << "t[s],p_sup[bar],p_s[bar],p_bp[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar],w_m[rad/s]\n";
+  const Signal cols[] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp, Signal::kPMi, Signal::kPMo, Signal::kPPp,
+                         Signal::kWm};
+  for (std::size_t i = 0; i < log.rows(); ++i) {
+    f << log.t[i];
+    for (Signal s : cols) {
+      const double v = log.column(s)[i];
+      f << ',' << (s == Signal::kKp || s == Signal::kWm ? v : v * 1e-5);
+    }
+    f << '\n';
+  }
+  return f.str();
 }
 
 }  // namespace hstmon::ident::testing

@@ -155,7 +155,13 @@ struct FitProblem {
 // The fitted parameters' indices and start values into idx and r; false with r.error.
 bool resolve_fitted(const circuit_tools::LoadedCircuit& c, const CircuitFitOptions& o, std::vector<int>& idx,
                     CircuitFitResult& r) {
-  for (const std::string& name : o.fit) {
+  const std::vector<std::string> names = o.fit.empty() ? default_fit_parameters(c) : o.fit;
+  if (o.fit.empty() && !names.empty()) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    r.notes.push_back("no --fit: fitting the circuit's losses and openings (" + list + ")");
+  }
+  for (const std::string& name : names) {
     const int k = c.file.param_index(name);
     if (k < 0 || c.file.params[static_cast<std::size_t>(k)].literal) {
       r.error = "circuit " + c.file.name + " has no named parameter '" + name + "'";
@@ -169,7 +175,10 @@ bool resolve_fitted(const circuit_tools::LoadedCircuit& c, const CircuitFitOptio
     r.names.push_back(name);
     r.start.push_back(c.values.params.v[k]);
   }
-  if (idx.empty()) r.error = "nothing to fit: name the parameters with --fit";
+  if (idx.empty()) {
+    r.error = "nothing to fit: circuit " + c.file.name +
+              " has no positive loss or opening parameter; name the parameters with --fit";
+  }
   return !idx.empty();
 }
 
@@ -242,6 +251,10 @@ void take_solution(const FitProblem& fp, const LmResult& lm, CircuitFitResult& r
   if (m > n && fp.jacobian(lm.x, kStatsStep, jac)) {
     const LinearStats st = linear_stats(jac, lm.ssr / static_cast<double>(m - n));
     se = st.se;
+    r.correlation.assign(fp.idx.size(), std::vector<double>(fp.idx.size(), std::nan("")));
+    for (std::size_t i = 0; i < fp.idx.size(); ++i) {
+      for (std::size_t j = 0; j < fp.idx.size(); ++j) r.correlation[i][j] = st.correlation(i, j);
+    }
     // A condition beyond 1e6 (of the column-scaled Jacobian) is a direction the points
     // do not see: the central differences leave its singular value at rounding, not 0.
     determined = st.rank == n && st.condition <= 1e6;
@@ -266,7 +279,83 @@ void take_solution(const FitProblem& fp, const LmResult& lm, CircuitFitResult& r
   }
 }
 
+// The undetermined parameters out of fp and r into r.held (fit_circuit's comment); false
+// with r.error when none is left. A start without a steady state leaves the set as it is
+// (the fit reports it).
+bool hold_undetermined(FitProblem& fp, CircuitFitResult& r) {
+  constexpr double kMaxLogHalfwidth = 1.0;  // t·SE(ln p): the interval spans a factor e each way
+  const std::size_t p = fp.idx.size();
+  if (p == 0) return true;
+  DenseMatrix jac;
+  if (fp.m() <= fp.n() || !fp.jacobian(std::vector<double>(fp.n(), 0.0), kStatsStep, jac)) return true;
+  // A point's residual is a mean of n readings: its noise is σ/√n, so its rows weigh √n.
+  for (std::size_t k = 0; k < fp.points.size(); ++k) {
+    const double w = std::sqrt(static_cast<double>(std::max<std::size_t>(fp.points[k].n, 1)));
+    for (std::size_t i = fp.row0[k]; i < fp.row0[k + 1]; ++i) {
+      for (std::size_t j = 0; j < fp.n(); ++j) jac(i, j) *= w;
+    }
+  }
+  const LinearStats st = linear_stats(jac, 1.0);
+  const double t95 = t_quantile(0.05, static_cast<double>(fp.m() - fp.n()));
+  std::size_t drop = p;
+  for (std::size_t j = 0; j < p; ++j) {
+    if (t95 * st.se[j] <= kMaxLogHalfwidth) continue;
+    if (drop == p || st.column_norms[j] < st.column_norms[drop]) drop = j;
+  }
+  if (drop == p) return true;
+  // Its partners along the undetermined direction, where it lies on one (a condition
+  // beyond 1e6, as take_solution judges: the central differences leave a null direction's
+  // singular value at rounding, not 0).
+  std::string partners;
+  if (!(st.condition <= 1e6) && st.null_direction.size() == fp.n() && std::fabs(st.null_direction[drop]) > 0.1) {
+    for (std::size_t j = 0; j < p; ++j) {
+      if (j != drop && std::fabs(st.null_direction[j]) > 0.1) partners += (partners.empty() ? "" : ", ") + r.names[j];
+    }
+    for (std::size_t j = p; j < fp.n(); ++j) {
+      if (std::fabs(st.null_direction[j]) > 0.1) {
+        partners += std::string(partners.empty() ? "" : " and ") + "the window inputs";
+        break;
+      }
+    }
+  }
+  char why[200];
+  if (!partners.empty()) {
+    std::snprintf(why, sizeof why, "acts on these points only together with %s, which carries their joint effect",
+                  partners.c_str());
+  } else {
+    // ln 2 · ‖column‖: how far doubling it moves the residuals, in σ.
+    std::snprintf(why, sizeof why,
+                  "the points cannot determine it: doubling it moves the point means by %.3g of their noise (its "
+                  "95 %% interval of ln p would be ±%.3g)",
+                  std::log(2.0) * st.column_norms[drop], t95 * st.se[drop]);
+  }
+  r.held.push_back({r.names[drop], r.start[drop], why});
+  const auto at = static_cast<std::ptrdiff_t>(drop);
+  fp.idx.erase(fp.idx.begin() + at);
+  fp.start.erase(fp.start.begin() + at);
+  r.names.erase(r.names.begin() + at);
+  r.start.erase(r.start.begin() + at);
+  if (!fp.idx.empty()) return hold_undetermined(fp, r);
+  std::string e = "the operating points determine none of the parameters asked for:";
+  for (const auto& h : r.held) e += " " + h.name + ": " + h.why + ";";
+  e.pop_back();
+  r.error = e;
+  return false;
+}
+
 }  // namespace
+
+std::vector<std::string> default_fit_parameters(const circuit_tools::LoadedCircuit& c) {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < c.file.params.size(); ++k) {
+    const auto& par = c.file.params[k];
+    using Q = host::CircuitQuantity;
+    const bool loss = par.quantity == Q::kResistance || par.quantity == Q::kConductance ||
+                      par.quantity == Q::kDamping || par.quantity == Q::kOrifice || par.quantity == Q::kArea;
+    if (loss && !par.literal && c.values.params.v[static_cast<int>(k)] > 0.0) out.push_back(par.name);
+  }
+  return out;
+}
 
 bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::HostCircuitModel::Params& p,
                              const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res) {
@@ -310,7 +399,8 @@ CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::v
     for (double v : p.mean) measured += std::isfinite(v) ? 1u : 0u;
     fp.row0.push_back(fp.row0.back() + measured);
   }
-  if (!enough_points(o, fp, r)) return r;
+  if (!enough_points(o, fp, r) || !hold_undetermined(fp, r)) return r;
+  idx = fp.idx;
   const std::size_t m = fp.m();
   const std::vector<double> x0(fp.n(), 0.0);
   std::vector<double> res;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "hstmon_circuit/circuit_faults.hpp"  // sensor_sigma
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::ident {
@@ -25,6 +26,39 @@ sim::ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const Ci
                                                 100.0 * r.prior_uncertainty[j])
                                   : fmt::format("±{:.2g} % (kept)", 100.0 * r.uncertainty[j]),
                       r.moved[j] ? "yes" : "no: the start lies within the 95 % interval"});
+  }
+  return t;
+}
+
+sim::ReportTable held_table(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  sim::ReportTable t{"Held at their start values (the points cannot determine them)", {"parameter", "value", "why"}, {}};
+  for (const auto& h : r.held) {
+    const auto q = c.file.params[static_cast<std::size_t>(c.file.param_index(h.name))].quantity;
+    t.rows.push_back({h.name, host::engineering_text(q, h.value, 4), h.why});
+  }
+  return t;
+}
+
+sim::ReportTable agreement_table(const std::vector<ChannelAgreement>& a) {
+  sim::ReportTable t{"Agreement at the operating points after the fit (Table 2.3 form, (measured − model)/measured)",
+                     {"channel", "points", "average error", "RMS error"},
+                     {}};
+  for (const auto& g : a) {
+    t.rows.push_back({g.channel, std::to_string(g.points), fmt::format("{:+.3f} %", 100.0 * g.mean),
+                      fmt::format("{:.3f} %", 100.0 * g.rms)});
+  }
+  return t;
+}
+
+std::string correlation_text(const CircuitFitResult& r) {
+  if (r.names.size() < 2 || r.correlation.size() != r.names.size()) return {};
+  std::string t = "\n  correlation of the estimates (ln p):\n  " + std::string(12, ' ');
+  for (const auto& n : r.names) t += fmt::format(" {:>9.9}", n);
+  t += "\n";
+  for (std::size_t i = 0; i < r.names.size(); ++i) {
+    t += fmt::format("  {:<12}", r.names[i]);
+    for (double v : r.correlation[i]) t += std::isfinite(v) ? fmt::format(" {:>9.3f}", v) : fmt::format(" {:>9}", "—");
+    t += "\n";
   }
   return t;
 }
@@ -83,10 +117,30 @@ std::vector<sim::ReportPanel> point_panels(const circuit_tools::LoadedCircuit& c
 
 }  // namespace
 
+std::vector<ChannelAgreement> channel_agreement(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
+  std::vector<ChannelAgreement> out;
+  for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
+    ChannelAgreement g{c.file.sensors[ch].name, 0, 0.0, 0.0};
+    const double sigma = circuit_tools::sensor_sigma(c.file.sensors[ch]);
+    for (const auto& p : r.points) {
+      if (ch >= p.after.size() || !std::isfinite(p.after[ch]) || !(std::fabs(p.mean[ch]) > 0.0)) continue;
+      const double e = p.after[ch] * sigma / p.mean[ch];
+      g.mean += e;
+      g.rms += e * e;
+      ++g.points;
+    }
+    if (g.points == 0) continue;
+    g.mean /= static_cast<double>(g.points);
+    g.rms = std::sqrt(g.rms / static_cast<double>(g.points));
+    out.push_back(g);
+  }
+  return out;
+}
+
 std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
                                   const CircuitFitResult& r) {
-  std::string t = fmt::format("hstmon identify --circuit {}: {} log(s), {} operating point(s)\n", a.circuit,
-                              a.logs.size(), r.points.size());
+  std::string t = fmt::format("hstmon identify, {}: {} log(s), {} operating point(s)\n",
+                              c.file.path, a.logs.size(), r.points.size());
   for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
   t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",
                    "std. error", "monitor's bound");
@@ -100,8 +154,23 @@ std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_too
                      d.of(r.value[j]), 100.0 * (r.value[j] / r.start[j] - 1.0), se, bound,
                      r.pinned[j] ? fmt::format("±{:.2g}%)", 100.0 * r.prior_uncertainty[j]) : std::string(")"), d.unit);
   }
+  for (const auto& h : r.held) {
+    const int k = c.file.param_index(h.name);
+    const host::DisplayUnit d = host::display_unit(c.file.params[static_cast<std::size_t>(k)].quantity);
+    t += fmt::format("  {:<12} {:>14.6g} {:>14}   held at its start value: {}   [{}]\n", h.name, d.of(h.value), "—",
+                     h.why, d.unit);
+  }
+  t += correlation_text(r);
   t += fmt::format("\n  residual RMS (mean reading − model, in sensor σ): {:.3g} before, {:.3g} after ({})\n",
                    r.rms_before, r.rms_after, r.status);
+  const std::vector<ChannelAgreement> agreement = channel_agreement(c, r);
+  if (!agreement.empty()) {
+    t += "\n  agreement at the operating points after the fit (Table 2.3 form, (measured − model)/measured):\n";
+    t += fmt::format("  {:<10} {:>7} {:>14} {:>11}\n", "channel", "points", "average error", "RMS error");
+    for (const auto& g : agreement) {
+      t += fmt::format("  {:<10} {:>7} {:>13.3f}% {:>10.3f}%\n", g.channel, g.points, 100.0 * g.mean, 100.0 * g.rms);
+    }
+  }
   if (!a.out.empty()) t += fmt::format("  parameter file written: {}\n", a.out);
   if (!a.header.empty()) t += fmt::format("  C++ header written: {} (the circuit at the fitted values)\n", a.header);
   return t;
@@ -110,15 +179,19 @@ std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_too
 sim::CircuitReport circuit_identify_report(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
                                            const CircuitFitResult& r, const std::string& text) {
   sim::CircuitReport rep;
-  rep.title = "hstmon identify --circuit report: " + c.file.name;
+  rep.title = "hstmon identify report: " + c.file.name;
   std::size_t pinned = 0;
   for (bool p : r.pinned) pinned += p ? 1 : 0;
   rep.verdict = fmt::format(
       "{} parameter(s) fitted to {} operating point(s); residual RMS {:.3g} σ before, {:.3g} σ after; {} of them "
-      "pinned tighter than they were known",
-      r.names.size(), r.points.size(), r.rms_before, r.rms_after, pinned);
+      "pinned tighter than they were known{}",
+      r.names.size(), r.points.size(), r.rms_before, r.rms_after, pinned,
+      r.held.empty() ? std::string() : fmt::format("; {} held at the start (not determined)", r.held.size()));
   rep.tone = pinned == r.names.size() && r.notes.empty() ? sim::VerdictTone::kGood : sim::VerdictTone::kWarning;
-  rep.tables = {parameter_table(c, r), point_table(a, c, r)};
+  rep.tables = {parameter_table(c, r)};
+  if (!r.held.empty()) rep.tables.push_back(held_table(c, r));
+  rep.tables.push_back(agreement_table(channel_agreement(c, r)));
+  rep.tables.push_back(point_table(a, c, r));
   rep.notes = r.notes;
   rep.panels = point_panels(c, r);
   rep.figure_caption = "Steady residual per operating point, start values and fitted";

@@ -31,6 +31,7 @@ std::string sensor_text(const circuit_tools::LoadedCircuit& c, const std::string
 constexpr double kStepZ = 8.0;            // an output step, in standard errors of the block means
 constexpr double kBlock = 0.05;           // block length for the step search [s]
 constexpr double kStepSigmas = 3.0;       // … and in the sensor's σ (a drift of noise is not an event)
+constexpr double kTrendZ = 4.0;           // a trend, in standard errors of the line's rise over the stretch
 
 struct Stretch {
   std::size_t a = 0, b = 0;  // rows [a, b)
@@ -88,7 +89,10 @@ std::size_t find_step(const circuit_tools::LoadedCircuit& c, const circuit_tools
 }
 
 // The channel whose least-squares line over rows [a, b) moves furthest, in sensor σ; the
-// stretch is not steady when that exceeds kStepSigmas (a start still settling).
+// stretch is not steady when that exceeds kStepSigmas (a start still settling). A rise
+// within kTrendZ of its own noise (white noise of σ about a line: the rise's standard error
+// is duration/√Σ(t − t̄)² in σ, about 1 σ over 10 rows, 0.08 σ over 2 000) counts as none:
+// noise alone draws a 3 σ rise on a few rows of a DAS log.
 double trend_sigmas(const circuit_tools::LoadedCircuit& c, const circuit_tools::CircuitLog& log, Stretch s,
                     std::string& channel) {
   double worst = 0.0;
@@ -99,6 +103,7 @@ double trend_sigmas(const circuit_tools::LoadedCircuit& c, const circuit_tools::
   double stt = 0.0;
   for (std::size_t k = s.a; k < s.b; ++k) stt += (log.t[k] - tm) * (log.t[k] - tm);
   if (!(stt > 0.0)) return 0.0;
+  const double noise = (log.t[s.b - 1] - log.t[s.a]) / std::sqrt(stt);
   for (std::size_t ch = 0; ch < c.file.sensors.size(); ++ch) {
     if (ch >= log.sensors.size() || log.sensors[ch].size() != log.rows()) continue;
     const double sigma = circuit_tools::sensor_sigma(c.file.sensors[ch]);
@@ -109,7 +114,7 @@ double trend_sigmas(const circuit_tools::LoadedCircuit& c, const circuit_tools::
     double sty = 0.0;
     for (std::size_t k = s.a; k < s.b; ++k) sty += (log.t[k] - tm) * (log.sensors[ch][k] - ym);
     const double moved = std::fabs(sty / stt) * (log.t[s.b - 1] - log.t[s.a]) / sigma;
-    if (moved > worst) {
+    if (moved > worst && moved > kTrendZ * noise) {
       worst = moved;
       channel = c.file.sensors[ch].name;
     }

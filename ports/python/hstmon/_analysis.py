@@ -122,20 +122,22 @@ class IdentifyResult(_ToolResult):
         return identify_report(self, Path(folder))
 
 
-def identify(logs: Union[LogLike, Sequence[LogLike]], fit: Union[str, Sequence[str]], circuit: CircuitLike = None,
-             params: Optional[PathLike] = None, min_duration: float = 0.2, **read_options: Any) -> IdentifyResult:
-    """Fits named parameters of the circuit to the steady operating points of its logs, as
+def identify(logs: Union[LogLike, Sequence[LogLike]], fit: Union[str, Sequence[str], None] = None,
+             circuit: CircuitLike = None, params: Optional[PathLike] = None, min_duration: float = 0.2,
+             **read_options: Any) -> IdentifyResult:
+    """Fits parameters of the circuit to the steady operating points of its logs, as
     ``hstmon identify --circuit FILE --fit P1,P2 LOG...``.
 
     logs: one log or several (paths or DataFrames); fit: parameter names ("Dm,Rmlkg" or a
-    list); params: the starting values' parameter file; min_duration: the shortest steady
+    list; None: the circuit's losses and openings, those the points cannot determine held);
+    params: the starting values' parameter file; min_duration: the shortest steady
     stretch after the settle time [s]; read_options: the log options (separator, lenient,
     rate, encoding, map). Raises SourceError for a bad file, ValueError when nothing can be fitted.
     """
     c = resolve(circuit, params)
     if isinstance(logs, (str, os.PathLike, pd.DataFrame)):
         logs = [logs]
-    names = [n.strip() for n in fit.split(",")] if isinstance(fit, str) else list(fit)
+    names = [] if fit is None else [n.strip() for n in fit.split(",")] if isinstance(fit, str) else list(fit)
     read_kw = _only_read_options(read_options, "identify")
     data = [_logs.read(c, log, f"DataFrame {k}", **read_kw) for k, log in enumerate(logs)]
     labels = [os.fspath(x) if not isinstance(x, pd.DataFrame) else f"DataFrame {k}" for k, x in enumerate(logs)]

@@ -51,7 +51,7 @@ constexpr const char* kReportDoc = "writes the CLI's report folder; returns why 
 std::shared_ptr<IdentifyOutcome> identify(const std::shared_ptr<Circuit>& c, const std::vector<std::shared_ptr<Log>>& logs,
                                           const std::vector<std::string>& fit, double min_duration,
                                           const std::vector<std::string>& labels) {
-  if (logs.empty() || fit.empty()) throw py::value_error("identify needs logs and the parameters to fit");
+  if (logs.empty()) throw py::value_error("identify needs logs");
   if (!(min_duration > 0.0)) throw py::value_error("min_duration must be > 0 s");
   std::vector<circuit_tools::CircuitLog> data;
   for (const auto& l : logs) data.push_back(l->data);
@@ -65,7 +65,7 @@ std::shared_ptr<IdentifyOutcome> identify(const std::shared_ptr<Circuit>& c, con
     r = ident::fit_circuit(c->loaded(), data, o);
     if (!r.error) values = ident::fitted_values_json(c->loaded(), r);
   }
-  if (r.error) throw py::value_error("identify --circuit " + c->path() + ": " + *r.error);
+  if (r.error) throw py::value_error("identify, " + c->path() + ": " + *r.error);
   auto out = std::make_shared<IdentifyOutcome>();
   out->circuit = c;
   out->result = std::move(r);
@@ -97,7 +97,16 @@ py::dict IdentifyOutcome::as_dict() const {
   }
   using R = ident::CircuitFitResult;
   py::dict d;
+  py::list held;
+  for (const auto& h : r.held) {
+    py::dict e;
+    e["name"] = h.name;
+    e["value"] = h.value;
+    e["why"] = h.why;
+    held.append(e);
+  }
   d["parameters"] = params;
+  d["held"] = held;
   d["points"] = points;
   put_fields(d, r, "rms_before", &R::rms_before, "rms_after", &R::rms_after, "status", &R::status, "notes", &R::notes);
   d["values_json"] = values;

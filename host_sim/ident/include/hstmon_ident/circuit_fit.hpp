@@ -96,6 +96,17 @@ struct CircuitFitResult {
   /// Inputs fitted per operating point (CircuitFitOptions::setting_per_window); their
   /// values are in each point's window_value.
   std::vector<std::string> window_inputs;
+  /// A parameter asked for that the points cannot determine (see fit_circuit): held at its
+  /// start value, not fitted and not in `names`.
+  struct Held {
+    std::string name;
+    double value = 0.0;  ///< the start value it keeps [SI]
+    std::string why;     ///< a sentence: what the points show of it
+  };
+  std::vector<Held> held;
+  /// Correlation of the fitted parameters' estimates (ln p), names × names; NaN where a
+  /// standard error is not finite. Empty when the fit has no statistics.
+  std::vector<std::vector<double>> correlation;
   double rms_before = 0.0, rms_after = 0.0;  ///< RMS of the residuals [σ]
   std::string status;                    ///< the solver's stop reason
   std::vector<std::string> notes;
@@ -126,8 +137,24 @@ bool circuit_point_residuals(const circuit_tools::LoadedCircuit& c, const host::
                              const std::vector<CircuitOperatingPoint>& points, std::vector<double>& res);
 
 /// Fits `o.fit` of circuit c to the operating points of `logs` (each read for c).
+/// Before the fit, a parameter the points cannot determine is held at its start value
+/// (CircuitFitResult::held): at the start values, with each point's residuals in the noise
+/// of its mean (σ/√n: the noise model's s² = 1), its 95 % interval of ln p would span more
+/// than a factor e each way
+/// (the thesis regression's rule), or its column lies in the others' span (two parameters
+/// that act only together, as Rf and Rbl in eq. 2.8). Of those, the one that moves the
+/// fit least goes first (a leakage before a friction) and the test is repeated without it.
+/// An undetermined direction left in the fit would let the solver wander along it, and the
+/// parameter file would get whatever value it stopped at.
 CircuitFitResult fit_circuit(const circuit_tools::LoadedCircuit& c, const std::vector<circuit_tools::CircuitLog>& logs,
                              const CircuitFitOptions& o);
+
+/// The parameters `identify` fits when none are named: the losses and openings a data
+/// sheet does not give and a healthy log can tell — each named, positive parameter that is
+/// a laminar resistance or conductance, a viscous damping, an orifice coefficient or an
+/// area. Displacements, volumes, inertias, stiffnesses and pressure settings come from the
+/// data sheet. Those the points cannot determine are then held (fit_circuit).
+std::vector<std::string> default_fit_parameters(const circuit_tools::LoadedCircuit& c);
 
 /// The least relative uncertainty a fit hands the model bound [-]. A long healthy log can
 /// pin a value to 0.01 %, but only at that log's oil temperature and wear: a floor keeps

@@ -4,6 +4,7 @@
 /// (the fitted parameters, their errors and the monitor's new bound, the residual RMS
 /// before and after) and its report folder (the parameters in an engineer's units, the
 /// operating points with each channel's residual before and after, and a figure of them).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,20 @@ struct CircuitIdentifyRun {
   std::string out;                ///< the parameter file written ("" = none)
   std::string header;             ///< the C++ header written ("" = none)
 };
+
+/// A channel's agreement at the operating points after the fit, in the form of the
+/// thesis's Table 2.3 but measured − model: the relative error (measured − model)/measured
+/// averaged, and its RMS, over the points that log the channel.
+struct ChannelAgreement {
+  std::string channel;  ///< the sensor's name
+  std::size_t points = 0;
+  double mean = 0.0;  ///< average relative error [-]
+  double rms = 0.0;   ///< RMS relative error [-]
+};
+
+/// Per sensor channel of c, from the points' fitted residuals (`after`, in σ); a channel
+/// no point logs, or whose readings are all 0, is left out.
+std::vector<ChannelAgreement> channel_agreement(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r);
 
 /// The text `hstmon identify --circuit` prints.
 std::string circuit_identify_text(const CircuitIdentifyRun& run, const circuit_tools::LoadedCircuit& c,

@@ -1,7 +1,6 @@
 #pragma once
 /// @file plots.hpp
-/// x–y plots through gnuplot (gnuplot-nox; started with popen, as host_sim's residual
-/// plots). SVG or PNG by the file's extension.
+/// A data series of the identification tools' x–y plots (panels of a command's report).
 
 #include <string>
 #include <vector>
@@ -15,10 +14,5 @@ struct PlotSeries {
   std::vector<double> y;     ///< ordinates [display unit]
   bool points = false;       ///< draw markers (data) instead of lines (model)
 };
-
-/// Writes an x–y plot of `series` to `path` (.svg or .png).
-/// @return empty on success, else what failed (gnuplot missing, bad extension, …)
-std::string plot_xy(const std::string& path, const std::string& title, const std::string& xlabel,
-                    const std::string& ylabel, const std::vector<PlotSeries>& series);
 
 }  // namespace hstmon::ident
