@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"validation_circuits", "nominal_A", false}, Case{"validation_circuits", "nominal_B", false},
                       Case{"validation_circuits", "fault_motor_disp", true},
                       Case{"validation_circuits", "fault_pump_leak", true},
-                      Case{"validation_circuits", "fault_leak_B", false},
+                      Case{"validation_circuits", "fault_leak_B", true},
                       Case{"validation_circuits", "fault_relief_B", true},
                       Case{"validation_circuits", "fault_speed_sensor", true},
                       Case{"validation_paper", "nominal_C", false}, Case{"validation_paper", "nominal_D", false},

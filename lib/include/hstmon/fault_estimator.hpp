@@ -66,7 +66,8 @@
 ///
 /// Timing: a fault starts at some moment unknown, as likely at any time as at another, and
 /// stays. Before an episode the estimator keeps its last kPast steady windows (observe()),
-/// the nominal model's verdict on the machine then. A hypothesis at its fitted size that
+/// the nominal model's verdict on the machine then, the window open at the detection last
+/// (it may hold the onset, as any window may). A hypothesis at its fitted size that
 /// would have moved the readings of an earlier window cannot have begun before it; one that
 /// would not have shown there (a leak into a line held at charge pressure, a relief setting
 /// below a pressure not reached yet) can have been present since the data began. Each
@@ -290,7 +291,11 @@ class FaultEstimator {
   ///        settle is shortened by it
   void start(T t, const Inputs& u, T settled_for = T(0)) noexcept {
     reset();
-    // The window open at the detection holds the onset: it is no record of the machine before.
+    // The window open at the detection may hold the onset, and the onset weighting allows
+    // for one inside a window; it is also the last evidence on when a rival could have begun
+    // (a leak that showed there since the window opened began before it). Its samples all
+    // precede t, where the episode's windows start, so none counts twice.
+    close_past();
     pre_armed_ = pre_open_ = false;
     t_detect_ = t;
     if (!origin_set_) {
