@@ -40,40 +40,39 @@ std::string write_text(const fs::path& path, const std::string& text) {
   return path.string();
 }
 
-TEST(IdentErrors, TooFewOperatingPoints) {
-  // Two loads for two losses and nothing else held: kf and Rbl need more settings than asked.
-  const auto log = testing::steady_staircase_log(1, {}, 10, sim::thesis_das_sensors(), {1.0, 0.5});
+// `hstmon identify` on a log named `name` with `text` (and `options`): exit 2, a message
+// that names the log and holds `says`, and no parameter file written.
+void expect_identify_error(const std::string& name, const std::string& text, const std::string& options,
+                           const std::string& says) {
   const fs::path d = temp_dir();
-  const std::string file = write_text(d / "two_loads.csv", testing::thesis_log_csv(log));
-  const CliRun run = run_hstmon("identify " + file + " --min-settings 3 --out " + (d / "p.json").string());
+  const std::string file = write_text(d / name, text);
+  const fs::path out = d / (name + ".params.json");
+  const CliRun run = run_hstmon("identify " + file + options + " --out " + out.string());
   EXPECT_EQ(run.exit_code, 2) << run.out;
-  EXPECT_NE(run.out.find("two_loads.csv"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("2 distinct operating point(s)"), std::string::npos) << run.out;
-  EXPECT_FALSE(fs::exists(d / "p.json"));
+  EXPECT_NE(run.out.find(file), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(says), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(IdentErrors, TooFewOperatingPoints) {
+  // Two loads where three settings are asked for.
+  const auto log = testing::steady_staircase_log(1, {}, 10, sim::thesis_das_sensors(), {1.0, 0.5});
+  expect_identify_error("two_loads.csv", testing::thesis_log_csv(log), " --min-settings 3",
+                        "2 distinct operating point(s)");
 }
 
 TEST(IdentErrors, NoSteadyOperatingPoint) {
-  const fs::path d = temp_dir();
   std::string text = "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n";
   for (int i = 0; i < 200; ++i) {
     text += std::to_string(i * 0.01) + ',' + std::to_string(30 + 0.5 * i) + ',' + std::to_string(2 + 0.1 * i) + ',' +
             std::to_string(100 + i) + ',' + std::to_string(10 * i) + '\n';
   }
-  const std::string file = write_text(d / "ramp.csv", text);
-  const CliRun run = run_hstmon("identify " + file + " --out " + (d / "p.json").string());
-  EXPECT_EQ(run.exit_code, 2) << run.out;
-  EXPECT_NE(run.out.find("ramp.csv"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("0 operating point(s)"), std::string::npos) << run.out;
-  EXPECT_FALSE(fs::exists(d / "p.json"));
+  expect_identify_error("ramp.csv", text, "", "0 operating point(s)");
 }
 
 TEST(IdentErrors, NaNsNameTheLine) {
-  const fs::path d = temp_dir();
-  const std::string file =
-      write_text(d / "nan.csv", "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n0,30,2,150,1600\n4,nan,2,150,1600\n");
-  const CliRun run = run_hstmon("identify " + file + " --out " + (d / "p.json").string());
-  EXPECT_EQ(run.exit_code, 2) << run.out;
-  EXPECT_NE(run.out.find("nan.csv:3"), std::string::npos) << run.out;
+  expect_identify_error("nan.csv", "t[s],p_mi[bar],p_mo[bar],p_pp[bar],w_m[rpm]\n0,30,2,150,1600\n4,nan,2,150,1600\n",
+                        "", "nan.csv:3");
 }
 
 TEST(IdentErrors, UsageAndGoodRun) {
