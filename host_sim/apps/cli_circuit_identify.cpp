@@ -66,7 +66,8 @@ nlohmann::json fit_json(const circuit_tools::LoadedCircuit& c, const ident::Circ
   for (const auto& g : ident::channel_agreement(c, r)) {
     agreement.push_back({{"channel", g.channel}, {"points", g.points}, {"mean", g.mean}, {"rms", g.rms}});
   }
-  nlohmann::json j = {{"parameters", params},     {"held", held},       {"correlation", correlation},
+  nlohmann::json j = {{"parameters", params},     {"held", held},       {"default_fit", r.default_fit},
+                      {"correlation", correlation},
                       {"agreement", agreement},   {"points", points},   {"rms_before", r.rms_before},
                       {"rms_after", r.rms_after}, {"status", r.status}, {"notes", r.notes}};
   if (!r.window_inputs.empty()) j["window_inputs"] = r.window_inputs;

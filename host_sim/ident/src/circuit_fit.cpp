@@ -155,12 +155,8 @@ struct FitProblem {
 // The fitted parameters' indices and start values into idx and r; false with r.error.
 bool resolve_fitted(const circuit_tools::LoadedCircuit& c, const CircuitFitOptions& o, std::vector<int>& idx,
                     CircuitFitResult& r) {
-  const std::vector<std::string> names = o.fit.empty() ? default_fit_parameters(c) : o.fit;
-  if (o.fit.empty() && !names.empty()) {
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    r.notes.push_back("no --fit: fitting the circuit's losses and openings (" + list + ")");
-  }
+  r.default_fit = o.fit.empty();
+  const std::vector<std::string> names = r.default_fit ? default_fit_parameters(c) : o.fit;
   for (const std::string& name : names) {
     const int k = c.file.param_index(name);
     if (k < 0 || c.file.params[static_cast<std::size_t>(k)].literal) {
@@ -318,16 +314,17 @@ bool hold_undetermined(FitProblem& fp, CircuitFitResult& r) {
       }
     }
   }
-  char why[200];
+  std::string why;
   if (!partners.empty()) {
-    std::snprintf(why, sizeof why, "acts on these points only together with %s, which carries their joint effect",
-                  partners.c_str());
+    why = "acts on these points only together with " + partners + ", which carries their joint effect";
   } else {
-    // ln 2 · ‖column‖: how far doubling it moves the residuals, in σ.
-    std::snprintf(why, sizeof why,
+    // ln 2 · ‖column‖: how far doubling it moves the point means, in their noise.
+    char text[160];
+    std::snprintf(text, sizeof text,
                   "the points cannot determine it: doubling it moves the point means by %.3g of their noise (its "
                   "95 %% interval of ln p would be ±%.3g)",
                   std::log(2.0) * st.column_norms[drop], t95 * st.se[drop]);
+    why = text;
   }
   r.held.push_back({r.names[drop], r.start[drop], why});
   const auto at = static_cast<std::ptrdiff_t>(drop);

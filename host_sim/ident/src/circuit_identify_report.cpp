@@ -141,6 +141,7 @@ std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_too
                                   const CircuitFitResult& r) {
   std::string t = fmt::format("hstmon identify, {}: {} log(s), {} operating point(s)\n",
                               c.file.path, a.logs.size(), r.points.size());
+  if (r.default_fit) t += "  fitted: the circuit's losses and openings (--fit names others)\n";
   for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
   t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",
                    "std. error", "monitor's bound");

@@ -104,6 +104,8 @@ struct CircuitFitResult {
     std::string why;     ///< a sentence: what the points show of it
   };
   std::vector<Held> held;
+  /// No parameters were named: `names` and `held` are default_fit_parameters().
+  bool default_fit = false;
   /// Correlation of the fitted parameters' estimates (ln p), names × names; NaN where a
   /// standard error is not finite. Empty when the fit has no statistics.
   std::vector<std::vector<double>> correlation;
