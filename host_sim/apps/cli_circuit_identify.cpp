@@ -66,10 +66,10 @@ nlohmann::json fit_json(const circuit_tools::LoadedCircuit& c, const ident::Circ
   for (const auto& g : ident::channel_agreement(c, r)) {
     agreement.push_back({{"channel", g.channel}, {"points", g.points}, {"mean", g.mean}, {"rms", g.rms}});
   }
-  nlohmann::json j = {{"parameters", params},     {"held", held},       {"default_fit", r.default_fit},
-                      {"correlation", correlation},
-                      {"agreement", agreement},   {"points", points},   {"rms_before", r.rms_before},
-                      {"rms_after", r.rms_after}, {"status", r.status}, {"notes", r.notes}};
+  nlohmann::json j = {
+      {"parameters", params},   {"held", held},     {"default_fit", r.default_fit}, {"correlation", correlation},
+      {"agreement", agreement}, {"points", points}, {"rms_before", r.rms_before},   {"rms_after", r.rms_after},
+      {"status", r.status},     {"notes", r.notes}};
   if (!r.window_inputs.empty()) j["window_inputs"] = r.window_inputs;
   return j;
 }
@@ -190,8 +190,8 @@ int fit_logs(const CircuitIdentifyArgs& a, const circuit_tools::LoadedCircuit& c
   r = ident::fit_circuit(with_noise(a, c), logs, o);
   if (r.error) {
     // One log named: the fit is over all of them, and a list of many would fill the screen.
-    const std::string files =
-        a.logs.size() == 1 ? a.logs[0] : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
+    const std::string files = a.logs.size() == 1 ? a.logs[0]
+                                                 : fmt::format("{} (and {} more logs)", a.logs[0], a.logs.size() - 1);
     fmt::print(stderr, "{}: error: {}\n", files, *r.error);
     return kExitBadInput;
   }

@@ -114,14 +114,15 @@ void add_identify_command(CLI::App& app, int& exit_code) {
                 "parameters to fit, by name (comma separated, repeatable); default: the circuit's losses and "
                 "openings (resistances, conductances, dampings, orifices, areas). Those the points cannot determine "
                 "are held at their start values, with the reason");
-  cmd->add_option("--out", args->out, "parameter file to write: the circuit's values with the fitted ones (read by --params)");
+  cmd->add_option("--out", args->out,
+                  "parameter file to write: the circuit's values with the fitted ones (read by --params)");
   cmd->add_option("--header", args->header, "also write a generated C++ header of the circuit at the fitted values");
   cmd->add_flag("--json", args->json, "print the results as JSON instead of the text");
   cmd->add_option("--report", args->report, "directory for the report: report.html, report.md, figure.svg, plots.gp");
-  add_log_options(*cmd, args->io, "the circuit's parameter file: the start values (default <stem>.params.json beside it)",
+  add_log_options(*cmd, args->io,
+                  "the circuit's parameter file: the start values (default <stem>.params.json beside it)",
                   "--params,--prior");
-  cmd->add_option("--min-duration", args->min_duration,
-                  "shortest steady operating point after the settle time [s]")
+  cmd->add_option("--min-duration", args->min_duration, "shortest steady operating point after the settle time [s]")
       ->capture_default_str();
   cmd->add_option("--min-samples", args->min_samples, "fewest rows in an operating point")->capture_default_str();
   cmd->add_flag("--assume-steady", args->assume_steady,

@@ -222,8 +222,8 @@ int report_port_areas(const IdentifyArgs& a, const std::string& kind, const id::
   rep.tables.push_back(std::move(tab));
   jpaper[kind] = ja;
   if (compare) jpaper["circuit"][kind] = jc;
-  rep.plot(fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == "dcv" ? 5 : 6),
-           "sqrt(2|dP|/rho) [m/s]", "Q [l/min]", series);
+  rep.plot(fmt::format("{}: flow vs sqrt(2|dP|/rho) (Fig. {})", name, kind == "dcv" ? 5 : 6), "sqrt(2|dP|/rho) [m/s]",
+           "Q [l/min]", series);
   return kExitOk;
 }
 
@@ -287,8 +287,8 @@ void run_studies(Report& rep, nlohmann::json& js) {
     }
     rep.tables.push_back(std::move(tab));
     jst.push_back({{"name", s.name}, {"output", s.output}, {"curves", jc}});
-    rep.plot(s.title, "t [s]",
-             fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit), series);
+    rep.plot(s.title, "t [s]", fmt::format("{} [{}]", s.output == "w_m" ? "motor speed" : "pump pressure", s.unit),
+             series);
   }
   js["studies"] = jst;
 }

@@ -106,15 +106,13 @@ TEST_P(ValidationCircuits, ScoresByTheSetsRules) {
 
 INSTANTIATE_TEST_SUITE_P(
     Logs, ValidationCircuits,
-    ::testing::Values(Case{"validation_circuits", "nominal_A", false}, Case{"validation_circuits", "nominal_B", false},
-                      Case{"validation_circuits", "fault_motor_disp", true},
-                      Case{"validation_circuits", "fault_pump_leak", true},
-                      Case{"validation_circuits", "fault_leak_B", true},
-                      Case{"validation_circuits", "fault_relief_B", true},
-                      Case{"validation_circuits", "fault_speed_sensor", true},
-                      Case{"validation_paper", "nominal_C", false}, Case{"validation_paper", "nominal_D", false},
-                      Case{"validation_paper", "fault_prv_block", true}, Case{"validation_paper", "fault_friction", true},
-                      Case{"validation_paper", "fault_dcv_block", true}),
+    ::testing::Values(
+        Case{"validation_circuits", "nominal_A", false}, Case{"validation_circuits", "nominal_B", false},
+        Case{"validation_circuits", "fault_motor_disp", true}, Case{"validation_circuits", "fault_pump_leak", true},
+        Case{"validation_circuits", "fault_leak_B", true}, Case{"validation_circuits", "fault_relief_B", true},
+        Case{"validation_circuits", "fault_speed_sensor", true}, Case{"validation_paper", "nominal_C", false},
+        Case{"validation_paper", "nominal_D", false}, Case{"validation_paper", "fault_prv_block", true},
+        Case{"validation_paper", "fault_friction", true}, Case{"validation_paper", "fault_dcv_block", true}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.set.substr(11) + "_" + i.param.name; });
 
 // A relief setting dropped below a later working pressure (fault_relief_B: 300 -> 165 bar,

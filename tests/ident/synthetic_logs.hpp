@@ -66,8 +66,8 @@ inline std::string thesis_log_csv(const host::LogData& log) {
   std::ostringstream f;
   f.precision(10);
   f << "t[s],p_sup[bar],p_s[bar],p_bp[bar],kp,p_mi[bar],p_mo[bar],p_pp[bar],w_m[rad/s]\n";
-  const Signal cols[] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp, Signal::kPMi, Signal::kPMo, Signal::kPPp,
-                         Signal::kWm};
+  const Signal cols[] = {Signal::kPSup, Signal::kPS,  Signal::kPBp, Signal::kKp,
+                         Signal::kPMi,  Signal::kPMo, Signal::kPPp, Signal::kWm};
   for (std::size_t i = 0; i < log.rows(); ++i) {
     f << log.t[i];
     for (Signal s : cols) {

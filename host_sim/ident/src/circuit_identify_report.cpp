@@ -31,7 +31,8 @@ sim::ReportTable parameter_table(const circuit_tools::LoadedCircuit& c, const Ci
 }
 
 sim::ReportTable held_table(const circuit_tools::LoadedCircuit& c, const CircuitFitResult& r) {
-  sim::ReportTable t{"Held at their start values (the points cannot determine them)", {"parameter", "value", "why"}, {}};
+  sim::ReportTable t{
+      "Held at their start values (the points cannot determine them)", {"parameter", "value", "why"}, {}};
   for (const auto& h : r.held) {
     const auto q = c.file.params[static_cast<std::size_t>(c.file.param_index(h.name))].quantity;
     t.rows.push_back({h.name, host::engineering_text(q, h.value, 4), h.why});
@@ -139,8 +140,8 @@ std::vector<ChannelAgreement> channel_agreement(const circuit_tools::LoadedCircu
 
 std::string circuit_identify_text(const CircuitIdentifyRun& a, const circuit_tools::LoadedCircuit& c,
                                   const CircuitFitResult& r) {
-  std::string t = fmt::format("hstmon identify, {}: {} log(s), {} operating point(s)\n",
-                              c.file.path, a.logs.size(), r.points.size());
+  std::string t = fmt::format("hstmon identify, {}: {} log(s), {} operating point(s)\n", c.file.path, a.logs.size(),
+                              r.points.size());
   if (r.default_fit) t += "  fitted: the circuit's losses and openings (--fit names others)\n";
   for (const auto& n : r.notes) t += fmt::format("  note: {}\n", n);
   t += fmt::format("\n  {:<12} {:>14} {:>14} {:>10} {:>12} {:>18}\n", "parameter", "start", "fitted", "change",

@@ -128,10 +128,10 @@ struct HasJacobian<M, std::void_t<decltype(std::declval<const M&>().jacobian(
 template <typename M, typename = void>
 struct HasStiffCut : std::false_type {};
 template <typename M>
-struct HasStiffCut<M, std::void_t<decltype(std::declval<const M&>().tick_derivative(
-                          std::declval<const typename M::State&>(), typename M::Scalar(),
-                          std::declval<typename M::Output&>(), std::declval<typename M::Scalar&>(),
-                          std::declval<bool&>(), typename M::Scalar()))>> : std::true_type {};
+struct HasStiffCut<
+    M, std::void_t<decltype(std::declval<const M&>().tick_derivative(
+           std::declval<const typename M::State&>(), typename M::Scalar(), std::declval<typename M::Output&>(),
+           std::declval<typename M::Scalar&>(), std::declval<bool&>(), typename M::Scalar()))>> : std::true_type {};
 
 /// The linearly implicit ticks' settings (Observer::Config's), and nothing for a model
 /// without a Jacobian (an empty base: no bytes).

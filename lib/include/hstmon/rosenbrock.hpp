@@ -188,8 +188,8 @@ void add_coupling(Vec& rhs, const Mat& J, const Vec& coupled, typename Mat::Scal
 /// Cortex-M4F) stay off the stack of a tick that is not implicit.
 template <int K, typename Model, typename StateMatrix>
 HSTMON_NOINLINE bool increment(const Model& model, const typename Model::State& x, typename Model::Scalar h,
-               const typename Model::State& f0, const StateMatrix& J, int m,
-               typename Model::State& step, typename Model::State& error) noexcept {
+                               const typename Model::State& f0, const StateMatrix& J, int m,
+                               typename Model::State& step, typename Model::State& error) noexcept {
   using T = typename Model::Scalar;
   using State = typename Model::State;
   using M = Ros34pw2;
@@ -241,8 +241,8 @@ HSTMON_NOINLINE bool increment(const Model& model, const typename Model::State& 
 /// @return false when I − γ·h·J is singular (step, error unset)
 template <typename Model, typename StateMatrix>
 bool rosenbrock_increment(const Model& model, const typename Model::State& x, typename Model::Scalar h,
-                          const typename Model::State& f0, const StateMatrix& J, int used,
-                          typename Model::State& step, typename Model::State& error) noexcept {
+                          const typename Model::State& f0, const StateMatrix& J, int used, typename Model::State& step,
+                          typename Model::State& error) noexcept {
   constexpr int n = Model::State::RowsAtCompileTime;
   static_assert(StateMatrix::RowsAtCompileTime == n && StateMatrix::ColsAtCompileTime == n, "J is n x n");
   static_assert(n > 0 && n <= 255, "fixed-size states; pivot indices are bytes");
@@ -287,9 +287,10 @@ struct RosenbrockTick {
 /// Out of line, as increment: a tick that is not implicit does not carry its frame.
 template <typename Model>
 HSTMON_NOINLINE RosenbrockTick rosenbrock_tick(const Model& model, CompensatedState<typename Model::State>& s,
-                               typename Model::Scalar tick, const typename Model::State& f0,
-                               const typename Model::State& scale, typename Model::Scalar rtol, int max_level,
-                               int& level, int used = Model::State::RowsAtCompileTime) noexcept {
+                                               typename Model::Scalar tick, const typename Model::State& f0,
+                                               const typename Model::State& scale, typename Model::Scalar rtol,
+                                               int max_level, int& level,
+                                               int used = Model::State::RowsAtCompileTime) noexcept {
   using T = typename Model::Scalar;
   using State = typename Model::State;
   RosenbrockTick r;

@@ -95,8 +95,7 @@ T radius_2x2(T a, T b, T c, T d, T rho_max) noexcept {
 /// iterations: still an upper bound on ρ(J), only looser. With rho_stiff = +∞ the bits are
 /// those of the full iteration.
 template <typename T, std::size_t N>
-T radius_bound(const T (&J)[N][N], int n, T rho_max,
-               T rho_stiff = std::numeric_limits<T>::infinity()) noexcept {
+T radius_bound(const T (&J)[N][N], int n, T rho_max, T rho_stiff = std::numeric_limits<T>::infinity()) noexcept {
   if (n <= 0) return T(0);
   if (n == 1) {
     const T r = std::fabs(J[0][0]);
@@ -177,9 +176,9 @@ T radius_bound_fixed(const T (&J)[N][N], T rho_max, T rho_stiff = std::numeric_l
         w[i] = s;
         const T r = s / v[i];
         bound = r > bound ? r : bound;
-          wmax = s > wmax ? s : wmax;
+        wmax = s > wmax ? s : wmax;
       }
-        best = bound < best ? bound : best;
+      best = bound < best ? bound : best;
       if (best <= rho_max) return T(0);
       if (!(wmax > T(0))) return T(0);
       if (diag > rho_stiff) return best;  // radius_bound's shortcut
