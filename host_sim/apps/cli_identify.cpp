@@ -35,8 +35,7 @@ int paper_sections(const IdentifyArgs& a, const circuit_tools::LoadedCircuit* be
                    IdentifySections& out) {
   Report rep;
   rep.quiet = true;  // the circuit command prints everything at its end
-  rep.dir = panels ? a.report : std::string();
-  rep.panels = &out.panels;
+  rep.panels = panels ? &out.panels : nullptr;
   double worst = 0.0;
   std::string verdict;
   if (!a.paper.empty()) {

@@ -47,7 +47,7 @@ sim::ReportPanel panel_of(const std::string& title, const std::string& xlabel, c
 
 void Report::plot(const std::string& title, const std::string& xlabel, const std::string& ylabel,
                   const std::vector<id::PlotSeries>& series) {
-  if (plots() && panels != nullptr) panels->push_back(panel_of(title, xlabel, ylabel, series));
+  if (plots()) panels->push_back(panel_of(title, xlabel, ylabel, series));
 }
 
 }  // namespace hstmon::cli::identify

@@ -51,8 +51,7 @@ inline nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v
 struct Report {
   bool quiet = false;
   std::string text;
-  std::string dir;                                  // the report folder ("" = no plots)
-  std::vector<sim::ReportPanel>* panels = nullptr;  // the plots
+  std::vector<sim::ReportPanel>* panels = nullptr;  // the plots (nullptr: no report, no plots)
   std::vector<sim::ReportTable> tables;             // the report's tables
   template <typename... A>
   void operator()(fmt::format_string<A...> f, A&&... a) {
@@ -60,7 +59,7 @@ struct Report {
     text += s;
     if (!quiet) fmt::print("{}", s);
   }
-  bool plots() const { return !dir.empty(); }
+  bool plots() const { return panels != nullptr; }
   void plot(const std::string& title, const std::string& xlabel, const std::string& ylabel,
             const std::vector<id::PlotSeries>& series);
 };
