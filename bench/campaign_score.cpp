@@ -28,10 +28,9 @@ bool isolates(const hstmon::host::ReplayEvent& e, const std::string& truth, cons
   return std::all_of(e.candidates.begin(), e.candidates.end(), alike);
 }
 
-}  // namespace
-
-Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
-             double tie_margin, const std::vector<std::string>& truth_class) {
+// The decisions of a run, as if nothing came after the last of them (score() adds a clear).
+Scored score_decisions(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
+                       double tie_margin, const std::vector<std::string>& truth_class) {
   Scored s;
   const double eps = 1e-9;
   const hstmon::host::ReplayEvent* last_decision = nullptr;
@@ -93,6 +92,20 @@ Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::st
     if (!isolates(*it, truth, truth_class)) break;
     s.isolated_class = true;
     s.isolation_delay = it->t - t_fault;
+  }
+  return s;
+}
+
+}  // namespace
+
+Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
+             double tie_margin, const std::vector<std::string>& truth_class) {
+  Scored s = score_decisions(events, truth, t_fault, tie_margin, truth_class);
+  // A fault persists to the end of the run: a last word "cleared" names nothing, whatever
+  // came before (score_circuit.py's rule).
+  if (!events.empty() && events.back().t >= t_fault - 1e-9 && events.back().event == "cleared") {
+    s.cleared_at_end = true;
+    s.in_last = s.best_in_last = s.in_set = s.isolated_as_truth = s.isolated_class = false;
   }
   return s;
 }

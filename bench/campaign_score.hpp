@@ -33,6 +33,7 @@ struct Scored {
   bool isolated_class = false;
   double isolation_delay = 0.0;  ///< from the fault to the first of the decisions that all isolate it so [s]
   double size = 0.0;             ///< the truth's fitted size in the last decision (factor or offset; NaN if none)
+  bool cleared_at_end = false;   ///< the run's last event, after the fault, is "cleared" (nothing named)
   bool called_sensor = false;      ///< a decision after the fault named a sensor fault best (parameter faults)
   int set_size = 0;
   std::string best;          ///< best candidate of the last decision ("" if none)

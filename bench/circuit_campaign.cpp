@@ -185,8 +185,8 @@ double sensor_bias(const hstmon::host::CircuitSensor& s) {
   return 20.0 * hstmon::circuit_tools::sensor_sigma(s);
 }
 
-
-// --dump: the folder where the log of every run that misses, or nominal run that alarms, is written.
+// --dump: the folder where the log of every run that misses or is not isolated on the truth or
+// its class, or nominal run that alarms, is written.
 std::string g_dump_dir;
 
 RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f, double duration, std::uint64_t seed) {
@@ -246,7 +246,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   } else {
     for (const auto& e : res.events) r.alarms += e.event == "detected" ? 1 : 0;
   }
-  if (!g_dump_dir.empty() && (faulted ? r.missed() : r.alarms > 0)) {
+  if (!g_dump_dir.empty() && (faulted ? r.missed() || !r.s.isolated_class : r.alarms > 0)) {
     const std::string what = faulted ? fmt::format("{} at {} s", f.name, g_timing.t_fault) : "nominal";
     std::ofstream(fmt::format("{}/{}_{}.csv", g_dump_dir, faulted ? f.name : "nominal", seed))
         << hstmon::circuit_tools::circuit_log_text(c.file, log, {fmt::format("{}, {}, seed {}", what, cond.name, seed)});
@@ -310,6 +310,7 @@ struct Job {
 // Tallies of fault runs (per fault, per condition, all) or of nominal segments.
 struct Tally {
   int runs = 0, detected = 0, in_set = 0, best = 0, early = 0, errors = 0;
+  int cleared = 0;             // detected, and "cleared" at the end while the fault persisted
   int isolated = 0;            // the truth or its class isolated at the end (of detected)
   int sized = 0, size_ok = 0;  // isolated parameter/input faults with a fitted size; within 20 % of the fault's
   double delay_sum = 0.0;
@@ -351,7 +352,9 @@ void add_options(CLI::App& app, Settings& o) {
                  "added to every run's seed (machine, load steps, noise): 0 = the recorded figures' runs; "
                  "another value draws other runs, to check a figure is not these seeds'");
   app.add_flag("--json", o.json, "one JSON object with the figures");
-  app.add_option("--dump", g_dump_dir, "write the log of every run that misses (or nominal run that alarms) into this existing folder");
+  app.add_option("--dump", g_dump_dir,
+                 "write the log of every run that misses or is not isolated on the truth or its class (or nominal run "
+                 "that alarms) into this existing folder");
   app.add_flag("--verbose", o.verbose,
                "print every fault run whose truth is not in the reported set, or that is detected and not isolated on "
                "the truth or its class");
@@ -421,6 +424,7 @@ Tallies tally(const std::vector<Job>& work, const std::vector<RunResult>& result
       ta->detected += r.s.detected ? 1 : 0;
       ta->in_set += r.s.detected && r.s.in_last ? 1 : 0;
       ta->best += r.s.detected && r.s.best_in_last ? 1 : 0;
+      ta->cleared += r.s.detected && r.s.cleared_at_end ? 1 : 0;
       if (r.s.detected) ta->delay_sum += r.s.delay;
       if (r.s.detected && r.s.isolated_class) {
         ++ta->isolated;
@@ -450,10 +454,14 @@ double percent(int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; }
 
 void print_json(const LoadedCircuit& c, std::size_t n_faults, const Tallies& t) {
   fmt::print(
-      "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":{:.2f},"
-      "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
-      c.file.name, n_faults, t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected), percent(t.all.best, t.all.detected),
-      percent(t.all.isolated, t.all.detected), t.all.median_isolation(), percent(t.all.size_ok, t.all.sized), t.all.early, t.nominal_s / 3600.0, t.nominal.early, t.all.errors + t.nominal.errors);
+      "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":"
+      "{:.2f},"
+      "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},"
+      "\"cleared_at_end\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
+      c.file.name, n_faults, t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected),
+      percent(t.all.best, t.all.detected), percent(t.all.isolated, t.all.detected), t.all.median_isolation(),
+      percent(t.all.size_ok, t.all.sized), t.all.early, t.all.cleared, t.nominal_s / 3600.0, t.nominal.early,
+      t.all.errors + t.nominal.errors);
 }
 
 // Which faults shared another's reported set, against what the matcher's table predicts.
@@ -512,8 +520,12 @@ void print_report(const Settings& o, const LoadedCircuit& c, std::size_t n_fault
     fmt::print("{:<22} {:>5} {:>8.1f}% {:>7.1f}% {:>8.1f}% {:>6}\n", kConditions[i].name, ct.runs, percent(ct.detected, ct.runs),
                percent(ct.in_set, ct.detected), percent(ct.isolated, ct.detected), ct.early);
   }
-  fmt::print("\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections {}\n", t.all.runs,
-             percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected), percent(t.all.best, t.all.detected), t.all.early);
+  fmt::print(
+      "\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections "
+      "{}, "
+      "cleared at the end while the fault persisted {}\n",
+      t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected),
+      percent(t.all.best, t.all.detected), t.all.early, t.all.cleared);
   fmt::print("isolated on the truth or its class: {:.1f} % of detected, median {:.2f} s after the fault; size within 20 % "
              "in {:.1f} % of {} isolated parameter and input faults\n",
              percent(t.all.isolated, t.all.detected), t.all.median_isolation(), percent(t.all.size_ok, t.all.sized), t.all.sized);

@@ -98,7 +98,7 @@ void print_json(const CircuitReplayArgs& a, const LoadedCircuit& c, const Circui
 
 void print_human(const CircuitReplayArgs& a, const LoadedCircuit& c, const CircuitReplayResult& r,
                  const CandidateClass& cls) {
-  fmt::print("hstmon replay {}{}\n", a.circuit.empty() ? std::string() : "--circuit " + a.circuit + " ", a.log);
+  fmt::print("hstmon replay {}\n", a.log);
   fmt::print("  circuit {}{}{}: {} states, {} quasi-steady nodes\n", c.file.name, c.builtin() ? " (built in)" : "",
              c.params_path.empty() ? std::string() : " with " + c.params_path, r.states, r.stiff_nodes);
   fmt::print("  {} rows, t = {:.6g} … {:.6g} s; observer tick {:.3g} ms, {} ticks, started {}\n", r.rows, r.t_first,

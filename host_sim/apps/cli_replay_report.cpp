@@ -115,10 +115,9 @@ std::string write_replay_report(const std::string& dir, const ReplayReport& r, s
 
   sim::VerdictTone tone = sim::VerdictTone::kNeutral;
   const std::string verdict_text = verdict(r, tone);
-  const std::string about =
-      fmt::format("Log: {}{}; {} rows, t = {:.6g} … {:.6g} s; observer tick {}; start-up hold-off {}.", r.log,
-                  r.circuit.empty() ? std::string() : "; " + r.circuit, r.rows, r.t_first, r.t_last,
-                  host::duration_text(r.tick), host::duration_text(r.startup_hold));
+  const std::string about = fmt::format(
+      "Log: {}; {}; {} rows, t = {:.6g} … {:.6g} s; observer tick {}; start-up hold-off {}.", r.log, r.circuit, r.rows,
+      r.t_first, r.t_last, host::duration_text(r.tick), host::duration_text(r.startup_hold));
   const std::vector<std::string> residual_header = {"channel", "mean", "RMS", "noise", "peak", "at t [s]"};
   const std::vector<std::string> event_header = {"t [s]", "event", "candidates (score)"};
   const auto residuals = residual_rows(r);

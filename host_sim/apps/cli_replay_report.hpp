@@ -25,7 +25,7 @@ struct ReportChannel {
 /// What a report says, whichever replay made it.
 struct ReplayReport {
   std::string log;                        ///< the log's name as given on the command line
-  std::string circuit;                    ///< "circuit NAME (FILE)" for a circuit replay, else empty
+  std::string circuit;                    ///< "circuit NAME (FILE[, PARAMS])": the model replayed
   std::size_t rows = 0;
   double t_first = 0.0, t_last = 0.0;     ///< [s]
   double tick = 0.0;                      ///< observer tick [s]

@@ -19,6 +19,10 @@ using Model = host::HostCircuitModel;
 using Estimator = FaultEstimator<Model, 64, 8>;
 using StepDetector = HeldStepDetector<double, Model::kOutputs>;
 
+// How long the inputs must have held still before a detection for it to name a point where
+// the fault showed [s]: longer than a logged ramp's rows (1–10 ms), shorter than any hold.
+constexpr double kHeldBeforeDetection = 0.1;
+
 // "−15 % (−17 … −13 %)": a factor as a relative change with its interval.
 std::string percent(double f, double lo, double hi) {
   return fmt::format("{:+.0f} % ({:+.0f} … {:+.0f} %)", 100.0 * (f - 1.0), 100.0 * (lo - 1.0), 100.0 * (hi - 1.0));
@@ -78,6 +82,11 @@ struct FaultFitDiagnosis::Impl {
   Model::Inputs u_hold{};  ///< the inputs the detector's blocks were read at
   bool holding = false;
   double t_settled = 0.0;          ///< the hold's settle ends [s]
+  double t_hold = 0.0;             ///< the inputs have held at u_hold since [s]
+  /// The episode's fault showed at these held inputs (the detection's); false when it was
+  /// detected while the inputs moved.
+  bool seen_held = false;
+  Model::Inputs u_seen{};
   std::vector<double> y_hat_held;  ///< the model's outputs once settled (empty before) [SI]
 
   explicit Impl(const LoadedCircuit& circuit) : c(circuit) {}
@@ -163,7 +172,7 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     if (!active_) return;
     // Withheld until a steady window has judged it (a matcher clear follows an input
     // change, where the bound jumps), and while the windows say a fault is there.
-    if (!sensor_lock_ && impl_->ok && est.verdict() != EstimateVerdict::kNoFault) return;
+    if (!sensor_lock_ && impl_->ok && !gone()) return;
     end_episode(t);
     emit(e, out);
     return;
@@ -175,6 +184,16 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
     last_key_.clear();
     emit(e, out);
   }
+}
+
+// The evidence says the fault has gone: no fault fits the episode's windows better than none,
+// the latest of them at the inputs where the fault was detected. Elsewhere a fault may just
+// not show (a wider model bound there, or a fault that acts less): a pump-curve fault seen at
+// one valve opening hides inside the bound at the next, and stays.
+bool FaultFitDiagnosis::gone() const {
+  const Impl& m = *impl_;
+  if (m.est.verdict() != EstimateVerdict::kNoFault) return false;
+  return !m.seen_held || inputs_within(m.u_seen, m.est.decided_at(), 1e-4);
 }
 
 // The episode ends at t (cleared): its windows held the fault, so the record of the
@@ -196,6 +215,10 @@ void FaultFitDiagnosis::start_episode(double t, const Model::Inputs& u, double s
   last_key_.clear();
   if (!m.ok) return;
   m.est.start(t, u, settled_for);
+  // Inputs held for kHeldBeforeDetection name the point where the fault showed; inputs
+  // that moved until then (a ramp, a measured input that scatters) name none.
+  m.seen_held = m.holding && inputs_within(m.u_hold, u, 1e-4) && t - m.t_hold >= kHeldBeforeDetection;
+  m.u_seen = u;
   double offset[Model::kOutputs] = {}, var[Model::kOutputs] = {};
   const unsigned have = m.holding ? m.step.reference(offset, var) : 0u;
   if (have != 0) m.est.set_baseline(m.u_hold, offset, var, have);
@@ -229,6 +252,7 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
   if (!same) {
     m.u_hold = u;
     m.holding = true;
+    m.t_hold = t;
     m.t_settled = t + m.est.settle_time(u);
     m.y_hat_held.clear();
     m.step.hold(m.t_settled);
@@ -262,8 +286,8 @@ void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vect
   if (sensor_lock_) return;
   const double t = row.t;
   if (!impl_->est.add(t, u, row.y, row.valid)) return;
-  if (impl_->est.verdict() == EstimateVerdict::kNoFault && row.matcher_quiet) {
-    // A window where no fault fits as well as any, and the residuals are quiet: gone.
+  if (gone() && row.matcher_quiet) {
+    // No fault fits better than none where the fault showed, and the residuals are quiet.
     host::ReplayEvent e;
     e.t = t;
     e.event = "cleared";
@@ -289,8 +313,10 @@ void FaultFitDiagnosis::decide(double t, std::vector<host::ReplayEvent>& out) {
     case EstimateVerdict::kUnexplained: e.event = "unexplained"; break;
     default: return;  // no window yet, or none says a fault: the last verdict stands
   }
+  // Every hypothesis that fits the windows is listed; `consistent` counts those the timing
+  // does not rule out too (an isolation by timing lists its rivals after it, weighed down).
   const int shown = e.event == "unexplained" ? std::min(3, est.ranked()) : est.consistent();
-  e.consistent = e.event == "unexplained" ? 0 : est.consistent();
+  e.consistent = e.event == "unexplained" ? 0 : est.supported();
   std::string key = e.event;
   for (int r = 0; r < shown; ++r) {
     const HypothesisFit<double>& f = est.fit(r);

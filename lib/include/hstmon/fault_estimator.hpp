@@ -412,6 +412,18 @@ class FaultEstimator {
   /// The verdict is isolated by timing: other hypotheses fit the windows since the
   /// detection, but would have shown in the windows before it had they begun earlier.
   bool isolated_by_timing() const noexcept { return by_timing_; }
+  /// Hypotheses consistent with all the evidence: consistent() when the windows alone
+  /// decide; when the verdict is isolated by timing, only the best one and those that act
+  /// as one with it (the others would have shown before the detection).
+  int supported() const noexcept {
+    if (!by_timing_) return n_consistent_;
+    int n = 0;
+    for (int r = 0; r < n_consistent_; ++r) n += (r == 0 || acts_as_one(0, r)) ? 1 : 0;
+    return n;
+  }
+  /// The inputs of the window the verdict was last decided on (the open one, or the one
+  /// closed by an input change).
+  const Inputs& decided_at() const noexcept { return decided_u_; }
   /// Fits r and q change every window alike (the same χ² and factor): no sensor tells them apart.
   bool acts_as_one(int r, int q) const noexcept {
     const Fit& a = ranked_[r];
@@ -932,6 +944,7 @@ class FaultEstimator {
 
   // Ranks on the closed windows' sums, with the open window's terms added when asked.
   void decide(bool with_open) noexcept {
+    decided_u_ = u_win_;
     if (!with_open) {
       rank(chi_, floor_, chi0_, sens_a_, sens_b_, dof_);
       return;
@@ -1025,6 +1038,7 @@ class FaultEstimator {
   // The open window.
   bool armed_ = false, open_ = false;
   Inputs u_win_{};
+  Inputs decided_u_{};  ///< decided_at()
   T t_open_ = T(0), t_first_ = T(0), t_last_ = T(0), t_decided_ = T(0);
   Output y0_{};
   T bound_[kNz] = {};      ///< the model bound at the open window's inputs [channel unit]

@@ -75,6 +75,7 @@ class FaultFitDiagnosis {
   void watch(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
   void start_episode(double t, const Model::Inputs& u, double settled_for = 0.0);
   void end_episode(double t);
+  bool gone() const;
   void emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out);
 
   std::unique_ptr<Impl> impl_;
