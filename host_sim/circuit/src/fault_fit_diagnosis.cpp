@@ -187,13 +187,16 @@ void FaultFitDiagnosis::on_matcher_event(const host::ReplayEvent& e, double t, c
 }
 
 // The evidence says the fault has gone: no fault fits the episode's windows better than none,
-// the latest of them at the inputs where the fault was detected. Elsewhere a fault may just
-// not show (a wider model bound there, or a fault that acts less): a pump-curve fault seen at
-// one valve opening hides inside the bound at the next, and stays.
+// the latest of them at the inputs where the fault was detected, and there the readings are
+// back where they were before it (a step found at held inputs is measured against that
+// baseline, not against the bound, and so is its going). Elsewhere a fault may just not show
+// (a wider model bound there, or a fault that acts less): a pump-curve fault seen at one valve
+// opening hides inside the bound at the next, and stays.
 bool FaultFitDiagnosis::gone() const {
   const Impl& m = *impl_;
   if (m.est.verdict() != EstimateVerdict::kNoFault) return false;
-  return !m.seen_held || inputs_within(m.u_seen, m.est.decided_at(), 1e-4);
+  if (!m.seen_held) return true;
+  return inputs_within(m.u_seen, m.est.decided_at(), 1e-4) && m.est.back_to_baseline();
 }
 
 // The episode ends at t (cleared): its windows held the fault, so the record of the

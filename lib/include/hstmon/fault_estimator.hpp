@@ -193,6 +193,7 @@ class FaultEstimator {
     T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
     T k_sensitivity = T(0.1);   ///< share of the observed change counted as model error in a baselined window [-]
     T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the model bound is not used [-]
+    T k_back = T(4);            ///< change since the baseline, in standard errors, that is not back [-]
     T k_onset_odds = T(10);     ///< timing odds of the best group over every other that isolate [-]
     T past_settle_taus = T(1);  ///< wait before a window of the record before an episode [time constants]
     /// A window's trend counts beyond this many of its noise spread, and marks the episode
@@ -424,6 +425,24 @@ class FaultEstimator {
   /// The inputs of the window the verdict was last decided on (the open one, or the one
   /// closed by an input change).
   const Inputs& decided_at() const noexcept { return decided_u_; }
+  /// Whether the window the verdict was last decided on reads as the machine did before the
+  /// fault: at the baseline's inputs, every channel with a baseline within k_back standard
+  /// errors (noise, motion, the baseline's scatter) of it. The model's error cancels in that
+  /// change whatever its size, so this holds where the model bound is too wide to judge the
+  /// no-fault model (a baseline far from the model counts too). True without a baseline at
+  /// those inputs; false once that window's sums are gone (a later window has opened).
+  bool back_to_baseline() const noexcept {
+    if (base_valid_ == 0 || !inputs_close(base_u_, decided_u_)) return true;
+    if (!inputs_close(u_win_, decided_u_)) return false;
+    for (int i = 0; i < kN; ++i) {
+      if (((base_valid_ >> i) & 1u) == 0 || n_[i] == 0) continue;
+      const T change = sum_[i] / static_cast<T>(n_[i]) - y0_[i] - base_mean_[i];
+      const T motion = T(0.5) * drift(i);
+      const T var = mean_noise(i) + motion * motion + base_var_[i];
+      if (change * change > cfg_.k_back * cfg_.k_back * var) return false;
+    }
+    return true;
+  }
   /// Fits r and q change every window alike (the same χ² and factor): no sensor tells them apart.
   bool acts_as_one(int r, int q) const noexcept {
     const Fit& a = ranked_[r];
