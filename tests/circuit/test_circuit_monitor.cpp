@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <memory>
@@ -65,6 +66,17 @@ ct::InputStep step(const ct::LoadedCircuit& c, const std::string& text, bool fau
   const auto err = fault ? ct::parse_param_fault(text, c.file, st) : ct::parse_input_step(text, c.file, st);
   EXPECT_FALSE(err.has_value()) << *err;
   return st;
+}
+
+// A 5 s run at 1 kHz (seed 4) of a machine whose motor displacement Dm is dm_factor × the
+// file's, with these steps: {text, true} a parameter fault, {text, false} an input step.
+ct::CircuitLog run_with_motor(const ct::LoadedCircuit& c, double dm_factor,
+                              std::initializer_list<std::pair<const char*, bool>> steps) {
+  ct::LoadedCircuit m = c;
+  m.values.params.v[c.file.param_index("Dm")] *= dm_factor;
+  ct::CircuitSimOptions o = hstmon_test::sim_options(5.0, 1000.0, 4);
+  for (const auto& [text, fault] : steps) o.steps.push_back(step(c, text, fault));
+  return ct::simulate_circuit(m, o);
 }
 
 // A simulated run through the log text, as hstmon replay --circuit reads it.
@@ -467,12 +479,7 @@ TEST(CircuitMonitor, FaultInsideTheBoundFoundAsAStepAtHeldInputs) {
 // when the window waited a full settle, and undecided without the speed's baseline).
 TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
   const ct::LoadedCircuit c = load("thesis");
-  ct::LoadedCircuit m = c;
-  m.values.params.v[c.file.param_index("Dm")] *= 0.98;
-  ct::CircuitSimOptions o = hstmon_test::sim_options(5.0, 1000.0, 4);
-  o.steps.push_back(step(c, "Rf=1.3@2.5", true));
-  o.steps.push_back(step(c, "kp=4.46e-8@3", false));
-  const ct::CircuitLog log = ct::simulate_circuit(m, o);
+  const ct::CircuitLog log = run_with_motor(c, 0.98, {{"Rf=1.3@2.5", true}, {"kp=4.46e-8@3", false}});
   const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
   ASSERT_FALSE(r.events.empty()) << "not detected";
   EXPECT_EQ(r.events.front().event, "detected");
@@ -494,12 +501,7 @@ TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
 // campaign, sensor_w_m seed 19000059).
 TEST(CircuitMonitor, StepThatStaysIsNotClearedByAWindowTheBoundCannotJudge) {
   const ct::LoadedCircuit c = load("thesis");
-  ct::LoadedCircuit m = c;
-  m.values.params.v[c.file.param_index("Dm")] *= 0.97;
-  ct::CircuitSimOptions o = hstmon_test::sim_options(5.0, 1000.0, 4);
-  o.steps.push_back(step(c, "kp=4.09e-8@0.5", false));
-  o.steps.push_back(step(c, "Pbp=13.8 bar@3", false));
-  ct::CircuitLog log = ct::simulate_circuit(m, o);
+  ct::CircuitLog log = run_with_motor(c, 0.97, {{"kp=4.09e-8@0.5", false}, {"Pbp=13.8 bar@3", false}});
   std::size_t ch = 0;
   while (ch < c.file.sensors.size() && c.file.sensors[ch].name != "w_m") ++ch;
   ASSERT_LT(ch, log.sensors.size());

@@ -326,16 +326,14 @@ class Reader {
   void read_parameters(const Json& j) {
     object(j, "/parameters", "'parameters'");
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string base = "/parameters/" + tok(it.key());
+      const std::string base = entry(it, "parameters", "parameter", f_.params.size(), CircuitCap::kParams,
+                                     {"quantity", "value", "description"});
       declared_name(it.key(), base);
-      object(*it, base, ("parameter '" + it.key() + "'").c_str());
-      check_keys(*it, base, {"quantity", "value", "description"});
       CircuitParam p;
       p.name = it.key();
       p.quantity = quantity(*it, base);
       declared_value(*it, base, p);
       p.description = string_field(*it, base, "description", false);
-      if (f_.params.size() >= static_cast<std::size_t>(CircuitCap::kParams)) fail_key(base, "too many parameters");
       f_.params.push_back(p);
     }
   }
@@ -352,10 +350,9 @@ class Reader {
   void read_inputs(const Json& j) {
     object(j, "/inputs", "'inputs'");
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string base = "/inputs/" + tok(it.key());
+      const std::string base = entry(it, "inputs", "input", f_.inputs.size(), CircuitCap::kInputs,
+                                     {"quantity", "column", "unit", "value", "description"});
       declared_name(it.key(), base);
-      object(*it, base, ("input '" + it.key() + "'").c_str());
-      check_keys(*it, base, {"quantity", "column", "unit", "value", "description"});
       CircuitInput u;
       u.name = it.key();
       u.quantity = quantity(*it, base);
@@ -368,21 +365,30 @@ class Reader {
       }
       declared_value(*it, base, u);
       (void)string_field(*it, base, "description", false);
-      if (f_.inputs.size() >= static_cast<std::size_t>(CircuitCap::kInputs)) fail_key(base, "too many inputs");
       f_.inputs.push_back(u);
     }
+  }
+
+  /// Opens entry `it` of section `section` (one of `kind`) and returns its JSON pointer:
+  /// the section has room for one more (`count` read of at most `cap`), the entry is an
+  /// object, and it holds only `keys`.
+  std::string entry(Json::const_iterator it, const char* section, const char* kind, std::size_t count, int cap,
+                    const std::vector<const char*>& keys) {
+    const std::string base = std::string("/") + section + "/" + tok(it.key());
+    if (count >= static_cast<std::size_t>(cap)) {
+      fail_key(base, std::string("too many ") + section + ": at most " + std::to_string(cap));
+    }
+    object(*it, base, (std::string(kind) + " '" + it.key() + "'").c_str());
+    check_keys(*it, base, keys);
+    return base;
   }
 
   void read_nodes(const Json& j) {
     object(j, "/nodes", "'nodes'");
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string base = "/nodes/" + tok(it.key());
       const std::string& name = it.key();
-      if (f_.nodes.size() >= static_cast<std::size_t>(CircuitCap::kNodes)) {
-        fail_key(base, "too many nodes: at most " + std::to_string(CircuitCap::kNodes));
-      }
-      object(*it, base, ("node '" + name + "'").c_str());
-      check_keys(*it, base, {"K", "beta", "volume", "boundary", "description"});
+      const std::string base = entry(it, "nodes", "node", f_.nodes.size(), CircuitCap::kNodes,
+                                     {"K", "beta", "volume", "boundary", "description"});
       (void)string_field(*it, base, "description", false);
       circuit::Node n;
       const bool has_K = it->contains("K"), has_b = it->contains("beta"), has_v = it->contains("volume");
@@ -410,13 +416,9 @@ class Reader {
   void read_shafts(const Json& j) {
     object(j, "/shafts", "'shafts'");
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string base = "/shafts/" + tok(it.key());
       const std::string& name = it.key();
-      if (f_.shafts.size() >= static_cast<std::size_t>(CircuitCap::kShafts)) {
-        fail_key(base, "too many shafts: at most " + std::to_string(CircuitCap::kShafts));
-      }
-      object(*it, base, ("shaft '" + name + "'").c_str());
-      check_keys(*it, base, {"J", "friction", "speed", "description"});
+      const std::string base = entry(it, "shafts", "shaft", f_.shafts.size(), CircuitCap::kShafts,
+                                     {"J", "friction", "speed", "description"});
       (void)string_field(*it, base, "description", false);
       circuit::Shaft s;
       const int index = static_cast<int>(f_.shafts.size());
@@ -616,13 +618,9 @@ class Reader {
   void read_sensors(const Json& j) {
     object(j, "/sensors", "'sensors'");
     for (auto it = j.begin(); it != j.end(); ++it) {
-      const std::string base = "/sensors/" + tok(it.key());
       const std::string& name = it.key();
-      if (f_.sensors.size() >= static_cast<std::size_t>(CircuitCap::kChannels)) {
-        fail_key(base, "too many sensors: at most " + std::to_string(CircuitCap::kChannels));
-      }
-      object(*it, base, ("sensor '" + name + "'").c_str());
-      check_keys(*it, base, {"node", "shaft", "flow", "column", "unit", "range", "noise", "description"});
+      const std::string base = entry(it, "sensors", "sensor", f_.sensors.size(), CircuitCap::kChannels,
+                                     {"node", "shaft", "flow", "column", "unit", "range", "noise", "description"});
       const int kinds = (it->contains("node") ? 1 : 0) + (it->contains("shaft") ? 1 : 0) + (it->contains("flow") ? 1 : 0);
       if (kinds != 1) fail_value(base, "sensor '" + name + "' measures exactly one of: node (pressure), shaft (speed), flow (a component)");
       circuit::Channel ch;
