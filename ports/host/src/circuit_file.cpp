@@ -372,9 +372,9 @@ class Reader {
   /// Opens entry `it` of section `section` (one of `kind`) and returns its JSON pointer:
   /// the section has room for one more (`count` read of at most `cap`), the entry is an
   /// object, and it holds only `keys`.
-  std::string entry(Json::const_iterator it, const char* section, const char* kind, std::size_t count, int cap,
+  std::string entry(const Json::const_iterator& it, const char* section, const char* kind, std::size_t count, int cap,
                     const std::vector<const char*>& keys) {
-    const std::string base = std::string("/") + section + "/" + tok(it.key());
+    std::string base = std::string("/") + section + "/" + tok(it.key());
     if (count >= static_cast<std::size_t>(cap)) {
       fail_key(base, std::string("too many ") + section + ": at most " + std::to_string(cap));
     }
