@@ -454,10 +454,10 @@ double percent(int a, int b) { return b > 0 ? 100.0 * a / b : 0.0; }
 
 void print_json(const LoadedCircuit& c, std::size_t n_faults, const Tallies& t) {
   fmt::print(
-      "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},\"best_pct\":"
-      "{:.2f},"
-      "\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},\"early_detections\":{},"
-      "\"cleared_at_end\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},\"errors\":{}}}\n",
+      "{{\"circuit\":\"{}\",\"faults\":{},\"fault_runs\":{},\"detected_pct\":{:.2f},\"in_set_pct\":{:.2f},"
+      "\"best_pct\":{:.2f},\"isolated_pct\":{:.2f},\"median_isolation_s\":{:.3f},\"size_within_20pct\":{:.2f},"
+      "\"early_detections\":{},\"cleared_at_end\":{},\"nominal_hours\":{:.3f},\"nominal_false_alarms\":{},"
+      "\"errors\":{}}}\n",
       c.file.name, n_faults, t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected),
       percent(t.all.best, t.all.detected), percent(t.all.isolated, t.all.detected), t.all.median_isolation(),
       percent(t.all.size_ok, t.all.sized), t.all.early, t.all.cleared, t.nominal_s / 3600.0, t.nominal.early,
@@ -521,9 +521,8 @@ void print_report(const Settings& o, const LoadedCircuit& c, std::size_t n_fault
                percent(ct.in_set, ct.detected), percent(ct.isolated, ct.detected), ct.early);
   }
   fmt::print(
-      "\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, early detections "
-      "{}, "
-      "cleared at the end while the fault persisted {}\n",
+      "\nall fault runs: {} — detected {:.1f} %, truth in set {:.1f} % of detected, best {:.1f} %, "
+      "early detections {}, cleared at the end while the fault persisted {}\n",
       t.all.runs, percent(t.all.detected, t.all.runs), percent(t.all.in_set, t.all.detected),
       percent(t.all.best, t.all.detected), t.all.early, t.all.cleared);
   fmt::print("isolated on the truth or its class: {:.1f} % of detected, median {:.2f} s after the fault; size within 20 % "
