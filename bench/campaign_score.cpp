@@ -99,12 +99,12 @@ Scored score_decisions(const std::vector<hstmon::host::ReplayEvent>& events, con
 }  // namespace
 
 Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
-             double tie_margin, const std::vector<std::string>& truth_class) {
+             double tie_margin, const std::vector<std::string>& truth_class, bool clear_names_nothing) {
   Scored s = score_decisions(events, truth, t_fault, tie_margin, truth_class);
-  // A fault persists to the end of the run: a last word "cleared" names nothing, whatever
-  // came before (score_circuit.py's rule).
-  if (!events.empty() && events.back().t >= t_fault - 1e-9 && events.back().event == "cleared") {
-    s.cleared_at_end = true;
+  // A fault persists to the end of the run: a last word "cleared" is wrong, and under
+  // score_circuit.py's rule it names nothing, whatever came before.
+  s.cleared_at_end = !events.empty() && events.back().t >= t_fault - 1e-9 && events.back().event == "cleared";
+  if (s.cleared_at_end && clear_names_nothing) {
     s.in_last = s.best_in_last = s.in_set = s.isolated_as_truth = s.isolated_class = false;
   }
   return s;

@@ -42,7 +42,10 @@ struct Scored {
 /// Scores the events of a run whose fault `truth` starts at t_fault [s]; tie_margin [rad].
 /// @param truth_class the faults the sensors cannot tell from the truth (the truth among them
 ///        or not; empty: only the truth and the candidates that tie with it)
+/// @param clear_names_nothing a run whose last event is `cleared` names nothing (the rule of
+///        score_circuit.py and score_paper.py); false: the last decision stands whatever
+///        follows (score_monitor.py's rule). cleared_at_end is set either way.
 Scored score(const std::vector<hstmon::host::ReplayEvent>& events, const std::string& truth, double t_fault,
-             double tie_margin, const std::vector<std::string>& truth_class = {});
+             double tie_margin, const std::vector<std::string>& truth_class = {}, bool clear_names_nothing = false);
 
 }  // namespace hstmon_campaign

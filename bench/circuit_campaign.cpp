@@ -242,7 +242,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   ro.fit = !g_matcher_only;
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
-    r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin, class_of(f.name));
+    r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin, class_of(f.name), true);
   } else {
     for (const auto& e : res.events) r.alarms += e.event == "detected" ? 1 : 0;
   }

@@ -54,6 +54,20 @@ TEST(CampaignScore, WithoutAClassOnlyTiesCount) {
   EXPECT_FALSE(hstmon_campaign::score(near, "Dp+", 4.0, 0.01).isolated_class);
 }
 
+TEST(CampaignScore, AClearAtTheEndNamesNothingUnderTheCircuitSetsRule) {
+  // The fault persists to the end of the run: a last "cleared" is noted either way; under
+  // score_circuit.py's rule it withdraws what came before, under score_monitor.py's not.
+  const std::vector<ReplayEvent> ev = {event(7.5, "isolated", {{"Dp+", 1.0}}), event(9.0, "cleared", {})};
+  const auto circuit_rule = hstmon_campaign::score(ev, "Dp+", 4.0, 0.01, kClass, true);
+  EXPECT_TRUE(circuit_rule.cleared_at_end);
+  EXPECT_FALSE(circuit_rule.in_last);
+  EXPECT_FALSE(circuit_rule.isolated_class);
+  const auto monitor_rule = hstmon_campaign::score(ev, "Dp+", 4.0, 0.01, kClass);
+  EXPECT_TRUE(monitor_rule.cleared_at_end);
+  EXPECT_TRUE(monitor_rule.in_last);
+  EXPECT_TRUE(monitor_rule.isolated_class);
+}
+
 TEST(CampaignScore, OnlyTheFinalStretchOfDecisionsCounts) {
   // Isolated early, then a wrong verdict last: not isolated.
   const std::vector<ReplayEvent> ev = {event(7.5, "isolated", {{"Dp+", 1.0}}),
