@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "../support/loaded_circuit.hpp"
+#include "../support/mem_log.hpp"
 #include "../support/sim_options.hpp"
 #include "hstmon/circuit/circuit_bound.hpp"
 #include "hstmon/circuit/circuit_monitor.hpp"
@@ -77,6 +78,18 @@ ct::CircuitLog run_with_motor(const ct::LoadedCircuit& c, double dm_factor,
   ct::CircuitSimOptions o = hstmon_test::sim_options(5.0, 1000.0, 4);
   for (const auto& [text, fault] : steps) o.steps.push_back(step(c, text, fault));
   return ct::simulate_circuit(m, o);
+}
+
+// Adds `offset` [SI] to sensor `name`'s readings from t0 [s] on; false when the log does not read it.
+bool add_offset(const ct::LoadedCircuit& c, const char* name, double t0, double offset, ct::CircuitLog& log) {
+  const int ch = c.file.sensor_index(name);
+  if (ch < 0 || static_cast<std::size_t>(ch) >= log.sensors.size()) return false;
+  std::vector<double>& y = log.sensors[static_cast<std::size_t>(ch)];
+  if (y.size() != log.rows()) return false;
+  for (std::size_t k = 0; k < log.rows(); ++k) {
+    if (log.t[k] >= t0) y[k] += offset;
+  }
+  return true;
 }
 
 // A simulated run through the log text, as hstmon replay --circuit reads it.
@@ -502,12 +515,7 @@ TEST(CircuitMonitor, StepFoundJustBeforeAnInputChangeIsDecided) {
 TEST(CircuitMonitor, StepThatStaysIsNotClearedByAWindowTheBoundCannotJudge) {
   const ct::LoadedCircuit c = load("thesis");
   ct::CircuitLog log = run_with_motor(c, 0.97, {{"kp=4.09e-8@0.5", false}, {"Pbp=13.8 bar@3", false}});
-  std::size_t ch = 0;
-  while (ch < c.file.sensors.size() && c.file.sensors[ch].name != "w_m") ++ch;
-  ASSERT_LT(ch, log.sensors.size());
-  for (std::size_t k = 0; k < log.rows(); ++k) {
-    if (log.t[k] >= 2.5) log.sensors[ch][k] += 10.0 * 2.0 * 3.14159265358979 / 60.0;
-  }
+  ASSERT_TRUE(add_offset(c, "w_m", 2.5, 10.0 * hstmon_test::kRpm, log));
   const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
   ASSERT_FALSE(r.events.empty()) << "not detected";
   EXPECT_GE(r.events.front().t, 2.5) << "\n" << event_lines(r);
@@ -560,12 +568,7 @@ TEST(CircuitMonitor, SensorOffsetAfterALoadStepIsFoundAtTheRunningMachinesPace) 
   ASSERT_FALSE(err.has_value()) << err->to_string();
   ct::CircuitLog log = ct::read_circuit_log(dir + "logs/nominal_A.csv.gz", c.file);
   ASSERT_TRUE(log.ok());
-  std::size_t ch = 0;
-  while (ch < c.file.sensors.size() && c.file.sensors[ch].name != "p_b") ++ch;
-  ASSERT_LT(ch, log.sensors.size());
-  for (std::size_t k = 0; k < log.rows(); ++k) {
-    if (log.t[k] >= 6.0) log.sensors[ch][k] += 3e5;
-  }
+  ASSERT_TRUE(add_offset(c, "p_b", 6.0, 3e5, log));
   const ct::CircuitReplayResult r = ct::replay_circuit(c, log, cli_options(c));
   ASSERT_FALSE(r.events.empty()) << "not detected";
   EXPECT_GE(r.events.front().t, 6.0) << "\n" << event_lines(r);

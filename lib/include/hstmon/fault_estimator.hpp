@@ -437,8 +437,7 @@ class FaultEstimator {
     for (int i = 0; i < kN; ++i) {
       if (((base_valid_ >> i) & 1u) == 0 || n_[i] == 0) continue;
       const T change = sum_[i] / static_cast<T>(n_[i]) - y0_[i] - base_mean_[i];
-      const T motion = T(0.5) * drift(i);
-      const T var = mean_noise(i) + motion * motion + base_var_[i];
+      const T var = moving_mean_noise(i) + base_var_[i];
       if (change * change > cfg_.k_back * cfg_.k_back * var) return false;
     }
     return true;
@@ -733,11 +732,17 @@ class FaultEstimator {
   // change (never more than the model error) that a sensitivity off the model's may make.
   // change: the window's mean less the baseline's model error, less the model's output.
   T variance(int i, T change) const noexcept {
-    const T motion = T(0.5) * drift(i);
-    const T noise = mean_noise(i) + motion * motion;
+    const T noise = moving_mean_noise(i);
     if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
     const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
     return noise + base_var_[i] + share * share;
+  }
+
+  // The open window's mean on channel i as a steady value: its noise variance and half its
+  // motion (drift()) squared [channel unit²].
+  T moving_mean_noise(int i) const noexcept {
+    const T motion = T(0.5) * drift(i);
+    return mean_noise(i) + motion * motion;
   }
 
   // The noise variance of the open window's mean on channel i [channel unit²].
