@@ -87,6 +87,10 @@ int changes_after_fault(const LoadedCircuit& c) {
 // steps after it and ends where the next would come, a load period after the last (the
 // matcher's settle of 3 τ and window of τ, as replay_circuit sets them, and the
 // estimator's window fit in it).
+// --fault-at-step: the fault begins at an input step, two steps into the run, so the point the
+// machine then moves to is never read healthy (only the record's prediction can judge it).
+bool g_fault_at_step = false;
+
 struct Timing {
   double t_fault = 2.5, run = 5.0, tau = 0.0;
   double load_period = 2.0;  // [s] between input steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
@@ -103,6 +107,7 @@ Timing timing(const LoadedCircuit& c) {
     tm.t_fault = std::max(2.5, 3.0 * tm.tau);
     tm.load_period = std::max(2.0, 6.0 * tm.tau);
   }
+  if (g_fault_at_step) tm.t_fault = 1.0 + 2.0 * tm.load_period;
   // Steps fall at 1 s + k·period; the changes_after-th after the fault ends the changes.
   tm.changes_after = changes_after_fault(c);
   const double first_after = 1.0 + std::floor((tm.t_fault - 1.0) / tm.load_period + 1.0) * tm.load_period;
@@ -114,6 +119,8 @@ Timing g_timing;
 hstmon::circuit_tools::CircuitFaultTable g_table;
 // --matcher-only: the matcher's verdict alone, as the firmware runs it (no fit, no step at held inputs).
 bool g_matcher_only = false;
+// --no-record: replay without the healthy record (CircuitReplayOptions::healthy_record), for comparing.
+bool g_no_record = false;
 // The transducers of every run (--lag, --adc-bits; none by default, as the recorded figures).
 hstmon::circuit_tools::TransducerOptions g_transducers;
 // The classes of faults no operating point of the runs' span splits (split_by_operating_point
@@ -164,7 +171,7 @@ std::vector<InputStep> load_steps(const LoadedCircuit& c, double duration, std::
     InputStep s;
     s.t = t;
     double factor = 1.0;
-    if (t < g_timing.t_fault) {
+    if (t < g_timing.t_fault - 1e-9) {
       s.input = movable[pick(rng)];
       factor = level(rng);
     } else {
@@ -240,6 +247,7 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   CircuitReplayOptions ro;
   ro.table = &g_table;  // hstmon replay --circuit's (fdi::circuit_signature_table), built once
   ro.fit = !g_matcher_only;
+  ro.healthy_record = !g_no_record;
   const auto res = hstmon::circuit_tools::replay_circuit(c, log, ro);
   if (faulted) {
     r.s = hstmon_campaign::score(res.events, f.name, g_timing.t_fault, kTieMargin, class_of(f.name), true);
@@ -363,6 +371,11 @@ void add_options(CLI::App& app, Settings& o) {
       ->check(CLI::Range(4, 24));
   app.add_option("--lag", g_transducers.lag, "every channel through a first-order lag of this time constant [s]")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--no-record", g_no_record,
+               "replay without the healthy record (replay_circuit's healthy_record), for comparing");
+  app.add_flag(
+      "--fault-at-step", g_fault_at_step,
+      "the fault begins at an input step (two steps in), so no healthy reading of the point it moves to exists");
   app.add_flag("--matcher-only", g_matcher_only,
                "the matcher's verdict alone, as the firmware runs it (replay --circuit --matcher-only)");
 }

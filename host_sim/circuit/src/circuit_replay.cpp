@@ -344,7 +344,7 @@ void run_monitor(const LoadedCircuit& c, const CircuitLog& log, const CircuitRep
   typename Mon::Event ev;
   // The matcher detects; the fit over the steady windows after a detection decides.
   std::unique_ptr<FaultFitDiagnosis> diag;
-  if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, host_model, mask);
+  if (res.table_rows > 0 && o.fit) diag = std::make_unique<FaultFitDiagnosis>(c, host_model, mask, o.healthy_record);
   // Outside the model's envelope at the first steady stretch, nothing more is diagnosed.
   EnvelopeCheck<typename Mon::Model> envelope;
   {

@@ -9,6 +9,7 @@
 #include "hstmon/circuit/setting_shift.hpp"
 #include "hstmon/fault_estimator.hpp"
 #include "hstmon/held_step_detector.hpp"
+#include "hstmon_circuit/healthy_record.hpp"
 #include "hstmon_host/circuit_units.hpp"
 
 namespace hstmon::circuit_tools {
@@ -79,6 +80,7 @@ struct FaultFitDiagnosis::Impl {
   Estimator est;
   bool ok = false;
   StepDetector step;
+  std::unique_ptr<HealthyRecord> record;  ///< the machine as its healthy windows showed it
   Model::Inputs u_hold{};  ///< the inputs the detector's blocks were read at
   bool holding = false;
   double t_settled = 0.0;          ///< the hold's settle ends [s]
@@ -87,6 +89,10 @@ struct FaultFitDiagnosis::Impl {
   /// detected while the inputs moved.
   bool seen_held = false;
   Model::Inputs u_seen{};
+  // The inputs the estimator was last given the record's prediction at, since t_expected.
+  Model::Inputs u_expected{};
+  double t_expected = 0.0;
+  bool expected_done = false;
   std::vector<double> y_hat_held;  ///< the model's outputs once settled (empty before) [SI]
 
   explicit Impl(const LoadedCircuit& circuit) : c(circuit) {}
@@ -133,7 +139,7 @@ struct FaultFitDiagnosis::Impl {
   }
 };
 
-FaultFitDiagnosis::FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured)
+FaultFitDiagnosis::FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured, bool record)
     : impl_(std::make_unique<Impl>(c)) {
   Impl& m = *impl_;
   for (std::size_t k = 0; k < c.file.params.size(); ++k) {
@@ -150,6 +156,9 @@ FaultFitDiagnosis::FaultFitDiagnosis(const LoadedCircuit& c, const Model& model,
   Estimator::Config cfg;
   m.ok = m.est.configure(model, m.hyps.data(), static_cast<int>(m.hyps.size()), sigma, measured, circuit_uncertainty(c), cfg);
   m.step.configure(sigma, measured, StepDetector::Config{});
+  HealthyRecord::Config rc;
+  rc.on = record;
+  m.record = std::make_unique<HealthyRecord>(model, circuit_uncertainty(c), sigma, measured, rc);
 }
 
 FaultFitDiagnosis::~FaultFitDiagnosis() = default;
@@ -224,7 +233,33 @@ void FaultFitDiagnosis::start_episode(double t, const Model::Inputs& u, double s
   m.u_seen = u;
   double offset[Model::kOutputs] = {}, var[Model::kOutputs] = {};
   const unsigned have = m.holding ? m.step.reference(offset, var) : 0u;
-  if (have != 0) m.est.set_baseline(m.u_hold, offset, var, have);
+  if (have != 0) {
+    m.est.set_baseline(m.u_hold, offset, var, have);
+  } else if (m.holding && inputs_within(m.u_hold, u, 1e-4)) {
+    // No reading at these inputs before the fault: the healthy record's prediction of them.
+    const unsigned expected = m.record->predicted(offset, var);
+    if (expected != 0) m.est.set_expected(m.u_hold, offset, var, expected);
+  }
+  m.u_expected = u;
+  m.t_expected = t;
+  m.expected_done = true;
+  m.record->drop();
+}
+
+// During an episode, at each new hold of the inputs: the healthy record's prediction of the
+// readings there, so that the estimator's window at them measures the change since.
+void FaultFitDiagnosis::expect(double t, const Model::Inputs& u) {
+  Impl& m = *impl_;
+  if (!inputs_within(m.u_expected, u, 1e-4)) {
+    m.u_expected = u;
+    m.t_expected = t;
+    m.expected_done = false;
+  }
+  if (m.expected_done || t - m.t_expected < kHeldBeforeDetection) return;
+  m.expected_done = true;
+  double mean[Model::kOutputs] = {}, var[Model::kOutputs] = {};
+  const unsigned have = m.record->expected_at(u, mean, var);
+  if (have != 0) m.est.set_expected(u, mean, var, have);
 }
 
 // While no episode runs: a step in the residuals at held inputs starts one. (The
@@ -259,20 +294,32 @@ void FaultFitDiagnosis::watch(const Row& row, const Model::Inputs& u, std::vecto
     m.t_settled = t + m.est.settle_time(u);
     m.y_hat_held.clear();
     m.step.hold(m.t_settled);
+    m.record->begin(u, m.t_settled);
   }
-  if (!m.step.add(t, row.r, row.r_valid & row.valid, row.bound)) return;
+  const unsigned valid = row.r_valid & row.valid;
   host::ReplayEvent e;
   e.t = t;
   e.event = "detected";
-  std::string where;
-  for (std::size_t ch = 0; ch < m.c.file.sensors.size(); ++ch) {
-    if (((m.step.step_mask() >> ch) & 1u) != 0) where += (where.empty() ? "" : ", ") + m.c.file.sensors[ch].name;
+  if (m.step.add(t, row.r, valid, row.bound)) {
+    std::string where;
+    for (std::size_t ch = 0; ch < m.c.file.sensors.size(); ++ch) {
+      if (((m.step.step_mask() >> ch) & 1u) != 0) where += (where.empty() ? "" : ", ") + m.c.file.sensors[ch].name;
+    }
+    e.why = "a step in " + where + " while the inputs held still";
+    // The detector has seen its recent blocks after the step: the machine has settled for
+    // that long already (a detection just before an input change still gets its window).
+    start_episode(t, u, m.step.recent_span());
+    emit(std::move(e), out);
+    return;
   }
-  e.why = "a step in " + where + " while the inputs held still";
-  // The detector has seen its recent blocks after the step: the machine has settled for
-  // that long already (a detection just before an input change still gets its window).
-  start_episode(t, u, m.step.recent_span());
-  emit(std::move(e), out);
+  if (m.record->add(t, row.y, row.valid)) {
+    e.why = fmt::format(
+        "the readings at these inputs are not what the machine's {} healthy steady window(s) "
+        "predict here (chi2 {:.0f} over {} channels)",
+        m.record->windows(), m.record->chi2(), m.record->dof());
+    start_episode(t, u, m.record->settled_for(t));
+    emit(std::move(e), out);
+  }
 }
 
 void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out) {
@@ -288,6 +335,7 @@ void FaultFitDiagnosis::on_row(const Row& row, const Model::Inputs& u, std::vect
   }
   if (sensor_lock_) return;
   const double t = row.t;
+  expect(t, u);
   if (!impl_->est.add(t, u, row.y, row.valid)) return;
   if (gone() && row.matcher_quiet) {
     // No fault fits better than none where the fault showed, and the residuals are quiet.

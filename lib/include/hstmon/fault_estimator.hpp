@@ -52,6 +52,9 @@
 /// isolates where the model bound alone would leave every hypothesis consistent. A channel
 /// whose baseline residual exceeds half the model bound sat far from the model before the
 /// fault (a valve the model has cracked and the machine has not) and is fitted without it.
+/// Where the readings at a window's inputs were never taken before the fault (it began in
+/// an input ramp), a prediction of them from the machine's healthy windows elsewhere
+/// (set_expected) stands in for the baseline, its variance the prediction's.
 /// An episode found as a step at held inputs starts with the machine already settled for
 /// the detector's recent blocks (start()'s settled_for), so a detection just before an
 /// input change still gets its window.
@@ -262,6 +265,7 @@ class FaultEstimator {
     last_chi0_w_ = last_dof_w_ = T(0);
     base_valid_ = 0;
     base_use_ = 0;
+    expected_.valid = 0;
   }
 
   /// The model's error at inputs u before the fault: the mean residual (reading less the
@@ -276,6 +280,23 @@ class FaultEstimator {
       base_mean_[i] = offset[i];
       base_var_[i] = var[i];
       base_valid_ |= 1u << i;
+    }
+  }
+
+  /// What the machine would read at inputs u had the fault not come, predicted from its
+  /// readings elsewhere before it (a record of its healthy steady windows): the mean
+  /// residual per channel [channel unit] and the variance of that prediction [channel
+  /// unit²]; bit i of valid: channel i has one. A window at u with no baseline of its own
+  /// (set_baseline) counts the change since that, as it would since a baseline. It says
+  /// nothing about the fault's going (back_to_baseline): it was never read.
+  void set_expected(const Inputs& u, const T* offset, const T* var, unsigned valid) noexcept {
+    expected_.u = u;
+    expected_.valid = 0;
+    for (int i = 0; i < kN; ++i) {
+      if (((valid >> i) & 1u) == 0 || !std::isfinite(offset[i]) || !(var[i] >= T(0))) continue;
+      expected_.mean[i] = offset[i];
+      expected_.var[i] = var[i];
+      expected_.valid |= 1u << i;
     }
   }
 
@@ -684,14 +705,19 @@ class FaultEstimator {
     // its sensitivities may differ from the model's, so it is fitted as without a baseline.
     // (At the whole bound the test stand's machine with a shut relief valve lost its leak
     // from the set: tests/circuit CircuitMonitor.MachineWithShutReliefValve….)
+    // The readings before the fault at these inputs, else the prediction of them.
+    const bool seen = base_valid_ != 0 && inputs_close(base_u_, u);
+    const bool expected = !seen && expected_.valid != 0 && inputs_close(expected_.u, u);
+    const unsigned valid = seen ? base_valid_ : expected ? expected_.valid : 0u;
+    const T* mean = seen ? base_mean_ : expected_.mean;
+    const T* var = seen ? base_var_ : expected_.var;
     base_use_ = 0;
-    if (base_valid_ != 0 && inputs_close(base_u_, u)) {
-      for (int i = 0; i < kN; ++i) {
-        const bool near = std::fabs(base_mean_[i]) <= cfg_.k_baseline_far * bound_[i];
-        if (((base_valid_ >> i) & 1u) != 0 && near) base_use_ |= 1u << i;
-      }
+    for (int i = 0; i < kN; ++i) {
+      const bool near = std::fabs(mean[i]) <= cfg_.k_baseline_far * bound_[i];
+      if (((valid >> i) & 1u) != 0 && near) base_use_ |= 1u << i;
+      offset_[i] = baselined(i) ? mean[i] : T(0);
+      win_base_var_[i] = baselined(i) ? var[i] : T(0);
     }
-    for (int i = 0; i < kN; ++i) offset_[i] = baselined(i) ? base_mean_[i] : T(0);
     for (int k = 0; k < count_; ++k) {
       const FaultHypothesis& h = hyps_[k];
       for (int g = 0; g < kGrid; ++g) {
@@ -735,7 +761,7 @@ class FaultEstimator {
     const T noise = moving_mean_noise(i);
     if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
     const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
-    return noise + base_var_[i] + share * share;
+    return noise + win_base_var_[i] + share * share;
   }
 
   // The open window's mean on channel i as a steady value: its noise variance and half its
@@ -1072,7 +1098,14 @@ class FaultEstimator {
   T base_mean_[kNz] = {}, base_var_[kNz] = {};
   unsigned base_valid_ = 0;
   unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
+  // The prediction of the readings without the fault (set_expected).
+  struct Expected {
+    Inputs u{};
+    T mean[kNz] = {}, var[kNz] = {};
+    unsigned valid = 0;
+  } expected_;
   T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
+  T win_base_var_[kNz] = {};  ///< the variance of offset_ [channel unit²]
   T ys_[kHz][kGz][kNz] = {};
   Curve scratch_[kHz] = {};  ///< decide()'s sums with the open window
   bool ok_[kHz][kGz] = {};

@@ -53,6 +53,12 @@ struct CircuitReplayOptions {
   /// at the inputs it computed them for, instead of solving the same steady states again
   /// (false: it solves them; the same numbers, for comparing the two).
   bool share_bound = true;
+  /// The fit also keeps a record of the machine's healthy steady windows (healthy_record.hpp):
+  /// where it sits inside its parameters' uncertainty, and so what it should read at a point
+  /// not seen yet. A change from that, inside the model bound, is detected, and the windows
+  /// after it are judged against it. false: the bound and the steps at held inputs alone (for
+  /// comparing the two).
+  bool healthy_record = true;
 };
 
 /// One log row of a circuit replay, per channel in sensor order, SI (NaN where absent).

@@ -16,7 +16,10 @@
 /// bound it stays. Such a step, and a matcher detection at inputs held long enough, leave
 /// the estimator a baseline: the readings at the same inputs before the fault, so the
 /// first window compares the change with each hypothesis's change, free of the model's
-/// own error there.
+/// own error there. And it keeps a record of the machine's healthy steady windows
+/// (healthy_record.hpp): a window at a point not seen before whose readings are not what
+/// that record predicts is a change too, and at every point an episode visits the
+/// prediction stands in for a baseline where no reading before the fault exists.
 
 #include <memory>
 #include <string>
@@ -35,7 +38,8 @@ class FaultFitDiagnosis {
 
   /// @param model     the monitor's model (nominal parameters; its description outlives this)
   /// @param measured  bit ch: channel ch is in the log
-  FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured);
+  /// @param record    keep the healthy record (healthy_record.hpp; CircuitReplayOptions::healthy_record)
+  FaultFitDiagnosis(const LoadedCircuit& c, const Model& model, unsigned measured, bool record = true);
   ~FaultFitDiagnosis();
   FaultFitDiagnosis(const FaultFitDiagnosis&) = delete;
   FaultFitDiagnosis& operator=(const FaultFitDiagnosis&) = delete;
@@ -74,6 +78,7 @@ class FaultFitDiagnosis {
   void decide(double t, std::vector<host::ReplayEvent>& out);
   void watch(const Row& row, const Model::Inputs& u, std::vector<host::ReplayEvent>& out);
   void start_episode(double t, const Model::Inputs& u, double settled_for = 0.0);
+  void expect(double t, const Model::Inputs& u);
   void end_episode(double t);
   bool gone() const;
   void emit(host::ReplayEvent e, std::vector<host::ReplayEvent>& out);
