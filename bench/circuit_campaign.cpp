@@ -82,15 +82,15 @@ int changes_after_fault(const LoadedCircuit& c) {
   return std::max(2, movable);
 }
 
+// --fault-at-step: the fault begins at an input step, two steps into the run, so the point the
+// machine then moves to is never read healthy (only the record's prediction can judge it).
+bool g_fault_at_step = false;
+
 // Fault time and run length [s]: the fault 2.5 s in, or 3 slowest time constants τ where
 // longer (a start from rest has settled); the run goes on through changes_after input
 // steps after it and ends where the next would come, a load period after the last (the
 // matcher's settle of 3 τ and window of τ, as replay_circuit sets them, and the
 // estimator's window fit in it).
-// --fault-at-step: the fault begins at an input step, two steps into the run, so the point the
-// machine then moves to is never read healthy (only the record's prediction can judge it).
-bool g_fault_at_step = false;
-
 struct Timing {
   double t_fault = 2.5, run = 5.0, tau = 0.0;
   double load_period = 2.0;  // [s] between input steps: 2 s, or 6 τ where longer (a decision needs 4 τ)
