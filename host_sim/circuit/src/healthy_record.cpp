@@ -24,6 +24,7 @@ HealthyRecord::HealthyRecord(const Model& model, const Uncertainty& eps, const d
     info_(j, j) = 3.0 / (e * e);
   }
   score_ = Eigen::VectorXd::Zero(p);
+  update_estimate();
   sum_.assign(static_cast<std::size_t>(n_ch_), 0.0);
   n_.assign(static_cast<std::size_t>(n_ch_), 0);
 }
@@ -133,17 +134,15 @@ bool HealthyRecord::judge() {
   const auto m = static_cast<Eigen::Index>(ch.size());
   dof_ = static_cast<int>(m);
   if (m == 0) return true;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(info_);
-  const Eigen::VectorXd delta = ldlt.solve(score_);
   Eigen::MatrixXd s(m, info_.cols());
   Eigen::VectorXd innov(m), v(m);
   for (Eigen::Index a = 0; a < m; ++a) {
     const int i = ch[static_cast<std::size_t>(a)];
     s.row(a) = point_.s.row(i);
     v(a) = noise_var(i) + unmodelled_var(point_, i);
-    innov(a) = residual(i) - s.row(a).dot(delta);
+    innov(a) = residual(i) - s.row(a).dot(delta_);
   }
-  Eigen::MatrixXd cov = s * ldlt.solve(s.transpose());
+  Eigen::MatrixXd cov = s * posterior_.solve(s.transpose());
   cov.diagonal() += v;
   chi2_ = innov.dot(cov.ldlt().solve(innov));
   return chi2_ <= cfg_.k_chi2;
@@ -169,6 +168,13 @@ void HealthyRecord::close() {
     score_.noalias() += w * residual(i) * row;
   }
   ++windows_;
+  update_estimate();
+}
+
+// The estimate changes only when a window enters the record: factor it then, once.
+void HealthyRecord::update_estimate() {
+  posterior_.compute(info_);
+  delta_ = posterior_.solve(score_);
 }
 
 double HealthyRecord::noise_var(int i) const {
@@ -200,14 +206,12 @@ unsigned HealthyRecord::expected_at(const Inputs& u, double* mean, double* var) 
 
 unsigned HealthyRecord::predict(const Point& p, double* mean, double* var) const {
   if (windows_ == 0 || off_) return 0u;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(info_);
-  const Eigen::VectorXd delta = ldlt.solve(score_);
   unsigned have = 0;
   for (int i = 0; i < n_ch_; ++i) {
     if (((measured_ >> i) & 1u) == 0) continue;
     const Eigen::VectorXd row = p.s.row(i).transpose();
-    mean[i] = row.dot(delta);
-    var[i] = row.dot(ldlt.solve(row)) + unmodelled_var(p, i);
+    mean[i] = row.dot(delta_);
+    var[i] = row.dot(posterior_.solve(row)) + unmodelled_var(p, i);
     have |= 1u << i;
   }
   return have;

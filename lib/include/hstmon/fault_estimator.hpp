@@ -263,7 +263,7 @@ class FaultEstimator {
     by_timing_ = false;
     n_ranked_ = 0;
     last_chi0_w_ = last_dof_w_ = T(0);
-    base_valid_ = 0;
+    base_.valid = 0;
     base_use_ = 0;
     expected_.valid = 0;
   }
@@ -273,14 +273,7 @@ class FaultEstimator {
   /// [channel unit²]; bit i of valid: channel i has one. Call after start(); a window at
   /// inputs within the tolerance of u then counts the change since.
   void set_baseline(const Inputs& u, const T* offset, const T* var, unsigned valid) noexcept {
-    base_u_ = u;
-    base_valid_ = 0;
-    for (int i = 0; i < kN; ++i) {
-      if (((valid >> i) & 1u) == 0 || !std::isfinite(offset[i]) || !(var[i] >= T(0))) continue;
-      base_mean_[i] = offset[i];
-      base_var_[i] = var[i];
-      base_valid_ |= 1u << i;
-    }
+    base_.set(u, offset, var, valid);
   }
 
   /// What the machine would read at inputs u had the fault not come, predicted from its
@@ -290,14 +283,7 @@ class FaultEstimator {
   /// (set_baseline) counts the change since that, as it would since a baseline. It says
   /// nothing about the fault's going (back_to_baseline): it was never read.
   void set_expected(const Inputs& u, const T* offset, const T* var, unsigned valid) noexcept {
-    expected_.u = u;
-    expected_.valid = 0;
-    for (int i = 0; i < kN; ++i) {
-      if (((valid >> i) & 1u) == 0 || !std::isfinite(offset[i]) || !(var[i] >= T(0))) continue;
-      expected_.mean[i] = offset[i];
-      expected_.var[i] = var[i];
-      expected_.valid |= 1u << i;
-    }
+    expected_.set(u, offset, var, valid);
   }
 
   /// How long the machine takes to settle at inputs u: settle_taus slowest time constants
@@ -453,12 +439,12 @@ class FaultEstimator {
   /// no-fault model (a baseline far from the model counts too). True without a baseline at
   /// those inputs; false once that window's sums are gone (a later window has opened).
   bool back_to_baseline() const noexcept {
-    if (base_valid_ == 0 || !inputs_close(base_u_, decided_u_)) return true;
+    if (base_.valid == 0 || !inputs_close(base_.u, decided_u_)) return true;
     if (!inputs_close(u_win_, decided_u_)) return false;
     for (int i = 0; i < kN; ++i) {
-      if (((base_valid_ >> i) & 1u) == 0 || n_[i] == 0) continue;
-      const T change = sum_[i] / static_cast<T>(n_[i]) - y0_[i] - base_mean_[i];
-      const T var = moving_mean_noise(i) + base_var_[i];
+      if (((base_.valid >> i) & 1u) == 0 || n_[i] == 0) continue;
+      const T change = sum_[i] / static_cast<T>(n_[i]) - y0_[i] - base_.mean[i];
+      const T var = moving_mean_noise(i) + base_.var[i];
       if (change * change > cfg_.k_back * cfg_.k_back * var) return false;
     }
     return true;
@@ -706,17 +692,16 @@ class FaultEstimator {
     // (At the whole bound the test stand's machine with a shut relief valve lost its leak
     // from the set: tests/circuit CircuitMonitor.MachineWithShutReliefValve….)
     // The readings before the fault at these inputs, else the prediction of them.
-    const bool seen = base_valid_ != 0 && inputs_close(base_u_, u);
+    const bool seen = base_.valid != 0 && inputs_close(base_.u, u);
     const bool expected = !seen && expected_.valid != 0 && inputs_close(expected_.u, u);
-    const unsigned valid = seen ? base_valid_ : expected ? expected_.valid : 0u;
-    const T* mean = seen ? base_mean_ : expected_.mean;
-    const T* var = seen ? base_var_ : expected_.var;
+    const Reference& ref = seen ? base_ : expected_;
+    const unsigned valid = seen || expected ? ref.valid : 0u;
     base_use_ = 0;
     for (int i = 0; i < kN; ++i) {
-      const bool near = std::fabs(mean[i]) <= cfg_.k_baseline_far * bound_[i];
+      const bool near = std::fabs(ref.mean[i]) <= cfg_.k_baseline_far * bound_[i];
       if (((valid >> i) & 1u) != 0 && near) base_use_ |= 1u << i;
-      offset_[i] = baselined(i) ? mean[i] : T(0);
-      win_base_var_[i] = baselined(i) ? var[i] : T(0);
+      offset_[i] = baselined(i) ? ref.mean[i] : T(0);
+      win_base_var_[i] = baselined(i) ? ref.var[i] : T(0);
     }
     for (int k = 0; k < count_; ++k) {
       const FaultHypothesis& h = hyps_[k];
@@ -1094,16 +1079,26 @@ class FaultEstimator {
   T bound_[kNz] = {};      ///< the model bound at the open window's inputs [channel unit]
   T model_err_[kNz] = {};
   // The baseline (set_baseline) and whether the open window is at its inputs.
-  Inputs base_u_{};
-  T base_mean_[kNz] = {}, base_var_[kNz] = {};
-  unsigned base_valid_ = 0;
-  unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
-  // The prediction of the readings without the fault (set_expected).
-  struct Expected {
+  // What the readings at inputs u were, or would be, without the fault: the mean residual
+  // and its variance per channel; bit i of valid: channel i has one.
+  struct Reference {
     Inputs u{};
     T mean[kNz] = {}, var[kNz] = {};
     unsigned valid = 0;
-  } expected_;
+    void set(const Inputs& at, const T* offset, const T* variance, unsigned have) noexcept {
+      u = at;
+      valid = 0;
+      for (int i = 0; i < kN; ++i) {
+        if (((have >> i) & 1u) == 0 || !std::isfinite(offset[i]) || !(variance[i] >= T(0))) continue;
+        mean[i] = offset[i];
+        var[i] = variance[i];
+        valid |= 1u << i;
+      }
+    }
+  };
+  Reference base_;         ///< read before the fault (set_baseline)
+  Reference expected_;     ///< predicted from the healthy windows elsewhere (set_expected)
+  unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
   T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
   T win_base_var_[kNz] = {};  ///< the variance of offset_ [channel unit²]
   T ys_[kHz][kGz][kNz] = {};

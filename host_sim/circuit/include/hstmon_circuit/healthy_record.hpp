@@ -81,8 +81,6 @@ class HealthyRecord {
   /// The open window is dropped, not recorded (an episode began: the machine is not healthy).
   void drop() { open_ = false; }
 
-  /// False once the first window judged lay outside what the parameters explain.
-  bool on() const { return cfg_.on && !off_; }
   /// Windows in the record [-].
   int windows() const { return windows_; }
   /// The open window's χ² and channels at its last judgement [-].
@@ -111,6 +109,7 @@ class HealthyRecord {
   bool solve_point(const Inputs& u, Point& p);
   unsigned predict(const Point& p, double* mean, double* var) const;
   void close();
+  void update_estimate();
   bool judge();
   /// The noise variance of the open window's mean on channel i [SI²].
   double noise_var(int i) const;
@@ -131,6 +130,8 @@ class HealthyRecord {
   // The record: information matrix and score of the parameters' relative errors.
   Eigen::MatrixXd info_;
   Eigen::VectorXd score_;
+  Eigen::LDLT<Eigen::MatrixXd> posterior_;  ///< info_ factored: its inverse is the errors' covariance
+  Eigen::VectorXd delta_;                   ///< the errors' estimate, info_⁻¹·score_ [-]
   int windows_ = 0;
   bool off_ = false;  ///< the first window lay outside what the parameters explain
 
