@@ -23,7 +23,10 @@
 ///  - int n_states(): the states in use, when its State is padded to a larger capacity
 ///    (the circuit interpreter), and static constexpr int kUsedStates where that count is
 ///    known at compile time (a compiled circuit; HasUsedStates);
-///  - State state_envelope(): each state's largest plausible magnitude [state units].
+///  - State state_envelope(): each state's largest plausible magnitude [state units];
+///  - static constexpr bool kPressureThresholds: false when no element's conductance steps
+///    at a pressure (no valve can open within a step, so the observer's stage check is
+///    off); true when not declared.
 /// Nothing here allocates or runs code: it is checked at compile time only.
 
 #include <type_traits>
@@ -92,6 +95,13 @@ template <typename M, typename = void>
 struct HasStateEnvelope : std::false_type {};
 template <typename M>
 struct HasStateEnvelope<M, std::void_t<decltype(std::declval<const M&>().state_envelope())>> : std::true_type {};
+
+/// M::kPressureThresholds where M declares it, else true (optional; see the file comment).
+template <typename M, typename = void>
+struct PressureThresholds : std::true_type {};
+template <typename M>
+struct PressureThresholds<M, std::void_t<decltype(M::kPressureThresholds)>>
+    : std::integral_constant<bool, M::kPressureThresholds> {};
 
 }  // namespace model_detail
 

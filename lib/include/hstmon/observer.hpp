@@ -10,6 +10,10 @@
 ///   4. x_{n+1} = RK4 over the tick in n_sub substeps, n_sub = ⌈ρ·h / (λh)_max⌉, with ρ the
 ///      spectral radius of ∂f/∂x at x_n (so a stiff operating point — start from rest,
 ///      a restricted PRV — gets more substeps instead of a silent false fixed point);
+///      with a model that gives its state envelope (the circuit engine), each substep also
+///      checks the stiffness its stages met (checked_substep), and a tick whose stage
+///      arguments need more than twice the substeps it was sized for is taken again, finer
+///      (a relief valve that opens within the tick, where ρ at x_n saw it shut);
 ///      where n_sub would exceed Config::implicit_above and the model offers its Jacobian
 ///      (`void jacobian(const State&, StateMatrix&) const`), error-controlled linearly
 ///      implicit Rosenbrock steps over the tick instead (rosenbrock_tick: a mode much faster
@@ -41,6 +45,7 @@
 ///     is ≤ rho_max, NaN if x is), alg_ok = the model's algebraic solve contracts at x.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -158,6 +163,15 @@ struct ImplicitState {
 };
 template <typename M>
 struct ImplicitState<M, false> {};
+
+/// The stage check's weights (Observer::kStageCheck), and nothing without the check (an
+/// empty base: no bytes).
+template <typename M, bool>
+struct StageCheckState {
+  typename M::State stage_weight = M::State::Zero();  ///< 1/state envelope [1/state unit], 0 for unused states
+};
+template <typename M>
+struct StageCheckState<M, false> {};
 }  // namespace observer_detail
 
 /// One sample of a model's measured channels, for Observer::step.
@@ -171,7 +185,9 @@ struct ChannelSample {
 ///   wherever the model has one
 template <typename Model, bool UsualTick = observer_detail::HasUsualTick<Model>::value>
 class Observer
-    : private observer_detail::ImplicitState<Model, HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value> {
+    : private observer_detail::ImplicitState<Model, HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value>,
+      private observer_detail::StageCheckState<Model, model_detail::HasStateEnvelope<Model>::value &&
+                                                          model_detail::PressureThresholds<Model>::value> {
  public:
   using T = typename Model::Scalar;
   using State = typename Model::State;
@@ -188,6 +204,12 @@ class Observer
   /// True when stiff ticks skip refining the radius bound (kImplicit and a model whose
   /// tick_derivative takes rho_stiff).
   static constexpr bool kStiffCut = kImplicit && observer_detail::HasStiffCut<Model>::value;
+  /// True when each RK4 substep also checks how stiff the model was along its stages
+  /// (checked_substep), and a tick whose stages met more than it was sized for is taken
+  /// again, finer: models that give their states' envelopes (the circuit engine) and have
+  /// valves, which change the stiffness within a step (model_detail::PressureThresholds).
+  static constexpr bool kStageCheck = model_detail::HasStateEnvelope<Model>::value &&
+                                      model_detail::PressureThresholds<Model>::value;
   static_assert(ObserverModelParts<Model>::kTypes,
                 "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
   static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
@@ -492,9 +514,26 @@ class Observer
       }
       h = Rk4Step<T>(cfg_.tick / static_cast<T>(n));
     }
-    // One rk4_step call site: one copy of the RK4 stages in the image (firmware flash).
+    // One RK4 call site: one copy of the RK4 stages in the image (firmware flash).
+    [[maybe_unused]] const CompensatedState<State> start = s_;  // kStageCheck's restart point
     for (int i = 0;;) {
-      rk4_step(model_, s_, h, k1);
+      [[maybe_unused]] const int need = checked_substep(h, k1, n);
+      if constexpr (kStageCheck) {
+        if (need != 0) {
+          // A stage argument needs more substeps than n (a valve that opens within the
+          // substep): its result may be a false fixed point of the RK4 map, stable and
+          // wrong (a line held a few bar below a relief's cracking pressure). The tick again
+          // from its start, in at least twice as many substeps.
+          const int cap = static_cast<int>(cfg_.max_substeps);
+          n = need < 0 ? cap : std::min(std::max(need, 2 * n), cap);
+          if (need < 0) flags |= kHealthSubstepsClipped;
+          k1 = restart_tick(start, rho, alg_ok);
+          if (takes_implicit(n) && implicit_step(k1, flags)) return finish_implicit(x_before, flags);
+          h = Rk4Step<T>(cfg_.tick / static_cast<T>(n));
+          i = 0;
+          continue;
+        }
+      }
       if (++i >= n) break;
       // Later substeps' k1 (stiff ticks only) from the same out-of-line evaluation as the
       // first, rather than a further inlined copy of derivative().
@@ -540,6 +579,79 @@ class Observer
     bool ok;
     (void)model_.tick_derivative(s_.x, rho_one_, y, rho, ok);
     return rho;
+  }
+
+  /// One RK4 substep from s_.x with k1 = f(s_.x), rk4_step's arithmetic, that first checks
+  /// its stage arguments x₂, x₃, x₄ where the model's stiffness changed along them (kStageCheck).
+  /// The test that runs on every substep is cheap: Shampine's stiffness estimate, h times
+  /// the larger secant ‖k₃ − k₂‖/‖x₃ − x₂‖, ‖k₄ − k₃‖/‖x₄ − x₃‖ in the max-norm weighted by
+  /// 1/envelope (the displacements from the stages, not from rounded arguments; a pair
+  /// closer than kStageFloor counts 0, its secant being rounding). Where that exceeds
+  /// kStageMargin·lambda_h_max, the model's own radius at each stage argument decides
+  /// (stage_need): a secant in a norm may overstate the radius of a well-resolved
+  /// oscillation, which then costs three evaluations and changes nothing.
+  /// @param n  the substeps this tick is taken in (≥ 1; at max_substeps no check)
+  /// @return 0 with s_ advanced; else s_ untouched and the substeps a stage argument needs
+  ///         (> n), or −1 beyond max_substeps
+  HSTMON_TICK_PART int checked_substep(const Rk4Step<T>& h, const State& k1, int n) noexcept {
+    if constexpr (kStageCheck) {
+      const State& x = s_.x;
+      const State k2 = model_.derivative(x + h.half * k1);
+      const State k3 = model_.derivative(x + h.half * k2);
+      const State k4 = model_.derivative(x + h.h * k3);
+      const auto& w = this->stage_weight.array();
+      const T dx23 = (w * (h.half * (k2 - k1)).array().abs()).maxCoeff();
+      const T dx34 = (w * (h.h * k3 - h.half * k2).array().abs()).maxCoeff();
+      const T limit = stage_limit();
+      const bool steep23 = dx23 > kStageFloor && h.h * (w * (k3 - k2).array().abs()).maxCoeff() > limit * dx23;
+      const bool steep34 = dx34 > kStageFloor && h.h * (w * (k4 - k3).array().abs()).maxCoeff() > limit * dx34;
+      if ((steep23 || steep34) && n < static_cast<int>(cfg_.max_substeps)) {
+        const int need = stage_need(x, h, k1, k2, k3, n);
+        if (need != 0) return need;
+      }
+      s_.add(h.sixth * (k1 + T(2) * (k2 + k3) + k4));
+      return 0;
+    } else {
+      rk4_step(model_, s_, h, k1);
+      static_cast<void>(n);
+      return 0;
+    }
+  }
+
+  /// The substeps per tick that the stage arguments x + (h/2)·k1, x + (h/2)·k2 and
+  /// x + h·k3 need by the model's largest radius ρ there: 0 if n substeps keep
+  /// ρ·h/n ≤ kStageMargin·lambda_h_max, else ⌈ρ·h/lambda_h_max⌉, −1 beyond max_substeps.
+  HSTMON_COLD int stage_need(const State& x, const Rk4Step<T>& h, const State& k1, const State& k2, const State& k3,
+                             int n) noexcept {
+    T rho_max = T(0);
+    for (const State& a : {State(x + h.half * k1), State(x + h.half * k2), State(x + h.h * k3)}) {
+      Output y;
+      T rho;
+      bool ok;
+      (void)model_.tick_derivative(a, rho_one_, y, rho, ok);
+      if (!(rho <= rho_max)) rho_max = rho;  // NaN too: a stage off the model needs the cap
+    }
+    if (!(rho_max == rho_max)) return -1;
+    if (rho_max == T(0)) return 0;
+    if (rho_max * cfg_.tick <= stage_limit() * static_cast<T>(n)) return 0;
+    const int need = substep_count(rho_max);
+    return need == 0 ? -1 : need;
+  }
+
+  /// Largest |λ|·h_sub a stage argument may show in a substep before the tick is taken
+  /// again [-]: kStageMargin·lambda_h_max, and at most 2.5, inside RK4's real stability
+  /// limit of 2.79.
+  T stage_limit() const noexcept {
+    const T m = kStageMargin * cfg_.lambda_h_max;
+    return m < T(2.5) ? m : T(2.5);
+  }
+
+  /// Back to the tick's start (the stage check's retry): s_ = start, and f there with its
+  /// radius and algebraic check. Out of line: rare, and one more inlined copy of the model.
+  HSTMON_COLD State restart_tick(const CompensatedState<State>& start, T& rho, bool& alg_ok) noexcept {
+    s_ = start;
+    Output y;
+    return model_.tick_derivative(s_.x, rho_one_, y, rho, alg_ok);
   }
 
   /// r_ = m.y − ŷ and r_valid_ on the channels marked valid and finite; r = 0 elsewhere.
@@ -701,6 +813,10 @@ class Observer
     one_step_ = Rk4Step<T>(cfg.tick);
     rho_one_ = cfg.lambda_h_max / cfg.tick;
     has_gain_ = !cfg.gain.isZero(T(0));
+    if constexpr (kStageCheck) {
+      const State env = model_.state_envelope();
+      for (int i = 0; i < kStates; ++i) this->stage_weight[i] = env[i] > T(0) ? T(1) / env[i] : T(0);
+    }
     if constexpr (kUsualTick) usual_.on = !has_gain_;
     inputs_changed();
     reset(model_.rest_state());
@@ -761,6 +877,13 @@ class Observer
   std::uint64_t ticks_ = 0;
   std::uint32_t health_ = 0;
   std::uint32_t last_health_ = 0;
+  /// A tick is taken again when a stage argument's stiffness gives |λ|·h_sub above this many
+  /// times lambda_h_max [-] (stage_limit): twice, so that the usual growth of ρ within a
+  /// substep sized at its start does not trigger it.
+  static constexpr T kStageMargin = T(2);
+  /// Least stage displacement, as a fraction of the state's envelope, for a stage secant to
+  /// count (checked_substep) [-]: float rounding of f is below 1e-3 of it there.
+  static constexpr T kStageFloor = T(1e-5);
   /// Least error scale of a state, as a fraction of its envelope (model's state_envelope) [-].
   static constexpr T kImplicitFloor = T(1e-2);
   std::uint16_t substeps_ = 0;

@@ -144,4 +144,16 @@ enum class CircuitError : std::uint8_t {
   kUnbound,         ///< the model has not been given a description
 };
 
+/// True when c has an element whose conductance changes steeply at a pressure: a relief or
+/// check valve (at its cracking pressure) or a pressure-compensated pump (at its curve's
+/// corners). Within one RK4 step such an element can open where the step's start saw it
+/// shut (Observer::kStageCheck).
+template <class Cap>
+constexpr bool has_pressure_thresholds(const Circuit<Cap>& c) noexcept {
+  for (int e = 0; e < c.n_elements; ++e) {
+    if (c.elements[e].kind == ElementKind::kPoppet || c.elements[e].kind == ElementKind::kCompPump) return true;
+  }
+  return false;
+}
+
 }  // namespace hstmon::circuit

@@ -58,6 +58,9 @@ class CompiledModel {
   /// The states in use, known at compile time: the kernel's (State is padded to kStates).
   static constexpr int kUsedStates = Kernel::kN;
   static constexpr int kOutputs = Engine::kOutputs;
+  /// True when the circuit has valves or a compensator (has_pressure_thresholds): the
+  /// observer checks each RK4 substep's stages for a valve opening within it (model_concept.hpp).
+  static constexpr bool kPressureThresholds = has_pressure_thresholds(Kernel::description());
   static_assert(Kernel::kN >= 1 && Kernel::kN <= kStates, "the kernel's states fit the capacity");
   static_assert(Kernel::kZ == Cap::kNodes + Cap::kShafts, "the kernel's full vector is the capacity's");
 
