@@ -172,6 +172,10 @@ struct StageCheckState {
 };
 template <typename M>
 struct StageCheckState<M, false> {};
+
+/// True when Observer<M> checks its substeps' stages (Observer::kStageCheck).
+template <typename M>
+constexpr bool kChecksStages = (model_detail::HasStateEnvelope<M>::value && model_detail::PressureThresholds<M>::value);
 }  // namespace observer_detail
 
 /// One sample of a model's measured channels, for Observer::step.
@@ -186,8 +190,7 @@ struct ChannelSample {
 template <typename Model, bool UsualTick = observer_detail::HasUsualTick<Model>::value>
 class Observer
     : private observer_detail::ImplicitState<Model, HSTMON_IMPLICIT_TICKS && observer_detail::HasJacobian<Model>::value>,
-      private observer_detail::StageCheckState<Model, model_detail::HasStateEnvelope<Model>::value &&
-                                                          model_detail::PressureThresholds<Model>::value> {
+      private observer_detail::StageCheckState<Model, observer_detail::kChecksStages<Model>> {
  public:
   using T = typename Model::Scalar;
   using State = typename Model::State;
@@ -208,8 +211,7 @@ class Observer
   /// (checked_substep), and a tick whose stages met more than it was sized for is taken
   /// again, finer: models that give their states' envelopes (the circuit engine) and have
   /// valves, which change the stiffness within a step (model_detail::PressureThresholds).
-  static constexpr bool kStageCheck = model_detail::HasStateEnvelope<Model>::value &&
-                                      model_detail::PressureThresholds<Model>::value;
+  static constexpr bool kStageCheck = observer_detail::kChecksStages<Model>;
   static_assert(ObserverModelParts<Model>::kTypes,
                 "model: needs Scalar, State, Output, Inputs, kStates, kOutputs (model_concept.hpp)");
   static_assert(ObserverModelParts<Model>::kInputs, "model: needs inputs_valid, set_inputs, inputs (model_concept.hpp)");
