@@ -397,7 +397,106 @@ TEST(CircuitMonitor, TimingLeadNeedsTheBoundCarry) {
   no_carry.bound_carry = 0;
   EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kInvalidConfig);
   no_carry.timing_lead = 0;
+  EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kInvalidConfig);  // settle_taus
+  no_carry.settle_taus = 0;
   EXPECT_EQ(mon->configure(model, no_carry, nullptr, 0), hstmon::Status::kOk);
+  for (const double taus : {-1.0, std::nan("")}) {
+    Mon::Config bad = cfg;
+    bad.settle_taus = taus;
+    EXPECT_EQ(mon->configure(model, bad, nullptr, 0), hstmon::Status::kInvalidConfig) << taus;
+  }
+}
+
+// Config::settle_taus: the matcher's windows follow the slowest time constant where the
+// machine runs, not the first row's. The closed loop started at rest settles in seconds
+// (a slow mode at rest that a running machine has not); after a step to its nominal
+// inputs the windows shrink to that point's, and never below the configured ones.
+TEST(CircuitMonitor, TimeConstantsRoundUpToAnEighthOfAnOctave) {
+  using hstmon::model_monitor_detail::ceil_to_eighth_octave;
+  for (const double x : {1e-4, 0.00316, 0.0387, 0.5, 0.52135, 1.0, 1.37426, 13.2, 1e3}) {
+    const double q = ceil_to_eighth_octave(x);
+    const double k = std::log2(q) * 8.0;
+    EXPECT_NEAR(k, std::round(k), 1e-9) << x << " → " << q << ": on the grid";
+    EXPECT_GE(q, x);
+    EXPECT_LT(q, x * 1.0905077326652577 * (1 + 1e-12)) << x << ": the next step up at most";
+    EXPECT_EQ(static_cast<double>(ceil_to_eighth_octave(static_cast<float>(x))),
+              static_cast<double>(static_cast<float>(q)))
+        << x << ": float rounds alike";
+  }
+  EXPECT_EQ(ceil_to_eighth_octave(0.5), 0.5);
+  EXPECT_EQ(ceil_to_eighth_octave(1.0), 1.0);
+}
+
+TEST(CircuitMonitor, MatcherWindowsFollowTheOperatingPoint) {
+  using Mon = hstmon::circuit::CircuitMonitor<double, hstmon::host::CircuitCap>;
+  const ct::LoadedCircuit c = load("closed_loop_hst");
+  Mon::Model model(c.file.circuit, c.values.params, c.values.inputs);
+  auto mon = std::make_unique<Mon>();
+  Mon::Config cfg;
+  cfg.uncertainty = ct::default_uncertainty(c.file);
+  hstmon::circuit::set_circuit_allowances(cfg);
+  ASSERT_EQ(mon->configure(model, cfg, nullptr, 0), hstmon::Status::kOk);
+  // The slowest time constant at u over the model and the bound's copies, as the monitor
+  // takes it: rounded up to an eighth of an octave.
+  const auto tau_at = [&](const Mon::Inputs& u) {
+    Mon::Model m = model;
+    m.set_inputs(u);
+    double bound[Mon::kN_];
+    double tau = 0.0;
+    EXPECT_EQ(hstmon::ModelBound<Mon::Model>::compute(m, cfg.uncertainty, bound, &tau), hstmon::Status::kOk);
+    return hstmon::model_monitor_detail::ceil_to_eighth_octave(tau);
+  };
+  Mon::Inputs slow = c.values.inputs;  // the machine idling: engine running, pump in neutral, no load
+  slow.v[1] = 0.0;                     // eps
+  slow.v[2] = 0.0;                     // T_L
+  const Mon::Inputs nominal = c.values.inputs;
+  const double tau_slow = tau_at(slow), tau_nominal = tau_at(nominal);
+  ASSERT_GT(tau_slow, 0.0);
+  ASSERT_GT(tau_nominal, 0.0);
+  ASSERT_GT(tau_slow, 2.0 * tau_nominal) << tau_slow << " s at idle, " << tau_nominal << " s at the nominal point";
+  const Mon::Measurement none{};
+  ASSERT_EQ(mon->reset_steady(slow), hstmon::Status::kOk);
+  (void)mon->step(0.0, slow, none);
+  EXPECT_NEAR(mon->matcher().config().settle_time, 3.0 * tau_slow, 1e-6 * tau_slow);
+  EXPECT_NEAR(mon->matcher().config().average_time, tau_slow, 1e-6 * tau_slow);
+  (void)mon->step(0.001, nominal, none);
+  EXPECT_NEAR(mon->matcher().config().settle_time, 3.0 * tau_nominal, 1e-6 * tau_nominal);
+  EXPECT_NEAR(mon->matcher().config().average_time, tau_nominal, 1e-6 * tau_nominal);
+  // An episode keeps the windows it was detected under; they follow the inputs again once it
+  // has ended. Readings: the model's with noise, p_a 50 bar high (detected), then without it.
+  const int n_ch = static_cast<int>(c.file.sensors.size());
+  double t = 0.002;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise;
+  const auto run = [&](const Mon::Inputs& u, double seconds, double offset) {
+    for (const double end = t + seconds; t < end; t += 0.001) {
+      Mon::Measurement m;
+      m.valid = static_cast<std::uint8_t>((1u << n_ch) - 1u);
+      for (int ch = 0; ch < n_ch; ++ch)
+        m.y[ch] = mon->observer().estimate()[ch] + mon->evaluator().sigma(ch) * noise(rng);
+      m.y[0] += offset;
+      (void)mon->step(t, u, m);
+    }
+  };
+  ASSERT_EQ(mon->reset_steady(nominal), hstmon::Status::kOk);  // no transient of the model's own
+  run(nominal, 0.1, 50e5);
+  ASSERT_NE(mon->matcher().status(), hstmon::MatchStatus::kNominal);
+  run(slow, 0.1, 50e5);
+  EXPECT_NEAR(mon->matcher().config().settle_time, 3.0 * tau_nominal, 1e-6 * tau_nominal) << "during the episode";
+  // Cleared once the new point's transient has gone (5 time constants of the model and the
+  // transducer, FaultMatcher::update's settled) and the readings stayed quiet for clear_hold.
+  run(slow, 5.0 * (tau_slow + cfg.transducer_response) + 1.0, 0.0);
+  ASSERT_EQ(mon->matcher().status(), hstmon::MatchStatus::kNominal) << "cleared";
+  EXPECT_NEAR(mon->matcher().config().settle_time, 3.0 * tau_slow, 1e-6 * tau_slow) << "after the episode";
+  // A floor above 3 τ stays.
+  Mon::Config long_windows = cfg;
+  long_windows.matcher.settle_time = 100.0;
+  long_windows.matcher.average_time = 50.0;
+  ASSERT_EQ(mon->configure(model, long_windows, nullptr, 0), hstmon::Status::kOk);
+  ASSERT_EQ(mon->reset_steady(nominal), hstmon::Status::kOk);
+  (void)mon->step(0.0, nominal, none);
+  EXPECT_EQ(mon->matcher().config().settle_time, 100.0);
+  EXPECT_EQ(mon->matcher().config().average_time, 50.0);
 }
 
 // After a detection the steady windows decide (fault_estimator.hpp): the fault is fitted

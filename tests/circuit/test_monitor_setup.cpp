@@ -40,25 +40,6 @@ TEST(MonitorSetup, SensorSigmaIsTheStatedNoiseElseOnePercentOfTheRange) {
   EXPECT_DOUBLE_EQ(circuit::sensor_sigma(0.0, -inf, inf), 1.0);  // unbounded: 1 % of 100
 }
 
-TEST(MonitorSetup, MatcherWindowsFollowTheSlowestTimeConstant) {
-  Model m = paper_model();
-  ASSERT_TRUE(m.valid());
-  hstmon::FaultMatcher<double>::Config cfg;
-  const double rate = circuit::widen_matcher_windows(m, nominal(), cfg);
-  ASSERT_GT(rate, 0.0);
-  // The paper circuit is slow (τ ≈ 0.47 s): 3 τ settling, 1 τ averaging.
-  EXPECT_NEAR(1.0 / rate, 0.468, 0.01);
-  EXPECT_DOUBLE_EQ(cfg.settle_time, 3.0 / rate);
-  EXPECT_DOUBLE_EQ(cfg.average_time, 1.0 / rate);
-  // A faster circuit keeps the defaults: windows longer than 3 τ stay.
-  hstmon::FaultMatcher<double>::Config slow;
-  slow.settle_time = 10.0;
-  slow.average_time = 5.0;
-  (void)circuit::widen_matcher_windows(m, nominal(), slow);
-  EXPECT_EQ(slow.settle_time, 10.0);
-  EXPECT_EQ(slow.average_time, 5.0);
-}
-
 TEST(MonitorSetup, StartsAtSteadyStateOnlyWhenEveryChannelReadsItWithinThreeSigma) {
   Model m = paper_model();
   Model::State xs;

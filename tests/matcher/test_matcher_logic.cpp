@@ -37,6 +37,7 @@ struct Rig {
   std::normal_distribution<double> n01;
   std::vector<Matcher::Event> events;
   double t = 0;
+  bool settled = true;  // false: the caller marks an operating point's transient
 
   explicit Rig(const FaultSignature* table = kTestTable, int count = kTestTableCount, Matcher::Config c = {}) {
     EXPECT_EQ(m.configure(table, count, c), hstmon::Status::kOk);
@@ -73,7 +74,7 @@ struct Rig {
         if (((sc.saturated() >> i) & 1u) != 0 && !(r[i] > 0)) valid = static_cast<std::uint8_t>(valid & ~(1u << i));
       }
       ev.update(r, valid);
-      m.update(t, ev, flags, sc.saturated());
+      m.update(t, ev, flags, sc.saturated(), settled);
       Matcher::Event e;
       while (m.pop_event(e)) events.push_back(e);
     }
@@ -128,6 +129,24 @@ TEST(Matcher, KpMinusDetectedThenIsolated) {
   EXPECT_EQ(rig.m.symbol(0).magnitude, hstmon::kQualPlus);
   EXPECT_EQ(rig.m.symbol(1).magnitude, hstmon::kQualMinus);
   EXPECT_EQ(rig.m.symbol(2).rank, 1);
+}
+
+// set_windows: the magnitudes wait for the new settle time and average over the new window.
+TEST(Matcher, SetWindowsMovesTheMagnitudeWindow) {
+  Rig rig;
+  ASSERT_EQ(rig.m.set_windows(2.0, 0.5), hstmon::Status::kOk);
+  const auto kp_half = step(1.0, {24.9, -24.9, 1114.0, -1409.0});
+  rig.run(3.4, kp_half);  // detected at 1.0 s; 2 s settling and 0.5 s averaging: not yet
+  EXPECT_EQ(rig.m.status(), MatchStatus::kDetected);
+  rig.run(3.6, kp_half);
+  EXPECT_EQ(rig.m.status(), MatchStatus::kIsolated);
+  EXPECT_STREQ(rig.m.candidate(0).name, "kp-");
+  // Invalid windows are refused and change nothing.
+  EXPECT_EQ(rig.m.set_windows(-1.0, 0.5), hstmon::Status::kInvalidConfig);
+  EXPECT_EQ(rig.m.set_windows(1.0, 0.0), hstmon::Status::kInvalidConfig);
+  EXPECT_EQ(rig.m.set_windows(std::nan(""), 0.5), hstmon::Status::kInvalidConfig);
+  EXPECT_EQ(rig.m.config().settle_time, 2.0);
+  EXPECT_EQ(rig.m.config().average_time, 0.5);
 }
 
 TEST(Matcher, DpPlusToldBySlopeAgainstMagnitude) {
@@ -289,6 +308,29 @@ TEST(Matcher, ClearedAfterHoldAndDetectsAgain) {
   rig.run(3.5, f);
   EXPECT_EQ(rig.m.status(), MatchStatus::kIsolated);
   EXPECT_STREQ(rig.m.candidate(0).name, "sensor_p_pp");
+}
+
+// While the caller marks an operating point's transient (settled = false) an episode does
+// not end: a persisting fault its allowance hides is not cleared by an input change. The
+// quiet time counts from when the transient has gone.
+TEST(Matcher, NoClearDuringAnOperatingPointTransient) {
+  Rig rig;
+  auto f = [](double t, double* d) {
+    if (t >= 1.0 && t < 1.3) d[2] = 30.0;
+  };
+  rig.run(1.2, f);
+  ASSERT_NE(rig.m.status(), MatchStatus::kNominal);
+  rig.settled = false;
+  rig.run(2.5, f);
+  EXPECT_NE(rig.m.status(), MatchStatus::kNominal) << "quiet since 1.3 s, in a transient";
+  rig.settled = true;
+  rig.run(2.9, f);
+  EXPECT_NE(rig.m.status(), MatchStatus::kNominal);
+  rig.run(3.1, f);
+  EXPECT_EQ(rig.m.status(), MatchStatus::kNominal);
+  ASSERT_FALSE(rig.events.empty());
+  EXPECT_EQ(rig.events.back().kind, MatchEventKind::kCleared);
+  EXPECT_NEAR(rig.events.back().time, 2.5 + 0.5, 0.01);
 }
 
 // Ppp deviates 30 ms before the other channels: rows whose fastest channel is not Ppp

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -10,6 +11,7 @@
 #include "hstmon/circuit/circuit_monitor.hpp"
 #include "hstmon/circuit/engine.hpp"
 #include "hstmon/envelope_check.hpp"
+#include "hstmon/fault_estimator.hpp"
 #include "hstmon/circuit/monitor_setup.hpp"
 #include "hstmon_circuit/circuit_faults.hpp"
 #include "hstmon_circuit/compiled_circuits.hpp"
@@ -187,14 +189,17 @@ typename Mon::Config monitor_config(const LoadedCircuit& c, const typename Mon::
   // What a circuit file does not say (its damping, how far a fault moves the model error)
   // the monitor allows for (circuit::set_circuit_allowances, shared with the firmware).
   circuit::set_circuit_allowances(cfg);
-  // The matcher's magnitudes and direction are steady-state ones: its windows follow the
-  // slowest time constant (circuit::widen_matcher_windows, shared with the firmware).
+  // The matcher's windows follow the slowest time constant where the machine runs
+  // (ModelMonitor::Config::settle_taus, set above); the first row's, for the reader.
   typename Mon::Model scratch = model;
-  const double rate = circuit::widen_matcher_windows(scratch, u0, cfg.matcher);
-  if (rate > 0.0) {
-    notes.push_back("slowest time constant at the first row's inputs " + host::number_text(1.0 / rate, 3) +
-                    " s: the matcher settles for " + host::number_text(cfg.matcher.settle_time, 3) +
-                    " s and averages " + host::number_text(cfg.matcher.average_time, 3) + " s");
+  const double inf = std::numeric_limits<double>::infinity();
+  const double tau = settle_time(scratch, u0, 1.0, 0.0, inf);
+  if (std::isfinite(tau)) {
+    notes.push_back("the matcher settles for " + host::number_text(cfg.settle_taus, 3) +
+                    " and averages over 1 of the slowest time constants at each operating point, at least " +
+                    host::number_text(cfg.matcher.settle_time, 3) + " s and " +
+                    host::number_text(cfg.matcher.average_time, 3) + " s (" + host::number_text(tau, 3) +
+                    " s at the first row's inputs)");
   }
   return cfg;
 }

@@ -32,7 +32,8 @@
 /// is kUnexplained (no single fault in the table fits). Unless a sensor is flagged, none
 /// of these is decided before both the order window and the averaging window are over
 /// (status kDetected until then). When no channel is in alarm and no sensor is flagged
-/// for clear_hold, the episode ends (event "cleared", kNominal).
+/// for clear_hold, the episode ends (event "cleared", kNominal); time the caller marks as
+/// an operating-point change's transient does not count towards it.
 ///
 /// Storage: Capacity hypotheses in the object (7 bytes each in float) plus a queue of
 /// QueueDepth events of EventCandidates candidates each (defaults 4 and 8: ≈ 200 bytes per
@@ -230,6 +231,19 @@ class FaultMatcher {
     return Status::kOk;
   }
 
+  /// New settle and averaging times, at once: an episode in progress has its window moved
+  /// (call it between episodes to keep an episode's window as it was detected under). The
+  /// monitor of a circuit follows the slowest time constant where the machine runs.
+  /// @param settle_time   wait after a detection before averaging [s], ≥ 0
+  /// @param average_time  averaging window [s], > 0
+  /// @return kOk, or kInvalidConfig (windows unchanged)
+  Status set_windows(T settle_time, T average_time) noexcept {
+    if (!(nonneg(settle_time) && nonneg(average_time) && average_time > T(0))) return Status::kInvalidConfig;
+    cfg_.settle_time = settle_time;
+    cfg_.average_time = average_time;
+    return Status::kOk;
+  }
+
   /// Restarts the baseline's running mean, the old baseline counting as one sample: the
   /// residual offset that parameter error leaves depends on the operating point, so after
   /// the inputs change the old one is stale. Only quiet samples are tracked
@@ -259,7 +273,9 @@ class FaultMatcher {
   /// @param sensor_mask     bit i set: channel i failed a sensor check this tick (SensorCheck::mask())
   /// @param saturated_mask  bit i set: channel i is saturated this tick (SensorCheck::saturated())
   /// @param settled         false while the residuals still carry an operating-point change's
-  ///                        transient: the baseline does not follow them then
+  ///                        transient: the baseline does not follow them then, and an episode
+  ///                        does not end (its quiet time counts from when the transient has
+  ///                        gone: the allowance for it may hide a fault that persists)
   /// @return                status() after the tick
   MatchStatus update(T t, const Evaluator& ev, std::uint8_t sensor_mask = 0, std::uint8_t saturated_mask = 0,
                      bool settled = true) noexcept {
@@ -275,7 +291,7 @@ class FaultMatcher {
       }
       start_episode(t);
     }
-    if (active) t_active_ = t;
+    if (active || !settled) t_active_ = t;
 
     bool changed = false;
     // Sensor flags mask the channels and leave only their sensor rows; saturation is noted.

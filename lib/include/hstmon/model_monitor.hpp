@@ -106,9 +106,33 @@ struct CarryState {
   Obs lead_{};              ///< the observer's model, lead_ticks_ ticks ahead under the held inputs
   T timing_lead_ = T(0);    ///< Config::timing_lead [-]
   int lead_ticks_ = 0;      ///< ticks lead_ runs ahead [-]; 0 = no copy running
+  T settle_taus_ = T(0);    ///< Config::settle_taus [-]
+  T settle_floor_ = T(0);   ///< the configured matcher settle_time, the least it is given [s]
+  T average_floor_ = T(0);  ///< the configured matcher average_time, likewise [s]
+  bool windows_due_ = false;  ///< the matcher's windows wait for its episode to end
 };
 template <class Obs, typename T, std::size_t N>
 struct CarryState<Obs, T, N, false> {};
+
+/// x > 0 rounded up to the grid 2^(k/8), k integer, with exact steps only (frexp, ldexp and
+/// comparisons with constants), so every target and libm rounds alike.
+template <typename T>
+T ceil_to_eighth_octave(T x) noexcept {
+  static constexpr T kSteps[] = {T(1.0),
+                                 T(1.0905077326652577),
+                                 T(1.1892071150027210),
+                                 T(1.2968395546510096),
+                                 T(1.4142135623730951),
+                                 T(1.5422108254079407),
+                                 T(1.6817928305074290),
+                                 T(1.8340080864093424),
+                                 T(2.0)};
+  int e = 0;
+  const T m = std::frexp(x, &e) * T(2);  // [1, 2), x = m·2^(e−1)
+  int k = 0;
+  while (k < 8 && kSteps[k] < m) ++k;
+  return std::ldexp(kSteps[k], e - 1);
+}
 
 /// ModelMonitor::Config's part that only a monitor that can carry has (an empty base
 /// elsewhere, so the thesis rig's configuration is as it was).
@@ -128,6 +152,15 @@ struct LeadConfig {
   /// observer of RAM); 1 allows ε·τ. Only with bound_carry > 0 (whose time constants and
   /// steady state it takes); otherwise > 0 is kInvalidConfig.
   T timing_lead = T(0);
+  /// The matcher's windows in slowest time constants of the operating point the machine
+  /// is at [-], ≥ 0; 0 = the configured windows throughout. At each input change the
+  /// matcher's settle time becomes the larger of the configured one and settle_taus·τ
+  /// (3: 5 % of the transient left), and its averaging time the larger of the configured
+  /// one and τ; τ as for timing_lead. A fault table's magnitudes are steady-state ones, and
+  /// a closed circuit at rest settles in seconds where it runs in a fraction of one: the
+  /// first row's time constant kept a running machine's verdicts waiting for the rest's.
+  /// An episode keeps the windows it was detected under. Only with bound_carry > 0.
+  T settle_taus = T(0);
 };
 template <typename T>
 struct LeadConfig<T, false> {};
@@ -252,6 +285,9 @@ class ModelMonitor
     if constexpr (kCanCarry) {
       this->bound_carry_ = c.bound_carry;
       this->timing_lead_ = c.timing_lead;
+      this->settle_taus_ = c.settle_taus;
+      this->settle_floor_ = c.matcher.settle_time;
+      this->average_floor_ = c.matcher.average_time;
     }
     set_decay();
     reset_rest_of_chain();
@@ -386,16 +422,19 @@ class ModelMonitor
       this->carry_hold_ = false;
       this->bound_here_ = false;
       this->lead_ticks_ = 0;
+      this->windows_due_ = false;
     }
     plan_startup();
     hold_until_ = std::numeric_limits<T>::quiet_NaN();  // set by the first step
     settled_from_ = -std::numeric_limits<T>::infinity();
   }
 
-  // Config::timing_lead valid: finite, ≥ 0, and 0 without bound_carry (true where there is none).
+  // Config::timing_lead and settle_taus valid: finite, ≥ 0, and 0 without bound_carry (true
+  // where there are none).
   static bool lead_ok(const Config& c) noexcept {
     if constexpr (kCanCarry) {
-      return std::isfinite(c.timing_lead) && c.timing_lead >= T(0) && (c.bound_carry > T(0) || c.timing_lead == T(0));
+      return std::isfinite(c.timing_lead) && c.timing_lead >= T(0) && std::isfinite(c.settle_taus) &&
+             c.settle_taus >= T(0) && (c.bound_carry > T(0) || (c.timing_lead == T(0) && c.settle_taus == T(0)));
     } else {
       (void)c;
       return true;
@@ -594,6 +633,10 @@ class ModelMonitor
     }
     ev_.update(obs_.residual().data(), static_cast<std::uint8_t>(used),
                [this](int i) noexcept { return transient_allowance(i); });
+    if constexpr (kCanCarry) {
+      // An episode that held the windows back has ended: before this tick may start another.
+      if (this->windows_due_ && matcher_.status() == MatchStatus::kNominal) set_windows();
+    }
     return matcher_.update(t, ev_, sensor_mask, saturated, t >= settled_from_);
   }
 
@@ -679,6 +722,23 @@ class ModelMonitor
       env_decay_ = std::exp(-obs_.config().tick / tau);
     }
     if (this->timing_lead_ > T(0) && bound_valid_) start_lead(tau_new);
+    this->windows_due_ = this->settle_taus_ > T(0) && tau_new > T(0);
+    if (this->windows_due_ && matcher_.status() == MatchStatus::kNominal) set_windows();
+  }
+
+  // Config::settle_taus: the matcher's windows from the slowest time constant at the last
+  // input change (tau_here_), the configured ones at least. Between episodes only, so an
+  // episode keeps the window it was detected under. τ is rounded up to an eighth of an
+  // octave: a float build's τ (steady solves and eigenvalues to float precision) then gives
+  // the double build's windows, and the same verdict on the same tick.
+  template <bool kOn = kCanCarry>
+  HSTMON_NOINLINE void set_windows() noexcept {
+    static_assert(kOn, "only a monitor whose model bound reports a time constant follows it");
+    const T tau = model_monitor_detail::ceil_to_eighth_octave(this->tau_here_);
+    const T settle = this->settle_taus_ * tau;
+    (void)matcher_.set_windows(settle > this->settle_floor_ ? settle : this->settle_floor_,
+                               tau > this->average_floor_ ? tau : this->average_floor_);
+    this->windows_due_ = false;
   }
 
   // set_steady_outputs at the current inputs' steady state, if they have one.

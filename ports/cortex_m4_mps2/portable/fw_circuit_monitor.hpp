@@ -51,7 +51,7 @@ struct LogColumns {
 /// circuit_replay.cpp): columns mapped by name (time "t" or "time"; the circuit's input
 /// and channel columns, without regard to case), the monitor configured from the
 /// generated values (sensor σ, ranges, parameter uncertainty; matcher windows from the
-/// slowest time constant at the first row's inputs, circuit::widen_matcher_windows),
+/// slowest time constant at each operating point, circuit::set_circuit_allowances),
 /// started from the first row's measurements or, within 3σ of the steady state, there
 /// (circuit::at_steady_within_noise), one tick per row at kTick (fw_circuit.hpp) plus ticks with the
 /// inputs held where the log is slower. Writes, in order: one line per row `trace <row>

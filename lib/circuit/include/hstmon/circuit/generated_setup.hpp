@@ -43,8 +43,8 @@ struct GeneratedValues {
 
 /// Binds `model` to the generated circuit and its parameter values, then configures `mon`
 /// as the host replay does: sensor σ (circuit::sensor_sigma) and ranges, parameter
-/// uncertainty, the circuit allowances, and the matcher's windows widened to the slowest
-/// time constant at the first inputs u0. `model` is left with inputs u0; it is the setup's
+/// uncertainty, the circuit allowances (circuit::set_circuit_allowances: among them the
+/// matcher's windows, which follow the operating point). `model` is left with inputs u0; it is the setup's
 /// scratch and the monitor copies it (firmware passes a static one, so no model lands on
 /// the stack).
 /// @param mon    the monitor to configure
@@ -78,8 +78,6 @@ Status configure_from_generated(Mon& mon, typename Mon::Model& model, const Gene
   }
   for (int k = 0; k < MonitorCapacity<Mon>::kParams; ++k) cfg.uncertainty.rel[k] = static_cast<T>(g.uncertainty[k]);
   set_circuit_allowances(cfg);
-  (void)widen_matcher_windows(model, u0, cfg.matcher);
-  model.set_inputs(u0);
   return mon.configure(model, cfg, table, count);
 }
 

@@ -4,8 +4,7 @@
 /// one place for the host replay (`hstmon replay --circuit`) and the firmware's
 /// (ports/cortex_m4_mps2/portable/fw_circuit_monitor.cpp), so the two configure the same
 /// monitor: the noise σ of a channel, the allowances for what a circuit file does not say,
-/// the matcher's settle and average windows from the slowest time constant, and the
-/// choice to start at the steady state. Templates on the
+/// and the choice to start at the steady state. Templates on the
 /// model (CircuitModel<T, Cap>); no heap, no exceptions.
 
 #include <cmath>
@@ -39,8 +38,13 @@ T sensor_sigma(T noise, T lo, T hi) noexcept {
 ///    that time ahead counts as model error;
 ///  - how far a fault moves the model error with the operating point: a channel that moved
 ///    no further than the model bound reads as unchanged in a signature
-///    (FaultMatcher::Config::k_zero_bound = 1).
-/// The thesis rig's monitor (Monitor<T>) keeps all four off: its transients are milliseconds
+///    (FaultMatcher::Config::k_zero_bound = 1);
+///  - how long its transients last where the machine runs: the fault table's magnitudes are
+///    steady-state ones, so after a detection the matcher settles for 3 and averages over 1
+///    of the slowest time constants at the operating point of the last input change
+///    (ModelMonitor::Config::settle_taus = 3; the configured windows, 50 ms and 100 ms by
+///    default, where the circuit is faster).
+/// The thesis rig's monitor (Monitor<T>) keeps all five off: its transients are milliseconds
 /// long and its table and thresholds are validated as they are.
 /// @param cfg  a ModelMonitor configuration, changed in place
 template <class MonitorConfig>
@@ -49,29 +53,7 @@ void set_circuit_allowances(MonitorConfig& cfg) noexcept {
   cfg.bound_carry = 1;
   cfg.timing_lead = 1;
   cfg.matcher.k_zero_bound = 1;
-}
-
-/// Widens the matcher's windows to the circuit's slowest time constant at the steady
-/// state for inputs u: it settles 3 time constants after a detection (5 % of the
-/// transient left) and averages over one more; where the circuit is faster, the given
-/// windows (the thesis defaults, 50 ms and 100 ms) stay. Magnitudes and directions in the
-/// fault table are steady-state ones, hence the wait.
-/// @param model   the circuit's model; left with inputs u (a scratch copy on the host; firmware
-///                passes a static one, so no model is copied onto its stack)
-/// @param matcher matcher configuration with settle_time and average_time [s], changed in place
-/// @return the slowest rate [1/s], 0 when there is no steady state at u (windows unchanged)
-template <class Model, class MatcherConfig>
-typename Model::Scalar widen_matcher_windows(Model& model, const typename Model::Inputs& u,
-                                             MatcherConfig& matcher) noexcept {
-  using T = typename Model::Scalar;
-  model.set_inputs(u);
-  typename Model::State xs;
-  const T rate = model.steady_state(xs) ? model.slowest_rate(xs) : T(0);
-  if (rate > T(0)) {
-    matcher.settle_time = std::fmax(matcher.settle_time, T(3) / rate);
-    matcher.average_time = std::fmax(matcher.average_time, T(1) / rate);
-  }
-  return rate > T(0) ? rate : T(0);
+  cfg.settle_taus = 3;
 }
 
 /// True when each of the first `channels` channels is measured (bit in valid) with a
@@ -79,7 +61,8 @@ typename Model::Scalar widen_matcher_windows(Model& model, const typename Model:
 /// inputs u: then a replay starts at that steady state, since the readings' noise would
 /// otherwise be the initial error of a parallel model (a lightly damped circuit rings
 /// with it for seconds).
-/// @param model  the circuit's model; left with inputs u (see widen_matcher_windows)
+/// @param model  the circuit's model; left with inputs u (a scratch copy on the host;
+///               firmware passes a static one, so no model is copied onto its stack)
 /// @param noise  stated noise σ per channel [channel SI unit]
 /// @param y      readings per channel [channel SI unit]
 /// @param valid  bit ch set: channel ch was read
