@@ -114,8 +114,8 @@ struct CarryState {
 template <class Obs, typename T, std::size_t N>
 struct CarryState<Obs, T, N, false> {};
 
-/// x > 0 rounded up to the grid 2^(k/8), k integer, with exact steps only (frexp, ldexp and
-/// comparisons with constants), so every target and libm rounds alike.
+/// x (> 0, finite) rounded up to the grid 2^(k/8), k integer, with exact steps only (frexp,
+/// ldexp and comparisons with constants), so every target and libm rounds alike.
 template <typename T>
 T ceil_to_eighth_octave(T x) noexcept {
   static constexpr T kSteps[] = {T(1.0),
@@ -157,8 +157,9 @@ struct LeadConfig {
   /// matcher's settle time becomes the larger of the configured one and settle_taus·τ
   /// (3: 5 % of the transient left), and its averaging time the larger of the configured
   /// one and τ; τ as for timing_lead. A fault table's magnitudes are steady-state ones, and
-  /// a closed circuit at rest settles in seconds where it runs in a fraction of one: the
-  /// first row's time constant kept a running machine's verdicts waiting for the rest's.
+  /// the slowest mode depends on the operating point (a closed circuit idling in neutral
+  /// settles over several seconds, running in about one): the first row's time constant
+  /// kept a running machine's verdicts waiting for the idle machine's.
   /// An episode keeps the windows it was detected under. Only with bound_carry > 0.
   T settle_taus = T(0);
 };
