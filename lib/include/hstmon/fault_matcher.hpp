@@ -201,9 +201,9 @@ class FaultMatcher {
   /// @param count  rows in the table, 0 … Capacity
   /// @return       kOk, or kInvalidConfig (matcher unchanged)
   Status configure(const Signature* table, int count, const Config& c) noexcept {
-    const bool ok = table_ok(table, count) && nonneg(c.order_window) && nonneg(c.settle_time) &&
-                    nonneg(c.average_time) && c.average_time > T(0) && nonneg(c.k_zero) && nonneg(c.k_expect) &&
-                    nonneg(c.k_zero_bound) && nonneg(c.tie_margin) && nonneg(c.clear_hold) && c.baseline_samples >= 1;
+    const bool ok = table_ok(table, count) && nonneg(c.order_window) && windows_ok(c.settle_time, c.average_time) &&
+                    nonneg(c.k_zero) && nonneg(c.k_expect) && nonneg(c.k_zero_bound) && nonneg(c.tie_margin) &&
+                    nonneg(c.clear_hold) && c.baseline_samples >= 1;
     if (!ok) return Status::kInvalidConfig;
     cfg_ = c;
     const detail::MarginCosSin<T> m = detail::margin_cos_sin(c.tie_margin);
@@ -238,7 +238,7 @@ class FaultMatcher {
   /// @param average_time  averaging window [s], > 0
   /// @return kOk, or kInvalidConfig (windows unchanged)
   Status set_windows(T settle_time, T average_time) noexcept {
-    if (!(nonneg(settle_time) && nonneg(average_time) && average_time > T(0))) return Status::kInvalidConfig;
+    if (!windows_ok(settle_time, average_time)) return Status::kInvalidConfig;
     cfg_.settle_time = settle_time;
     cfg_.average_time = average_time;
     return Status::kOk;
@@ -397,6 +397,8 @@ class FaultMatcher {
  private:
   static constexpr int kQueue = QueueDepth;
   static bool nonneg(T v) noexcept { return std::isfinite(v) && v >= T(0); }
+  // Config::settle_time ≥ 0 and average_time > 0, both finite (configure, set_windows).
+  static bool windows_ok(T settle, T average) noexcept { return nonneg(settle) && nonneg(average) && average > T(0); }
   static bool table_ok(const Signature* table, int count) noexcept {
     return count >= 0 && count <= Capacity && (table != nullptr || count == 0);
   }
