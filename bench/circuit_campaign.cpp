@@ -216,19 +216,12 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
     so.steps.push_back(s);
   }
   if (f.input >= 0) {
-    // The true input × factor from t_f on, at every later setting: each step's value and
-    // a step at t_f holding the setting then in force.
-    double setting = c.values.inputs.v[f.input];
-    for (const InputStep& s : so.steps) {
-      if (s.input == f.input && s.t <= g_timing.t_fault) setting = s.value;
-    }
-    for (InputStep& s : so.steps) {
-      if (s.input == f.input && s.t > g_timing.t_fault) s.value *= f.factor;
-    }
+    // An input fault: the machine gets the setting × factor from t_f on, the log keeps the setting.
     InputStep s;
     s.t = g_timing.t_fault;
     s.input = f.input;
-    s.value = setting * f.factor;
+    s.factor = f.factor;
+    s.input_fault = true;
     so.steps.push_back(s);
   }
   hstmon::circuit_tools::sort_steps(so.steps);
@@ -241,7 +234,6 @@ RunResult run_one(const LoadedCircuit& c, const Condition& cond, const Fault& f,
   }
   for (std::size_t k = 0; k < log.rows(); ++k) {
     if (log.t[k] < g_timing.t_fault - 1e-12) continue;
-    if (f.input >= 0 && !log.inputs[f.input].empty()) log.inputs[f.input][k] /= f.factor;  // the setting
     if (f.channel >= 0 && !log.sensors[f.channel].empty()) log.sensors[f.channel][k] += sensor_bias(c.file.sensors[f.channel]);
   }
   CircuitReplayOptions ro;

@@ -17,6 +17,7 @@
 #include "hstmon_host/number_text.hpp"
 #include "hstmon_sensors/sensor_presets.hpp"  // kPaPerBar
 #include "sim_compare.hpp"
+#include "sim_scenario.hpp"
 
 namespace hstmon::sim_app {
 
@@ -69,7 +70,8 @@ std::string si_value(double v, host::CircuitQuantity q) {
 // --list: the names --step, --fault and the log's columns take, with their units and values.
 void print_circuit_list(const circuit_tools::LoadedCircuit& c) {
   const host::CircuitFile& f = c.file;
-  std::cout << "circuit " << f.name << " (" << f.path << ")\n\ninputs (--step INPUT=VALUE@T; log columns):\n";
+  std::cout << "circuit " << f.name << " (" << f.path
+            << ")\n\ninputs (--step INPUT=VALUE@T, --fault INPUT=FACTOR@T; log columns):\n";
   for (std::size_t i = 0; i < f.inputs.size(); ++i) {
     const auto& in = f.inputs[i];
     std::cout << "  " << in.name << "  " << host::circuit_quantity_name(in.quantity) << ", column " << in.column
@@ -133,14 +135,34 @@ int run_circuit_sim(const CircuitSimArgs& a) {
                    (*hold == circuit_tools::InputHold::kLinear ? "linear between rows"
                                                                : "each row held until the next (zero-order hold)") +
                    "; " + (a.rate > 0.0 ? "rows at " + host::number_text(a.rate) + " Hz" : "the log's own row times");
-  } else {
+  }
+  ScenarioRun scenario;
+  if (a.scenario) {
+    if (auto err = scenario_run(*a.scenario, c.file, scenario)) {
+      std::cerr << "hstmon-sim: " << *err << '\n';
+      return 1;
+    }
+    o.steps = scenario.steps;
+    o.duration = scenario.duration;
+  }
+  if (a.logger && !a.ideal) {
+    if (auto err = preset_channels(a.preset, *a.logger, c.file, o.channels)) {
+      std::cerr << "hstmon-sim: " << *err << '\n';
+      return 1;
+    }
+  }
+  if (a.inputs.empty()) {
     if (a.duration > 0.0) o.duration = a.duration;
-    if (a.rate > 0.0) o.rate = a.rate;
+    if (a.rate > 0.0) {
+      o.rate = a.rate;
+    } else if (a.logger) {
+      o.rate = 1.0 / a.logger->sample_period;
+    }
   }
   o.seed = a.seed;
-  o.from_rest = a.start == "rest";
+  o.from_rest = a.start.empty() ? a.scenario && scenario.from_rest : a.start == "rest";
   o.noise = !a.no_noise && !a.ideal;
-  if (!a.ideal) {
+  if (!a.ideal && !a.logger) {
     o.transducers.lag = a.lag;
     o.transducers.pressure_step = a.pressure_step;
     o.transducers.pressure_adc_bits = a.adc_bits;
@@ -161,12 +183,14 @@ int run_circuit_sim(const CircuitSimArgs& a) {
     (a.out == "-" ? std::cerr : std::cout) << compare_text(c.file, measured, log);
   }
   std::vector<std::string> comments = {
-      "hstmon-sim --circuit " + a.circuit + (c.params_path.empty() ? std::string() : " --params " + c.params_path),
+      "hstmon-sim --circuit " + c.file.path + (c.params_path.empty() ? std::string() : " --params " + c.params_path),
       "circuit " + c.file.name + ": full equations (Rosenbrock-4), " +
           (o.from_rest ? "from rest" : "from steady state") + ", " + host::number_text(o.duration) + " s" +
           (a.inputs.empty() || a.rate > 0.0 ? " at " + host::number_text(o.rate) + " Hz" : " on the log's rows") +
           ", seed " + std::to_string(o.seed) + (o.noise ? "" : ", no noise")};
+  if (a.scenario) comments.push_back("scenario " + a.scenario->name + ": " + a.scenario->description);
   if (!profile_note.empty()) comments.push_back(profile_note);
+  if (!o.channels.empty()) comments.push_back("sensors: preset " + a.preset);
   if (const std::string t = transducer_note(o.transducers); !t.empty()) comments.push_back(t);
   if (a.param_error > 0.0) {
     comments.push_back("machine: every uncertain parameter off the file by uniform ±" +

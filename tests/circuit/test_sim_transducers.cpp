@@ -1,8 +1,8 @@
 // The rig conditions of hstmon-sim on any circuit: a transducer lag on every channel, the
 // pressure channels through an ADC over their range (or a fixed step), and a machine off
 // its parameter file (machine_spread.hpp). Each is off by default, changes only what it
-// names, and is written in the log's comments; the thesis scenarios' own options are
-// refused with --circuit, naming what to use instead.
+// names, and is written in the log's comments; the thesis scenarios and their options are
+// refused on a circuit without the thesis rig's inputs, naming what to use instead.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -138,13 +138,18 @@ TEST(SimTransducersCli, RigConditionsRunOnACircuitAndAreWrittenInTheLog) {
 }
 
 TEST(SimTransducersCli, ThesisScenarioOptionsAreRefusedWithWhatToUseInstead) {
-  const hstmon_test::CliRun r =
-      hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --load steps --out - 2>&1");
+  hstmon_test::CliRun r = hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --load steps --out - 2>&1");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(
-      r.out.find("--load belongs to the built-in thesis scenarios; with --circuit use --step, --fault or --inputs"),
-      std::string::npos)
+  EXPECT_NE(r.out.find("--load sets up --scenario rig (on any run, --step and --fault)"), std::string::npos) << r.out;
+  r = hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --scenario prv_blockage --out - 2>&1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("--scenario prv_blockage is the thesis rig's: it sets the inputs Psupl, Ps, Pbp and kp, and "
+                       "circuit paper has no input 'Psupl'"),
+            std::string::npos)
       << r.out;
+  r = hstmon_test::run_command(kSim + " --circuit '" + kPaper + "' --preset fast --out - 2>&1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("--preset fast has no channel for sensor 'p_s' of circuit paper"), std::string::npos) << r.out;
 }
 
 // --units and --rpm choose the log's units on a circuit too; the replay reads them back.

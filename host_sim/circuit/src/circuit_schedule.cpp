@@ -82,22 +82,37 @@ std::optional<std::string> parse_input_step(std::string_view text, const host::C
 
 std::optional<std::string> parse_param_fault(std::string_view text, const host::CircuitFile& c, InputStep& out) {
   const std::optional<TimedAssignment> parts = split_timed_assignment(text);
-  if (!parts) return "--fault takes PARAM=FACTOR@T (e.g. Rmlkg=0.5@3), got '" + std::string(text) + "'";
+  if (!parts)
+    return "--fault takes PARAM=FACTOR@T or INPUT=FACTOR@T (e.g. Rmlkg=0.5@3, kp=0.5@80), got '" + std::string(text) +
+           "'";
   const std::string& name = parts->name;
   const int i = c.param_index(name);
-  if (i < 0 || c.params[static_cast<std::size_t>(i)].literal) {
+  const bool param = i >= 0 && !c.params[static_cast<std::size_t>(i)].literal;
+  const int input = param ? -1 : c.input_index(name);
+  if (!param && input < 0) {
     std::string known;
     for (const auto& p : c.params) {
       if (!p.literal) known += (known.empty() ? "" : ", ") + p.name;
     }
-    return "--fault: circuit " + c.name + " has no parameter '" + name + "' (parameters: " + known + ")";
+    std::string inputs;
+    for (const auto& in : c.inputs) inputs += (inputs.empty() ? "" : ", ") + in.name;
+    return "--fault: circuit " + c.name + " has no parameter or input '" + name + "' (parameters: " + known +
+           "; inputs: " + inputs + ")";
   }
   double f = 0.0, t = 0.0;
   if (!(whole_number(parts->value, f) && std::isfinite(f) && f > 0.0)) {
     return "--fault " + std::string(text) + ": the factor between '=' and '@' must be a number > 0";
   }
   if (!step_time(parts->time, t)) return "--fault " + std::string(text) + ": the time after '@' must be seconds >= 0";
-  out = InputStep{t, -1, 0.0, i, f};
+  out = InputStep{};
+  out.t = t;
+  out.factor = f;
+  if (param) {
+    out.param = i;
+  } else {
+    out.input = input;
+    out.input_fault = true;
+  }
   return std::nullopt;
 }
 

@@ -48,6 +48,7 @@ std::vector<double> sample_times_of(const CircuitSimOptions& o) {
 
 // The inputs and parameters over the run: the nominal values, the steps in time order on
 // top, and the input profile's rows (an input leaves the profile from its first step on).
+// An input fault scales what the machine gets, not what the log records.
 class Stimulus {
  public:
   Stimulus(const LoadedCircuit& c, const CircuitSimOptions& o)
@@ -59,6 +60,7 @@ class Stimulus {
         n_inputs_(c.file.inputs.size()),
         held_(c.values.inputs),
         follows_(n_inputs_, false),
+        fault_(n_inputs_, 1.0),
         params_(c.values.params) {
     if (prof_.any() && !(o.start_time >= prof_.t.front())) {
       throw std::runtime_error("the run starts before the input profile's first row");
@@ -75,7 +77,9 @@ class Stimulus {
   void apply_steps_until(double t) {
     while (next_ < steps_.size() && steps_[next_].t <= t + kSameInstant) {
       const InputStep& st = steps_[next_];
-      if (st.param >= 0) {
+      if (st.input_fault) {
+        fault_[static_cast<std::size_t>(st.input)] = st.factor;
+      } else if (st.param >= 0) {
         apply_param_fault(file_, params_, nominal_, static_cast<std::size_t>(st.param), st.factor);
         params_changed_ = true;
       } else {
@@ -97,19 +101,26 @@ class Stimulus {
     if (next_row_ < prof_.t.size()) b = std::min(b, prof_.t[next_row_]);
     return b;
   }
-  // The inputs at time t [s] in the current segment.
-  Model::Inputs inputs_at(double t) const {
+  // The inputs the log records at time t [s] in the current segment.
+  Model::Inputs logged_at(double t) const {
     Model::Inputs u = held_;
     for (std::size_t i = 0; i < n_inputs_; ++i) {
       if (follows_[i]) u.v[i] = prof_.value(i, t, seg_);
     }
     return u;
   }
-  // The current segment's input slopes [unit/s]; zero where an input does not follow the profile.
+  // The inputs the machine gets at time t [s]: the logged ones, input faults applied.
+  Model::Inputs inputs_at(double t) const {
+    Model::Inputs u = logged_at(t);
+    for (std::size_t i = 0; i < n_inputs_; ++i) u.v[i] *= fault_[i];
+    return u;
+  }
+  // The current segment's slopes of the machine's inputs [unit/s]; zero where an input
+  // does not follow the profile.
   std::vector<double> slopes() const {
     std::vector<double> s(n_inputs_, 0.0);
     for (std::size_t i = 0; i < n_inputs_; ++i) {
-      if (follows_[i]) s[i] = prof_.slope(i, seg_);
+      if (follows_[i]) s[i] = prof_.slope(i, seg_) * fault_[i];
     }
     return s;
   }
@@ -135,6 +146,7 @@ class Stimulus {
   std::size_t n_inputs_;
   Model::Inputs held_;  // nominal, then stepped; the profile's inputs on top
   std::vector<bool> follows_;
+  std::vector<double> fault_;  // input faults: the machine's input over the logged one [-]
   Model::Params params_;
   bool params_changed_ = false;
   std::size_t next_ = 0;  // the next step
@@ -240,8 +252,6 @@ class Trajectory {
     if (stepped_here && settled_->usable()) y = settled_->outputs(stim_.params(), u_, x_);
     return y;
   }
-  // The inputs at the last sample.
-  const Model::Inputs& inputs() const { return u_; }
 
  private:
   // Each step and row up to ts [s], met exactly by a hard stop; true if one is a jump at ts.
@@ -364,11 +374,24 @@ class Trajectory {
   bool sloped_ = false;
 };
 
-// The sensors section as a sensor chain: white noise (when asked), range clipping, and the
-// transducers' lag and ADC (when asked).
-std::vector<sim::ChannelSpec> channel_specs(const LoadedCircuit& c, bool noise, const TransducerOptions& t) {
+// The sensor chain: the options' channels (a logger set-up) or the sensors section's white
+// noise and range clipping with the transducers' lag and ADC (when asked); noise off when
+// not asked for.
+std::vector<sim::ChannelSpec> channel_specs(const LoadedCircuit& c, bool noise, const TransducerOptions& t,
+                                            const std::vector<sim::ChannelSpec>& given) {
   if (!(t.lag >= 0.0) || !(t.pressure_step >= 0.0) || t.pressure_adc_bits < 0 || t.pressure_adc_bits > 52) {
     throw std::runtime_error("transducers: the lag and the pressure step are >= 0, the pressure ADC has 1 to 52 bits");
+  }
+  if (!given.empty()) {
+    if (given.size() != c.file.sensors.size()) {
+      throw std::runtime_error("the sensor set-up has " + std::to_string(given.size()) + " channels, circuit " +
+                               c.file.name + " " + std::to_string(c.file.sensors.size()) + " sensors");
+    }
+    std::vector<sim::ChannelSpec> specs = given;
+    if (!noise) {
+      for (sim::ChannelSpec& ch : specs) ch.noise_std = 0.0;
+    }
+    return specs;
   }
   std::vector<sim::ChannelSpec> specs;
   for (const host::CircuitSensor& s : c.file.sensors) {
@@ -397,7 +420,7 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
   const std::vector<double> sample_times = sample_times_of(o);
   Stimulus stim(c, o);
   Trajectory run(c, o, stim);
-  const std::vector<sim::ChannelSpec> specs = channel_specs(c, o.noise, o.transducers);
+  const std::vector<sim::ChannelSpec> specs = channel_specs(c, o.noise, o.transducers, o.channels);
   sim::SensorChain chain(specs, o.seed);
   const std::size_t channels = specs.size();
 
@@ -420,7 +443,8 @@ CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o) 
     chain.measure(meas.data());
     t_last = ts;
     log.t.push_back(ts);
-    for (std::size_t i = 0; i < stim.n_inputs(); ++i) log.inputs[i].push_back(run.inputs().v[i]);
+    const Model::Inputs logged = stim.logged_at(ts);
+    for (std::size_t i = 0; i < stim.n_inputs(); ++i) log.inputs[i].push_back(logged.v[i]);
     for (std::size_t ch = 0; ch < channels; ++ch) log.sensors[ch].push_back(meas[ch]);
   }
   return log;

@@ -99,8 +99,7 @@ SensorConfig with_pressure_adc_bits(SensorConfig c, int bits) {
 
 SensorConfig paper_logger_sensors(double rate_hz) {
   SensorConfig c;
-  c.channels = {pressure("p_pump", 250.0, 12), pressure("p_mi", 250.0, 12), pressure("p_pp", 250.0, 12),
-                speed(5000.0)};
+  c.channels = {pressure("p_s", 250.0, 12), pressure("p_mi", 250.0, 12), pressure("p_pp", 250.0, 12), speed(5000.0)};
   c.sample_period = period_of(rate_hz);
   return c;
 }

@@ -20,6 +20,7 @@
 #include "hstmon_circuit/circuit_log.hpp"
 #include "hstmon_circuit/circuit_schedule.hpp"
 #include "hstmon_circuit/input_profile.hpp"
+#include "hstmon_sensors/sensor_chain.hpp"
 
 namespace hstmon::circuit_tools {
 
@@ -46,13 +47,16 @@ struct CircuitSimOptions {
                                      ///< k < duration·rate (rate then also sets which volumes read settled)
   InputProfile profile;            ///< logged inputs driving the run (none: no input follows it)
   TransducerOptions transducers;   ///< lag and ADC of every channel (none by default)
+  /// A logger set-up instead of the sensors section and transducers: one channel per
+  /// sensor, in the circuit's order (noise still off without `noise`); empty: none.
+  std::vector<sim::ChannelSpec> channels;
 };
 
 /// Simulates c and returns the log: every input column and every sensor column, SI.
 /// @throws std::runtime_error for more than 1e7 samples, sample times not rising from start_time (or a profile's
 ///         first row after it), pressure_adc_bits outside 1..52, a negative lag or step, when the circuit's values are not
 ///         physical, there is no
-///         steady state to start from, or the integration fails
+///         steady state to start from, channels that are not one per sensor, or the integration fails
 CircuitLog simulate_circuit(const LoadedCircuit& c, const CircuitSimOptions& o);
 
 }  // namespace hstmon::circuit_tools

@@ -40,7 +40,8 @@ inline constexpr double kRadPerSecPerRpm = 3.14159265358979323846 / 30.0;
 /// A measurement set-up: channels in the model's output order, sample period and the
 /// internal step at which the lags are fed.
 struct SensorConfig {
-  std::vector<ChannelSpec> channels;  ///< thesis: p_mi, p_mo, p_pp, w_m; paper: p_pump, p_mi, p_pp, w_m
+  std::vector<ChannelSpec>
+      channels;  ///< thesis: p_mi, p_mo, p_pp, w_m; paper: p_s, p_mi, p_pp, w_m (the names of the circuits' sensors)
   double sample_period = 4.0;         ///< logger sampling period [s]
   double lag_step = 1e-4;             ///< largest internal step of the lag integration [s]
 };
