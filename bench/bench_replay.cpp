@@ -1,6 +1,8 @@
-// Replay throughput: a one-hour 1 kHz log (3.6 M rows) generated in memory, then
-//   Parse        hstmon::host::read_log_from_memory alone
-//   Step         hstmon::host::replay over the parsed rows (observer at 1 ms + statistics)
+// Replay throughput of `hstmon replay`'s path (the built-in thesis.json): a one-hour 1 kHz
+// log (3.6 M rows) generated in memory, then
+//   Parse        circuit_tools::parse_circuit_log alone
+//   Step         circuit_tools::replay_circuit over the parsed rows (observer at 1 ms,
+//                model bound, matcher, fit after a detection, statistics)
 //   ParseAndStep both, i.e. what replaying a log from memory costs
 //   ParseAndStepResidualsOnly  the same without the fault matcher (--no-diagnosis)
 //   ParseSimFormat  Parse on the same rows written as hstmon-sim writes them
@@ -22,13 +24,15 @@
 #include <string_view>
 
 #include "bench_common.hpp"
-#include "hstmon_host/log_reader.hpp"
-#include "hstmon_host/replay.hpp"
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace {
 
-using hstmon::host::LogData;
-using hstmon::host::Signal;
+namespace ct = hstmon::circuit_tools;
+using LogData = ct::CircuitLog;
 
 constexpr double kTargetRowsPerSecond = 3.6e6;
 
@@ -94,28 +98,43 @@ const std::string& log_text() {
   return text;
 }
 
-LogData parse() { return hstmon::host::read_log_from_memory(log_text(), "bench_1h_1kHz.csv"); }
+// The built-in thesis.json and its fault table, as `hstmon replay` loads them.
+const ct::LoadedCircuit& circuit() {
+  static const ct::LoadedCircuit c = [] {
+    ct::LoadedCircuit l;
+    (void)ct::load_circuit("", "", l);  // built in: cannot fail
+    return l;
+  }();
+  return c;
+}
+const ct::CircuitFaultTable& table() {
+  static const ct::CircuitFaultTable t = hstmon::fdi::circuit_signature_table(circuit());
+  return t;
+}
+
+LogData parse() { return ct::parse_circuit_log(log_text(), "bench_1h_1kHz.csv", circuit().file); }
 
 const LogData& parsed_log() {
   static const LogData log = parse();
   return log;
 }
 
-/// Replays the parsed rows with the host port's replay loop (the one `hstmon replay`
-/// runs: inputs per row, observer tick per row, residual statistics); returns the health.
+/// Replays the parsed rows as `hstmon replay` does (inputs per row, observer tick per row,
+/// residual statistics; the matcher unless residuals only); returns the health.
 std::uint32_t step_all(const LogData& log, bool diagnose = true) {
-  hstmon::host::ReplayOptions opt;
+  ct::CircuitReplayOptions opt;
   opt.tick = 1e-3;
   opt.diagnose = diagnose;
-  const hstmon::host::ReplayResult r = hstmon::host::replay(log, {}, {}, opt);
+  opt.table = &table();
+  const ct::CircuitReplayResult r = ct::replay_circuit(circuit(), log, opt);
   benchmark::DoNotOptimize(r.channels);
   return r.health;
 }
 
 bool check(benchmark::State& state, const LogData& log) {
-  if (!log.ok() || log.rows() != row_count()) {
+  if (log.error || log.rows() != row_count()) {
     static std::string why;
-    why = log.ok() ? "wrong row count" : log.error->to_string();
+    why = log.error ? log.error->to_string() : "wrong row count";
     state.SkipWithError(why.c_str());
     return false;
   }
@@ -186,7 +205,7 @@ BENCHMARK(BM_ParseAndStepResidualsOnly)->Unit(benchmark::kMillisecond);
 void BM_ParseSimFormat(benchmark::State& state) {
   static const std::string text = make_log(true);  // made before the timed loop
   for (auto _ : state) {
-    LogData log = hstmon::host::read_log_from_memory(text, "bench_sim_1h_1kHz.csv");
+    LogData log = ct::parse_circuit_log(text, "bench_sim_1h_1kHz.csv", circuit().file);
     if (!check(state, log)) return;
     benchmark::DoNotOptimize(log.t.data());
   }
@@ -198,7 +217,8 @@ BENCHMARK(BM_ParseSimFormat)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  (void)log_text();  // generate outside any timed region
+  (void)log_text();  // generate, load and build outside any timed region
+  (void)table();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "hstmon_host/signals.hpp"
+#include <cstdlib>
+
+#include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace hstmon_campaign {
 
@@ -157,35 +160,70 @@ std::vector<FaultCase> sensor_faults(const sim::SensorConfig& sensors) {
   return out;
 }
 
-hstmon::host::ReplayResult replay_log(const sim::ThesisMeasurements& log, const sim::SensorConfig& sensors,
-                                      bool declare_ranges) {
-  using hstmon::host::Signal;
-  hstmon::host::LogData d;
-  d.path = "campaign";
+namespace {
+
+namespace ct = hstmon::circuit_tools;
+
+// The built-in thesis.json, as `hstmon replay` loads it without --circuit.
+const ct::LoadedCircuit& thesis_circuit() {
+  static const ct::LoadedCircuit c = [] {
+    ct::LoadedCircuit l;
+    if (auto err = ct::load_circuit("", "", l)) {
+      std::fprintf(stderr, "campaign: %s\n", err->to_string().c_str());
+      std::abort();
+    }
+    return l;
+  }();
+  return c;
+}
+
+// Its fault table, as `hstmon replay` builds it; once for every log.
+const ct::CircuitFaultTable& thesis_table() {
+  static const ct::CircuitFaultTable t = hstmon::fdi::circuit_signature_table(thesis_circuit());
+  return t;
+}
+
+}  // namespace
+
+ct::CircuitLog circuit_log_of(const sim::ThesisMeasurements& log) {
+  const ct::LoadedCircuit& c = thesis_circuit();
   const std::size_t n = log.size();
+  ct::CircuitLog d;
+  d.path = "campaign";
   d.t.resize(n);
-  const Signal sig[8] = {Signal::kPSup, Signal::kPS, Signal::kPBp, Signal::kKp,
-                         Signal::kPMi,  Signal::kPMo, Signal::kPPp, Signal::kWm};
-  for (Signal s : sig) {
-    d.present[hstmon::host::index(s)] = true;
-    d.values[hstmon::host::index(s)].resize(n);
-  }
-  d.present[hstmon::host::index(Signal::kT)] = true;
+  d.inputs.assign(c.file.inputs.size(), std::vector<double>(n));
+  d.sensors.assign(c.file.sensors.size(), std::vector<double>(n));
+  // thesis.json's inputs and sensors by name: Psupl, Ps, Pbp, kp; p_mi, p_mo, p_pp, w_m.
+  const int in[4] = {c.file.input_index("Psupl"), c.file.input_index("Ps"), c.file.input_index("Pbp"),
+                     c.file.input_index("kp")};
   for (std::size_t k = 0; k < n; ++k) {
     const auto& m = log[k];
     d.t[k] = m.t;
-    const double v[8] = {m.u.Psupl, m.u.Ps, m.u.Pbp, m.u.kp, m.y[0], m.y[1], m.y[2], m.y[3]};
-    for (int i = 0; i < 8; ++i) d.values[hstmon::host::index(sig[i])][k] = v[i];
+    const double u[4] = {m.u.Psupl, m.u.Ps, m.u.Pbp, m.u.kp};
+    for (int i = 0; i < 4; ++i) d.inputs[static_cast<std::size_t>(in[i])][k] = u[i];
+    for (std::size_t ch = 0; ch < 4; ++ch) d.sensors[ch][k] = m.y[static_cast<int>(ch)];
   }
-  hstmon::host::ReplayOptions o;
-  for (std::size_t c = 0; declare_ranges && c < 4; ++c) {
-    o.sensors.lo[c] = sensors.channels[c].range_lo;
-    o.sensors.hi[c] = sensors.channels[c].range_hi;
-  }
-  return hstmon::host::replay(d, Params{}, Inputs{}, o);
+  return d;
 }
 
-NominalStats score_nominal(const hstmon::host::ReplayResult& r) {
+std::string log_text(const sim::ThesisMeasurements& log, const std::string& note) {
+  return ct::circuit_log_text(thesis_circuit().file, circuit_log_of(log), {note});
+}
+
+ct::CircuitReplayResult replay_log(const sim::ThesisMeasurements& log, const sim::SensorConfig& sensors,
+                                   bool declare_ranges) {
+  ct::LoadedCircuit c = thesis_circuit();
+  const ct::CircuitLog d = circuit_log_of(log);
+  for (std::size_t ch = 0; declare_ranges && ch < 4; ++ch) {
+    c.file.sensors[ch].lo = sensors.channels[ch].range_lo;
+    c.file.sensors[ch].hi = sensors.channels[ch].range_hi;
+  }
+  ct::CircuitReplayOptions o;
+  o.table = &thesis_table();
+  return ct::replay_circuit(c, d, o);
+}
+
+NominalStats score_nominal(const ct::CircuitReplayResult& r) {
   NominalStats st;
   st.seconds = r.t_last - r.t_first;
   st.rows = static_cast<long>(r.rows);

@@ -1,15 +1,17 @@
 #pragma once
 /// @file campaign_runs.hpp
 /// Building blocks of the fault campaign (bench/fault_campaign.cpp, docs/fault_campaign.md):
-/// the rig conditions, the fault list, one monitored log (synthetic log → hstmon::host::replay,
-/// exactly what `hstmon replay` runs) and its scoring.
+/// the rig conditions, the fault list, one monitored log (the thesis reference's synthetic
+/// log → the built-in thesis.json through replay_circuit, exactly what `hstmon replay`
+/// runs) and its scoring.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "campaign_score.hpp"
-#include "hstmon_host/replay.hpp"
+#include "hstmon_circuit/circuit_log.hpp"
+#include "hstmon_circuit/circuit_replay.hpp"
 #include "hstmon_sim/load_profile.hpp"
 #include "hstmon_sim/param_fault.hpp"
 #include "hstmon_sim/rig_run.hpp"
@@ -72,11 +74,15 @@ std::vector<FaultCase> parameter_faults();
 /// Sensor faults per channel: loop break, stuck, bias ±2 % and ±5 % of full scale.
 std::vector<FaultCase> sensor_faults(const hstmon::sim::SensorConfig& sensors);
 
-/// A synthetic log replayed as `hstmon replay` does (default options, init auto); with
-/// declare_ranges, told the transmitter ranges of the sensor set-up (as an installation's
-/// parameter file would), else the replay's default assumption.
-hstmon::host::ReplayResult replay_log(const hstmon::sim::ThesisMeasurements& log,
-                                      const hstmon::sim::SensorConfig& sensors, bool declare_ranges);
+/// A synthetic log replayed as `hstmon replay` does: the built-in thesis.json, its fault
+/// table (fdi::circuit_signature_table, built once), default options; with declare_ranges,
+/// told the transmitter ranges of the sensor set-up (as an installation's parameter file
+/// would), else thesis.json's.
+hstmon::circuit_tools::CircuitReplayResult replay_log(const hstmon::sim::ThesisMeasurements& log,
+                                                      const hstmon::sim::SensorConfig& sensors, bool declare_ranges);
+
+/// A synthetic log as a thesis.json log's text (`hstmon replay` reads it), note as its comment.
+std::string log_text(const hstmon::sim::ThesisMeasurements& log, const std::string& note);
 
 /// False alarms of a nominal log: detected events.
 struct NominalStats {
@@ -88,6 +94,6 @@ struct NominalStats {
   std::vector<double> times;         ///< [s] of each false detection
   std::vector<std::string> calls;    ///< best candidate of the decision that followed
 };
-NominalStats score_nominal(const hstmon::host::ReplayResult& r);
+NominalStats score_nominal(const hstmon::circuit_tools::CircuitReplayResult& r);
 
 }  // namespace hstmon_campaign

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "hstmon_host/replay.hpp"
+#include "hstmon_host/replay_event.hpp"
 
 namespace hstmon_campaign {
 

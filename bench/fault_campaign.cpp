@@ -3,26 +3,29 @@
 /// condition — the baseline rig and one factor changed at a time (transducer lag, sample
 /// rate, start-up, load shape, ADC, parameter error) — the 50 % PRV blockage, every
 /// parameter fault of the thesis table, sensor faults (loop break, stuck, bias) and hours
-/// of nominal replay with start-ups, a stop/start and load changes, each log replayed
-/// exactly as `hstmon replay` does. A benchmark program, not a test.
+/// of nominal replay with start-ups, a stop/start and load changes, each log of the thesis
+/// reference replayed exactly as `hstmon replay` does (the built-in thesis.json). A
+/// benchmark program, not a test.
 ///
 ///   hstmon_fault_campaign [--quick] [--json] [--hours H] [--seeds N] [--param-seeds N]
 ///                         [--sensor-seeds N] [--jobs N] [--condition TEXT] [--t-fault S]
-///                         [--after S] [--verbose]
+///                         [--after S] [--verbose] [--dump DIR]
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "campaign_runs.hpp"
-#include "hstmon/monitor.hpp"
+#include "hstmon/fault_matcher.hpp"
 #include "hstmon_sim/machine_error.hpp"
 #include "hstmon_sim/measure.hpp"
 
@@ -42,16 +45,19 @@ struct Options {
   std::string only;        // conditions whose name contains this
   bool json = false;
   bool verbose = false;
+  std::string dump;  // --dump DIR: each miss's log, as `hstmon replay` reads it
 };
 
 void usage() {
   std::fprintf(stderr,
                "usage: hstmon_fault_campaign [--quick] [--json] [--hours H] [--seeds N] [--param-seeds N]\n"
                "         [--sensor-seeds N] [--jobs N] [--condition TEXT] [--t-fault S] [--after S] [--verbose]\n"
+               "         [--dump DIR]\n"
                "  --hours    nominal replay in total, split evenly over the conditions (default 10)\n"
                "  --seeds    50 %% blockage runs per condition (default 20)\n"
                "  --quick    0.5 h, 5 blockage seeds, 1 seed per parameter/sensor fault\n"
-               "  --verbose  the events of every miss on stderr\n");
+               "  --verbose  the events of every miss on stderr\n"
+               "  --dump     write each miss's log to DIR (a thesis.json log: hstmon replay reads it)\n");
 }
 
 bool parse(int argc, char** argv, Options& o) {
@@ -76,6 +82,8 @@ bool parse(int argc, char** argv, Options& o) {
     else if (a == "--t-fault" && !std::isnan(v = num(1.0))) o.t_fault = v;
     else if (a == "--after" && !std::isnan(v = num(0.5))) o.after = v;
     else if (a == "--condition" && i + 1 < argc) o.only = argv[++i];
+    else if (a == "--dump" && i + 1 < argc)
+      o.dump = argv[++i];
     else {
       usage();
       return false;
@@ -241,7 +249,7 @@ Outcome run_job(const Job& j, const Condition& c, const Options& o, double tie) 
       sf.t_start = t_f;
       sim::inject_sensor_fault(log, sensors, sf);
     }
-    const hstmon::host::ReplayResult res = replay_log(log, sensors, c.declare_ranges);
+    const hstmon::circuit_tools::CircuitReplayResult res = replay_log(log, sensors, c.declare_ranges);
     r.s = score(res.events, f.row, t_f, tie);
     if (o.verbose && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
       char b[160];
@@ -252,6 +260,14 @@ Outcome run_job(const Job& j, const Condition& c, const Options& o, double tie) 
         r.trace += b;
         if (!e.candidates.empty()) r.trace += "[" + e.candidates[0].fault + "]";
       }
+    }
+    if (!o.dump.empty() && (!r.s.in_set || r.s.false_events || !r.s.detected)) {
+      std::string name = c.name + "_" + f.label + "_" + std::to_string(j.seed);
+      for (char& ch : name) {
+        if (std::isalnum(static_cast<unsigned char>(ch)) == 0 && ch != '+' && ch != '-') ch = '_';
+      }
+      std::ofstream(o.dump + "/" + name + ".csv") << log_text(
+          log, c.name + " | " + f.label + ", fault at " + std::to_string(t_f) + " s, seed " + std::to_string(j.seed));
     }
   }
   r.cpu_s = seconds_since(t0);
@@ -426,13 +442,16 @@ void print_targets(const std::vector<Condition>& conds, Totals& t) {
 
 void print_report(const Options& o, const std::vector<Condition>& conds, Totals& t, double total_s) {
   const double hours_per_cond = o.hours / static_cast<double>(conds.size());
-  std::printf("hstmon fault campaign over rig conditions (each log replayed as `hstmon replay` does, default\n"
-              "options: init auto, the replay's default transmitter ranges). Baseline: rig_fast sensors at 1 kHz (no lag, σ 0.04 bar / 0.5 rpm,\n"
-              "ADC 0.01 bar, Ppp 0–400 bar), machine ±2 %%, start from rest (supply on at the first sample), PRV steps every 2 s\n"
-              "in [0.65, 1.6]·kp0. Each other condition changes one factor. Fault at t = %.0f s (×20 at 0.25 Hz),\n"
-              "%.0f s after; nominal: %.2f h per condition in 100 s segments (1000 s at 0.25 Hz), each a start-up\n"
-              "from rest, a stop at 60 %% and a restart at 70 %% of the segment, a new machine and seeds.\n\n",
-              o.t_fault, o.after, hours_per_cond);
+  std::printf(
+      "hstmon fault campaign over rig conditions (each log replayed as `hstmon replay` does, default\n"
+      "options: the built-in thesis.json, init auto, its transmitter ranges). Baseline: rig_fast sensors at 1 kHz (no "
+      "lag, σ 0.04 bar / 0.5 rpm,\n"
+      "ADC 0.01 bar, Ppp 0–400 bar), machine ±2 %%, start from rest (supply on at the first sample), PRV steps every 2 "
+      "s\n"
+      "in [0.65, 1.6]·kp0. Each other condition changes one factor. Fault at t = %.0f s (×20 at 0.25 Hz),\n"
+      "%.0f s after; nominal: %.2f h per condition in 100 s segments (1000 s at 0.25 Hz), each a start-up\n"
+      "from rest, a stop at 60 %% and a restart at 70 %% of the segment, a new machine and seeds.\n\n",
+      o.t_fault, o.after, hours_per_cond);
   print_nominal_and_blockage(conds, t);
   print_groups(conds, t);
   print_false_alarms(conds, t);
@@ -457,7 +476,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no condition matches %s\n", o.only.c_str());
     return 1;
   }
-  const double tie = hstmon::Monitor<double>::Config{}.matcher.tie_margin;
+  const double tie = hstmon::FaultMatcher<double>::Config{}.tie_margin;
   const std::vector<FaultCase> pfaults = parameter_faults();
   std::vector<std::vector<FaultCase>> sfaults;
   for (const Condition& c : conds) sfaults.push_back(sensor_faults(sensors_of(c)));
