@@ -51,7 +51,10 @@
 /// the same for every hypothesis, so χ² stays a quadratic in the predicted change. It
 /// isolates where the model bound alone would leave every hypothesis consistent. A channel
 /// whose baseline residual exceeds half the model bound sat far from the model before the
-/// fault (a valve the model has cracked and the machine has not) and is fitted without it.
+/// fault (a valve the model has cracked and the machine has not, or a ±ε machine near the
+/// bound's edge): its change is judged with a model error of half the bound (at least
+/// k_model's share), whatever the change. A window kept from before the episode (the
+/// onset weighting, below) allows a model error of its own residual, up to the bound.
 /// Where the readings at a window's inputs were never taken before the fault (it began in
 /// an input ramp), a prediction of them from the machine's healthy windows elsewhere
 /// (set_expected) stands in for the baseline, its variance the prediction's.
@@ -195,7 +198,7 @@ class FaultEstimator {
     T explained_share = T(0.1); ///< … unless it leaves less than this share of the no-fault χ² [-]
     T input_tolerance = T(0.01); ///< relative input change that starts a new window [-]
     T k_sensitivity = T(0.1);   ///< share of the observed change counted as model error in a baselined window [-]
-    T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the model bound is not used [-]
+    T k_baseline_far = T(0.5);  ///< a baseline residual beyond this share of the bound: that much model error [-]
     T k_back = T(4);            ///< change since the baseline, in standard errors, that is not back [-]
     T k_onset_odds = T(10);     ///< timing odds of the best group over every other that isolate [-]
     T past_settle_taus = T(1);  ///< wait before a window of the record before an episode [time constants]
@@ -264,7 +267,7 @@ class FaultEstimator {
     n_ranked_ = 0;
     last_chi0_w_ = last_dof_w_ = T(0);
     base_.valid = 0;
-    base_use_ = 0;
+    base_use_ = base_far_ = 0;
     expected_.valid = 0;
   }
 
@@ -533,8 +536,11 @@ class FaultEstimator {
       w.y0[i] = pre_y0_[i];
       if (pre_n_[i] == 0) continue;
       const T n = std::fmin(static_cast<T>(pre_n_[i]), cfg_.n_cap);
-      const T err = cfg_.k_model * pre_bound_[i];
       w.mean[i] = pre_sum_[i] / static_cast<T>(pre_n_[i]);
+      // The model error here: a share of the bound, or, up to the whole bound, what the
+      // machine read (a ±ε machine sits anywhere within it); else the machine's own offset
+      // would time whichever hypothesis happens to move the channel its way.
+      const T err = std::fmax(cfg_.k_model * pre_bound_[i], std::fmin(std::fabs(w.mean[i]), pre_bound_[i]));
       w.var[i] = sigma_[i] * sigma_[i] / n + err * err;
       w.valid |= 1u << i;
     }
@@ -687,19 +693,29 @@ class FaultEstimator {
     for (int i = 0; i < kN; ++i) model_err_[i] = cfg_.k_model * bound_[i];
     typename Model::State xs;
     // A channel whose pre-fault residual lay beyond k_baseline_far of the model bound sat
-    // far from the model (a relief valve the model has cracked and the machine has not):
-    // its sensitivities may differ from the model's, so it is fitted as without a baseline.
-    // (At the whole bound the test stand's machine with a shut relief valve lost its leak
-    // from the set: tests/circuit CircuitMonitor.MachineWithShutReliefValve….)
+    // far from the model (a relief valve the model has cracked and the machine has not,
+    // or a ±ε machine near its bound's edge): its sensitivities may differ from the
+    // model's, so its change since the baseline is judged with a model error of that share
+    // of the bound, not a share of the observed change. (Fitted without its baseline, the
+    // machine's own offset read as evidence for whichever fault moves the channel its way:
+    // a p_pp transmitter's bias isolated as kp−, tests/circuit test_far_channel_bias. With
+    // k_baseline_far at the whole bound the test stand's machine with a shut relief valve
+    // lost its leak from the set: CircuitMonitor.MachineWithShutReliefValve….)
     // The readings before the fault at these inputs, else the prediction of them.
     const bool seen = base_.valid != 0 && inputs_close(base_.u, u);
     const bool expected = !seen && expected_.valid != 0 && inputs_close(expected_.u, u);
     const Reference& ref = seen ? base_ : expected_;
     const unsigned valid = seen || expected ? ref.valid : 0u;
     base_use_ = 0;
+    base_far_ = 0;
     for (int i = 0; i < kN; ++i) {
-      const bool near = std::fabs(ref.mean[i]) <= cfg_.k_baseline_far * bound_[i];
-      if (((valid >> i) & 1u) != 0 && near) base_use_ |= 1u << i;
+      if (((valid >> i) & 1u) == 0) continue;
+      base_use_ |= 1u << i;
+      if (std::fabs(ref.mean[i]) <= cfg_.k_baseline_far * bound_[i]) continue;
+      base_far_ |= 1u << i;
+      model_err_[i] = std::fmax(model_err_[i], cfg_.k_baseline_far * bound_[i]);
+    }
+    for (int i = 0; i < kN; ++i) {
       offset_[i] = baselined(i) ? ref.mean[i] : T(0);
       win_base_var_[i] = baselined(i) ? ref.var[i] : T(0);
     }
@@ -745,7 +761,8 @@ class FaultEstimator {
   T variance(int i, T change) const noexcept {
     const T noise = moving_mean_noise(i);
     if (!baselined(i)) return noise + model_err_[i] * model_err_[i];
-    const T share = std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
+    const bool far = ((base_far_ >> i) & 1u) != 0;
+    const T share = far ? model_err_[i] : std::fmin(cfg_.k_sensitivity * std::fabs(change), model_err_[i]);
     return noise + win_base_var_[i] + share * share;
   }
 
@@ -1099,6 +1116,7 @@ class FaultEstimator {
   Reference base_;         ///< read before the fault (set_baseline)
   Reference expected_;     ///< predicted from the healthy windows elsewhere (set_expected)
   unsigned base_use_ = 0;  ///< bit i: the open window fits channel i's change since the baseline
+  unsigned base_far_ = 0;  ///< bit i: … one beyond k_baseline_far of the bound (judged as variance() says)
   T offset_[kNz] = {};  ///< the baseline's residual, per channel (0 without) [channel unit]
   T win_base_var_[kNz] = {};  ///< the variance of offset_ [channel unit²]
   T ys_[kHz][kGz][kNz] = {};
