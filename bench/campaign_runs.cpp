@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "hstmon_circuit/circuit_load.hpp"
+#include "hstmon_circuit/thesis_log.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 
 namespace hstmon_campaign {
@@ -185,35 +186,14 @@ const ct::CircuitFaultTable& thesis_table() {
 
 }  // namespace
 
-ct::CircuitLog circuit_log_of(const sim::ThesisMeasurements& log) {
-  const ct::LoadedCircuit& c = thesis_circuit();
-  const std::size_t n = log.size();
-  ct::CircuitLog d;
-  d.path = "campaign";
-  d.t.resize(n);
-  d.inputs.assign(c.file.inputs.size(), std::vector<double>(n));
-  d.sensors.assign(c.file.sensors.size(), std::vector<double>(n));
-  // thesis.json's inputs and sensors by name: Psupl, Ps, Pbp, kp; p_mi, p_mo, p_pp, w_m.
-  const int in[4] = {c.file.input_index("Psupl"), c.file.input_index("Ps"), c.file.input_index("Pbp"),
-                     c.file.input_index("kp")};
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto& m = log[k];
-    d.t[k] = m.t;
-    const double u[4] = {m.u.Psupl, m.u.Ps, m.u.Pbp, m.u.kp};
-    for (int i = 0; i < 4; ++i) d.inputs[static_cast<std::size_t>(in[i])][k] = u[i];
-    for (std::size_t ch = 0; ch < 4; ++ch) d.sensors[ch][k] = m.y[static_cast<int>(ch)];
-  }
-  return d;
-}
-
 std::string log_text(const sim::ThesisMeasurements& log, const std::string& note) {
-  return ct::circuit_log_text(thesis_circuit().file, circuit_log_of(log), {note});
+  return ct::circuit_log_text(thesis_circuit().file, ct::thesis_circuit_log(log, thesis_circuit().file), {note});
 }
 
 ct::CircuitReplayResult replay_log(const sim::ThesisMeasurements& log, const sim::SensorConfig& sensors,
                                    bool declare_ranges) {
   ct::LoadedCircuit c = thesis_circuit();
-  const ct::CircuitLog d = circuit_log_of(log);
+  const ct::CircuitLog d = ct::thesis_circuit_log(log, c.file);
   for (std::size_t ch = 0; declare_ranges && ch < 4; ++ch) {
     c.file.sensors[ch].lo = sensors.channels[ch].range_lo;
     c.file.sensors[ch].hi = sensors.channels[ch].range_hi;

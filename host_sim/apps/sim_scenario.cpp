@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "hstmon_circuit/thesis_log.hpp"
 #include "hstmon_host/number_text.hpp"
 
 namespace hstmon::sim_app {
@@ -11,15 +12,8 @@ namespace hstmon::sim_app {
 namespace {
 
 using ThesisU = ThesisInputs<double>;
-
-/// The thesis rig's inputs by the names thesis.json gives them.
-struct Field {
-  const char* name;
-  double ThesisU::*member;
-};
-constexpr Field kFields[] = {
-    {"Psupl", &ThesisU::Psupl}, {"Ps", &ThesisU::Ps}, {"Pbp", &ThesisU::Pbp}, {"kp", &ThesisU::kp}};
-constexpr std::size_t kFieldCount = sizeof kFields / sizeof kFields[0];
+using circuit_tools::kThesisInputFields;
+constexpr std::size_t kFieldCount = sizeof kThesisInputFields / sizeof kThesisInputFields[0];
 
 /// Every time at which the true or the logged schedule changes, rising, from 0.
 std::vector<double> change_times(const sim::ThesisScenario& sc) {
@@ -36,10 +30,11 @@ std::vector<double> change_times(const sim::ThesisScenario& sc) {
 std::optional<std::string> scenario_run(const sim::ThesisScenario& sc, const host::CircuitFile& f, ScenarioRun& out) {
   int index[kFieldCount];
   for (std::size_t j = 0; j < kFieldCount; ++j) {
-    index[j] = f.input_index(kFields[j].name);
+    index[j] = f.input_index(kThesisInputFields[j].name);
     if (index[j] < 0) {
       return "--scenario " + sc.name + " is the thesis rig's: it sets the inputs Psupl, Ps, Pbp and kp, and circuit " +
-             f.name + " has no input '" + kFields[j].name + "' (--step and --fault set a circuit's own inputs)";
+             f.name + " has no input '" + kThesisInputFields[j].name +
+             "' (--step and --fault set a circuit's own inputs)";
     }
   }
   out = ScenarioRun{};
@@ -52,8 +47,8 @@ std::optional<std::string> scenario_run(const sim::ThesisScenario& sc, const hos
     const ThesisU& machine = sim::inputs_at(sc, t);
     const ThesisU& logged = sim::logged_inputs_at(sc, t);
     for (std::size_t j = 0; j < kFieldCount; ++j) {
-      const double lv = logged.*kFields[j].member;
-      const double tv = machine.*kFields[j].member;
+      const double lv = logged.*kThesisInputFields[j].member;
+      const double tv = machine.*kThesisInputFields[j].member;
       if (first || lv != logged_before[j]) {
         circuit_tools::InputStep s;
         s.t = t;
@@ -64,8 +59,9 @@ std::optional<std::string> scenario_run(const sim::ThesisScenario& sc, const hos
       }
       const double factor = tv == lv ? 1.0 : tv / lv;
       if (!(std::isfinite(factor) && factor > 0.0)) {
-        return "--scenario " + sc.name + ": at " + host::number_text(t) + " s the machine's " + kFields[j].name + " (" +
-               host::number_text(tv) + ") is no positive multiple of the logged one (" + host::number_text(lv) + ")";
+        return "--scenario " + sc.name + ": at " + host::number_text(t) + " s the machine's " +
+               kThesisInputFields[j].name + " (" + host::number_text(tv) +
+               ") is no positive multiple of the logged one (" + host::number_text(lv) + ")";
       }
       if (factor != factor_before[j]) {
         circuit_tools::InputStep s;

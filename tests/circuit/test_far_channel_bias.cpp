@@ -8,11 +8,13 @@
 // tell apart here; the verdict names them both, and nothing else.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "hstmon_circuit/circuit_load.hpp"
 #include "hstmon_circuit/circuit_replay.hpp"
+#include "hstmon_circuit/thesis_log.hpp"
 #include "hstmon_fdi/circuit_signature_table.hpp"
 #include "hstmon_sensors/sensor_presets.hpp"
 #include "hstmon_sim/machine_error.hpp"
@@ -26,7 +28,7 @@ namespace ct = hstmon::circuit_tools;
 namespace sim = hstmon::sim;
 
 // The thesis reference's log of the rig (PRV steps every 2 s from 1 s, the first setting
-// nominal), its p_pp transmitter biased by `bias` [Pa] from 2 s, as a thesis.json log.
+// nominal), its p_pp transmitter biased by `bias` [Pa] from 2 s, as a log of c (thesis.json).
 ct::CircuitLog biased_log(const ct::LoadedCircuit& c, double bias) {
   sim::RigRun r;
   r.duration = 5.0;
@@ -45,19 +47,7 @@ ct::CircuitLog biased_log(const ct::LoadedCircuit& c, double bias) {
   f.t_start = 2.0;
   f.value = bias;
   sim::inject_sensor_fault(ms, sensors, f);
-  ct::CircuitLog log;
-  log.path = "biased";
-  const int in[4] = {c.file.input_index("Psupl"), c.file.input_index("Ps"), c.file.input_index("Pbp"),
-                     c.file.input_index("kp")};
-  log.inputs.assign(c.file.inputs.size(), {});
-  log.sensors.assign(c.file.sensors.size(), {});
-  for (const auto& m : ms) {
-    log.t.push_back(m.t);
-    const double u[4] = {m.u.Psupl, m.u.Ps, m.u.Pbp, m.u.kp};
-    for (int i = 0; i < 4; ++i) log.inputs[static_cast<std::size_t>(in[i])].push_back(u[i]);
-    for (std::size_t ch = 0; ch < 4; ++ch) log.sensors[ch].push_back(m.y[static_cast<int>(ch)]);
-  }
-  return log;
+  return ct::thesis_circuit_log(ms, c.file);
 }
 
 TEST(FarChannelBias, PpTransmitterBiasIsNotIsolatedAsAPrvRestriction) {
